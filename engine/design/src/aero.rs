@@ -1,0 +1,1 @@
+//! Barrowman aerodynamic coefficients (placeholder: filled by the aerodynamics work).

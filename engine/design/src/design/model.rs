@@ -1,0 +1,319 @@
+//! The validated design: a flat arena of components with absolute positions.
+//!
+//! Everything here has been checked (finite, positive where it must be, inside its parent,
+//! unique ids) and every position is resolved to metres aft of the nose tip, so the mass and
+//! aerodynamics code never walks relative placements.
+
+/// Index of a component in [`Design::components`].
+pub type ComponentIdx = usize;
+
+/// A validated rocket design.
+#[derive(Debug, Clone)]
+pub struct Design {
+    /// Human-readable name.
+    pub name: String,
+    /// The file it came from (for error messages), if any.
+    pub source: Option<std::path::PathBuf>,
+    /// Motor the design flies by default: a path, a file stem or a designation.
+    pub default_motor: Option<String>,
+    /// Reference diameter (largest body diameter), m. Static margin is in calibres of this.
+    pub reference_diameter_m: f64,
+    /// Total length from the nose tip to the aft end of the last body component, m.
+    pub length_m: f64,
+    /// Stages, fore to aft. Every component belongs to exactly one.
+    pub stages: Vec<Stage>,
+    /// All components, parents before children, in document order.
+    pub components: Vec<Component>,
+    /// Drag model.
+    pub drag: DragSpec,
+    /// Rail buttons or lugs, if any: positions of the upper and lower guide, m aft of the tip.
+    pub rail_guides_m: Option<(f64, f64)>,
+    /// Motor placement, resolved from the motor-mount inner tube (`None` if no mount).
+    pub motor_mount: Option<MotorMount>,
+}
+
+/// A stage: a group of top-level body components, with an optional mass override.
+#[derive(Debug, Clone)]
+pub struct Stage {
+    pub id: String,
+    pub name: String,
+    /// Indices of the components in this stage (all of them, at every depth).
+    pub components: Vec<ComponentIdx>,
+    pub overrides: Overrides,
+}
+
+/// Where the motor sits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotorMount {
+    /// The inner tube that holds the motor.
+    pub component: ComponentIdx,
+    /// The motor's aft end, m aft of the nose tip (tube's aft end plus overhang).
+    pub motor_aft_m: f64,
+    /// Inner diameter of the mount, m (the motor's diameter must not exceed it).
+    pub inner_diameter_m: f64,
+    /// Length of the mount tube, m.
+    pub tube_length_m: f64,
+}
+
+/// One component of the tree.
+#[derive(Debug, Clone)]
+pub struct Component {
+    /// Unique id (the one `MassShift` names).
+    pub id: String,
+    pub name: String,
+    pub parent: Option<ComponentIdx>,
+    pub children: Vec<ComponentIdx>,
+    pub stage: usize,
+    /// Fore end, m aft of the nose tip.
+    pub x_top_m: f64,
+    /// Axial length, m.
+    pub length_m: f64,
+    /// Offset of the component's axis from the rocket's axis in the station frame (y, z), m.
+    /// Zero for body components and most internal parts.
+    pub radial_offset_m: [f64; 2],
+    pub kind: ComponentKind,
+    /// What the component is made of, or its explicit mass.
+    pub mass_spec: MassSpec,
+    pub overrides: Overrides,
+}
+
+impl Component {
+    /// Aft end, m aft of the nose tip.
+    pub fn x_bottom_m(&self) -> f64 {
+        self.x_top_m + self.length_m
+    }
+    /// True for nose cones, body tubes and transitions (the airframe's outer shell).
+    pub fn is_body(&self) -> bool {
+        matches!(
+            self.kind,
+            ComponentKind::NoseCone(_) | ComponentKind::BodyTube(_) | ComponentKind::Transition(_)
+        )
+    }
+    /// True for parts on the outside of the airframe (fins, lugs, rail buttons).
+    pub fn is_external(&self) -> bool {
+        matches!(
+            self.kind,
+            ComponentKind::FinSet(_) | ComponentKind::LaunchLug(_) | ComponentKind::RailButton(_)
+        )
+    }
+}
+
+/// How a component's mass is given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MassSpec {
+    /// Material density, kg/m³ (kg/m for shock cord is given as `LinearDensity`).
+    Density(f64),
+    /// Explicit mass, kg, spread over the component's shape.
+    Mass(f64),
+    /// Linear density, kg/m (shock cord).
+    LinearDensity(f64),
+}
+
+/// Overrides of mass and center of mass (as OpenRocket has them).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Overrides {
+    /// Replace the mass, kg. The inertia is scaled by the same ratio.
+    pub mass_kg: Option<f64>,
+    /// Replace the center of mass, m aft of the nose tip (absolute).
+    pub cg_m: Option<f64>,
+    /// The override covers everything the component holds (its subtree), not just itself.
+    pub covers_children: bool,
+}
+
+impl Overrides {
+    pub fn any(&self) -> bool {
+        self.mass_kg.is_some() || self.cg_m.is_some()
+    }
+}
+
+/// Nose cone profiles. `r(x)` for `0 <= x <= L`, base radius `R`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NoseShape {
+    Conical,
+    /// Tangent ogive.
+    Ogive,
+    /// Haack series with parameter `c` (0 = von Kármán / LD-Haack, 1/3 = LV-Haack).
+    Haack { c: f64 },
+    Elliptical,
+    /// r = R (x/L)^k, 0 < k <= 1.
+    PowerSeries { k: f64 },
+    /// Parabolic series with parameter K' in [0, 1] (1 = full parabola).
+    Parabolic { k: f64 },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NoseCone {
+    pub shape: NoseShape,
+    pub base_diameter_m: f64,
+    pub wall_thickness_m: f64,
+    /// Solid (filled) nose, e.g. a turned wooden one.
+    pub filled: bool,
+    pub shoulder: Option<Shoulder>,
+}
+
+/// A shoulder: a tube that slides into the next body component, aft of the part's aft end
+/// (for a nose cone) or fore of its fore end (a transition's fore shoulder).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shoulder {
+    pub length_m: f64,
+    pub outer_diameter_m: f64,
+    pub wall_thickness_m: f64,
+    /// Shoulder capped at its end by a disc of the same thickness.
+    pub capped: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyTube {
+    pub outer_diameter_m: f64,
+    pub wall_thickness_m: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TransitionShape {
+    Conical,
+    Ogive,
+    Elliptical,
+    PowerSeries { k: f64 },
+    Haack { c: f64 },
+    Parabolic { k: f64 },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Transition {
+    pub shape: TransitionShape,
+    pub fore_diameter_m: f64,
+    pub aft_diameter_m: f64,
+    pub wall_thickness_m: f64,
+    pub filled: bool,
+    pub fore_shoulder: Option<Shoulder>,
+    pub aft_shoulder: Option<Shoulder>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FinSet {
+    pub count: u32,
+    pub root_chord_m: f64,
+    pub tip_chord_m: f64,
+    /// Semi-span: from the body surface to the tip, m.
+    pub span_m: f64,
+    /// Axial distance from the root's leading edge to the tip's leading edge, m.
+    pub sweep_m: f64,
+    pub thickness_m: f64,
+    pub cant_deg: f64,
+    /// Radius of the body where the fins attach, m.
+    pub body_radius_m: f64,
+    /// Angle of the first fin about the axis, degrees (from +y toward +z).
+    pub rotation_deg: f64,
+    /// Fin cross-section for drag: square, rounded or airfoil.
+    pub cross_section: FinCrossSection,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FinCrossSection {
+    Square,
+    Rounded,
+    Airfoil,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LaunchLug {
+    pub outer_diameter_m: f64,
+    pub wall_thickness_m: f64,
+    /// Angle about the axis, degrees.
+    pub angle_deg: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RailButton {
+    pub outer_diameter_m: f64,
+    pub height_m: f64,
+    pub angle_deg: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct InnerTube {
+    pub outer_diameter_m: f64,
+    pub wall_thickness_m: f64,
+    /// Present when this tube holds a motor.
+    pub motor_mount: Option<MotorMountSpec>,
+    /// Offsets (y, z) of each tube of a cluster, m; a single tube has one entry `[0, 0]`
+    /// (or the tube's own radial offset).
+    pub cluster_offsets_m: Vec<[f64; 2]>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotorMountSpec {
+    /// How far the motor sticks out of the tube's aft end, m.
+    pub overhang_m: f64,
+}
+
+/// Centering ring or bulkhead (a bulkhead has inner diameter 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ring {
+    pub outer_diameter_m: f64,
+    pub inner_diameter_m: f64,
+}
+
+/// A solid cylinder (mass component, parachute or shock cord packed as a cylinder).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PackedCylinder {
+    pub radius_m: f64,
+    /// Optional measured inertia (axial, transverse) about the part's own center, kg·m²,
+    /// replacing the solid-cylinder value.
+    pub inertia_kg_m2: Option<(f64, f64)>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Parachute {
+    pub packed: PackedCylinder,
+    /// Canopy diameter, m, and drag coefficient (used when the design names its recovery).
+    pub canopy_diameter_m: f64,
+    pub cd: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum ComponentKind {
+    NoseCone(NoseCone),
+    BodyTube(BodyTube),
+    Transition(Transition),
+    FinSet(FinSet),
+    LaunchLug(LaunchLug),
+    RailButton(RailButton),
+    InnerTube(InnerTube),
+    CenteringRing(Ring),
+    Bulkhead(Ring),
+    MassComponent(PackedCylinder),
+    Parachute(Parachute),
+    ShockCord(PackedCylinder),
+}
+
+impl ComponentKind {
+    /// The JSON `type` tag of this kind.
+    pub fn type_name(&self) -> &'static str {
+        match self {
+            ComponentKind::NoseCone(_) => "nose_cone",
+            ComponentKind::BodyTube(_) => "body_tube",
+            ComponentKind::Transition(_) => "transition",
+            ComponentKind::FinSet(_) => "fin_set",
+            ComponentKind::LaunchLug(_) => "launch_lug",
+            ComponentKind::RailButton(_) => "rail_button",
+            ComponentKind::InnerTube(_) => "inner_tube",
+            ComponentKind::CenteringRing(_) => "centering_ring",
+            ComponentKind::Bulkhead(_) => "bulkhead",
+            ComponentKind::MassComponent(_) => "mass_component",
+            ComponentKind::Parachute(_) => "parachute",
+            ComponentKind::ShockCord(_) => "shock_cord",
+        }
+    }
+}
+
+/// Drag model of the design.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DragSpec {
+    /// Cd against Mach, referenced to the area of the reference diameter; power off and on
+    /// (as RocketPy reads them). Mach strictly increasing.
+    Curves { power_off: Vec<(f64, f64)>, power_on: Vec<(f64, f64)> },
+    /// Estimate from the geometry (skin friction, pressure and base drag, as OpenRocket does),
+    /// with a surface roughness, m.
+    Estimate { roughness_m: f64 },
+}

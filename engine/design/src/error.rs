@@ -1,0 +1,283 @@
+//! Errors of the design layer. Each names the file, the component (or line) and the field,
+//! and says which rule was broken.
+//!
+//! A [`DesignError`] displays as one line a user can act on, e.g.
+//! `design.json: component "fins": field "span_m": must be positive and finite (got -0.1)`.
+//! Tests and callers that need to know *which* rule fired match on [`Rule`] (see
+//! [`DesignError::rule`]) rather than on the text.
+
+use std::fmt;
+
+/// Where in the design a problem is.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Location {
+    /// The design as a whole (top-level fields).
+    Design,
+    /// The `drag` object.
+    Drag,
+    /// A stage, by id.
+    Stage(String),
+    /// A component, by id.
+    Component(String),
+    /// A place without a usable id, as a JSON path (`stages[0].components[2]`).
+    Path(String),
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Location::Design => write!(f, "design"),
+            Location::Drag => write!(f, "drag"),
+            Location::Stage(id) => write!(f, "stage \"{id}\""),
+            Location::Component(id) => write!(f, "component \"{id}\""),
+            Location::Path(p) => write!(f, "{p}"),
+        }
+    }
+}
+
+/// The rule a design broke. Its `Display` is the human explanation, with the offending values.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Rule {
+    /// A length, diameter, mass or density that must be `> 0` and finite.
+    NotPositive { got: f64 },
+    /// A value that must be `>= 0` and finite.
+    Negative { got: f64 },
+    /// A value that must be finite.
+    NotFinite { got: f64 },
+    /// A value outside its allowed closed range.
+    OutOfRange { got: f64, min: f64, max: f64 },
+    /// A wall thicker than the radius it belongs to.
+    WallThickerThanRadius { wall_m: f64, radius_m: f64 },
+    /// Not exactly one of the ways to give a mass (`options` lists them).
+    MassSpecNotExactlyOne { options: &'static str, given: usize },
+    /// A field that needs another one beside it.
+    NeedsField { other: &'static str },
+    /// A shape parameter given to a shape that takes none.
+    ShapeTakesNoParameter { shape: &'static str },
+    /// An empty id.
+    EmptyId,
+    /// An id used twice (stages and components share one namespace).
+    DuplicateId { first: String },
+    /// A nose cone, body tube or transition placed inside another component.
+    BodyInsideComponent { kind: &'static str },
+    /// A part that is not a body component at a stage's top level.
+    NotABody { kind: &'static str },
+    /// Fins, lugs and rail buttons sit on a body component, not inside an inner tube.
+    ExternalPartOffBody { kind: &'static str },
+    /// A part entirely outside its parent's axial extent (shoulders included).
+    OutsideParent { top_m: f64, bottom_m: f64, parent_top_m: f64, parent_bottom_m: f64 },
+    /// A part wider than its parent's inner diameter (diameters measured about the parent's
+    /// axis: twice the part's largest distance from it).
+    WiderThanParent { width_m: f64, inner_diameter_m: f64 },
+    /// Fins with a tip chord but no root chord.
+    FinRootChord { root_m: f64, tip_m: f64 },
+    /// A second inner tube marked as the motor mount.
+    TwoMotorMounts { first: String },
+    /// A motor mount made of a cluster of several tubes (one motor only is flown).
+    ClusteredMotorMount { tubes: usize },
+    /// A motor mount off the rocket's axis.
+    MotorMountOffAxis { offset_m: f64 },
+    /// A Mach column that is not strictly increasing.
+    MachNotIncreasing { row: usize, previous: f64, got: f64 },
+    /// A drag table with no rows.
+    EmptyTable,
+    /// Not exactly one of the drag models.
+    DragModelNotExactlyOne { given: usize },
+    /// Both an inline power-on table and a CSV.
+    PowerOnTwice,
+    /// A stage without a body component, or a design without stages.
+    NoBodyComponent,
+    /// Too many fins, or none.
+    FinCount { got: u32, max: u32 },
+    /// An inner tube cluster with no tube.
+    EmptyCluster,
+    /// A resolved position or size that overflowed.
+    PositionNotFinite { got: f64 },
+    /// `motor_fits` on a design with no motor mount.
+    NoMotorMount,
+    /// A motor wider than the mount's inner diameter.
+    MotorTooWide { motor_diameter_m: f64, mount_inner_diameter_m: f64 },
+    /// A motor longer than the mount tube plus its overhang.
+    MotorTooLong { motor_length_m: f64, room_m: f64 },
+}
+
+impl fmt::Display for Rule {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Rule::NotPositive { got } => write!(f, "must be positive and finite (got {got})"),
+            Rule::Negative { got } => write!(f, "must be zero or positive and finite (got {got})"),
+            Rule::NotFinite { got } => write!(f, "must be finite (got {got})"),
+            Rule::OutOfRange { got, min, max } => {
+                write!(f, "must be between {min} and {max} (got {got})")
+            }
+            Rule::WallThickerThanRadius { wall_m, radius_m } => write!(
+                f,
+                "the wall ({wall_m} m) must not be thicker than the radius ({radius_m} m)"
+            ),
+            Rule::MassSpecNotExactlyOne { options, given } => {
+                write!(f, "give exactly one of {options} (got {given})")
+            }
+            Rule::NeedsField { other } => write!(f, "needs \"{other}\" as well"),
+            Rule::ShapeTakesNoParameter { shape } => {
+                write!(f, "shape \"{shape}\" takes no shape_parameter")
+            }
+            Rule::EmptyId => write!(f, "must not be empty"),
+            Rule::DuplicateId { first } => write!(f, "is already the id of {first}"),
+            Rule::BodyInsideComponent { kind } => write!(
+                f,
+                "a {kind} is a body component: it goes in a stage's \"components\", not inside \
+                 another component"
+            ),
+            Rule::NotABody { kind } => write!(
+                f,
+                "a {kind} is not a body component: put it in the \"children\" of a nose cone, \
+                 body tube or transition"
+            ),
+            Rule::ExternalPartOffBody { kind } => write!(
+                f,
+                "a {kind} goes on the outside of a nose cone, body tube or transition, not \
+                 inside an inner tube"
+            ),
+            Rule::OutsideParent { top_m, bottom_m, parent_top_m, parent_bottom_m } => write!(
+                f,
+                "the part ({top_m} m to {bottom_m} m aft of the nose tip) lies entirely outside \
+                 its parent ({parent_top_m} m to {parent_bottom_m} m)"
+            ),
+            Rule::WiderThanParent { width_m, inner_diameter_m } => write!(
+                f,
+                "the part ({width_m} m across, offsets included) is wider than its parent's \
+                 inner diameter ({inner_diameter_m} m)"
+            ),
+            Rule::FinRootChord { root_m, tip_m } => write!(
+                f,
+                "the root chord must be positive when the tip chord is {tip_m} m (got {root_m})"
+            ),
+            Rule::TwoMotorMounts { first } => {
+                write!(f, "a design has one motor mount and component \"{first}\" already is it")
+            }
+            Rule::ClusteredMotorMount { tubes } => write!(
+                f,
+                "a motor mount holds one motor; this one is a cluster of {tubes} tubes \
+                 (clustered motors are not supported)"
+            ),
+            Rule::MotorMountOffAxis { offset_m } => write!(
+                f,
+                "the motor mount must be on the rocket's axis (it is {offset_m} m off it)"
+            ),
+            Rule::MachNotIncreasing { row, previous, got } => write!(
+                f,
+                "Mach must be strictly increasing: row {row} has Mach {got} after {previous}"
+            ),
+            Rule::EmptyTable => write!(f, "the table has no rows"),
+            Rule::DragModelNotExactlyOne { given } => write!(
+                f,
+                "give exactly one of \"power_off\", \"power_off_csv\" and \"estimate\" (got {given})"
+            ),
+            Rule::PowerOnTwice => write!(f, "give at most one of \"power_on\" and \"power_on_csv\""),
+            Rule::NoBodyComponent => write!(f, "has no body component"),
+            Rule::FinCount { got, max } => {
+                write!(f, "must be between 1 and {max} (got {got})")
+            }
+            Rule::EmptyCluster => write!(f, "a cluster needs at least one tube"),
+            Rule::PositionNotFinite { got } => {
+                write!(f, "the resolved position is not finite (got {got})")
+            }
+            Rule::NoMotorMount => write!(f, "has no motor mount (an inner tube with \"motor_mount\")"),
+            Rule::MotorTooWide { motor_diameter_m, mount_inner_diameter_m } => write!(
+                f,
+                "the motor is too wide: its diameter {motor_diameter_m} m exceeds the mount's \
+                 inner diameter {mount_inner_diameter_m} m"
+            ),
+            Rule::MotorTooLong { motor_length_m, room_m } => write!(
+                f,
+                "the motor is too long: {motor_length_m} m exceeds the mount's length plus its \
+                 overhang, {room_m} m"
+            ),
+        }
+    }
+}
+
+/// Everything that can go wrong reading or checking a design.
+#[derive(Debug, thiserror::Error)]
+pub enum DesignError {
+    /// The design file (or a CSV it names) could not be read.
+    #[error("{file}: cannot read it: {source}")]
+    Io {
+        file: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// JSON syntax, a wrong type, a missing or an unknown field (from serde).
+    #[error("{file}: line {line}, column {column}: {message}")]
+    Json { file: String, line: usize, column: usize, message: String },
+    /// A drag CSV that does not parse.
+    #[error("{file}: line {line}: {message}")]
+    Csv { file: String, line: usize, message: String },
+    /// A rule of the design broken, with where and what.
+    #[error("{file}: {at}: {}{rule}", field_prefix(.field))]
+    Invalid { file: String, at: Location, field: Option<String>, rule: Rule },
+}
+
+fn field_prefix(field: &Option<String>) -> String {
+    match field {
+        Some(name) => format!("field \"{name}\": "),
+        None => String::new(),
+    }
+}
+
+impl DesignError {
+    /// The rule broken, for [`DesignError::Invalid`].
+    pub fn rule(&self) -> Option<&Rule> {
+        match self {
+            DesignError::Invalid { rule, .. } => Some(rule),
+            _ => None,
+        }
+    }
+
+    /// Where the problem is, for [`DesignError::Invalid`].
+    pub fn location(&self) -> Option<&Location> {
+        match self {
+            DesignError::Invalid { at, .. } => Some(at),
+            _ => None,
+        }
+    }
+
+    /// The field at fault, for [`DesignError::Invalid`] errors that name one.
+    pub fn field(&self) -> Option<&str> {
+        match self {
+            DesignError::Invalid { field, .. } => field.as_deref(),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_invalid_field_reads_as_file_component_field_and_rule() {
+        let e = DesignError::Invalid {
+            file: "design.json".into(),
+            at: Location::Component("fins".into()),
+            field: Some("span_m".into()),
+            rule: Rule::NotPositive { got: -0.1 },
+        };
+        assert_eq!(
+            e.to_string(),
+            "design.json: component \"fins\": field \"span_m\": must be positive and finite (got -0.1)"
+        );
+    }
+
+    #[test]
+    fn a_rule_without_a_field_leaves_the_field_out() {
+        let e = DesignError::Invalid {
+            file: "d.json".into(),
+            at: Location::Stage("sustainer".into()),
+            field: None,
+            rule: Rule::NoBodyComponent,
+        };
+        assert_eq!(e.to_string(), "d.json: stage \"sustainer\": has no body component");
+    }
+}

@@ -1,0 +1,214 @@
+//! RASP `.eng` files: a header line of seven fields (name, diameter mm, length mm, delays,
+//! propellant kg, total kg, manufacturer) followed by `time thrust` samples, `;` comments
+//! anywhere. Hand-parsed: the format is line-oriented and has no grammar a crate would add to.
+//!
+//! Accepted quirks (all seen in real files): CRLF, LF or CR line endings, a UTF-8 byte-order
+//! mark, tab-separated fields, trailing spaces, leading and trailing comments, a bare `;`
+//! after the last sample, no final newline, comments after a value on the same line, and
+//! several motors in one file (each new header starts a motor).
+
+use super::curve::{parse_delays, CurveBuilder};
+use super::error::{parse_error, parse_non_negative, parse_number, parse_positive, MotorError, Rule};
+use super::{Motor, MotorFormat};
+
+/// The header's seven fields, in file order.
+const HEADER_FIELDS: usize = 7;
+
+/// Every motor in the RASP text `text`. `file` names the file in errors; its stem becomes
+/// each motor's [`Motor::source`].
+pub fn parse_eng(text: &str, file: &str) -> Result<Vec<Motor>, MotorError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut motors = Vec::new();
+    let mut current: Option<Block> = None;
+    let mut line_count = 0;
+    for (index, raw) in lines(text).enumerate() {
+        let line = index + 1;
+        line_count = line;
+        let content = raw.split(';').next().unwrap_or("");
+        let fields: Vec<&str> = content.split_whitespace().collect();
+        if fields.is_empty() {
+            continue;
+        }
+        let is_header = fields.len() == HEADER_FIELDS;
+        match current.take() {
+            Some(mut block) if fields.len() == 2 => {
+                let time_s = parse_number(fields[0], file, line, "time")?;
+                let thrust_n = parse_number(fields[1], file, line, "thrust")?;
+                block.curve.push(time_s, thrust_n, line, "time", "thrust")?;
+                current = Some(block);
+            }
+            Some(block) if is_header && !block.curve.is_empty() => {
+                motors.push(block.finish(file)?);
+                current = Some(Block::start(&fields, file, line)?);
+            }
+            Some(_) => {
+                return Err(parse_error(
+                    file,
+                    line,
+                    "sample (time thrust)",
+                    Rule::FieldCount { expected: 2, found: fields.len() },
+                ));
+            }
+            None if is_header => current = Some(Block::start(&fields, file, line)?),
+            None => {
+                return Err(parse_error(
+                    file,
+                    line,
+                    "header",
+                    Rule::FieldCount { expected: HEADER_FIELDS, found: fields.len() },
+                ));
+            }
+        }
+    }
+    match current {
+        Some(block) => motors.push(block.finish(file)?),
+        None => return Err(parse_error(file, line_count.max(1), "header", Rule::NoHeader)),
+    }
+    Ok(motors)
+}
+
+/// Lines split on `\n` (a trailing `\r` removed), or on `\r` for a file with no `\n`.
+fn lines(text: &str) -> Box<dyn Iterator<Item = &str> + '_> {
+    if text.contains('\n') {
+        Box::new(text.split('\n').map(|l| l.strip_suffix('\r').unwrap_or(l)))
+    } else {
+        Box::new(text.split('\r'))
+    }
+}
+
+/// A motor being read: its header and the samples so far.
+struct Block<'f> {
+    header_line: usize,
+    designation: String,
+    diameter_m: f64,
+    length_m: f64,
+    delays_s: Vec<f64>,
+    propellant_mass_kg: f64,
+    total_mass_kg: f64,
+    manufacturer: String,
+    curve: CurveBuilder<'f>,
+}
+
+impl<'f> Block<'f> {
+    fn start(fields: &[&str], file: &'f str, line: usize) -> Result<Self, MotorError> {
+        let diameter_mm = parse_positive(fields[1], file, line, "diameter (header field 2, mm)")?;
+        let length_mm = parse_positive(fields[2], file, line, "length (header field 3, mm)")?;
+        let delays_s = parse_delays(fields[3], '-', file, line, "delays (header field 4, s)")?;
+        let propellant_mass_kg = parse_non_negative(fields[4], file, line, "propellant mass (header field 5, kg)")?;
+        let total_mass_kg = parse_non_negative(fields[5], file, line, "total mass (header field 6, kg)")?;
+        if propellant_mass_kg > total_mass_kg {
+            return Err(parse_error(
+                file,
+                line,
+                "total mass (header field 6, kg)",
+                Rule::PropellantExceedsTotal { propellant_kg: propellant_mass_kg, total_kg: total_mass_kg },
+            ));
+        }
+        Ok(Block {
+            header_line: line,
+            designation: fields[0].to_string(),
+            diameter_m: diameter_mm * 1e-3,
+            length_m: length_mm * 1e-3,
+            delays_s,
+            propellant_mass_kg,
+            total_mass_kg,
+            manufacturer: fields[6].to_string(),
+            curve: CurveBuilder::new(file),
+        })
+    }
+
+    fn finish(self, file: &str) -> Result<Motor, MotorError> {
+        let curve = self.curve.finish(self.header_line, "thrust")?;
+        Ok(Motor::assemble(
+            self.designation,
+            self.manufacturer,
+            self.diameter_m,
+            self.length_m,
+            self.delays_s,
+            self.propellant_mass_kg,
+            self.total_mass_kg,
+            curve,
+            file,
+            MotorFormat::Eng,
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(text: &str) -> String {
+        parse_eng(text, "test.eng").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn a_minimal_file_gets_the_implicit_zero_point_and_its_header_in_si_units() {
+        let motors = parse_eng("X1 29 100 4-P 0.05 0.1 ACME\n1 10\n2 0", "dir/test.eng").unwrap();
+        assert_eq!(motors.len(), 1);
+        let m = &motors[0];
+        assert_eq!(m.times_s(), [0.0, 1.0, 2.0]);
+        assert_eq!(m.thrust_n(), [0.0, 10.0, 0.0]);
+        assert_eq!(m.delays_s, [4.0]);
+        assert_eq!(m.diameter_m, 0.029);
+        assert_eq!(m.length_m, 0.1);
+        assert_eq!(m.source, "test");
+        // Triangle of base 2 s and height 10 N.
+        assert_eq!(m.total_impulse_ns(), 10.0);
+    }
+
+    #[test]
+    fn a_sample_at_time_zero_is_kept_without_an_extra_point() {
+        let m = &parse_eng("X 29 100 0 0.05 0.1 A\n0 5\n1 5\n1.5 0\n", "t.eng").unwrap()[0];
+        assert_eq!(m.times_s(), [0.0, 1.0, 1.5]);
+        assert_eq!(m.total_impulse_ns(), 5.0 + 1.25);
+    }
+
+    #[test]
+    fn cr_only_line_endings_and_inline_comments_are_read() {
+        let m = &parse_eng("; c\rX 29 100 P 0.05 0.1 A ; hdr\r1 10 ; peak\r2 0\r;", "t.eng").unwrap()[0];
+        assert_eq!(m.times_s(), [0.0, 1.0, 2.0]);
+        assert!(m.delays_s.is_empty());
+    }
+
+    #[test]
+    fn two_blocks_give_two_motors() {
+        let motors = parse_eng("A1 29 100 0 0.05 0.1 A\n1 10\n2 0\nB2 38 200 0 0.1 0.2 B\n1 20\n3 0\n", "t.eng").unwrap();
+        assert_eq!(motors.len(), 2);
+        assert_eq!(motors[1].designation, "B2");
+        assert_eq!(motors[1].total_impulse_ns(), 30.0);
+    }
+
+    #[test]
+    fn each_broken_rule_is_reported_with_file_line_and_field() {
+        assert_eq!(
+            err("; c\nX 29 100 0 0.05 0.1\n1 10\n2 0"),
+            "test.eng, line 2, header: expected 7 whitespace-separated fields, found 6"
+        );
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n1 10\n0.5 20\n2 0"),
+            "test.eng, line 3, time: time 0.5 s does not exceed the previous time 1 s (times must strictly increase)"
+        );
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n1 10\n1 20\n2 0"),
+            "test.eng, line 3, time: time 1 s does not exceed the previous time 1 s (times must strictly increase)"
+        );
+        assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 -10\n2 0"), "test.eng, line 2, thrust: -10 must not be negative");
+        assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 10\n2 0 3"), "test.eng, line 3, sample (time thrust): expected 2 whitespace-separated fields, found 3");
+        assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 1O\n2 0"), "test.eng, line 2, thrust: `1O` is not a number");
+        assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 inf\n2 0"), "test.eng, line 2, thrust: `inf` is not a finite number");
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n1 10\n2 1\n"),
+            "test.eng, line 3, thrust: the last sample has thrust 1 N; a curve must end with a zero-thrust sample at burnout"
+        );
+        assert_eq!(err("X 0 100 0 0.05 0.1 A\n1 10\n2 0"), "test.eng, line 1, diameter (header field 2, mm): 0 must be greater than zero");
+        assert_eq!(
+            err("X 29 100 0 0.5 0.1 A\n1 10\n2 0"),
+            "test.eng, line 1, total mass (header field 6, kg): propellant mass 0.5 kg exceeds the total motor mass 0.1 kg"
+        );
+        assert_eq!(err("X 29 100 0 0.05 0.1 A\n;\n"), "test.eng, line 1, samples: the motor has no thrust samples");
+        assert_eq!(err(";only\n;comments\n"), "test.eng, line 3, header: no motor header line (the file holds only comments or nothing)");
+        assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 0\n2 0"), "test.eng, line 3, samples: the thrust curve delivers no impulse");
+        assert_eq!(err("X 29 100 0 0.05 0.1 A\n-1 0\n2 0"), "test.eng, line 2, time: -1 must not be negative");
+    }
+}

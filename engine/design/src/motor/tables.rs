@@ -1,0 +1,317 @@
+//! The motor as the flight sees it: thrust, propellant and mass properties at any time,
+//! from tables built once per flight.
+//!
+//! [`MotorTables::new`] scales the curve (dispersion), and stores per sample the time, the
+//! thrust, the slope of the following segment and the cumulative impulse, so that the
+//! impulse delivered `I(t) = I_i + F_i (t − t_i) + ½ s_i (t − t_i)²` is exact for the
+//! piecewise-linear curve. [`MotorTables::eval`] finds the segment by binary search
+//! (O(log n), no allocation, no state, so it can be shared between threads and called at any
+//! time in any order, as adaptive and multi-stage integrators do).
+//!
+//! The mass model (simulators differ here; this is the one we use, see also the
+//! [module docs](super)): propellant `m_p(t) = m_p0 (1 − I(t)/I_total)`, so
+//! `ṁ = −m_p0 F(t)/I_total` and `m̈ = −m_p0 F′(t)/I_total` (piecewise constant). The casing is
+//! a thin cylindrical shell carrying the dry mass; the propellant a solid cylinder of the
+//! same length and diameter whose inertia is proportional to its mass; both centered at the
+//! motor's mid-length `x = motor_aft_m − length/2` in the station frame.
+//!
+//! Dispersion: with impulse scale `k_I` and time scale `k_t` the thrust is
+//! `F_s(t) = (k_I/k_t) F(t/k_t)`: the impulse scales by `k_I`, the burn time by `k_t`.
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::{Motor, MotorError};
+use crate::mass::MassProps;
+
+/// Overrides and dispersion applied when the tables are built. The default changes nothing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotorOptions {
+    /// Propellant mass at ignition, kg, instead of the file's.
+    pub propellant_mass_kg: Option<f64>,
+    /// Casing (dry) mass, kg, instead of the file's total less propellant.
+    pub dry_mass_kg: Option<f64>,
+    /// Total impulse multiplier `k_I` (> 0).
+    pub impulse_scale: f64,
+    /// Burn time multiplier `k_t` (> 0).
+    pub time_scale: f64,
+}
+
+impl Default for MotorOptions {
+    fn default() -> Self {
+        MotorOptions { propellant_mass_kg: None, dry_mass_kg: None, impulse_scale: 1.0, time_scale: 1.0 }
+    }
+}
+
+impl MotorOptions {
+    pub fn with_propellant_mass_kg(self, kg: f64) -> Self {
+        MotorOptions { propellant_mass_kg: Some(kg), ..self }
+    }
+    pub fn with_dry_mass_kg(self, kg: f64) -> Self {
+        MotorOptions { dry_mass_kg: Some(kg), ..self }
+    }
+    pub fn with_impulse_scale(self, k: f64) -> Self {
+        MotorOptions { impulse_scale: k, ..self }
+    }
+    pub fn with_time_scale(self, k: f64) -> Self {
+        MotorOptions { time_scale: k, ..self }
+    }
+}
+
+/// The motor at one instant.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MotorState {
+    /// Thrust along the motor's axis, N (0 before ignition at t = 0 and after burnout).
+    pub thrust_n: f64,
+    /// dF/dt, N/s (the current segment's slope; 0 outside the burn).
+    pub thrust_rate_n_per_s: f64,
+    /// Propellant left, kg.
+    pub propellant_kg: f64,
+    /// d(propellant)/dt, kg/s (≤ 0).
+    pub propellant_rate_kg_s: f64,
+    /// d²(propellant)/dt², kg/s² (piecewise constant).
+    pub propellant_accel_kg_s2: f64,
+}
+
+/// How fast the motor's mass and inertia change. Its center of mass does not move (casing
+/// and propellant share the mid-length center), so there is no center rate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotorMassRates {
+    /// dm/dt, kg/s.
+    pub mass_rate_kg_s: f64,
+    /// d²m/dt², kg/s².
+    pub mass_accel_kg_s2: f64,
+    /// dI/dt of the inertia about the motor's center, station axes, kg·m²/s.
+    pub inertia_rate_kg_m2_s: Matrix3<f64>,
+    /// d²I/dt², kg·m²/s².
+    pub inertia_accel_kg_m2_s2: Matrix3<f64>,
+}
+
+/// Flight tables of one motor (see the module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotorTables {
+    times_s: Vec<f64>,
+    thrust_n: Vec<f64>,
+    /// Slope of the segment starting at each sample, N/s (0 for the last sample).
+    slope_n_per_s: Vec<f64>,
+    /// Impulse delivered up to each sample, N·s.
+    impulse_ns: Vec<f64>,
+    total_impulse_ns: f64,
+    burn_time_s: f64,
+    propellant_mass_kg: f64,
+    dry_mass_kg: f64,
+    length_m: f64,
+    diameter_m: f64,
+    /// Casing inertia about the motor's center.
+    casing_inertia: Matrix3<f64>,
+    /// Propellant inertia about the motor's center per kilogram of propellant.
+    propellant_inertia_per_kg: Matrix3<f64>,
+}
+
+impl MotorTables {
+    /// Tables of `motor` as it is in its file.
+    pub fn from_motor(motor: &Motor) -> Result<Self, MotorError> {
+        Self::new(motor, &MotorOptions::default())
+    }
+
+    /// Tables of `motor` with `options` applied. Fails when an option or one of the motor's
+    /// public mass or size fields is out of range (masses finite and ≥ 0, scales and sizes
+    /// finite and > 0).
+    pub fn new(motor: &Motor, options: &MotorOptions) -> Result<Self, MotorError> {
+        let check = |field: &'static str, value: f64, positive: bool| {
+            let ok = value.is_finite() && if positive { value > 0.0 } else { value >= 0.0 };
+            if ok {
+                Ok(value)
+            } else {
+                Err(MotorError::InvalidOption {
+                    motor: motor.source.clone(),
+                    field,
+                    value,
+                    rule: if positive { "must be finite and greater than zero" } else { "must be finite and not negative" },
+                })
+            }
+        };
+        let k_i = check("impulse_scale", options.impulse_scale, true)?;
+        let k_t = check("time_scale", options.time_scale, true)?;
+        let propellant_mass_kg = match options.propellant_mass_kg {
+            Some(m) => check("propellant_mass_kg", m, false)?,
+            None => check("motor propellant_mass_kg", motor.propellant_mass_kg, false)?,
+        };
+        let dry_mass_kg = match options.dry_mass_kg {
+            Some(m) => check("dry_mass_kg", m, false)?,
+            None => check("motor dry mass (total - propellant)", motor.dry_mass_kg(), false)?,
+        };
+        let length_m = check("motor length_m", motor.length_m, true)?;
+        let diameter_m = check("motor diameter_m", motor.diameter_m, true)?;
+
+        let times_s: Vec<f64> = motor.times_s().iter().map(|t| t * k_t).collect();
+        let thrust_n: Vec<f64> = motor.thrust_n().iter().map(|f| f * (k_i / k_t)).collect();
+        let n = times_s.len();
+        let mut slope_n_per_s = vec![0.0; n];
+        let mut impulse_ns = vec![0.0; n];
+        for i in 1..n {
+            let dt = times_s[i] - times_s[i - 1];
+            slope_n_per_s[i - 1] = (thrust_n[i] - thrust_n[i - 1]) / dt;
+            impulse_ns[i] = impulse_ns[i - 1] + 0.5 * (thrust_n[i - 1] + thrust_n[i]) * dt;
+        }
+        let total_impulse_ns = impulse_ns.last().copied().unwrap_or(0.0);
+        let burn_time_s = times_s.last().copied().unwrap_or(0.0);
+        let collapsed = times_s.windows(2).any(|w| !(w[1] > w[0]))
+            || slope_n_per_s.iter().any(|s| !s.is_finite())
+            || !(total_impulse_ns > 0.0 && total_impulse_ns.is_finite());
+        if collapsed {
+            return Err(MotorError::InvalidOption {
+                motor: motor.source.clone(),
+                field: "impulse_scale / time_scale",
+                value: k_i / k_t,
+                rule: "scaling leaves the curve without strictly increasing times or finite thrust",
+            });
+        }
+
+        let r2 = 0.25 * diameter_m * diameter_m;
+        let l2 = length_m * length_m;
+        // Thin shell: axial m r², transverse m (r²/2 + L²/12).
+        let casing_inertia = Matrix3::from_diagonal(&Vector3::new(r2, 0.5 * r2 + l2 / 12.0, 0.5 * r2 + l2 / 12.0)) * dry_mass_kg;
+        // Solid cylinder: axial m r²/2, transverse m (3 r² + L²)/12.
+        let transverse = (3.0 * r2 + l2) / 12.0;
+        let propellant_inertia_per_kg = Matrix3::from_diagonal(&Vector3::new(0.5 * r2, transverse, transverse));
+        Ok(MotorTables {
+            times_s,
+            thrust_n,
+            slope_n_per_s,
+            impulse_ns,
+            total_impulse_ns,
+            burn_time_s,
+            propellant_mass_kg,
+            dry_mass_kg,
+            length_m,
+            diameter_m,
+            casing_inertia,
+            propellant_inertia_per_kg,
+        })
+    }
+
+    /// The segment holding `t_s` (`t_i ≤ t < t_{i+1}`), for `0 ≤ t < burn time`.
+    #[inline]
+    fn segment(&self, t_s: f64) -> usize {
+        self.times_s.partition_point(|&x| x <= t_s).saturating_sub(1)
+    }
+
+    /// Impulse delivered from ignition (t = 0) to `t_s`, N·s: 0 before, the total after
+    /// burnout, exact for the piecewise-linear curve in between.
+    #[inline]
+    pub fn impulse_ns(&self, t_s: f64) -> f64 {
+        if t_s.is_nan() {
+            return f64::NAN;
+        }
+        if t_s <= 0.0 {
+            return 0.0;
+        }
+        if t_s >= self.burn_time_s {
+            return self.total_impulse_ns;
+        }
+        let i = self.segment(t_s);
+        let dt = t_s - self.times_s[i];
+        self.impulse_ns[i] + dt * (self.thrust_n[i] + 0.5 * self.slope_n_per_s[i] * dt)
+    }
+
+    /// Thrust and propellant at `t_s` (time since ignition). Before ignition the motor is
+    /// full and silent; after burnout it is empty and silent. NaN in, NaN out.
+    #[inline]
+    pub fn eval(&self, t_s: f64) -> MotorState {
+        if t_s.is_nan() {
+            return MotorState {
+                thrust_n: f64::NAN,
+                thrust_rate_n_per_s: f64::NAN,
+                propellant_kg: f64::NAN,
+                propellant_rate_kg_s: f64::NAN,
+                propellant_accel_kg_s2: f64::NAN,
+            };
+        }
+        if t_s < 0.0 {
+            return MotorState { propellant_kg: self.propellant_mass_kg, ..MotorState::default() };
+        }
+        if t_s >= self.burn_time_s {
+            return MotorState::default();
+        }
+        let i = self.segment(t_s);
+        let dt = t_s - self.times_s[i];
+        let slope = self.slope_n_per_s[i];
+        let thrust = self.thrust_n[i] + slope * dt;
+        let impulse = self.impulse_ns[i] + dt * (self.thrust_n[i] + 0.5 * slope * dt);
+        let per_ns = self.propellant_mass_kg / self.total_impulse_ns;
+        MotorState {
+            thrust_n: thrust,
+            thrust_rate_n_per_s: slope,
+            propellant_kg: (self.propellant_mass_kg - per_ns * impulse).max(0.0),
+            propellant_rate_kg_s: -per_ns * thrust,
+            propellant_accel_kg_s2: -per_ns * slope,
+        }
+    }
+
+    /// Mass properties of the motor (casing and propellant) at `t_s`, station frame, the
+    /// motor's aft end `motor_aft_m` aft of the nose tip.
+    #[inline]
+    pub fn mass_props(&self, t_s: f64, motor_aft_m: f64) -> MassProps {
+        self.mass_props_of(&self.eval(t_s), motor_aft_m)
+    }
+
+    /// Mass properties for a state already evaluated (saves the second look-up).
+    #[inline]
+    pub fn mass_props_of(&self, state: &MotorState, motor_aft_m: f64) -> MassProps {
+        MassProps {
+            mass_kg: self.dry_mass_kg + state.propellant_kg,
+            cg_m: Vector3::new(self.center_m(motor_aft_m), 0.0, 0.0),
+            inertia_cg: self.casing_inertia + self.propellant_inertia_per_kg * state.propellant_kg,
+        }
+    }
+
+    /// Exact rates of the motor's mass and inertia for a state: the propellant's inertia is
+    /// proportional to its mass, so `dI/dt = ṁ/m · I_prop` (= `ṁ` times the inertia per kg).
+    #[inline]
+    pub fn mass_rates(&self, state: &MotorState) -> MotorMassRates {
+        MotorMassRates {
+            mass_rate_kg_s: state.propellant_rate_kg_s,
+            mass_accel_kg_s2: state.propellant_accel_kg_s2,
+            inertia_rate_kg_m2_s: self.propellant_inertia_per_kg * state.propellant_rate_kg_s,
+            inertia_accel_kg_m2_s2: self.propellant_inertia_per_kg * state.propellant_accel_kg_s2,
+        }
+    }
+
+    /// Station of the motor's center (mid-length) for an aft end at `motor_aft_m`.
+    #[inline]
+    pub fn center_m(&self, motor_aft_m: f64) -> f64 {
+        motor_aft_m - 0.5 * self.length_m
+    }
+
+    /// Total impulse after scaling, N·s.
+    pub fn total_impulse_ns(&self) -> f64 {
+        self.total_impulse_ns
+    }
+    /// Burnout time after scaling, s.
+    pub fn burn_time_s(&self) -> f64 {
+        self.burn_time_s
+    }
+    /// Propellant mass at ignition, kg.
+    pub fn propellant_mass_kg(&self) -> f64 {
+        self.propellant_mass_kg
+    }
+    /// Casing mass, kg.
+    pub fn dry_mass_kg(&self) -> f64 {
+        self.dry_mass_kg
+    }
+    /// Motor mass at ignition, kg.
+    pub fn ignition_mass_kg(&self) -> f64 {
+        self.dry_mass_kg + self.propellant_mass_kg
+    }
+    pub fn length_m(&self) -> f64 {
+        self.length_m
+    }
+    pub fn diameter_m(&self) -> f64 {
+        self.diameter_m
+    }
+    /// Sample times after scaling, s (0 first, burnout last): the curve's kinks, where an
+    /// integrator may want to stop.
+    pub fn times_s(&self) -> &[f64] {
+        &self.times_s
+    }
+}

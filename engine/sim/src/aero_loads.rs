@@ -1,0 +1,109 @@
+//! The aerodynamic-loads kernel: normal force at each lifting surface's center of pressure
+//! from its own local angle of attack (so the airframe's rotation gives pitch damping), axial
+//! drag from the Cd-vs-Mach curve, and roll forcing and damping from canted fins.
+//!
+//! As RocketPy does (`Flight.u_dot_generalized`): the air's velocity relative to each surface
+//! is `u = −(v_O + ω × p_i − wind)` in body axes; the surface's angle of attack is the angle
+//! between `u` and `−b3`; its normal force is `½ ρ |u|² A_ref CNα(M) α` along the part of `u`
+//! across the axis. Drag is `½ ρ V² A_ref Cd(M)` along `−b3`, with `V` the center of mass's
+//! speed through the air. Tables are built once ([`AeroTables`]); a call allocates nothing.
+
+use crate::eom::Loads;
+use hpr_design::aero::table::MachTable;
+use nalgebra::Vector3;
+
+/// One lifting surface on the axis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceTable {
+    /// Center of pressure, m aft of the nose tip.
+    pub x_cp_m: f64,
+    /// Normal-force slope against Mach, per radian, referenced to `ref_area_m2`.
+    pub cn_alpha: MachTable,
+}
+
+/// Everything the loads need, built once before the flight.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AeroTables {
+    pub ref_area_m2: f64,
+    pub ref_diameter_m: f64,
+    pub surfaces: Vec<SurfaceTable>,
+    pub cd_power_off: MachTable,
+    pub cd_power_on: MachTable,
+    /// Roll forcing coefficient per radian of cant times the cant (so: the coefficient), against
+    /// Mach; the roll moment is `½ρV² A_ref d · forcing`.
+    pub roll_forcing: MachTable,
+    /// Roll damping coefficient against Mach; the moment is `−½ρV A_ref d² · damping · ω3 / 2`.
+    pub roll_damping: MachTable,
+    /// Multiplies the drag coefficient (a dispersion; 1 by default).
+    pub drag_scale: f64,
+    /// Center of pressure of the whole rocket at Mach 0, m aft of the tip.
+    pub cp_mach0_m: f64,
+}
+
+/// The air a load evaluation sees.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AirAt {
+    pub density_kg_m3: f64,
+    pub speed_of_sound_m_s: f64,
+}
+
+impl AeroTables {
+    /// Whole-rocket center of pressure at `mach`, m aft of the tip (CNα-weighted).
+    pub fn cp_m(&self, mach: f64) -> f64 {
+        let (mut num, mut den) = (0.0, 0.0);
+        for s in &self.surfaces {
+            let c = s.cn_alpha.at(mach);
+            num += c * s.x_cp_m;
+            den += c;
+        }
+        if den == 0.0 {
+            f64::NAN
+        } else {
+            num / den
+        }
+    }
+
+    /// Drag coefficient at `mach`, motor burning or not, with the drag scale.
+    #[inline]
+    pub fn cd(&self, mach: f64, powered: bool) -> f64 {
+        self.drag_scale * if powered { self.cd_power_on.at(mach) } else { self.cd_power_off.at(mach) }
+    }
+}
+
+/// Aerodynamic loads about O in body axes. `v_o_air_b` is O's velocity relative to the air and
+/// `v_cm_air_b` the center of mass's, both in body axes.
+#[inline]
+pub fn aero_loads(t: &AeroTables, v_o_air_b: &Vector3<f64>, v_cm_air_b: &Vector3<f64>, omega: &Vector3<f64>, air: &AirAt, powered: bool) -> Loads {
+    let rho = air.density_kg_m3;
+    let mut force = Vector3::zeros();
+    let mut moment = Vector3::zeros();
+    for s in &t.surfaces {
+        let p = Vector3::new(0.0, 0.0, -s.x_cp_m);
+        let u = -(v_o_air_b + omega.cross(&p));
+        let speed2 = u.norm_squared();
+        let cross2 = u.x * u.x + u.y * u.y;
+        if cross2 == 0.0 || speed2 == 0.0 {
+            continue;
+        }
+        let speed = speed2.sqrt();
+        let alpha = (-u.z / speed).clamp(-1.0, 1.0).acos();
+        let mach = speed / air.speed_of_sound_m_s;
+        let n = 0.5 * rho * speed2 * t.ref_area_m2 * s.cn_alpha.at(mach) * alpha;
+        let cross = cross2.sqrt();
+        let f = Vector3::new(n * u.x / cross, n * u.y / cross, 0.0);
+        force += f;
+        moment += p.cross(&f);
+    }
+    let v2 = v_cm_air_b.norm_squared();
+    if v2 > 0.0 {
+        let v = v2.sqrt();
+        let mach = v / air.speed_of_sound_m_s;
+        let q = 0.5 * rho * v2;
+        force.z -= q * t.ref_area_m2 * t.cd(mach, powered);
+        let d = t.ref_diameter_m;
+        let forcing = q * t.ref_area_m2 * d * t.roll_forcing.at(mach);
+        let damping = 0.5 * rho * v * t.ref_area_m2 * d * d * t.roll_damping.at(mach) * omega.z / 2.0;
+        moment.z += forcing - damping;
+    }
+    Loads { force_b: force, moment_o_b: moment }
+}

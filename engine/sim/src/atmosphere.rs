@@ -1,0 +1,370 @@
+//! The standard atmosphere: temperature, pressure, density, speed of sound and viscosity of the
+//! air as a function of height, for drag and Mach/Reynolds numbers.
+//!
+//! Model: U.S. Standard Atmosphere 1976 (identical to the ICAO/ISO International Standard
+//! Atmosphere below 32 km), the seven lower layers of linear molecular-scale temperature in
+//! *geopotential* altitude, from sea level to 86 km geometric. Source: COESA, *U.S. Standard
+//! Atmosphere, 1976*, NOAA-S/T 76-1562, U.S. Government Printing Office, 1976 (equations 18,
+//! 23, 33a/b, 50, 51 and table 4).
+//!
+//! Constants (all from that document):
+//! - `g0` = 9.80665 m/s², sea-level gravity used to define geopotential altitude;
+//! - `R` = R*/M0 = 8314.32 / 28.9644 ≈ 287.05287 J/(kg·K), specific gas constant of air;
+//! - `r0` = 6 356 766 m, the Earth radius of the geometric → geopotential conversion
+//!   `H = r0·Z / (r0 + Z)`;
+//! - sea level: 288.15 K, 101 325 Pa; ratio of specific heats γ = 1.4;
+//! - Sutherland's law μ = β T^{3/2} / (T + S), β = 1.458e-6 kg/(m·s·K^½), S = 110.4 K.
+//!
+//! Layer bases (geopotential m) and lapse rates (K/km): 0 / −6.5, 11 000 / 0, 20 000 / +1.0,
+//! 32 000 / +2.8, 47 000 / 0, 51 000 / −2.8, 71 000 / −2.0, top 84 852 (= 86 km geometric).
+//! Base temperatures and pressures are computed once, in [`Atmosphere::standard`], from the
+//! layer chain (they reproduce the published 22 632.06 Pa, 5 474.889 Pa, … to 7 digits).
+//!
+//! Conventions and edges:
+//! - [`Atmosphere::at`] takes the height **above the launch site (ground)**; the site's
+//!   elevation above mean sea level, given once to [`Atmosphere::standard`], is added inside.
+//!   [`Atmosphere::at_msl`] takes the geometric altitude above mean sea level directly.
+//! - Below −5 km geometric the altitude is **clamped** to −5 km (the air there is returned).
+//! - Above 86 km the atmosphere is **extrapolated isothermally** at the 86 km temperature
+//!   (186.946 K): pressure and density keep falling exponentially (scale height ≈ 5.5 km),
+//!   which stays close to the real upper atmosphere to ~100 km and never goes negative or NaN.
+//! - The temperature returned is the molecular-scale temperature `T_M`. It equals the kinetic
+//!   temperature below 80 km; between 80 and 86 km the kinetic one is lower by at most 0.04 %
+//!   (186.87 vs 186.946 K at 86 km). Pressure and density are exact (ρ = P / (R·T_M)).
+//!
+//! [`Atmosphere::at`] is pure, allocation-free and branch-light: it is called per derivative
+//! evaluation.
+
+use thiserror::Error;
+
+/// Standard gravity used by the geopotential definition, m/s².
+pub const G0_M_S2: f64 = 9.80665;
+/// Specific gas constant of air, R*/M0 = 8314.32 / 28.9644 ≈ 287.05287 J/(kg·K).
+pub const R_AIR_J_KG_K: f64 = 8314.32 / 28.9644;
+/// Earth radius of the geometric ↔ geopotential conversion, m.
+pub const R0_GEOPOTENTIAL_M: f64 = 6_356_766.0;
+/// Ratio of specific heats of air.
+pub const GAMMA_AIR: f64 = 1.4;
+/// Sea-level standard temperature, K.
+pub const T0_K: f64 = 288.15;
+/// Sea-level standard pressure, Pa.
+pub const P0_PA: f64 = 101_325.0;
+/// Sutherland's constant β, kg/(m·s·K^½).
+pub const SUTHERLAND_BETA: f64 = 1.458e-6;
+/// Sutherland's temperature S, K.
+pub const SUTHERLAND_S_K: f64 = 110.4;
+/// Lowest geometric altitude above mean sea level of the model (clamped below), m.
+pub const MIN_ALTITUDE_MSL_M: f64 = -5_000.0;
+/// Top of the tabulated model (isothermal extrapolation above), geometric m.
+pub const MAX_ALTITUDE_MSL_M: f64 = 86_000.0;
+
+/// Layer bases in geopotential metres; the last entry is the top of the table (86 km geometric).
+const LAYER_BASE_M: [f64; 8] = [
+    0.0, 11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0, 84_852.0,
+];
+/// Lapse rates dT/dH of the layers starting at `LAYER_BASE_M[i]`, K/m. The last one (above
+/// 86 km) is the isothermal extrapolation.
+const LAPSE_K_M: [f64; 8] = [-6.5e-3, 0.0, 1.0e-3, 2.8e-3, 0.0, -2.8e-3, -2.0e-3, 0.0];
+
+/// State of the air at one height.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AirState {
+    /// Molecular-scale temperature (= kinetic below 80 km), K.
+    pub temperature_k: f64,
+    /// Static pressure, Pa.
+    pub pressure_pa: f64,
+    /// Density, kg/m³.
+    pub density_kg_m3: f64,
+    /// Speed of sound √(γ R T), m/s.
+    pub speed_of_sound_m_s: f64,
+    /// Dynamic viscosity from Sutherland's law, Pa·s.
+    pub dynamic_viscosity_pa_s: f64,
+}
+
+/// Invalid atmosphere settings.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum AtmosphereError {
+    /// The launch-site elevation is not a finite number within the model's range.
+    #[error(
+        "atmosphere: `launch_elevation_m` = {value} m: must be finite and within \
+         [{MIN_ALTITUDE_MSL_M}, {MAX_ALTITUDE_MSL_M}] m above mean sea level"
+    )]
+    LaunchElevation {
+        /// The rejected value, m.
+        value: f64,
+    },
+}
+
+/// One layer of the model, precomputed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Layer {
+    base_m: f64,
+    lapse_k_m: f64,
+    t_base_k: f64,
+    p_base_pa: f64,
+    /// `g0 / (R L)` for a gradient layer, `g0 / (R T_b)` for an isothermal one.
+    exponent: f64,
+}
+
+/// The standard atmosphere seen from one launch site.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Atmosphere {
+    launch_elevation_m: f64,
+    layers: [Layer; 8],
+}
+
+impl Atmosphere {
+    /// The US 1976 standard atmosphere over a site `launch_elevation_m` above mean sea level.
+    pub fn standard(launch_elevation_m: f64) -> Result<Self, AtmosphereError> {
+        if !launch_elevation_m.is_finite()
+            || !(MIN_ALTITUDE_MSL_M..=MAX_ALTITUDE_MSL_M).contains(&launch_elevation_m)
+        {
+            return Err(AtmosphereError::LaunchElevation {
+                value: launch_elevation_m,
+            });
+        }
+        let mut layers = [Layer {
+            base_m: 0.0,
+            lapse_k_m: 0.0,
+            t_base_k: T0_K,
+            p_base_pa: P0_PA,
+            exponent: 0.0,
+        }; 8];
+        let mut t_b = T0_K;
+        let mut p_b = P0_PA;
+        for i in 0..8 {
+            let lapse = LAPSE_K_M[i];
+            let exponent = if lapse == 0.0 {
+                G0_M_S2 / (R_AIR_J_KG_K * t_b)
+            } else {
+                G0_M_S2 / (R_AIR_J_KG_K * lapse)
+            };
+            layers[i] = Layer {
+                base_m: LAYER_BASE_M[i],
+                lapse_k_m: lapse,
+                t_base_k: t_b,
+                p_base_pa: p_b,
+                exponent,
+            };
+            if i + 1 < 8 {
+                let dh = LAYER_BASE_M[i + 1] - LAYER_BASE_M[i];
+                let (t_top, p_top) = layers[i].temperature_pressure(dh);
+                t_b = t_top;
+                p_b = p_top;
+            }
+        }
+        Ok(Self {
+            launch_elevation_m,
+            layers,
+        })
+    }
+
+    /// Elevation of the launch site above mean sea level, m.
+    pub fn launch_elevation_m(&self) -> f64 {
+        self.launch_elevation_m
+    }
+
+    /// The air at `altitude_above_ground_m` metres above the launch site (the site elevation
+    /// is added here). See the module docs for the behaviour outside −5 km … 86 km MSL.
+    #[inline]
+    pub fn at(&self, altitude_above_ground_m: f64) -> AirState {
+        self.at_msl(self.launch_elevation_m + altitude_above_ground_m)
+    }
+
+    /// The air at geometric altitude `altitude_msl_m` above mean sea level.
+    #[inline]
+    pub fn at_msl(&self, altitude_msl_m: f64) -> AirState {
+        let z = altitude_msl_m.max(MIN_ALTITUDE_MSL_M);
+        let h = geopotential_altitude_m(z);
+        // Seven bases above 0: find the last layer whose base is below h (layer 0 below 0 m).
+        let mut i = 7;
+        while i > 0 && h < self.layers[i].base_m {
+            i -= 1;
+        }
+        let layer = &self.layers[i];
+        let (t, p) = layer.temperature_pressure(h - layer.base_m);
+        air_state(t, p)
+    }
+}
+
+impl Layer {
+    /// Temperature and pressure `dh` geopotential metres above this layer's base.
+    #[inline]
+    fn temperature_pressure(&self, dh: f64) -> (f64, f64) {
+        if self.lapse_k_m == 0.0 {
+            (self.t_base_k, self.p_base_pa * (-self.exponent * dh).exp())
+        } else {
+            let t = self.t_base_k + self.lapse_k_m * dh;
+            (t, self.p_base_pa * (self.t_base_k / t).powf(self.exponent))
+        }
+    }
+}
+
+/// Geopotential altitude (m') of geometric altitude `z_m` above mean sea level:
+/// `H = r0 Z / (r0 + Z)`.
+#[inline]
+pub fn geopotential_altitude_m(z_m: f64) -> f64 {
+    R0_GEOPOTENTIAL_M * z_m / (R0_GEOPOTENTIAL_M + z_m)
+}
+
+/// Geometric altitude of geopotential altitude `h_m`: `Z = r0 H / (r0 − H)`.
+#[inline]
+pub fn geometric_altitude_m(h_m: f64) -> f64 {
+    R0_GEOPOTENTIAL_M * h_m / (R0_GEOPOTENTIAL_M - h_m)
+}
+
+/// Derived quantities of air at temperature `t` K and pressure `p` Pa.
+#[inline]
+fn air_state(t: f64, p: f64) -> AirState {
+    AirState {
+        temperature_k: t,
+        pressure_pa: p,
+        density_kg_m3: p / (R_AIR_J_KG_K * t),
+        speed_of_sound_m_s: (GAMMA_AIR * R_AIR_J_KG_K * t).sqrt(),
+        dynamic_viscosity_pa_s: SUTHERLAND_BETA * t * t.sqrt() / (t + SUTHERLAND_S_K),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rel(a: f64, b: f64) -> f64 {
+        ((a - b) / b).abs()
+    }
+
+    fn sea_level() -> Atmosphere {
+        Atmosphere::standard(0.0).unwrap()
+    }
+
+    #[test]
+    fn sea_level_matches_the_published_standard_values() {
+        let a = sea_level().at(0.0);
+        eprintln!("sea level: {a:?}");
+        // Published to 5–6 digits: compare to half a unit of the last digit.
+        assert!((a.temperature_k - 288.15).abs() < 1e-12);
+        assert!((a.pressure_pa - 101_325.0).abs() < 1e-9);
+        assert!((a.density_kg_m3 - 1.2250).abs() < 5e-5);
+        assert!((a.speed_of_sound_m_s - 340.294).abs() < 5e-4);
+        // Table value 1.7894e-5 Pa·s.
+        assert!((a.dynamic_viscosity_pa_s - 1.7894e-5).abs() < 5e-10);
+    }
+
+    #[test]
+    fn layer_bases_reproduce_the_published_base_pressures_and_temperatures() {
+        // (geopotential m, T K, P Pa, ρ kg/m³) from the 1976 document's layer table; pressures
+        // are given to 7 significant digits, densities to 7 (or fewer at 71 km).
+        let table = [
+            (11_000.0, 216.65, 22_632.06, 0.363_917_6),
+            (20_000.0, 216.65, 5_474.889, 0.088_034_71),
+            (32_000.0, 228.65, 868.018_7, 0.013_225_00),
+            (47_000.0, 270.65, 110.906_3, 0.001_427_532),
+            (51_000.0, 270.65, 66.938_87, 8.616_049e-4),
+            (71_000.0, 214.65, 3.956_420, 6.421_056e-5),
+            (84_852.0, 186.946, 0.373_383_6, 6.958_010e-6),
+        ];
+        let atm = sea_level();
+        for (h, t, p, rho) in table {
+            let s = atm.at_msl(geometric_altitude_m(h));
+            eprintln!(
+                "H = {h} m': T {} K ({:.2e}), P {} Pa ({:.2e}), rho {} ({:.2e})",
+                s.temperature_k,
+                rel(s.temperature_k, t),
+                s.pressure_pa,
+                rel(s.pressure_pa, p),
+                s.density_kg_m3,
+                rel(s.density_kg_m3, rho)
+            );
+            assert!(rel(s.temperature_k, t) < 1e-9, "T at {h}");
+            assert!(rel(s.pressure_pa, p) < 1e-6, "P at {h}");
+            assert!(rel(s.density_kg_m3, rho) < 1e-6, "rho at {h}");
+        }
+    }
+
+    #[test]
+    fn geometric_altitudes_match_the_published_table() {
+        // (geometric m, T K, P Pa, ρ kg/m³), U.S. Standard Atmosphere 1976 geometric table to
+        // 5 significant digits: tolerance 1e-4 relative (one unit in the 5th digit).
+        let table = [
+            (5_000.0, 255.676, 54_048.0, 0.736_43),
+            (10_000.0, 223.252, 26_500.0, 0.413_51),
+            (20_000.0, 216.65, 5_529.3, 0.088_910),
+            (30_000.0, 226.509, 1_197.0, 0.018_410),
+            (40_000.0, 250.350, 287.14, 0.003_995_7),
+            (50_000.0, 270.65, 79.779, 0.001_026_9),
+            (60_000.0, 247.021, 21.958, 3.096_8e-4),
+            (70_000.0, 219.585, 5.220_9, 8.282_9e-5),
+            (80_000.0, 198.639, 1.052_4, 1.845_8e-5),
+        ];
+        let atm = sea_level();
+        for (z, t, p, rho) in table {
+            let s = atm.at_msl(z);
+            let worst = rel(s.temperature_k, t)
+                .max(rel(s.pressure_pa, p))
+                .max(rel(s.density_kg_m3, rho));
+            eprintln!("Z = {z} m: {s:?}, worst relative error {worst:.2e}");
+            assert!(worst < 1e-4, "at {z} m: {s:?}");
+        }
+    }
+
+    #[test]
+    fn the_height_argument_is_above_the_launch_site() {
+        let site = Atmosphere::standard(1_400.0).unwrap();
+        let a = site.at(600.0);
+        let b = sea_level().at_msl(2_000.0);
+        assert_eq!(a, b);
+        assert_eq!(site.launch_elevation_m(), 1_400.0);
+    }
+
+    #[test]
+    fn below_minus_five_kilometres_the_air_is_clamped() {
+        let atm = sea_level();
+        let edge = atm.at_msl(-5_000.0);
+        assert_eq!(atm.at_msl(-9_000.0), edge);
+        // −5 km: T = 288.15 + 6.5·H(−5 km)/1000, H = −5003.94 m'.
+        let h = geopotential_altitude_m(-5_000.0);
+        assert!((edge.temperature_k - (288.15 - 6.5e-3 * h)).abs() < 1e-12);
+        assert!(edge.pressure_pa > 101_325.0);
+    }
+
+    #[test]
+    fn above_eighty_six_kilometres_the_air_thins_isothermally() {
+        let atm = sea_level();
+        let top = atm.at_msl(86_000.0);
+        let s90 = atm.at_msl(90_000.0);
+        let s100 = atm.at_msl(100_000.0);
+        assert!((s90.temperature_k - top.temperature_k).abs() < 1e-12);
+        assert!(s100.density_kg_m3 < s90.density_kg_m3 && s90.density_kg_m3 < top.density_kg_m3);
+        // Isothermal: P(100)/P(86) = exp(−g0 ΔH / (R T)), computed by hand here.
+        let dh = geopotential_altitude_m(100_000.0) - geopotential_altitude_m(86_000.0);
+        let expected = (-G0_M_S2 * dh / (R_AIR_J_KG_K * 186.946)).exp();
+        let ratio = s100.pressure_pa / top.pressure_pa;
+        eprintln!("P(100 km)/P(86 km) = {ratio}, expected {expected}, P(100 km) = {}", s100.pressure_pa);
+        assert!(rel(ratio, expected) < 1e-6);
+        // Real US76 at 100 km: 3.2011e-2 Pa; the extrapolation stays within 10 %.
+        assert!(rel(s100.pressure_pa, 3.2011e-2) < 0.10);
+        let far = atm.at_msl(1.0e7);
+        assert!(far.density_kg_m3 >= 0.0 && far.density_kg_m3.is_finite());
+    }
+
+    #[test]
+    fn the_atmosphere_is_continuous_across_layer_boundaries() {
+        let atm = sea_level();
+        for &h in &LAYER_BASE_M[1..] {
+            let z = geometric_altitude_m(h);
+            let below = atm.at_msl(z - 1e-6);
+            let above = atm.at_msl(z + 1e-6);
+            assert!(rel(below.pressure_pa, above.pressure_pa) < 1e-9, "P at {h}");
+            assert!((below.temperature_k - above.temperature_k).abs() < 1e-8, "T at {h}");
+        }
+    }
+
+    #[test]
+    fn an_unusable_launch_elevation_is_a_typed_error() {
+        for bad in [f64::NAN, f64::INFINITY, -6_000.0, 90_000.0] {
+            let err = Atmosphere::standard(bad).unwrap_err();
+            assert!(matches!(err, AtmosphereError::LaunchElevation { .. }));
+            assert!(err.to_string().contains("launch_elevation_m"));
+        }
+    }
+}

@@ -1,0 +1,63 @@
+//! Triggers: when a parachute opens or a mass shift starts. Parachutes and shifts share them,
+//! as the spec requires ("the same triggers a parachute has").
+
+use std::fmt;
+
+/// When something starts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Trigger {
+    /// At apogee (the center of mass's vertical speed crosses zero going down).
+    Apogee,
+    /// On the way down, when the center of mass descends through `height_m` above ground.
+    HeightDescending { height_m: f64 },
+    /// At `time_s` after launch (ignition, t = 0).
+    Time { time_s: f64 },
+    /// At the motor's burnout (the last point of its thrust curve).
+    Burnout,
+    /// At burnout plus a delay: `delay_s`, or the motor's own (first listed) delay if `None`.
+    BurnoutPlusDelay { delay_s: Option<f64> },
+}
+
+impl Trigger {
+    /// Check the trigger's own numbers: finite, non-negative. `what` names the owner for the
+    /// message (e.g. `parachute "main"`).
+    pub fn validate(&self) -> Result<(), String> {
+        let bad = |field: &str, v: f64| -> Result<(), String> {
+            if v.is_finite() && v >= 0.0 {
+                Ok(())
+            } else {
+                Err(format!("trigger {self}: field \"{field}\" must be finite and not negative (got {v})"))
+            }
+        };
+        match *self {
+            Trigger::HeightDescending { height_m } => bad("height_m", height_m),
+            Trigger::Time { time_s } => bad("time_s", time_s),
+            Trigger::BurnoutPlusDelay { delay_s: Some(d) } => bad("delay_s", d),
+            _ => Ok(()),
+        }
+    }
+
+    /// Whether the trigger fires at a fixed time known before the flight, given the burnout
+    /// time and the motor's delay: `Some(t)` for time, burnout and burnout-plus-delay.
+    pub fn fixed_time(&self, burnout_s: f64, motor_delay_s: Option<f64>) -> Option<f64> {
+        match *self {
+            Trigger::Time { time_s } => Some(time_s),
+            Trigger::Burnout => Some(burnout_s),
+            Trigger::BurnoutPlusDelay { delay_s } => delay_s.or(motor_delay_s).map(|d| burnout_s + d),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Trigger {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Trigger::Apogee => write!(f, "apogee"),
+            Trigger::HeightDescending { height_m } => write!(f, "{height_m} m on the way down"),
+            Trigger::Time { time_s } => write!(f, "{time_s} s after launch"),
+            Trigger::Burnout => write!(f, "burnout"),
+            Trigger::BurnoutPlusDelay { delay_s: Some(d) } => write!(f, "burnout + {d} s"),
+            Trigger::BurnoutPlusDelay { delay_s: None } => write!(f, "burnout + the motor's delay"),
+        }
+    }
+}

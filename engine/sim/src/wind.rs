@@ -1,0 +1,296 @@
+//! Horizontal wind as a function of height above the launch site.
+//!
+//! Two models: a constant wind, or a table of (height above ground, speed, direction) rows.
+//! Directions follow the meteorological convention: the direction the wind blows **from**, in
+//! degrees clockwise from true north (a "north wind", 0°, blows toward the south). The velocity
+//! returned is the air's velocity over the ground in (east, north) components, m/s.
+//!
+//! A table is converted once, at construction, into (east, north) components; between rows
+//! the **components** are interpolated linearly in height (not the speed and angle: this keeps
+//! a veering wind continuous through north and gives the physically meaningful mean vector).
+//! Below the first row and above the last the end row's wind is used (clamped).
+//!
+//! [`Wind::velocity_en`] is pure and allocation-free (binary search over the heights); it is
+//! called per derivative evaluation and can be shared between threads.
+
+use thiserror::Error;
+
+/// One row of a wind table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WindRow {
+    /// Height above the launch site, m.
+    pub height_agl_m: f64,
+    /// Wind speed, m/s (≥ 0).
+    pub speed_m_s: f64,
+    /// Direction the wind blows from, degrees clockwise from north.
+    pub from_deg: f64,
+}
+
+/// Invalid wind settings. `row` is the 0-based index in the table (`None` for a constant wind).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum WindError {
+    /// A table must have at least one row.
+    #[error("wind table: no rows (at least one is needed)")]
+    EmptyTable,
+    /// Negative or non-finite speed.
+    #[error("wind{}: `speed_m_s` = {value}: must be finite and >= 0", row_label(*.row))]
+    Speed {
+        /// Table row, if any.
+        row: Option<usize>,
+        /// The rejected value.
+        value: f64,
+    },
+    /// Non-finite direction.
+    #[error("wind{}: `from_deg` = {value}: must be finite", row_label(*.row))]
+    Direction {
+        /// Table row, if any.
+        row: Option<usize>,
+        /// The rejected value.
+        value: f64,
+    },
+    /// Non-finite height, or heights not strictly increasing.
+    #[error(
+        "wind table row {row}: `height_agl_m` = {value}: must be finite and greater than the \
+         previous row's {previous}"
+    )]
+    Height {
+        /// Table row.
+        row: usize,
+        /// The rejected value.
+        value: f64,
+        /// Height of the previous row (−∞ for the first row).
+        previous: f64,
+    },
+}
+
+fn row_label(row: Option<usize>) -> String {
+    match row {
+        Some(r) => format!(" table row {r}"),
+        None => String::new(),
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Profile {
+    Constant([f64; 2]),
+    Table {
+        heights_m: Vec<f64>,
+        velocity_en: Vec<[f64; 2]>,
+    },
+}
+
+/// A wind profile.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Wind {
+    profile: Profile,
+}
+
+impl Default for Wind {
+    fn default() -> Self {
+        Self::calm()
+    }
+}
+
+impl Wind {
+    /// No wind.
+    pub fn calm() -> Self {
+        Self {
+            profile: Profile::Constant([0.0, 0.0]),
+        }
+    }
+
+    /// The same wind at every height: `speed_m_s` blowing from `from_deg` (clockwise from
+    /// north).
+    pub fn constant(speed_m_s: f64, from_deg: f64) -> Result<Self, WindError> {
+        check_speed_direction(None, speed_m_s, from_deg)?;
+        Ok(Self {
+            profile: Profile::Constant(components_en(speed_m_s, from_deg)),
+        })
+    }
+
+    /// A wind table: heights strictly increasing. Built once; lookups do not allocate.
+    pub fn table(rows: &[WindRow]) -> Result<Self, WindError> {
+        if rows.is_empty() {
+            return Err(WindError::EmptyTable);
+        }
+        let mut heights_m = Vec::with_capacity(rows.len());
+        let mut velocity_en = Vec::with_capacity(rows.len());
+        let mut previous = f64::NEG_INFINITY;
+        for (i, r) in rows.iter().enumerate() {
+            if !r.height_agl_m.is_finite() || r.height_agl_m <= previous {
+                return Err(WindError::Height {
+                    row: i,
+                    value: r.height_agl_m,
+                    previous,
+                });
+            }
+            check_speed_direction(Some(i), r.speed_m_s, r.from_deg)?;
+            previous = r.height_agl_m;
+            heights_m.push(r.height_agl_m);
+            velocity_en.push(components_en(r.speed_m_s, r.from_deg));
+        }
+        Ok(Self {
+            profile: Profile::Table {
+                heights_m,
+                velocity_en,
+            },
+        })
+    }
+
+    /// Air velocity over the ground at `height_agl_m` above the launch site, as
+    /// `[east, north]` m/s.
+    #[inline]
+    pub fn velocity_en(&self, height_agl_m: f64) -> [f64; 2] {
+        match &self.profile {
+            Profile::Constant(v) => *v,
+            Profile::Table {
+                heights_m,
+                velocity_en,
+            } => {
+                // Number of rows at or below h: 0 → below the table, n → above it.
+                let i = heights_m.partition_point(|&z| z <= height_agl_m);
+                if i == 0 {
+                    return velocity_en[0];
+                }
+                if i == heights_m.len() {
+                    return velocity_en[i - 1];
+                }
+                let (z0, z1) = (heights_m[i - 1], heights_m[i]);
+                let s = (height_agl_m - z0) / (z1 - z0);
+                let (a, b) = (velocity_en[i - 1], velocity_en[i]);
+                [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])]
+            }
+        }
+    }
+}
+
+fn check_speed_direction(row: Option<usize>, speed: f64, from_deg: f64) -> Result<(), WindError> {
+    if !speed.is_finite() || speed < 0.0 {
+        return Err(WindError::Speed { row, value: speed });
+    }
+    if !from_deg.is_finite() {
+        return Err(WindError::Direction {
+            row,
+            value: from_deg,
+        });
+    }
+    Ok(())
+}
+
+/// (east, north) velocity of a wind of `speed` blowing from `from_deg`: it moves toward
+/// `from_deg + 180°`.
+fn components_en(speed: f64, from_deg: f64) -> [f64; 2] {
+    let (s, c) = from_deg.to_radians().sin_cos();
+    [-speed * s, -speed * c]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TOL: f64 = 1e-12;
+
+    fn close(a: [f64; 2], b: [f64; 2]) -> bool {
+        (a[0] - b[0]).abs() < TOL && (a[1] - b[1]).abs() < TOL
+    }
+
+    #[test]
+    fn a_north_wind_blows_toward_the_south() {
+        let v = Wind::constant(7.0, 0.0).unwrap().velocity_en(123.0);
+        eprintln!("north wind 7 m/s: {v:?}");
+        assert!(close(v, [0.0, -7.0]));
+    }
+
+    #[test]
+    fn an_east_wind_blows_toward_the_west_and_a_southwest_wind_toward_the_northeast() {
+        let v = Wind::constant(4.0, 90.0).unwrap().velocity_en(0.0);
+        assert!(close(v, [-4.0, 0.0]), "{v:?}");
+        let v = Wind::constant(2.0, 225.0).unwrap().velocity_en(0.0);
+        let c = 2.0 * std::f64::consts::FRAC_1_SQRT_2;
+        assert!(close(v, [c, c]), "{v:?}");
+    }
+
+    #[test]
+    fn calm_is_zero_everywhere() {
+        assert_eq!(Wind::calm().velocity_en(500.0), [0.0, 0.0]);
+        assert_eq!(Wind::default(), Wind::calm());
+    }
+
+    fn north_then_east() -> Wind {
+        Wind::table(&[
+            WindRow {
+                height_agl_m: 0.0,
+                speed_m_s: 10.0,
+                from_deg: 0.0,
+            },
+            WindRow {
+                height_agl_m: 100.0,
+                speed_m_s: 10.0,
+                from_deg: 90.0,
+            },
+        ])
+        .unwrap()
+    }
+
+    #[test]
+    fn halfway_between_rows_the_components_are_averaged() {
+        // (0, −10) and (−10, 0) → (−5, −5): speed 7.07 m/s, not the 10 m/s that
+        // interpolating speed and angle would give.
+        let v = north_then_east().velocity_en(50.0);
+        eprintln!("halfway: {v:?}");
+        assert!(close(v, [-5.0, -5.0]));
+        let v = north_then_east().velocity_en(25.0);
+        assert!(close(v, [-2.5, -7.5]), "{v:?}");
+    }
+
+    #[test]
+    fn the_rows_themselves_are_returned_exactly_and_the_ends_are_clamped() {
+        let w = north_then_east();
+        assert!(close(w.velocity_en(0.0), [0.0, -10.0]));
+        assert!(close(w.velocity_en(100.0), [-10.0, 0.0]));
+        assert!(close(w.velocity_en(-20.0), [0.0, -10.0]));
+        assert!(close(w.velocity_en(5_000.0), [-10.0, 0.0]));
+    }
+
+    #[test]
+    fn a_table_of_many_rows_is_interpolated_in_the_right_interval() {
+        let rows: Vec<WindRow> = (0..50)
+            .map(|i| WindRow {
+                height_agl_m: 10.0 * i as f64,
+                speed_m_s: i as f64,
+                from_deg: 180.0, // from the south: north component = +speed
+            })
+            .collect();
+        let w = Wind::table(&rows).unwrap();
+        for k in 0..490 {
+            let h = k as f64 + 0.5;
+            let v = w.velocity_en(h);
+            assert!((v[1] - h / 10.0).abs() < 1e-12, "h {h}: {v:?}");
+            assert!(v[0].abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn bad_wind_input_is_a_typed_error_naming_the_row_and_field() {
+        assert_eq!(Wind::table(&[]), Err(WindError::EmptyTable));
+        assert!(matches!(
+            Wind::constant(-1.0, 0.0),
+            Err(WindError::Speed { row: None, .. })
+        ));
+        assert!(matches!(
+            Wind::constant(1.0, f64::NAN),
+            Err(WindError::Direction { row: None, .. })
+        ));
+        let row = |h: f64, s: f64| WindRow {
+            height_agl_m: h,
+            speed_m_s: s,
+            from_deg: 0.0,
+        };
+        let err = Wind::table(&[row(0.0, 1.0), row(0.0, 1.0)]).unwrap_err();
+        assert!(matches!(err, WindError::Height { row: 1, .. }));
+        assert!(err.to_string().contains("row 1") && err.to_string().contains("height_agl_m"));
+        let err = Wind::table(&[row(0.0, 1.0), row(10.0, f64::INFINITY)]).unwrap_err();
+        assert!(matches!(err, WindError::Speed { row: Some(1), .. }));
+        assert!(err.to_string().contains("table row 1") && err.to_string().contains("speed_m_s"));
+    }
+}
