@@ -15,8 +15,9 @@ in the JSON:
 
 * rail buttons at ``angular_position=45`` deg (the ``calisto_rail_buttons``
   fixture and the "First Simulation" docs use 45; ``calisto_robust`` passes 0).
-  The angle sets the initial roll, which with Coriolis and the four fins
-  changes the apogee by 0.08 m; 45 deg reproduces 3305.6 m.
+  The angle only sets the initial roll; it moves the apogee by 0.08 m
+  through the integrator's path (LSODA, rtol 1e-6), and 45 deg reproduces
+  3305.6 m (0 deg gives 3305.67 m).
 * parachute pressure noise off (``noise=(0, 0, 0)``) so the main-chute
   deployment, the landing point and the drift are deterministic. The
   fixture's noise (0, 8.3 Pa, 0.5) only moves the main deployment height by

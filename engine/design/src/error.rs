@@ -53,6 +53,10 @@ pub enum Rule {
     MassSpecNotExactlyOne { options: &'static str, given: usize },
     /// A field that needs another one beside it.
     NeedsField { other: &'static str },
+    /// A field that must be given in this case.
+    Required { when: &'static str },
+    /// A power-on drag curve without a power-off one.
+    PowerOnWithoutPowerOff,
     /// A shape parameter given to a shape that takes none.
     ShapeTakesNoParameter { shape: &'static str },
     /// An empty id.
@@ -66,7 +70,12 @@ pub enum Rule {
     /// Fins, lugs and rail buttons sit on a body component, not inside an inner tube.
     ExternalPartOffBody { kind: &'static str },
     /// A part entirely outside its parent's axial extent (shoulders included).
-    OutsideParent { top_m: f64, bottom_m: f64, parent_top_m: f64, parent_bottom_m: f64 },
+    OutsideParent {
+        top_m: f64,
+        bottom_m: f64,
+        parent_top_m: f64,
+        parent_bottom_m: f64,
+    },
     /// A part wider than its parent's inner diameter (diameters measured about the parent's
     /// axis: twice the part's largest distance from it).
     WiderThanParent { width_m: f64, inner_diameter_m: f64 },
@@ -97,7 +106,10 @@ pub enum Rule {
     /// `motor_fits` on a design with no motor mount.
     NoMotorMount,
     /// A motor wider than the mount's inner diameter.
-    MotorTooWide { motor_diameter_m: f64, mount_inner_diameter_m: f64 },
+    MotorTooWide {
+        motor_diameter_m: f64,
+        mount_inner_diameter_m: f64,
+    },
     /// A motor longer than the mount tube plus its overhang.
     MotorTooLong { motor_length_m: f64, room_m: f64 },
 }
@@ -119,6 +131,12 @@ impl fmt::Display for Rule {
                 write!(f, "give exactly one of {options} (got {given})")
             }
             Rule::NeedsField { other } => write!(f, "needs \"{other}\" as well"),
+            Rule::Required { when } => write!(f, "is required {when}"),
+            Rule::PowerOnWithoutPowerOff => write!(
+                f,
+                "a power-on curve goes with a power-off curve (\"power_off\" or \"power_off_csv\"), \
+                 not with \"estimate\""
+            ),
             Rule::ShapeTakesNoParameter { shape } => {
                 write!(f, "shape \"{shape}\" takes no shape_parameter")
             }
@@ -210,13 +228,27 @@ pub enum DesignError {
     },
     /// JSON syntax, a wrong type, a missing or an unknown field (from serde).
     #[error("{file}: line {line}, column {column}: {message}")]
-    Json { file: String, line: usize, column: usize, message: String },
+    Json {
+        file: String,
+        line: usize,
+        column: usize,
+        message: String,
+    },
     /// A drag CSV that does not parse.
     #[error("{file}: line {line}: {message}")]
-    Csv { file: String, line: usize, message: String },
+    Csv {
+        file: String,
+        line: usize,
+        message: String,
+    },
     /// A rule of the design broken, with where and what.
     #[error("{file}: {at}: {}{rule}", field_prefix(.field))]
-    Invalid { file: String, at: Location, field: Option<String>, rule: Rule },
+    Invalid {
+        file: String,
+        at: Location,
+        field: Option<String>,
+        rule: Rule,
+    },
 }
 
 fn field_prefix(field: &Option<String>) -> String {
@@ -278,6 +310,9 @@ mod tests {
             field: None,
             rule: Rule::NoBodyComponent,
         };
-        assert_eq!(e.to_string(), "d.json: stage \"sustainer\": has no body component");
+        assert_eq!(
+            e.to_string(),
+            "d.json: stage \"sustainer\": has no body component"
+        );
     }
 }

@@ -66,14 +66,26 @@ impl AeroTables {
     /// Drag coefficient at `mach`, motor burning or not, with the drag scale.
     #[inline]
     pub fn cd(&self, mach: f64, powered: bool) -> f64 {
-        self.drag_scale * if powered { self.cd_power_on.at(mach) } else { self.cd_power_off.at(mach) }
+        self.drag_scale
+            * if powered {
+                self.cd_power_on.at(mach)
+            } else {
+                self.cd_power_off.at(mach)
+            }
     }
 }
 
 /// Aerodynamic loads about O in body axes. `v_o_air_b` is O's velocity relative to the air and
 /// `v_cm_air_b` the center of mass's, both in body axes.
 #[inline]
-pub fn aero_loads(t: &AeroTables, v_o_air_b: &Vector3<f64>, v_cm_air_b: &Vector3<f64>, omega: &Vector3<f64>, air: &AirAt, powered: bool) -> Loads {
+pub fn aero_loads(
+    t: &AeroTables,
+    v_o_air_b: &Vector3<f64>,
+    v_cm_air_b: &Vector3<f64>,
+    omega: &Vector3<f64>,
+    air: &AirAt,
+    powered: bool,
+) -> Loads {
     let rho = air.density_kg_m3;
     let mut force = Vector3::zeros();
     let mut moment = Vector3::zeros();
@@ -102,8 +114,12 @@ pub fn aero_loads(t: &AeroTables, v_o_air_b: &Vector3<f64>, v_cm_air_b: &Vector3
         force.z -= q * t.ref_area_m2 * t.cd(mach, powered);
         let d = t.ref_diameter_m;
         let forcing = q * t.ref_area_m2 * d * t.roll_forcing.at(mach);
-        let damping = 0.5 * rho * v * t.ref_area_m2 * d * d * t.roll_damping.at(mach) * omega.z / 2.0;
+        let damping =
+            0.5 * rho * v * t.ref_area_m2 * d * d * t.roll_damping.at(mach) * omega.z / 2.0;
         moment.z += forcing - damping;
     }
-    Loads { force_b: force, moment_o_b: moment }
+    Loads {
+        force_b: force,
+        moment_o_b: moment,
+    }
 }

@@ -35,7 +35,11 @@ pub fn evaluate(t_s: f64, start_s: f64, duration_s: f64, travel_m: f64) -> Cyclo
     }
     let tau = (t_s - start_s) / duration_s;
     if tau >= 1.0 {
-        return CycloidState { delta_m: travel_m, rate_m_s: 0.0, accel_m_s2: 0.0 };
+        return CycloidState {
+            delta_m: travel_m,
+            rate_m_s: 0.0,
+            accel_m_s2: 0.0,
+        };
     }
     let (sin, cos) = (TAU * tau).sin_cos();
     CycloidState {
@@ -81,11 +85,19 @@ mod tests {
         let h = 1e-6;
         for i in 1..20 {
             let t = start + dur * i as f64 / 20.0;
-            let d = (evaluate(t + h, start, dur, travel).delta_m - evaluate(t - h, start, dur, travel).delta_m) / (2.0 * h);
-            let a = (evaluate(t + h, start, dur, travel).rate_m_s - evaluate(t - h, start, dur, travel).rate_m_s) / (2.0 * h);
+            let d = (evaluate(t + h, start, dur, travel).delta_m
+                - evaluate(t - h, start, dur, travel).delta_m)
+                / (2.0 * h);
+            let a = (evaluate(t + h, start, dur, travel).rate_m_s
+                - evaluate(t - h, start, dur, travel).rate_m_s)
+                / (2.0 * h);
             let s = evaluate(t, start, dur, travel);
             assert!((d - s.rate_m_s).abs() < 1e-8, "rate {d} vs {}", s.rate_m_s);
-            assert!((a - s.accel_m_s2).abs() < 1e-6, "accel {a} vs {}", s.accel_m_s2);
+            assert!(
+                (a - s.accel_m_s2).abs() < 1e-6,
+                "accel {a} vs {}",
+                s.accel_m_s2
+            );
         }
     }
 

@@ -77,7 +77,10 @@ impl Nozzle {
     pub fn at(x_m: f64, radius_m: f64, lever_m: f64) -> Nozzle {
         let s33 = 0.5 * radius_m * radius_m;
         let s11 = 0.5 * s33 + 0.25 * lever_m * lever_m;
-        Nozzle { r_noz: frames::axial_point(x_m), s_noz: Matrix3::from_diagonal(&Vector3::new(s11, s11, s33)) }
+        Nozzle {
+            r_noz: frames::axial_point(x_m),
+            s_noz: Matrix3::from_diagonal(&Vector3::new(s11, s11, s33)),
+        }
     }
 }
 
@@ -148,20 +151,32 @@ pub fn rigid_body_derivative(
 
 /// Inertial velocity of the center of mass from the 6-DOF state: `v_O + R (ω×r + r′)`.
 #[inline]
-pub fn center_of_mass_velocity(y: &[f64; N6], ms: &MassState, body_to_inertial: &Matrix3<f64>) -> Vector3<f64> {
+pub fn center_of_mass_velocity(
+    y: &[f64; N6],
+    ms: &MassState,
+    body_to_inertial: &Matrix3<f64>,
+) -> Vector3<f64> {
     let w = Vector3::new(y[10], y[11], y[12]);
     Vector3::new(y[3], y[4], y[5]) + body_to_inertial * (w.cross(&ms.r_cm) + ms.r_cm_rate)
 }
 
 /// Inertial position of the center of mass from the 6-DOF state.
 #[inline]
-pub fn center_of_mass_position(y: &[f64; N6], ms: &MassState, body_to_inertial: &Matrix3<f64>) -> Vector3<f64> {
+pub fn center_of_mass_position(
+    y: &[f64; N6],
+    ms: &MassState,
+    body_to_inertial: &Matrix3<f64>,
+) -> Vector3<f64> {
     Vector3::new(y[0], y[1], y[2]) + body_to_inertial * ms.r_cm
 }
 
 /// Angular momentum about the center of mass, inertial components: `R (I_cm ω + h_cm)`, with
 /// `h_cm` the moving parts' relative angular momentum about the center of mass.
-pub fn angular_momentum_about_cm(y: &[f64; N6], ms: &MassState, body_to_inertial: &Matrix3<f64>) -> Vector3<f64> {
+pub fn angular_momentum_about_cm(
+    y: &[f64; N6],
+    ms: &MassState,
+    body_to_inertial: &Matrix3<f64>,
+) -> Vector3<f64> {
     let w = Vector3::new(y[10], y[11], y[12]);
     // h about O = Σ m ρ × ρ′; about the center: h − r × (M r′) (the parts' momentum is M r′).
     let h_cm = ms.h_rel - ms.r_cm.cross(&(ms.r_cm_rate * ms.mass_kg));
@@ -172,7 +187,15 @@ pub fn angular_momentum_about_cm(y: &[f64; N6], ms: &MassState, body_to_inertial
 /// `cds_m2` is the sum of the open canopies' CdS, `wind_n` the wind (inertial), `rho` the air
 /// density, `g` gravity. State `[x, y, z, vx, vy, vz]` of the center of mass.
 #[inline]
-pub fn descent_derivative(y: &[f64; N3], mass_kg: f64, cds_m2: f64, rho: f64, g: f64, wind_n: &Vector3<f64>, dy: &mut [f64; N3]) {
+pub fn descent_derivative(
+    y: &[f64; N3],
+    mass_kg: f64,
+    cds_m2: f64,
+    rho: f64,
+    g: f64,
+    wind_n: &Vector3<f64>,
+    dy: &mut [f64; N3],
+) {
     let v = Vector3::new(y[3], y[4], y[5]);
     let rel = v - wind_n;
     let drag = rel * (-0.5 * rho * cds_m2 * rel.norm());

@@ -68,7 +68,11 @@ impl Gravity {
     /// Inverse-square gravity with standard g0 and the mean Earth radius, over a launch site
     /// `launch_elevation_m` above mean sea level.
     pub fn inverse_square(launch_elevation_m: f64) -> Result<Self, GravityError> {
-        Self::inverse_square_with(STANDARD_GRAVITY_M_S2, EARTH_MEAN_RADIUS_M, launch_elevation_m)
+        Self::inverse_square_with(
+            STANDARD_GRAVITY_M_S2,
+            EARTH_MEAN_RADIUS_M,
+            launch_elevation_m,
+        )
     }
 
     /// Inverse-square gravity `g0 (R/(R+z))²` with `g0_m_s2` at mean sea level and radius

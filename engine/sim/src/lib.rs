@@ -3,11 +3,23 @@
 //! event location, triggers, parachutes, mass shifts, and the two drivers built on the same
 //! kernels: the single-flight [`Simulation`] and the structure-of-arrays batch engine.
 
+pub mod aero_loads;
+pub mod atmosphere;
 pub mod cycloid;
 pub mod eom;
-pub mod frames;
-pub mod massprops;
 pub mod events;
-pub mod trigger;
+pub mod flight;
+pub mod frames;
+pub mod gravity;
+pub mod integrate;
+pub mod massprops;
 pub mod shifts;
-// pub mod aero_loads; (enabled once hpr_design::aero::table exists)
+pub mod trigger;
+pub mod wind;
+
+pub use events::EventKind;
+pub use flight::{
+    Environment, Flight, Integrator, Parachute, Rail, SimError, SimOptions, Simulation,
+};
+pub use shifts::MassShift;
+pub use trigger::Trigger;

@@ -61,10 +61,19 @@ impl MassModel {
     /// Build from the rocket without its motor (`dry`), the motor's casing and its full
     /// propellant load, all in the station frame; `parts` are the moving parts' own
     /// properties where the design puts them.
-    pub fn new(dry: &MassProps, casing: &MassProps, propellant_full: &MassProps, parts: &[MassProps]) -> MassModel {
+    pub fn new(
+        dry: &MassProps,
+        casing: &MassProps,
+        propellant_full: &MassProps,
+        parts: &[MassProps],
+    ) -> MassModel {
         let fixed = dry.combine(casing);
         let prop_o = propellant_full.inertia_about_tip();
-        let per_kg = if propellant_full.mass_kg > 0.0 { prop_o / propellant_full.mass_kg } else { Matrix3::zeros() };
+        let per_kg = if propellant_full.mass_kg > 0.0 {
+            prop_o / propellant_full.mass_kg
+        } else {
+            Matrix3::zeros()
+        };
         MassModel {
             fixed_mass_kg: fixed.mass_kg,
             fixed_first_moment_b: frames::station_to_body(&fixed.cg_m) * fixed.mass_kg,
@@ -73,7 +82,10 @@ impl MassModel {
             propellant_inertia_o_per_kg: frames::tensor_station_to_body(&per_kg),
             parts: parts
                 .iter()
-                .map(|p| MovingPart { mass_kg: p.mass_kg, c0_b: frames::station_to_body(&p.cg_m) })
+                .map(|p| MovingPart {
+                    mass_kg: p.mass_kg,
+                    c0_b: frames::station_to_body(&p.cg_m),
+                })
                 .collect(),
         }
     }
@@ -82,7 +94,11 @@ impl MassModel {
 /// Mass state at one instant. `motions[k]` is the total motion of `model.parts[k]` along the
 /// axis (positive aft), summed over its shifts; missing entries mean "not moved".
 #[inline]
-pub fn mass_state(model: &MassModel, prop: &PropellantState, motions: &[CycloidState]) -> MassState {
+pub fn mass_state(
+    model: &MassModel,
+    prop: &PropellantState,
+    motions: &[CycloidState],
+) -> MassState {
     let m = model.fixed_mass_kg + prop.mass_kg;
     let mut s = model.fixed_first_moment_b + model.propellant_cg_b * prop.mass_kg;
     let mut s_rate = model.propellant_cg_b * prop.rate_kg_s;
@@ -106,7 +122,9 @@ pub fn mass_state(model: &MassModel, prop: &PropellantState, motions: &[CycloidS
         s_rate += dv * pm;
         s_accel += da * pm;
         i_o += (point_inertia(&c) - point_inertia(&part.c0_b)) * pm;
-        i_rate += (Matrix3::identity() * (2.0 * c.dot(&dv)) - dv * c.transpose() - c * dv.transpose()) * pm;
+        i_rate +=
+            (Matrix3::identity() * (2.0 * c.dot(&dv)) - dv * c.transpose() - c * dv.transpose())
+                * pm;
         h += c.cross(&dv) * pm;
         h_rate += c.cross(&da) * pm;
     }
@@ -134,5 +152,9 @@ pub fn mass_state(model: &MassModel, prop: &PropellantState, motions: &[CycloidS
 pub fn to_station(ms: &MassState) -> MassProps {
     let r = frames::station_to_body_matrix();
     let i_cm_b = ms.inertia_cm();
-    MassProps { mass_kg: ms.mass_kg, cg_m: frames::body_to_station(&ms.r_cm), inertia_cg: r.transpose() * i_cm_b * r }
+    MassProps {
+        mass_kg: ms.mass_kg,
+        cg_m: frames::body_to_station(&ms.r_cm),
+        inertia_cg: r.transpose() * i_cm_b * r,
+    }
 }

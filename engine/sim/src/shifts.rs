@@ -31,8 +31,18 @@ pub struct MassShift {
 }
 
 impl MassShift {
-    pub fn new(trigger: Trigger, component: impl Into<String>, travel_m: f64, duration_s: f64) -> MassShift {
-        MassShift { trigger, component: component.into(), travel_m, duration_s }
+    pub fn new(
+        trigger: Trigger,
+        component: impl Into<String>,
+        travel_m: f64,
+        duration_s: f64,
+    ) -> MassShift {
+        MassShift {
+            trigger,
+            component: component.into(),
+            travel_m,
+            duration_s,
+        }
     }
 }
 
@@ -40,29 +50,73 @@ impl MassShift {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ShiftRefusal {
     #[error("shift {index} ({component}): duration_s must be at least 0.01 s, a shorter move is closer to an impact than a motion (got {duration_s} s)")]
-    TooShort { index: usize, component: String, duration_s: f64 },
+    TooShort {
+        index: usize,
+        component: String,
+        duration_s: f64,
+    },
     #[error("shift {index} ({component}): travel_m and duration_s must be finite numbers (got travel {travel_m} m, duration {duration_s} s)")]
-    NotFinite { index: usize, component: String, travel_m: f64, duration_s: f64 },
+    NotFinite {
+        index: usize,
+        component: String,
+        travel_m: f64,
+        duration_s: f64,
+    },
     #[error("shift {index}: the design has no component with id \"{component}\"")]
     UnknownComponent { index: usize, component: String },
     #[error("shift {index} ({component}): a body component (nose cone, body tube, transition) can't move; only internal parts can")]
     BodyComponent { index: usize, component: String },
     #[error("shift {index} ({component}): a part on the outside of the airframe ({kind}) can't move; only internal parts can")]
-    ExternalPart { index: usize, component: String, kind: &'static str },
+    ExternalPart {
+        index: usize,
+        component: String,
+        kind: &'static str,
+    },
     #[error("shift {index} ({component}): the part holds the motor (in \"{mount}\"), and the motor would not go with it")]
-    HoldsMotor { index: usize, component: String, mount: String },
+    HoldsMotor {
+        index: usize,
+        component: String,
+        mount: String,
+    },
     #[error("shift {index} ({component}): the part is inside \"{mover}\", which another shift moves; a part inside a part that moves can't move")]
-    InsideMovingPart { index: usize, component: String, mover: String },
+    InsideMovingPart {
+        index: usize,
+        component: String,
+        mover: String,
+    },
     #[error("shift {index} ({component}): the part is one tube of a cluster of {tubes}, which can't move")]
-    ClusterTube { index: usize, component: String, tubes: usize },
+    ClusterTube {
+        index: usize,
+        component: String,
+        tubes: usize,
+    },
     #[error("shift {index} ({component}): the part is covered by the mass override of its stage \"{stage}\", which doesn't say how much of that mass is the part's")]
-    StageOverride { index: usize, component: String, stage: String },
+    StageOverride {
+        index: usize,
+        component: String,
+        stage: String,
+    },
     #[error("shift {index} ({component}): the part is covered by the mass override of \"{holder}\", which covers what it holds and doesn't say how much of that mass is the part's")]
-    ComponentOverride { index: usize, component: String, holder: String },
+    ComponentOverride {
+        index: usize,
+        component: String,
+        holder: String,
+    },
     #[error("shifts of \"{component}\" add up to {total_m:.4} m toward the {direction}, which would take it out of \"{holder}\" (at most {limit_m:.4} m that way)")]
-    OutOfHolder { component: String, direction: &'static str, total_m: f64, limit_m: f64, holder: String },
+    OutOfHolder {
+        component: String,
+        direction: &'static str,
+        total_m: f64,
+        limit_m: f64,
+        holder: String,
+    },
     #[error("shift {index} ({component}): trigger {trigger}: {rule}")]
-    Trigger { index: usize, component: String, trigger: String, rule: String },
+    Trigger {
+        index: usize,
+        component: String,
+        trigger: String,
+        rule: String,
+    },
 }
 
 /// The parts that move, each with the shifts that move it, ready for the flight.
@@ -79,7 +133,10 @@ pub struct ShiftPlan {
 fn holder_extent(design: &Design, holder: ComponentIdx) -> (f64, f64) {
     let c = &design.components[holder];
     match &c.kind {
-        ComponentKind::NoseCone(n) => (c.x_top_m, c.x_bottom_m() + n.shoulder.map_or(0.0, |s| s.length_m)),
+        ComponentKind::NoseCone(n) => (
+            c.x_top_m,
+            c.x_bottom_m() + n.shoulder.map_or(0.0, |s| s.length_m),
+        ),
         ComponentKind::Transition(t) => (
             c.x_top_m - t.fore_shoulder.map_or(0.0, |s| s.length_m),
             c.x_bottom_m() + t.aft_shoulder.map_or(0.0, |s| s.length_m),
@@ -89,7 +146,9 @@ fn holder_extent(design: &Design, holder: ComponentIdx) -> (f64, f64) {
 }
 
 fn ancestors(design: &Design, idx: ComponentIdx) -> impl Iterator<Item = ComponentIdx> + '_ {
-    std::iter::successors(design.components[idx].parent, move |&p| design.components[p].parent)
+    std::iter::successors(design.components[idx].parent, move |&p| {
+        design.components[p].parent
+    })
 }
 
 fn subtree_contains(design: &Design, root: ComponentIdx, target: ComponentIdx) -> bool {
@@ -98,49 +157,85 @@ fn subtree_contains(design: &Design, root: ComponentIdx, target: ComponentIdx) -
 
 /// Check every rule that can be checked before the flight and group the shifts by part.
 /// `motor_delay_s` is the motor's first ejection delay (None for a plugged motor).
-pub fn plan(design: &Design, shifts: &[MassShift], motor_delay_s: Option<f64>) -> Result<ShiftPlan, ShiftRefusal> {
+pub fn plan(
+    design: &Design,
+    shifts: &[MassShift],
+    motor_delay_s: Option<f64>,
+) -> Result<ShiftPlan, ShiftRefusal> {
     let mut parts: Vec<ComponentIdx> = Vec::new();
     let mut part_of_shift = Vec::with_capacity(shifts.len());
     for (index, s) in shifts.iter().enumerate() {
         let component = s.component.clone();
         if !s.travel_m.is_finite() || !s.duration_s.is_finite() {
-            return Err(ShiftRefusal::NotFinite { index, component, travel_m: s.travel_m, duration_s: s.duration_s });
+            return Err(ShiftRefusal::NotFinite {
+                index,
+                component,
+                travel_m: s.travel_m,
+                duration_s: s.duration_s,
+            });
         }
         if s.duration_s < MIN_DURATION_S {
-            return Err(ShiftRefusal::TooShort { index, component, duration_s: s.duration_s });
+            return Err(ShiftRefusal::TooShort {
+                index,
+                component,
+                duration_s: s.duration_s,
+            });
         }
         check_trigger(index, s, motor_delay_s)?;
         let idx = design
             .components
             .iter()
             .position(|c| c.id == s.component)
-            .ok_or_else(|| ShiftRefusal::UnknownComponent { index, component: component.clone() })?;
+            .ok_or_else(|| ShiftRefusal::UnknownComponent {
+                index,
+                component: component.clone(),
+            })?;
         let c = &design.components[idx];
         if c.is_body() {
             return Err(ShiftRefusal::BodyComponent { index, component });
         }
         if c.is_external() {
-            return Err(ShiftRefusal::ExternalPart { index, component, kind: c.kind.type_name() });
+            return Err(ShiftRefusal::ExternalPart {
+                index,
+                component,
+                kind: c.kind.type_name(),
+            });
         }
         if let Some(mount) = &design.motor_mount {
             if subtree_contains(design, idx, mount.component) {
-                return Err(ShiftRefusal::HoldsMotor { index, component, mount: design.components[mount.component].id.clone() });
+                return Err(ShiftRefusal::HoldsMotor {
+                    index,
+                    component,
+                    mount: design.components[mount.component].id.clone(),
+                });
             }
         }
         if let ComponentKind::InnerTube(t) = &c.kind {
             if t.cluster_offsets_m.len() > 1 {
-                return Err(ShiftRefusal::ClusterTube { index, component, tubes: t.cluster_offsets_m.len() });
+                return Err(ShiftRefusal::ClusterTube {
+                    index,
+                    component,
+                    tubes: t.cluster_offsets_m.len(),
+                });
             }
         }
         let stage = &design.stages[c.stage];
         if stage.overrides.any() {
-            return Err(ShiftRefusal::StageOverride { index, component, stage: stage.id.clone() });
+            return Err(ShiftRefusal::StageOverride {
+                index,
+                component,
+                stage: stage.id.clone(),
+            });
         }
         if let Some(h) = ancestors(design, idx).find(|&a| {
             let o = &design.components[a].overrides;
             o.any() && o.covers_children
         }) {
-            return Err(ShiftRefusal::ComponentOverride { index, component, holder: design.components[h].id.clone() });
+            return Err(ShiftRefusal::ComponentOverride {
+                index,
+                component,
+                holder: design.components[h].id.clone(),
+            });
         }
         let k = match parts.iter().position(|&p| p == idx) {
             Some(k) => k,
@@ -154,7 +249,10 @@ pub fn plan(design: &Design, shifts: &[MassShift], motor_delay_s: Option<f64>) -
     // A part inside another part that moves.
     for (index, s) in shifts.iter().enumerate() {
         let idx = parts[part_of_shift[index]];
-        if let Some(&mover) = parts.iter().find(|&&p| p != idx && subtree_contains(design, p, idx)) {
+        if let Some(&mover) = parts
+            .iter()
+            .find(|&&p| p != idx && subtree_contains(design, p, idx))
+        {
             return Err(ShiftRefusal::InsideMovingPart {
                 index,
                 component: s.component.clone(),
@@ -168,9 +266,17 @@ pub fn plan(design: &Design, shifts: &[MassShift], motor_delay_s: Option<f64>) -
             .iter()
             .zip(&part_of_shift)
             .filter(|(_, &p)| p == k)
-            .fold((0.0, 0.0), |(a, f), (s, _)| if s.travel_m > 0.0 { (a + s.travel_m, f) } else { (a, f - s.travel_m) });
+            .fold((0.0, 0.0), |(a, f), (s, _)| {
+                if s.travel_m > 0.0 {
+                    (a + s.travel_m, f)
+                } else {
+                    (a, f - s.travel_m)
+                }
+            });
         let c = &design.components[idx];
-        let holder = c.parent.expect("internal parts always have a parent (validated design)");
+        let holder = c
+            .parent
+            .expect("internal parts always have a parent (validated design)");
         let (h_top, h_bottom) = holder_extent(design, holder);
         // A part already reaching outside its holder may go as far as it already reaches.
         let aft_limit = h_bottom.max(c.x_bottom_m()) - c.x_bottom_m();
@@ -178,16 +284,35 @@ pub fn plan(design: &Design, shifts: &[MassShift], motor_delay_s: Option<f64>) -
         let holder_id = design.components[holder].id.clone();
         // A relative tolerance of 1e-12 m forgives rounding in positions computed by sums.
         if aft > aft_limit + 1e-12 {
-            return Err(ShiftRefusal::OutOfHolder { component: c.id.clone(), direction: "tail", total_m: aft, limit_m: aft_limit, holder: holder_id });
+            return Err(ShiftRefusal::OutOfHolder {
+                component: c.id.clone(),
+                direction: "tail",
+                total_m: aft,
+                limit_m: aft_limit,
+                holder: holder_id,
+            });
         }
         if fore > fore_limit + 1e-12 {
-            return Err(ShiftRefusal::OutOfHolder { component: c.id.clone(), direction: "nose", total_m: fore, limit_m: fore_limit, holder: holder_id });
+            return Err(ShiftRefusal::OutOfHolder {
+                component: c.id.clone(),
+                direction: "nose",
+                total_m: fore,
+                limit_m: fore_limit,
+                holder: holder_id,
+            });
         }
     }
-    Ok(ShiftPlan { parts, part_of_shift })
+    Ok(ShiftPlan {
+        parts,
+        part_of_shift,
+    })
 }
 
-fn check_trigger(index: usize, s: &MassShift, motor_delay_s: Option<f64>) -> Result<(), ShiftRefusal> {
+fn check_trigger(
+    index: usize,
+    s: &MassShift,
+    motor_delay_s: Option<f64>,
+) -> Result<(), ShiftRefusal> {
     let refuse = |rule: &str| ShiftRefusal::Trigger {
         index,
         component: s.component.clone(),
@@ -213,6 +338,10 @@ fn check_trigger(index: usize, s: &MassShift, motor_delay_s: Option<f64>) -> Res
 
 impl fmt::Display for MassShift {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "\"{}\" {:+} m over {} s at {}", self.component, self.travel_m, self.duration_s, self.trigger)
+        write!(
+            f,
+            "\"{}\" {:+} m over {} s at {}",
+            self.component, self.travel_m, self.duration_s, self.trigger
+        )
     }
 }

@@ -26,7 +26,9 @@ impl Trigger {
             if v.is_finite() && v >= 0.0 {
                 Ok(())
             } else {
-                Err(format!("trigger {self}: field \"{field}\" must be finite and not negative (got {v})"))
+                Err(format!(
+                    "trigger {self}: field \"{field}\" must be finite and not negative (got {v})"
+                ))
             }
         };
         match *self {
@@ -43,7 +45,9 @@ impl Trigger {
         match *self {
             Trigger::Time { time_s } => Some(time_s),
             Trigger::Burnout => Some(burnout_s),
-            Trigger::BurnoutPlusDelay { delay_s } => delay_s.or(motor_delay_s).map(|d| burnout_s + d),
+            Trigger::BurnoutPlusDelay { delay_s } => {
+                delay_s.or(motor_delay_s).map(|d| burnout_s + d)
+            }
             _ => None,
         }
     }

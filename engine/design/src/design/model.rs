@@ -32,6 +32,18 @@ pub struct Design {
     pub motor_mount: Option<MotorMount>,
 }
 
+impl Design {
+    /// Index of the component with this id, if any.
+    pub fn component_index(&self, id: &str) -> Option<ComponentIdx> {
+        self.components.iter().position(|c| c.id == id)
+    }
+
+    /// The component with this id, if any.
+    pub fn component(&self, id: &str) -> Option<&Component> {
+        self.components.iter().find(|c| c.id == id)
+    }
+}
+
 /// A stage: a group of top-level body components, with an optional mass override.
 #[derive(Debug, Clone)]
 pub struct Stage {
@@ -101,12 +113,13 @@ impl Component {
 /// How a component's mass is given.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum MassSpec {
-    /// Material density, kg/m³ (kg/m for shock cord is given as `LinearDensity`).
+    /// Material density, kg/m³ (a shock cord's kg/m is given as `LinearDensity`).
     Density(f64),
     /// Explicit mass, kg, spread over the component's shape.
     Mass(f64),
-    /// Linear density, kg/m (shock cord).
-    LinearDensity(f64),
+    /// Linear density of a shock cord, kg/m, and the cord's full length, m: its mass is
+    /// `kg_per_m * cord_length_m`, packed into the component's cylinder.
+    LinearDensity { kg_per_m: f64, cord_length_m: f64 },
 }
 
 /// Overrides of mass and center of mass (as OpenRocket has them).
@@ -133,12 +146,18 @@ pub enum NoseShape {
     /// Tangent ogive.
     Ogive,
     /// Haack series with parameter `c` (0 = von Kármán / LD-Haack, 1/3 = LV-Haack).
-    Haack { c: f64 },
+    Haack {
+        c: f64,
+    },
     Elliptical,
     /// r = R (x/L)^k, 0 < k <= 1.
-    PowerSeries { k: f64 },
+    PowerSeries {
+        k: f64,
+    },
     /// Parabolic series with parameter K' in [0, 1] (1 = full parabola).
-    Parabolic { k: f64 },
+    Parabolic {
+        k: f64,
+    },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -312,7 +331,10 @@ impl ComponentKind {
 pub enum DragSpec {
     /// Cd against Mach, referenced to the area of the reference diameter; power off and on
     /// (as RocketPy reads them). Mach strictly increasing.
-    Curves { power_off: Vec<(f64, f64)>, power_on: Vec<(f64, f64)> },
+    Curves {
+        power_off: Vec<(f64, f64)>,
+        power_on: Vec<(f64, f64)>,
+    },
     /// Estimate from the geometry (skin friction, pressure and base drag, as OpenRocket does),
     /// with a surface roughness, m.
     Estimate { roughness_m: f64 },

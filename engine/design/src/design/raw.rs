@@ -1,0 +1,450 @@
+//! The design file as JSON says it: serde structs, nothing checked beyond types.
+//!
+//! Every struct denies unknown fields, so a misspelt field is an error with its line and
+//! column rather than a silently ignored value. Components are internally tagged by `"type"`.
+//! [`super::validate`] turns a [`RawDesign`] into the validated [`super::Design`]; nothing
+//! else reads these types. The format is documented for users in `docs/design-format.md`.
+
+use serde::Deserialize;
+
+/// The whole file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDesign {
+    pub name: String,
+    /// Default motor: a path, a file stem or a designation.
+    #[serde(default)]
+    pub motor: Option<String>,
+    /// Drag model; absent means `{"estimate": {}}`.
+    #[serde(default)]
+    pub drag: Option<RawDrag>,
+    pub stages: Vec<RawStage>,
+}
+
+/// `drag`: exactly one of `power_off`, `power_off_csv` and `estimate`; `power_on` or
+/// `power_on_csv` optionally beside a power-off curve (default: the power-off curve).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDrag {
+    /// Rows `[mach, cd]`.
+    #[serde(default)]
+    pub power_off: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    pub power_on: Option<Vec<[f64; 2]>>,
+    /// CSV file with rows `mach,cd`, relative to the design file.
+    #[serde(default)]
+    pub power_off_csv: Option<String>,
+    #[serde(default)]
+    pub power_on_csv: Option<String>,
+    #[serde(default)]
+    pub estimate: Option<RawEstimate>,
+}
+
+/// `drag.estimate`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawEstimate {
+    /// Surface roughness, m (default 60 µm, OpenRocket's "regular paint").
+    #[serde(default)]
+    pub roughness_m: Option<f64>,
+}
+
+/// One stage: body components fore to aft.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStage {
+    pub id: String,
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Mass override of the whole stage; `cg_m` is m aft of the stage's fore end.
+    #[serde(default, rename = "override")]
+    pub overrides: Option<RawStageOverride>,
+    pub components: Vec<RawComponent>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStageOverride {
+    #[serde(default)]
+    pub mass_kg: Option<f64>,
+    #[serde(default)]
+    pub cg_m: Option<f64>,
+}
+
+/// A component's override; `cg_m` is m aft of the component's fore end.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOverride {
+    #[serde(default)]
+    pub mass_kg: Option<f64>,
+    #[serde(default)]
+    pub cg_m: Option<f64>,
+    #[serde(default)]
+    pub covers_children: bool,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMaterial {
+    /// For the reader only.
+    #[serde(default)]
+    pub name: Option<String>,
+    pub density_kg_m3: f64,
+}
+
+/// Where a child sits along its parent.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPosition {
+    #[serde(default)]
+    pub from: RawFrom,
+    #[serde(default)]
+    pub offset_m: f64,
+}
+
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RawFrom {
+    /// Fore ends aligned, plus the offset.
+    #[default]
+    Top,
+    /// Centers aligned, plus the offset.
+    Middle,
+    /// Aft ends aligned, plus the offset.
+    Bottom,
+    /// Fore end at the offset aft of the nose tip.
+    NoseTip,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RawNoseShape {
+    Conical,
+    Ogive,
+    VonKarman,
+    Haack,
+    LvHaack,
+    Elliptical,
+    PowerSeries,
+    Parabolic,
+}
+
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RawCrossSection {
+    #[default]
+    Square,
+    Rounded,
+    Airfoil,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawShoulder {
+    pub length_m: f64,
+    pub outer_diameter_m: f64,
+    pub wall_thickness_m: f64,
+    #[serde(default)]
+    pub capped: bool,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMotorMount {
+    #[serde(default)]
+    pub overhang_m: f64,
+}
+
+/// Declares a component struct with the fields every component has (id, name, material,
+/// mass_kg, override) followed by its own. Serde cannot `flatten` into a struct that denies
+/// unknown fields, hence the macro.
+macro_rules! component_struct {
+    ($(#[$m:meta])* $name:ident { $($(#[$fm:meta])* $field:ident : $ty:ty),* $(,)? }) => {
+        $(#[$m])*
+        #[derive(Debug, Clone, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct $name {
+            pub id: String,
+            #[serde(default)]
+            pub name: Option<String>,
+            #[serde(default)]
+            pub material: Option<RawMaterial>,
+            #[serde(default)]
+            pub mass_kg: Option<f64>,
+            #[serde(default, rename = "override")]
+            pub overrides: Option<RawOverride>,
+            $($(#[$fm])* pub $field: $ty,)*
+        }
+    };
+}
+
+component_struct!(RawNoseCone {
+    shape: RawNoseShape,
+    #[serde(default)]
+    shape_parameter: Option<f64>,
+    length_m: f64,
+    base_diameter_m: f64,
+    #[serde(default)]
+    wall_thickness_m: Option<f64>,
+    #[serde(default)]
+    filled: bool,
+    #[serde(default)]
+    shoulder: Option<RawShoulder>,
+    #[serde(default)]
+    children: Vec<RawComponent>,
+});
+
+component_struct!(RawBodyTube {
+    length_m: f64,
+    outer_diameter_m: f64,
+    wall_thickness_m: f64,
+    #[serde(default)]
+    children: Vec<RawComponent>,
+});
+
+component_struct!(RawTransition {
+    shape: RawNoseShape,
+    #[serde(default)]
+    shape_parameter: Option<f64>,
+    length_m: f64,
+    fore_diameter_m: f64,
+    aft_diameter_m: f64,
+    #[serde(default)]
+    wall_thickness_m: Option<f64>,
+    #[serde(default)]
+    filled: bool,
+    #[serde(default)]
+    fore_shoulder: Option<RawShoulder>,
+    #[serde(default)]
+    aft_shoulder: Option<RawShoulder>,
+    #[serde(default)]
+    children: Vec<RawComponent>,
+});
+
+component_struct!(RawFinSet {
+    count: u32,
+    root_chord_m: f64,
+    tip_chord_m: f64,
+    span_m: f64,
+    #[serde(default)]
+    sweep_m: f64,
+    thickness_m: f64,
+    #[serde(default)]
+    cant_deg: f64,
+    #[serde(default)]
+    cross_section: RawCrossSection,
+    #[serde(default)]
+    rotation_deg: f64,
+    #[serde(default)]
+    position: Option<RawPosition>,
+});
+
+component_struct!(RawLaunchLug {
+    length_m: f64,
+    outer_diameter_m: f64,
+    wall_thickness_m: f64,
+    #[serde(default)]
+    angle_deg: f64,
+    #[serde(default)]
+    position: Option<RawPosition>,
+});
+
+component_struct!(RawRailButton {
+    outer_diameter_m: f64,
+    height_m: f64,
+    #[serde(default)]
+    angle_deg: f64,
+    #[serde(default)]
+    position: Option<RawPosition>,
+});
+
+component_struct!(RawInnerTube {
+    length_m: f64,
+    outer_diameter_m: f64,
+    wall_thickness_m: f64,
+    #[serde(default)]
+    motor_mount: Option<RawMotorMount>,
+    /// Offsets `[y, z]` of the tubes of a cluster from the tube's own axis, m.
+    #[serde(default)]
+    cluster: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    radial_offset_m: f64,
+    #[serde(default)]
+    radial_angle_deg: f64,
+    #[serde(default)]
+    position: Option<RawPosition>,
+    #[serde(default)]
+    children: Vec<RawComponent>,
+});
+
+component_struct!(RawCenteringRing {
+    length_m: f64,
+    outer_diameter_m: f64,
+    inner_diameter_m: f64,
+    #[serde(default)]
+    position: Option<RawPosition>,
+});
+
+component_struct!(RawBulkhead {
+    length_m: f64,
+    outer_diameter_m: f64,
+    #[serde(default)]
+    position: Option<RawPosition>,
+});
+
+component_struct!(RawMassComponent {
+    length_m: f64,
+    radius_m: f64,
+    #[serde(default)]
+    radial_offset_m: f64,
+    #[serde(default)]
+    radial_angle_deg: f64,
+    /// `[axial, transverse]` about the part's own center, kg·m².
+    #[serde(default)]
+    inertia_kg_m2: Option<[f64; 2]>,
+    #[serde(default)]
+    position: Option<RawPosition>,
+});
+
+component_struct!(RawParachute {
+    length_m: f64,
+    radius_m: f64,
+    canopy_diameter_m: f64,
+    cd: f64,
+    #[serde(default)]
+    radial_offset_m: f64,
+    #[serde(default)]
+    radial_angle_deg: f64,
+    #[serde(default)]
+    inertia_kg_m2: Option<[f64; 2]>,
+    #[serde(default)]
+    position: Option<RawPosition>,
+});
+
+component_struct!(RawShockCord {
+    length_m: f64,
+    radius_m: f64,
+    #[serde(default)]
+    linear_density_kg_m: Option<f64>,
+    #[serde(default)]
+    cord_length_m: Option<f64>,
+    #[serde(default)]
+    radial_offset_m: f64,
+    #[serde(default)]
+    radial_angle_deg: f64,
+    #[serde(default)]
+    inertia_kg_m2: Option<[f64; 2]>,
+    #[serde(default)]
+    position: Option<RawPosition>,
+});
+
+/// Any component, tagged by `"type"`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum RawComponent {
+    NoseCone(RawNoseCone),
+    BodyTube(RawBodyTube),
+    Transition(RawTransition),
+    FinSet(RawFinSet),
+    LaunchLug(RawLaunchLug),
+    RailButton(RawRailButton),
+    InnerTube(RawInnerTube),
+    CenteringRing(RawCenteringRing),
+    Bulkhead(RawBulkhead),
+    MassComponent(RawMassComponent),
+    Parachute(RawParachute),
+    ShockCord(RawShockCord),
+}
+
+/// Applies `$e` to the struct inside any variant of a [`RawComponent`].
+macro_rules! with_variant {
+    ($s:expr, $c:ident => $e:expr) => {
+        match $s {
+            RawComponent::NoseCone($c) => $e,
+            RawComponent::BodyTube($c) => $e,
+            RawComponent::Transition($c) => $e,
+            RawComponent::FinSet($c) => $e,
+            RawComponent::LaunchLug($c) => $e,
+            RawComponent::RailButton($c) => $e,
+            RawComponent::InnerTube($c) => $e,
+            RawComponent::CenteringRing($c) => $e,
+            RawComponent::Bulkhead($c) => $e,
+            RawComponent::MassComponent($c) => $e,
+            RawComponent::Parachute($c) => $e,
+            RawComponent::ShockCord($c) => $e,
+        }
+    };
+}
+
+/// The fields every component has.
+#[derive(Debug, Clone, Copy)]
+pub struct RawCommon<'a> {
+    pub id: &'a str,
+    pub name: Option<&'a str>,
+    pub material: Option<&'a RawMaterial>,
+    pub mass_kg: Option<f64>,
+    pub overrides: Option<&'a RawOverride>,
+}
+
+impl RawComponent {
+    /// The component's id.
+    pub fn id(&self) -> &str {
+        with_variant!(self, c => &c.id)
+    }
+
+    /// The fields every component has.
+    pub fn common(&self) -> RawCommon<'_> {
+        with_variant!(self, c => RawCommon {
+            id: &c.id,
+            name: c.name.as_deref(),
+            material: c.material.as_ref(),
+            mass_kg: c.mass_kg,
+            overrides: c.overrides.as_ref(),
+        })
+    }
+
+    /// The components inside this one (body components and inner tubes hold children).
+    pub fn children(&self) -> &[RawComponent] {
+        match self {
+            RawComponent::NoseCone(c) => &c.children,
+            RawComponent::BodyTube(c) => &c.children,
+            RawComponent::Transition(c) => &c.children,
+            RawComponent::InnerTube(c) => &c.children,
+            _ => &[],
+        }
+    }
+
+    /// The JSON `type` tag.
+    pub fn type_name(&self) -> &'static str {
+        match self {
+            RawComponent::NoseCone(_) => "nose_cone",
+            RawComponent::BodyTube(_) => "body_tube",
+            RawComponent::Transition(_) => "transition",
+            RawComponent::FinSet(_) => "fin_set",
+            RawComponent::LaunchLug(_) => "launch_lug",
+            RawComponent::RailButton(_) => "rail_button",
+            RawComponent::InnerTube(_) => "inner_tube",
+            RawComponent::CenteringRing(_) => "centering_ring",
+            RawComponent::Bulkhead(_) => "bulkhead",
+            RawComponent::MassComponent(_) => "mass_component",
+            RawComponent::Parachute(_) => "parachute",
+            RawComponent::ShockCord(_) => "shock_cord",
+        }
+    }
+
+    /// True for nose cones, body tubes and transitions.
+    pub fn is_body(&self) -> bool {
+        matches!(
+            self,
+            RawComponent::NoseCone(_) | RawComponent::BodyTube(_) | RawComponent::Transition(_)
+        )
+    }
+
+    /// True for fins, launch lugs and rail buttons.
+    pub fn is_external(&self) -> bool {
+        matches!(
+            self,
+            RawComponent::FinSet(_) | RawComponent::LaunchLug(_) | RawComponent::RailButton(_)
+        )
+    }
+}

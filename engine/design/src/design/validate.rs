@@ -1,0 +1,472 @@
+//! From raw JSON to the validated [`Design`]: the one place where a design is checked.
+//!
+//! It resolves every position to metres aft of the nose tip (body components end to end in a
+//! stage, stages end to end, children by their `position`), computes what the rest of hpr
+//! reads (reference diameter, length, rail guides, motor mount, cluster offsets) and refuses
+//! anything that would make the mass or aerodynamics meaningless, with a [`DesignError`]
+//! naming the file, the component, the field and the rule. The body components are in
+//! [`bodies`], the parts inside and outside them in [`parts`], the drag curves in [`drag`].
+
+mod bodies;
+mod drag;
+mod parts;
+
+#[cfg(test)]
+mod fuzz;
+#[cfg(test)]
+mod tests;
+
+use super::model::*;
+use super::raw::*;
+use crate::error::{DesignError, Location, Rule};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// How much a diameter may exceed the room it must fit in (a part in its parent, a motor in
+/// its mount), m: 1 µm, well below any manufacturing tolerance, so that a part that fits
+/// exactly on paper is not refused because of rounding (0.0563 − 2 × 0.0015 ≠ 0.0533 in
+/// binary).
+pub const FIT_TOLERANCE_M: f64 = 1e-6;
+
+/// Largest fin count of a fin set.
+pub const MAX_FINS: u32 = 32;
+
+/// Largest cant angle of a fin set, degrees (OpenRocket's limit).
+pub const MAX_CANT_DEG: f64 = 15.0;
+
+/// Roughness of the drag estimate when the design gives none, m: OpenRocket's "regular
+/// paint".
+pub const DEFAULT_ROUGHNESS_M: f64 = 60e-6;
+
+impl Design {
+    /// Reads and validates a design file. Drag CSVs are found relative to it.
+    pub fn load(path: impl AsRef<Path>) -> Result<Design, DesignError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| DesignError::Io {
+            file: path.display().to_string(),
+            source,
+        })?;
+        Design::from_json_str(&text, Some(path))
+    }
+
+    /// Validates a design given as JSON text. `source` is the file it came from: errors name
+    /// it and drag CSVs are found relative to its directory (relative to the working
+    /// directory when `None`).
+    pub fn from_json_str(text: &str, source: Option<&Path>) -> Result<Design, DesignError> {
+        let file = match source {
+            Some(p) => p.display().to_string(),
+            None => "<design>".to_owned(),
+        };
+        let raw: RawDesign = serde_json::from_str(text).map_err(|e| json_error(&file, &e))?;
+        Builder {
+            file,
+            source,
+            components: Vec::new(),
+            ids: HashMap::new(),
+            motor_mount: None,
+        }
+        .design(raw)
+    }
+
+    /// Checks that a motor of this diameter and length fits the motor mount: its diameter
+    /// must not exceed the mount's inner diameter, its length the mount's length plus the
+    /// overhang (both within [`FIT_TOLERANCE_M`]). The error says which is too big.
+    pub fn motor_fits(&self, diameter_m: f64, length_m: f64) -> Result<(), DesignError> {
+        let file = match &self.source {
+            Some(p) => p.display().to_string(),
+            None => "<design>".to_owned(),
+        };
+        let invalid = |at: Location, field: Option<&str>, rule: Rule| DesignError::Invalid {
+            file: file.clone(),
+            at,
+            field: field.map(str::to_owned),
+            rule,
+        };
+        let Some(mount) = self.motor_mount else {
+            return Err(invalid(Location::Design, None, Rule::NoMotorMount));
+        };
+        let at = Location::Component(self.components[mount.component].id.clone());
+        if !(diameter_m > 0.0 && diameter_m.is_finite()) {
+            return Err(invalid(
+                at,
+                Some("motor diameter_m"),
+                Rule::NotPositive { got: diameter_m },
+            ));
+        }
+        if !(length_m > 0.0 && length_m.is_finite()) {
+            return Err(invalid(
+                at,
+                Some("motor length_m"),
+                Rule::NotPositive { got: length_m },
+            ));
+        }
+        if diameter_m > mount.inner_diameter_m + FIT_TOLERANCE_M {
+            return Err(invalid(
+                at,
+                None,
+                Rule::MotorTooWide {
+                    motor_diameter_m: diameter_m,
+                    mount_inner_diameter_m: mount.inner_diameter_m,
+                },
+            ));
+        }
+        let tube_bottom = self.components[mount.component].x_bottom_m();
+        let room = mount.tube_length_m + (mount.motor_aft_m - tube_bottom);
+        if length_m > room + FIT_TOLERANCE_M {
+            return Err(invalid(
+                at,
+                None,
+                Rule::MotorTooLong {
+                    motor_length_m: length_m,
+                    room_m: room,
+                },
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// serde_json's message without its " at line L column C" suffix, with the position apart.
+fn json_error(file: &str, e: &serde_json::Error) -> DesignError {
+    let (line, column) = (e.line(), e.column());
+    let text = e.to_string();
+    let suffix = format!(" at line {line} column {column}");
+    let message = text.strip_suffix(&suffix).unwrap_or(&text).to_owned();
+    DesignError::Json {
+        file: file.to_owned(),
+        line,
+        column,
+        message,
+    }
+}
+
+/// Builds the arena while it checks. Child modules add the per-kind work.
+struct Builder<'a> {
+    file: String,
+    source: Option<&'a Path>,
+    components: Vec<Component>,
+    /// id -> where it was first used (JSON path), for duplicate errors.
+    ids: HashMap<String, String>,
+    motor_mount: Option<MotorMount>,
+}
+
+impl Builder<'_> {
+    fn invalid(&self, at: &Location, field: Option<&str>, rule: Rule) -> DesignError {
+        DesignError::Invalid {
+            file: self.file.clone(),
+            at: at.clone(),
+            field: field.map(str::to_owned),
+            rule,
+        }
+    }
+
+    /// `> 0` and finite.
+    fn positive(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
+        if v > 0.0 && v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.invalid(at, Some(field), Rule::NotPositive { got: v }))
+        }
+    }
+
+    /// `>= 0` and finite.
+    fn non_negative(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
+        if v >= 0.0 && v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.invalid(at, Some(field), Rule::Negative { got: v }))
+        }
+    }
+
+    fn finite(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.invalid(at, Some(field), Rule::NotFinite { got: v }))
+        }
+    }
+
+    /// `min <= v <= max`.
+    fn within(
+        &self,
+        at: &Location,
+        field: &str,
+        v: f64,
+        min: f64,
+        max: f64,
+    ) -> Result<f64, DesignError> {
+        if v >= min && v <= max {
+            Ok(v)
+        } else {
+            Err(self.invalid(at, Some(field), Rule::OutOfRange { got: v, min, max }))
+        }
+    }
+
+    /// A wall: positive, finite and no thicker than the radius.
+    fn wall(&self, at: &Location, field: &str, wall: f64, radius: f64) -> Result<f64, DesignError> {
+        self.positive(at, field, wall)?;
+        if wall > radius {
+            return Err(self.invalid(
+                at,
+                Some(field),
+                Rule::WallThickerThanRadius {
+                    wall_m: wall,
+                    radius_m: radius,
+                },
+            ));
+        }
+        Ok(wall)
+    }
+
+    /// A resolved position or extent that must be finite.
+    fn resolved(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.invalid(at, Some(field), Rule::PositionNotFinite { got: v }))
+        }
+    }
+
+    /// Registers an id (stages and components share one namespace) and returns its location.
+    fn claim_id(&mut self, id: &str, path: &str, stage: bool) -> Result<Location, DesignError> {
+        if id.is_empty() {
+            return Err(self.invalid(&Location::Path(path.to_owned()), Some("id"), Rule::EmptyId));
+        }
+        let at = if stage {
+            Location::Stage(id.to_owned())
+        } else {
+            Location::Component(id.to_owned())
+        };
+        if let Some(first) = self.ids.get(id) {
+            return Err(self.invalid(
+                &at,
+                Some("id"),
+                Rule::DuplicateId {
+                    first: first.clone(),
+                },
+            ));
+        }
+        self.ids.insert(id.to_owned(), path.to_owned());
+        Ok(at)
+    }
+
+    /// Exactly one way to give the mass. `cord` is a shock cord's
+    /// (`linear_density_kg_m`, `cord_length_m`).
+    fn mass_spec(
+        &self,
+        at: &Location,
+        common: &RawCommon<'_>,
+        cord: Option<(Option<f64>, Option<f64>)>,
+    ) -> Result<MassSpec, DesignError> {
+        let (linear, cord_length) = cord.unwrap_or((None, None));
+        if cord_length.is_some() && linear.is_none() {
+            return Err(self.invalid(
+                at,
+                Some("cord_length_m"),
+                Rule::NeedsField {
+                    other: "linear_density_kg_m",
+                },
+            ));
+        }
+        let given = usize::from(common.material.is_some())
+            + usize::from(common.mass_kg.is_some())
+            + usize::from(linear.is_some());
+        if given != 1 {
+            let options = if cord.is_some() {
+                "\"material.density_kg_m3\", \"mass_kg\" and \"linear_density_kg_m\""
+            } else {
+                "\"material.density_kg_m3\" and \"mass_kg\""
+            };
+            return Err(self.invalid(at, None, Rule::MassSpecNotExactlyOne { options, given }));
+        }
+        if let Some(m) = common.material {
+            return Ok(MassSpec::Density(self.positive(
+                at,
+                "material.density_kg_m3",
+                m.density_kg_m3,
+            )?));
+        }
+        if let Some(m) = common.mass_kg {
+            return Ok(MassSpec::Mass(self.positive(at, "mass_kg", m)?));
+        }
+        let kg_per_m = self.positive(at, "linear_density_kg_m", linear.unwrap_or(f64::NAN))?;
+        let Some(cord_length) = cord_length else {
+            return Err(self.invalid(
+                at,
+                Some("linear_density_kg_m"),
+                Rule::NeedsField {
+                    other: "cord_length_m",
+                },
+            ));
+        };
+        let cord_length_m = self.positive(at, "cord_length_m", cord_length)?;
+        Ok(MassSpec::LinearDensity {
+            kg_per_m,
+            cord_length_m,
+        })
+    }
+
+    /// A component's override; its `cg_m` is relative to the component's fore end.
+    fn overrides(
+        &self,
+        at: &Location,
+        raw: Option<&RawOverride>,
+        x_top: f64,
+    ) -> Result<Overrides, DesignError> {
+        let Some(o) = raw else {
+            return Ok(Overrides::default());
+        };
+        let mass_kg = match o.mass_kg {
+            Some(m) => Some(self.positive(at, "override.mass_kg", m)?),
+            None => None,
+        };
+        let cg_m = match o.cg_m {
+            Some(c) => {
+                let c = self.finite(at, "override.cg_m", c)?;
+                Some(self.resolved(at, "override.cg_m", x_top + c)?)
+            }
+            None => None,
+        };
+        Ok(Overrides {
+            mass_kg,
+            cg_m,
+            covers_children: o.covers_children,
+        })
+    }
+
+    /// Adds a checked component to the arena (and to its parent's children).
+    #[allow(clippy::too_many_arguments)]
+    fn push(
+        &mut self,
+        at: &Location,
+        raw: &RawComponent,
+        parent: Option<ComponentIdx>,
+        stage: usize,
+        x_top_m: f64,
+        length_m: f64,
+        radial_offset_m: [f64; 2],
+        kind: ComponentKind,
+        cord: Option<(Option<f64>, Option<f64>)>,
+    ) -> Result<ComponentIdx, DesignError> {
+        let x_top_m = self.resolved(at, "position", x_top_m)?;
+        self.resolved(at, "position", x_top_m + length_m)?;
+        let common = raw.common();
+        let mass_spec = self.mass_spec(at, &common, cord)?;
+        let overrides = self.overrides(at, common.overrides, x_top_m)?;
+        let idx = self.components.len();
+        self.components.push(Component {
+            id: common.id.to_owned(),
+            name: common.name.unwrap_or(common.id).to_owned(),
+            parent,
+            children: Vec::new(),
+            stage,
+            x_top_m,
+            length_m,
+            radial_offset_m,
+            kind,
+            mass_spec,
+            overrides,
+        });
+        if let Some(p) = parent {
+            self.components[p].children.push(idx);
+        }
+        Ok(idx)
+    }
+
+    fn design(mut self, raw: RawDesign) -> Result<Design, DesignError> {
+        let drag = self.drag(raw.drag.as_ref())?;
+        if raw.stages.is_empty() {
+            return Err(self.invalid(&Location::Design, Some("stages"), Rule::NoBodyComponent));
+        }
+        let mut stages = Vec::with_capacity(raw.stages.len());
+        let mut cursor = 0.0;
+        for (s, rs) in raw.stages.iter().enumerate() {
+            let path = format!("stages[{s}]");
+            let at = self.claim_id(&rs.id, &path, true)?;
+            if rs.components.is_empty() {
+                return Err(self.invalid(&at, Some("components"), Rule::NoBodyComponent));
+            }
+            let stage_top = cursor;
+            let first = self.components.len();
+            for (i, rc) in rs.components.iter().enumerate() {
+                let cpath = format!("{path}.components[{i}]");
+                let idx = self.body(rc, s, cursor, &cpath)?;
+                cursor = self.components[idx].x_bottom_m();
+                for (j, child) in rc.children().iter().enumerate() {
+                    self.child(child, idx, s, &format!("{cpath}.children[{j}]"))?;
+                }
+            }
+            let overrides = match &rs.overrides {
+                None => Overrides::default(),
+                Some(o) => {
+                    let mass_kg = match o.mass_kg {
+                        Some(m) => Some(self.positive(&at, "override.mass_kg", m)?),
+                        None => None,
+                    };
+                    let cg_m = match o.cg_m {
+                        Some(c) => {
+                            let c = self.finite(&at, "override.cg_m", c)?;
+                            Some(self.resolved(&at, "override.cg_m", stage_top + c)?)
+                        }
+                        None => None,
+                    };
+                    Overrides {
+                        mass_kg,
+                        cg_m,
+                        covers_children: true,
+                    }
+                }
+            };
+            stages.push(Stage {
+                id: rs.id.clone(),
+                name: rs.name.clone().unwrap_or_else(|| rs.id.clone()),
+                components: (first..self.components.len()).collect(),
+                overrides,
+            });
+        }
+
+        let reference_diameter_m = self
+            .components
+            .iter()
+            .filter_map(|c| match &c.kind {
+                ComponentKind::NoseCone(n) => Some(n.base_diameter_m),
+                ComponentKind::BodyTube(b) => Some(b.outer_diameter_m),
+                ComponentKind::Transition(t) => Some(t.fore_diameter_m.max(t.aft_diameter_m)),
+                _ => None,
+            })
+            .fold(0.0, f64::max);
+
+        Ok(Design {
+            name: raw.name,
+            source: self.source.map(Path::to_path_buf),
+            default_motor: raw.motor,
+            reference_diameter_m,
+            length_m: cursor,
+            rail_guides_m: rail_guides(&self.components),
+            motor_mount: self.motor_mount,
+            stages,
+            components: self.components,
+            drag,
+        })
+    }
+}
+
+/// The first two rail guides (rail buttons or launch lugs, in document order), each spanning
+/// its center (a button) or its two ends (a lug): (fore-most point, aft-most point). A single
+/// lug gives its own two ends; a single button gives nothing.
+fn rail_guides(components: &[Component]) -> Option<(f64, f64)> {
+    let mut spans = components.iter().filter_map(|c| match c.kind {
+        ComponentKind::RailButton(_) => {
+            let mid = c.x_top_m + c.length_m / 2.0;
+            Some((mid, mid))
+        }
+        ComponentKind::LaunchLug(_) => Some((c.x_top_m, c.x_bottom_m())),
+        _ => None,
+    });
+    let (a_top, a_bottom) = spans.next()?;
+    let (top, bottom) = match spans.next() {
+        Some((b_top, b_bottom)) => (a_top.min(b_top), a_bottom.max(b_bottom)),
+        None => (a_top, a_bottom),
+    };
+    (bottom > top).then_some((top, bottom))
+}

@@ -2,7 +2,7 @@
 //! from it: the implicit (0 s, 0 N) start, strictly increasing times, no negative thrust, a
 //! final zero, trapezoidal impulse, the NAR/TRA impulse class and the common name.
 //!
-//! Both parsers feed their samples through [`CurveBuilder`] so that an `.eng` and an `.rse`
+//! Both parsers feed their samples through `CurveBuilder` so that an `.eng` and an `.rse`
 //! of the same motor are checked, and fail, in the same way.
 
 use super::error::{parse_error, MotorError, Rule};
@@ -18,7 +18,12 @@ pub(crate) struct CurveBuilder<'f> {
 
 impl<'f> CurveBuilder<'f> {
     pub(crate) fn new(file: &'f str) -> Self {
-        CurveBuilder { file, times_s: Vec::new(), thrust_n: Vec::new(), last_line: 0 }
+        CurveBuilder {
+            file,
+            times_s: Vec::new(),
+            thrust_n: Vec::new(),
+            last_line: 0,
+        }
     }
 
     /// Whether any sample has been pushed.
@@ -37,10 +42,20 @@ impl<'f> CurveBuilder<'f> {
         thrust_field: &str,
     ) -> Result<(), MotorError> {
         if time_s < 0.0 {
-            return Err(parse_error(self.file, line, time_field, Rule::Negative { value: time_s }));
+            return Err(parse_error(
+                self.file,
+                line,
+                time_field,
+                Rule::Negative { value: time_s },
+            ));
         }
         if thrust_n < 0.0 {
-            return Err(parse_error(self.file, line, thrust_field, Rule::Negative { value: thrust_n }));
+            return Err(parse_error(
+                self.file,
+                line,
+                thrust_field,
+                Rule::Negative { value: thrust_n },
+            ));
         }
         match self.times_s.last() {
             None if time_s > 0.0 => {
@@ -65,9 +80,18 @@ impl<'f> CurveBuilder<'f> {
 
     /// The finished curve: it must have samples, end at zero thrust and deliver impulse.
     /// `header_line` is where the motor began (reported when there are no samples).
-    pub(crate) fn finish(self, header_line: usize, thrust_field: &str) -> Result<Curve, MotorError> {
+    pub(crate) fn finish(
+        self,
+        header_line: usize,
+        thrust_field: &str,
+    ) -> Result<Curve, MotorError> {
         let Some(&last) = self.thrust_n.last() else {
-            return Err(parse_error(self.file, header_line, "samples", Rule::NoSamples));
+            return Err(parse_error(
+                self.file,
+                header_line,
+                "samples",
+                Rule::NoSamples,
+            ));
         };
         if last != 0.0 {
             return Err(parse_error(
@@ -78,8 +102,13 @@ impl<'f> CurveBuilder<'f> {
             ));
         }
         let impulse_ns = trapezoid(&self.times_s, &self.thrust_n);
-        if !(impulse_ns > 0.0) {
-            return Err(parse_error(self.file, self.last_line, "samples", Rule::ZeroImpulse));
+        if impulse_ns.is_nan() || impulse_ns <= 0.0 {
+            return Err(parse_error(
+                self.file,
+                self.last_line,
+                "samples",
+                Rule::ZeroImpulse,
+            ));
         }
         if impulse_class(impulse_ns).is_none() {
             return Err(parse_error(
@@ -89,7 +118,11 @@ impl<'f> CurveBuilder<'f> {
                 Rule::ImpulseBeyondClasses { impulse_ns },
             ));
         }
-        Ok(Curve { times_s: self.times_s, thrust_n: self.thrust_n, total_impulse_ns: impulse_ns })
+        Ok(Curve {
+            times_s: self.times_s,
+            thrust_n: self.thrust_n,
+            total_impulse_ns: impulse_ns,
+        })
     }
 }
 
@@ -116,7 +149,7 @@ pub(crate) fn trapezoid(times_s: &[f64], thrust_n: &[f64]) -> f64 {
 /// (`B` up to 5 N·s, ..., `M` up to 10 240 N·s, `N` up to 20 480 N·s, ..., `Z`). `None` for a
 /// non-finite or non-positive impulse or one beyond class `Z`.
 pub fn impulse_class(impulse_ns: f64) -> Option<char> {
-    if !(impulse_ns > 0.0) || !impulse_ns.is_finite() {
+    if !impulse_ns.is_finite() || impulse_ns <= 0.0 {
         return None;
     }
     let mut upper_ns = 2.5;
@@ -138,7 +171,10 @@ pub(crate) fn common_name(designation: &str, class: char, average_thrust_n: f64)
     for (i, &c) in chars.iter().enumerate() {
         let starts_word = i == 0 || !chars[i - 1].is_ascii_alphabetic();
         if c.is_ascii_uppercase() && starts_word {
-            let digits: String = chars[i + 1..].iter().take_while(|d| d.is_ascii_digit()).collect();
+            let digits: String = chars[i + 1..]
+                .iter()
+                .take_while(|d| d.is_ascii_digit())
+                .collect();
             if !digits.is_empty() {
                 return format!("{c}{digits}");
             }
@@ -202,11 +238,22 @@ mod tests {
 
     #[test]
     fn delays_split_on_the_separator_and_plugged_gives_none() {
-        assert_eq!(parse_delays("6-8-9-11-12-13", '-', "f", 1, "delays").unwrap(), [6.0, 8.0, 9.0, 11.0, 12.0, 13.0]);
-        assert_eq!(parse_delays("P", '-', "f", 1, "delays").unwrap(), Vec::<f64>::new());
+        assert_eq!(
+            parse_delays("6-8-9-11-12-13", '-', "f", 1, "delays").unwrap(),
+            [6.0, 8.0, 9.0, 11.0, 12.0, 13.0]
+        );
+        assert_eq!(
+            parse_delays("P", '-', "f", 1, "delays").unwrap(),
+            Vec::<f64>::new()
+        );
         assert_eq!(parse_delays("0", '-', "f", 1, "delays").unwrap(), [0.0]);
-        assert_eq!(parse_delays("5,9,13", ',', "f", 1, "delays").unwrap(), [5.0, 9.0, 13.0]);
-        let err = parse_delays("6--8", '-', "f.eng", 3, "delays").unwrap_err().to_string();
+        assert_eq!(
+            parse_delays("5,9,13", ',', "f", 1, "delays").unwrap(),
+            [5.0, 9.0, 13.0]
+        );
+        let err = parse_delays("6--8", '-', "f.eng", 3, "delays")
+            .unwrap_err()
+            .to_string();
         assert_eq!(err, "f.eng, line 3, delays: `` is not a number");
     }
 }

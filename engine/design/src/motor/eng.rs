@@ -8,7 +8,9 @@
 //! several motors in one file (each new header starts a motor).
 
 use super::curve::{parse_delays, CurveBuilder};
-use super::error::{parse_error, parse_non_negative, parse_number, parse_positive, MotorError, Rule};
+use super::error::{
+    parse_error, parse_non_negative, parse_number, parse_positive, MotorError, Rule,
+};
 use super::{Motor, MotorFormat};
 
 /// The header's seven fields, in file order.
@@ -46,7 +48,10 @@ pub fn parse_eng(text: &str, file: &str) -> Result<Vec<Motor>, MotorError> {
                     file,
                     line,
                     "sample (time thrust)",
-                    Rule::FieldCount { expected: 2, found: fields.len() },
+                    Rule::FieldCount {
+                        expected: 2,
+                        found: fields.len(),
+                    },
                 ));
             }
             None if is_header => current = Some(Block::start(&fields, file, line)?),
@@ -55,14 +60,24 @@ pub fn parse_eng(text: &str, file: &str) -> Result<Vec<Motor>, MotorError> {
                     file,
                     line,
                     "header",
-                    Rule::FieldCount { expected: HEADER_FIELDS, found: fields.len() },
+                    Rule::FieldCount {
+                        expected: HEADER_FIELDS,
+                        found: fields.len(),
+                    },
                 ));
             }
         }
     }
     match current {
         Some(block) => motors.push(block.finish(file)?),
-        None => return Err(parse_error(file, line_count.max(1), "header", Rule::NoHeader)),
+        None => {
+            return Err(parse_error(
+                file,
+                line_count.max(1),
+                "header",
+                Rule::NoHeader,
+            ))
+        }
     }
     Ok(motors)
 }
@@ -94,21 +109,30 @@ impl<'f> Block<'f> {
         let diameter_mm = parse_positive(fields[1], file, line, "diameter (header field 2, mm)")?;
         let length_mm = parse_positive(fields[2], file, line, "length (header field 3, mm)")?;
         let delays_s = parse_delays(fields[3], '-', file, line, "delays (header field 4, s)")?;
-        let propellant_mass_kg = parse_non_negative(fields[4], file, line, "propellant mass (header field 5, kg)")?;
-        let total_mass_kg = parse_non_negative(fields[5], file, line, "total mass (header field 6, kg)")?;
+        let propellant_mass_kg = parse_non_negative(
+            fields[4],
+            file,
+            line,
+            "propellant mass (header field 5, kg)",
+        )?;
+        let total_mass_kg =
+            parse_non_negative(fields[5], file, line, "total mass (header field 6, kg)")?;
         if propellant_mass_kg > total_mass_kg {
             return Err(parse_error(
                 file,
                 line,
                 "total mass (header field 6, kg)",
-                Rule::PropellantExceedsTotal { propellant_kg: propellant_mass_kg, total_kg: total_mass_kg },
+                Rule::PropellantExceedsTotal {
+                    propellant_kg: propellant_mass_kg,
+                    total_kg: total_mass_kg,
+                },
             ));
         }
         Ok(Block {
             header_line: line,
             designation: fields[0].to_string(),
-            diameter_m: diameter_mm * 1e-3,
-            length_m: length_mm * 1e-3,
+            diameter_m: diameter_mm / 1000.0,
+            length_m: length_mm / 1000.0,
             delays_s,
             propellant_mass_kg,
             total_mass_kg,
@@ -166,14 +190,22 @@ mod tests {
 
     #[test]
     fn cr_only_line_endings_and_inline_comments_are_read() {
-        let m = &parse_eng("; c\rX 29 100 P 0.05 0.1 A ; hdr\r1 10 ; peak\r2 0\r;", "t.eng").unwrap()[0];
+        let m = &parse_eng(
+            "; c\rX 29 100 P 0.05 0.1 A ; hdr\r1 10 ; peak\r2 0\r;",
+            "t.eng",
+        )
+        .unwrap()[0];
         assert_eq!(m.times_s(), [0.0, 1.0, 2.0]);
         assert!(m.delays_s.is_empty());
     }
 
     #[test]
     fn two_blocks_give_two_motors() {
-        let motors = parse_eng("A1 29 100 0 0.05 0.1 A\n1 10\n2 0\nB2 38 200 0 0.1 0.2 B\n1 20\n3 0\n", "t.eng").unwrap();
+        let motors = parse_eng(
+            "A1 29 100 0 0.05 0.1 A\n1 10\n2 0\nB2 38 200 0 0.1 0.2 B\n1 20\n3 0\n",
+            "t.eng",
+        )
+        .unwrap();
         assert_eq!(motors.len(), 2);
         assert_eq!(motors[1].designation, "B2");
         assert_eq!(motors[1].total_impulse_ns(), 30.0);
@@ -193,22 +225,43 @@ mod tests {
             err("X 29 100 0 0.05 0.1 A\n1 10\n1 20\n2 0"),
             "test.eng, line 3, time: time 1 s does not exceed the previous time 1 s (times must strictly increase)"
         );
-        assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 -10\n2 0"), "test.eng, line 2, thrust: -10 must not be negative");
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n1 -10\n2 0"),
+            "test.eng, line 2, thrust: -10 must not be negative"
+        );
         assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 10\n2 0 3"), "test.eng, line 3, sample (time thrust): expected 2 whitespace-separated fields, found 3");
-        assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 1O\n2 0"), "test.eng, line 2, thrust: `1O` is not a number");
-        assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 inf\n2 0"), "test.eng, line 2, thrust: `inf` is not a finite number");
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n1 1O\n2 0"),
+            "test.eng, line 2, thrust: `1O` is not a number"
+        );
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n1 inf\n2 0"),
+            "test.eng, line 2, thrust: `inf` is not a finite number"
+        );
         assert_eq!(
             err("X 29 100 0 0.05 0.1 A\n1 10\n2 1\n"),
             "test.eng, line 3, thrust: the last sample has thrust 1 N; a curve must end with a zero-thrust sample at burnout"
         );
-        assert_eq!(err("X 0 100 0 0.05 0.1 A\n1 10\n2 0"), "test.eng, line 1, diameter (header field 2, mm): 0 must be greater than zero");
+        assert_eq!(
+            err("X 0 100 0 0.05 0.1 A\n1 10\n2 0"),
+            "test.eng, line 1, diameter (header field 2, mm): 0 must be greater than zero"
+        );
         assert_eq!(
             err("X 29 100 0 0.5 0.1 A\n1 10\n2 0"),
             "test.eng, line 1, total mass (header field 6, kg): propellant mass 0.5 kg exceeds the total motor mass 0.1 kg"
         );
-        assert_eq!(err("X 29 100 0 0.05 0.1 A\n;\n"), "test.eng, line 1, samples: the motor has no thrust samples");
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n;\n"),
+            "test.eng, line 1, samples: the motor has no thrust samples"
+        );
         assert_eq!(err(";only\n;comments\n"), "test.eng, line 3, header: no motor header line (the file holds only comments or nothing)");
-        assert_eq!(err("X 29 100 0 0.05 0.1 A\n1 0\n2 0"), "test.eng, line 3, samples: the thrust curve delivers no impulse");
-        assert_eq!(err("X 29 100 0 0.05 0.1 A\n-1 0\n2 0"), "test.eng, line 2, time: -1 must not be negative");
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n1 0\n2 0"),
+            "test.eng, line 3, samples: the thrust curve delivers no impulse"
+        );
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n-1 0\n2 0"),
+            "test.eng, line 2, time: -1 must not be negative"
+        );
     }
 }

@@ -27,16 +27,26 @@ pub enum MotorError {
     },
     /// An `.rse` file is not well-formed XML.
     #[error("{file}, line {line}: not well-formed XML: {message}")]
-    Xml { file: String, line: usize, message: String },
+    Xml {
+        file: String,
+        line: usize,
+        message: String,
+    },
     /// The extension is neither `.eng` nor `.rse`.
     #[error("{file}: unknown motor file type (expected a RASP `.eng` or RockSim `.rse` file)")]
     UnknownFormat { file: String },
     /// A single motor was asked for but the file describes several.
     #[error("{file}: holds {} motors ({}); a motor file used by name must hold exactly one", designations.len(), designations.join(", "))]
-    SeveralMotors { file: String, designations: Vec<String> },
+    SeveralMotors {
+        file: String,
+        designations: Vec<String>,
+    },
     /// No file and no bundled motor matches the name.
     #[error("no motor file or bundled motor matches `{name}` (bundled motors: {})", available.join(", "))]
-    NotFound { name: String, available: Vec<String> },
+    NotFound {
+        name: String,
+        available: Vec<String>,
+    },
     /// The name matches more than one distinct motor.
     #[error("motor name `{name}` is ambiguous between {}; name one by its file stem or full designation", join_and(candidates))]
     Ambiguous {
@@ -46,7 +56,12 @@ pub enum MotorError {
     },
     /// A [`MotorOptions`](super::MotorOptions) value is out of range.
     #[error("motor {motor}, option {field} = {value}: {rule}")]
-    InvalidOption { motor: String, field: &'static str, value: f64, rule: &'static str },
+    InvalidOption {
+        motor: String,
+        field: &'static str,
+        value: f64,
+        rule: &'static str,
+    },
 }
 
 /// The rule a value in a motor file breaks.
@@ -133,21 +148,51 @@ fn join_and(items: &[String]) -> String {
 
 /// A parse error at `line` of `file`.
 pub(crate) fn parse_error(file: &str, line: usize, field: &str, rule: Rule) -> MotorError {
-    MotorError::Parse { file: file.to_string(), line, field: field.to_string(), rule }
+    MotorError::Parse {
+        file: file.to_string(),
+        line,
+        field: field.to_string(),
+        rule,
+    }
 }
 
 /// A finite number from `text`, or an error naming the field.
-pub(crate) fn parse_number(text: &str, file: &str, line: usize, field: &str) -> Result<f64, MotorError> {
-    let value: f64 =
-        text.parse().map_err(|_| parse_error(file, line, field, Rule::NotANumber { text: text.to_string() }))?;
+pub(crate) fn parse_number(
+    text: &str,
+    file: &str,
+    line: usize,
+    field: &str,
+) -> Result<f64, MotorError> {
+    let value: f64 = text.parse().map_err(|_| {
+        parse_error(
+            file,
+            line,
+            field,
+            Rule::NotANumber {
+                text: text.to_string(),
+            },
+        )
+    })?;
     if !value.is_finite() {
-        return Err(parse_error(file, line, field, Rule::NotFinite { text: text.to_string() }));
+        return Err(parse_error(
+            file,
+            line,
+            field,
+            Rule::NotFinite {
+                text: text.to_string(),
+            },
+        ));
     }
     Ok(value)
 }
 
 /// A finite number that is greater than zero.
-pub(crate) fn parse_positive(text: &str, file: &str, line: usize, field: &str) -> Result<f64, MotorError> {
+pub(crate) fn parse_positive(
+    text: &str,
+    file: &str,
+    line: usize,
+    field: &str,
+) -> Result<f64, MotorError> {
     let value = parse_number(text, file, line, field)?;
     if value <= 0.0 {
         return Err(parse_error(file, line, field, Rule::NotPositive { value }));
@@ -156,7 +201,12 @@ pub(crate) fn parse_positive(text: &str, file: &str, line: usize, field: &str) -
 }
 
 /// A finite number that is not negative.
-pub(crate) fn parse_non_negative(text: &str, file: &str, line: usize, field: &str) -> Result<f64, MotorError> {
+pub(crate) fn parse_non_negative(
+    text: &str,
+    file: &str,
+    line: usize,
+    field: &str,
+) -> Result<f64, MotorError> {
     let value = parse_number(text, file, line, field)?;
     if value < 0.0 {
         return Err(parse_error(file, line, field, Rule::Negative { value }));

@@ -20,7 +20,10 @@ pub struct BundledFile {
 
 macro_rules! bundled {
     ($name:literal) => {
-        BundledFile { file_name: $name, text: include_str!(concat!("../../motors/", $name)) }
+        BundledFile {
+            file_name: $name,
+            text: include_str!(concat!("../../motors/", $name)),
+        }
     };
 }
 
@@ -74,7 +77,11 @@ fn entries() -> &'static [Entry] {
             .filter_map(|f| {
                 let motor = Motor::parse(f.text.as_bytes(), f.file_name).ok()?;
                 let stem = f.file_name.rsplit_once('.').map_or(f.file_name, |(s, _)| s);
-                Some(Entry { stem, file_name: f.file_name, motor })
+                Some(Entry {
+                    stem,
+                    file_name: f.file_name,
+                    motor,
+                })
             })
             .collect()
     })
@@ -85,7 +92,9 @@ fn primaries() -> impl Iterator<Item = &'static Entry> {
     let all = entries();
     all.iter().filter(move |e| {
         e.motor.format == MotorFormat::Eng
-            || !all.iter().any(|o| o.stem == e.stem && o.motor.format == MotorFormat::Eng)
+            || !all
+                .iter()
+                .any(|o| o.stem == e.stem && o.motor.format == MotorFormat::Eng)
     })
 }
 
@@ -98,7 +107,10 @@ pub fn bundled() -> Vec<(&'static str, Motor)> {
 
 /// Upper-case letters and digits only: `411-I175-WH-14A` and `411i175wh14a` compare equal.
 fn normalized(name: &str) -> String {
-    name.chars().filter(char::is_ascii_alphanumeric).map(|c| c.to_ascii_uppercase()).collect()
+    name.chars()
+        .filter(char::is_ascii_alphanumeric)
+        .map(|c| c.to_ascii_uppercase())
+        .collect()
 }
 
 /// A motor by file path, bundled file name or stem, designation or common name.
@@ -117,7 +129,10 @@ pub fn find(name_or_path: &str) -> Result<Motor, MotorError> {
     if !name.is_empty() && Path::new(name).is_file() {
         return Motor::from_file(name);
     }
-    if let Some(e) = entries().iter().find(|e| e.file_name.eq_ignore_ascii_case(name)) {
+    if let Some(e) = entries()
+        .iter()
+        .find(|e| e.file_name.eq_ignore_ascii_case(name))
+    {
         return Ok(e.motor.clone());
     }
     let key = normalized(name);
@@ -136,11 +151,21 @@ pub fn find(name_or_path: &str) -> Result<Motor, MotorError> {
                     name: name.to_string(),
                     candidates: many
                         .iter()
-                        .map(|e| format!("{} {} (file {})", e.motor.manufacturer_name(), e.motor.designation, e.stem))
+                        .map(|e| {
+                            format!(
+                                "{} {} (file {})",
+                                e.motor.manufacturer_name(),
+                                e.motor.designation,
+                                e.stem
+                            )
+                        })
                         .collect(),
                 })
             }
         }
     }
-    Err(MotorError::NotFound { name: name.to_string(), available: bundled().into_iter().map(|(s, _)| s.to_string()).collect() })
+    Err(MotorError::NotFound {
+        name: name.to_string(),
+        available: bundled().into_iter().map(|(s, _)| s.to_string()).collect(),
+    })
 }

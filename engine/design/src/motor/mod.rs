@@ -35,6 +35,8 @@ pub mod tables;
 mod tests;
 #[cfg(test)]
 mod tests_fuzz;
+#[cfg(test)]
+mod tests_tables;
 
 use std::path::Path;
 
@@ -118,7 +120,11 @@ impl Motor {
         file: &str,
         format: MotorFormat,
     ) -> Motor {
-        let source = Path::new(file).file_stem().and_then(|s| s.to_str()).unwrap_or(file).to_string();
+        let source = Path::new(file)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or(file)
+            .to_string();
         let burn_time_s = curve.times_s.last().copied().unwrap_or(0.0);
         let average_n = curve.total_impulse_ns / burn_time_s;
         let class = impulse_class(curve.total_impulse_ns).unwrap_or('?');
@@ -142,10 +148,14 @@ impl Motor {
     /// The one motor in `bytes`, a file called `file_name` whose extension (`.eng`, `.rse`)
     /// chooses the parser.
     pub fn parse(bytes: &[u8], file_name: &str) -> Result<Motor, MotorError> {
-        let format =
-            MotorFormat::of_file(file_name).ok_or_else(|| MotorError::UnknownFormat { file: file_name.to_string() })?;
+        let format = MotorFormat::of_file(file_name).ok_or_else(|| MotorError::UnknownFormat {
+            file: file_name.to_string(),
+        })?;
         let text = std::str::from_utf8(bytes).map_err(|e| {
-            let line = 1 + bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count();
+            let line = 1 + bytes[..e.valid_up_to()]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count();
             parse_error(file_name, line, "text", Rule::NotUtf8)
         })?;
         let mut motors = match format {
@@ -165,7 +175,10 @@ impl Motor {
     pub fn from_file(path: impl AsRef<Path>) -> Result<Motor, MotorError> {
         let path = path.as_ref();
         let file = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|source| MotorError::Io { file: file.clone(), source })?;
+        let bytes = std::fs::read(path).map_err(|source| MotorError::Io {
+            file: file.clone(),
+            source,
+        })?;
         Motor::parse(&bytes, &file)
     }
 

@@ -11,7 +11,9 @@
 use roxmltree::{Document, Node};
 
 use super::curve::{parse_delays, CurveBuilder};
-use super::error::{parse_error, parse_non_negative, parse_number, parse_positive, MotorError, Rule};
+use super::error::{
+    parse_error, parse_non_negative, parse_number, parse_positive, MotorError, Rule,
+};
 use super::{Motor, MotorFormat};
 
 /// Every `<engine>` in the RockSim text `text`. `file` names the file in errors; its stem
@@ -24,10 +26,20 @@ pub fn parse_rse(text: &str, file: &str) -> Result<Vec<Motor>, MotorError> {
     })?;
     let root = doc.root_element();
     if !root.has_tag_name("engine-database") {
-        return Err(parse_error(file, line_of(&doc, root.range().start), "<engine-database>", Rule::MissingElement));
+        return Err(parse_error(
+            file,
+            line_of(&doc, root.range().start),
+            "<engine-database>",
+            Rule::MissingElement,
+        ));
     }
     let Some(list) = root.children().find(|n| n.has_tag_name("engine-list")) else {
-        return Err(parse_error(file, line_of(&doc, root.range().start), "<engine-list>", Rule::MissingElement));
+        return Err(parse_error(
+            file,
+            line_of(&doc, root.range().start),
+            "<engine-list>",
+            Rule::MissingElement,
+        ));
     };
     let motors = list
         .children()
@@ -35,7 +47,12 @@ pub fn parse_rse(text: &str, file: &str) -> Result<Vec<Motor>, MotorError> {
         .map(|engine| read_engine(&doc, engine, file))
         .collect::<Result<Vec<_>, _>>()?;
     if motors.is_empty() {
-        return Err(parse_error(file, line_of(&doc, list.range().start), "<engine>", Rule::MissingElement));
+        return Err(parse_error(
+            file,
+            line_of(&doc, list.range().start),
+            "<engine>",
+            Rule::MissingElement,
+        ));
     }
     Ok(motors)
 }
@@ -46,10 +63,20 @@ fn line_of(doc: &Document, pos: usize) -> usize {
 }
 
 /// An attribute's text and line, or an error naming it.
-fn attribute<'a>(doc: &Document, node: Node<'a, '_>, name: &str, file: &str) -> Result<(&'a str, usize), MotorError> {
+fn attribute<'a>(
+    doc: &Document,
+    node: Node<'a, '_>,
+    name: &str,
+    file: &str,
+) -> Result<(&'a str, usize), MotorError> {
     match node.attribute_node(name) {
         Some(a) => Ok((a.value(), line_of(doc, a.range_value().start))),
-        None => Err(parse_error(file, line_of(doc, node.range().start), name, Rule::MissingAttribute)),
+        None => Err(parse_error(
+            file,
+            line_of(doc, node.range().start),
+            name,
+            Rule::MissingAttribute,
+        )),
     }
 }
 
@@ -61,28 +88,42 @@ fn read_engine(doc: &Document, engine: Node, file: &str) -> Result<Motor, MotorE
     }
     let (mfg, _) = attribute(doc, engine, "mfg", file)?;
     let (dia, line) = attribute(doc, engine, "dia", file)?;
-    let diameter_m = parse_positive(dia.trim(), file, line, "dia (mm)")? * 1e-3;
+    let diameter_m = parse_positive(dia.trim(), file, line, "dia (mm)")? / 1000.0;
     let (len, line) = attribute(doc, engine, "len", file)?;
-    let length_m = parse_positive(len.trim(), file, line, "len (mm)")? * 1e-3;
+    let length_m = parse_positive(len.trim(), file, line, "len (mm)")? / 1000.0;
     let (prop, line) = attribute(doc, engine, "propWt", file)?;
-    let propellant_mass_kg = parse_non_negative(prop.trim(), file, line, "propWt (g)")? * 1e-3;
+    let propellant_mass_kg = parse_non_negative(prop.trim(), file, line, "propWt (g)")? / 1000.0;
     let (init, line) = attribute(doc, engine, "initWt", file)?;
-    let total_mass_kg = parse_non_negative(init.trim(), file, line, "initWt (g)")? * 1e-3;
+    let total_mass_kg = parse_non_negative(init.trim(), file, line, "initWt (g)")? / 1000.0;
     if propellant_mass_kg > total_mass_kg {
         return Err(parse_error(
             file,
             line,
             "initWt (g)",
-            Rule::PropellantExceedsTotal { propellant_kg: propellant_mass_kg, total_kg: total_mass_kg },
+            Rule::PropellantExceedsTotal {
+                propellant_kg: propellant_mass_kg,
+                total_kg: total_mass_kg,
+            },
         ));
     }
     let delays_s = match engine.attribute_node("delays") {
-        Some(a) => parse_delays(a.value(), ',', file, line_of(doc, a.range_value().start), "delays (s)")?,
+        Some(a) => parse_delays(
+            a.value(),
+            ',',
+            file,
+            line_of(doc, a.range_value().start),
+            "delays (s)",
+        )?,
         None => Vec::new(),
     };
 
     let Some(data) = engine.children().find(|n| n.has_tag_name("data")) else {
-        return Err(parse_error(file, line_of(doc, engine.range().start), "<data>", Rule::MissingElement));
+        return Err(parse_error(
+            file,
+            line_of(doc, engine.range().start),
+            "<data>",
+            Rule::MissingElement,
+        ));
     };
     let mut curve = CurveBuilder::new(file);
     for sample in data.children().filter(|n| n.has_tag_name("eng-data")) {
@@ -123,7 +164,8 @@ mod tests {
 
     #[test]
     fn a_minimal_file_reads_grams_and_millimetres_into_si_units() {
-        let text = with_samples("<eng-data t=\"1\" f=\"10\"/>\n<eng-data f=\"0\" t=\"2.\" m=\"0\"/>\n");
+        let text =
+            with_samples("<eng-data t=\"1\" f=\"10\"/>\n<eng-data f=\"0\" t=\"2.\" m=\"0\"/>\n");
         let motors = parse_rse(&text, "a/b.rse").unwrap();
         let m = &motors[0];
         assert_eq!(m.designation, "T1");
@@ -140,22 +182,45 @@ mod tests {
 
     #[test]
     fn each_broken_rule_is_reported_with_file_line_and_field() {
-        let err = |s: &str| parse_rse(&with_samples(s), "t.rse").unwrap_err().to_string();
+        let err = |s: &str| {
+            parse_rse(&with_samples(s), "t.rse")
+                .unwrap_err()
+                .to_string()
+        };
         assert_eq!(
             err("<eng-data t=\"1\" f=\"10\"/>\n<eng-data t=\"1\" f=\"0\"/>"),
             "t.rse, line 5, t (s): time 1 s does not exceed the previous time 1 s (times must strictly increase)"
         );
-        assert_eq!(err("<eng-data t=\"1\" f=\"-3\"/>"), "t.rse, line 4, f (N): -3 must not be negative");
-        assert_eq!(err("<eng-data t=\"1\"/>"), "t.rse, line 4, f: required attribute is missing");
-        assert_eq!(err("<eng-data t=\"x\" f=\"0\"/>"), "t.rse, line 4, t (s): `x` is not a number");
+        assert_eq!(
+            err("<eng-data t=\"1\" f=\"-3\"/>"),
+            "t.rse, line 4, f (N): -3 must not be negative"
+        );
+        assert_eq!(
+            err("<eng-data t=\"1\"/>"),
+            "t.rse, line 4, f: required attribute is missing"
+        );
+        assert_eq!(
+            err("<eng-data t=\"x\" f=\"0\"/>"),
+            "t.rse, line 4, t (s): `x` is not a number"
+        );
         assert_eq!(
             err("<eng-data t=\"1\" f=\"10\"/>"),
             "t.rse, line 4, f (N): the last sample has thrust 10 N; a curve must end with a zero-thrust sample at burnout"
         );
-        assert_eq!(err(""), "t.rse, line 3, samples: the motor has no thrust samples");
+        assert_eq!(
+            err(""),
+            "t.rse, line 3, samples: the motor has no thrust samples"
+        );
         let text = "<engine-database>\n<engine-list/></engine-database>";
-        assert_eq!(parse_rse(text, "t.rse").unwrap_err().to_string(), "t.rse, line 2, <engine>: required element is missing");
-        let bad = parse_rse("<engine-database>\n<engine-list>\n</engine-database>", "t.rse").unwrap_err();
+        assert_eq!(
+            parse_rse(text, "t.rse").unwrap_err().to_string(),
+            "t.rse, line 2, <engine>: required element is missing"
+        );
+        let bad = parse_rse(
+            "<engine-database>\n<engine-list>\n</engine-database>",
+            "t.rse",
+        )
+        .unwrap_err();
         assert!(matches!(bad, MotorError::Xml { line: 3, .. }), "{bad}");
     }
 }

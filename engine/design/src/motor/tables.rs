@@ -38,22 +38,39 @@ pub struct MotorOptions {
 
 impl Default for MotorOptions {
     fn default() -> Self {
-        MotorOptions { propellant_mass_kg: None, dry_mass_kg: None, impulse_scale: 1.0, time_scale: 1.0 }
+        MotorOptions {
+            propellant_mass_kg: None,
+            dry_mass_kg: None,
+            impulse_scale: 1.0,
+            time_scale: 1.0,
+        }
     }
 }
 
 impl MotorOptions {
     pub fn with_propellant_mass_kg(self, kg: f64) -> Self {
-        MotorOptions { propellant_mass_kg: Some(kg), ..self }
+        MotorOptions {
+            propellant_mass_kg: Some(kg),
+            ..self
+        }
     }
     pub fn with_dry_mass_kg(self, kg: f64) -> Self {
-        MotorOptions { dry_mass_kg: Some(kg), ..self }
+        MotorOptions {
+            dry_mass_kg: Some(kg),
+            ..self
+        }
     }
     pub fn with_impulse_scale(self, k: f64) -> Self {
-        MotorOptions { impulse_scale: k, ..self }
+        MotorOptions {
+            impulse_scale: k,
+            ..self
+        }
     }
     pub fn with_time_scale(self, k: f64) -> Self {
-        MotorOptions { time_scale: k, ..self }
+        MotorOptions {
+            time_scale: k,
+            ..self
+        }
     }
 }
 
@@ -126,7 +143,11 @@ impl MotorTables {
                     motor: motor.source.clone(),
                     field,
                     value,
-                    rule: if positive { "must be finite and greater than zero" } else { "must be finite and not negative" },
+                    rule: if positive {
+                        "must be finite and greater than zero"
+                    } else {
+                        "must be finite and not negative"
+                    },
                 })
             }
         };
@@ -138,7 +159,11 @@ impl MotorTables {
         };
         let dry_mass_kg = match options.dry_mass_kg {
             Some(m) => check("dry_mass_kg", m, false)?,
-            None => check("motor dry mass (total - propellant)", motor.dry_mass_kg(), false)?,
+            None => check(
+                "motor dry mass (total - propellant)",
+                motor.dry_mass_kg(),
+                false,
+            )?,
         };
         let length_m = check("motor length_m", motor.length_m, true)?;
         let diameter_m = check("motor diameter_m", motor.diameter_m, true)?;
@@ -155,25 +180,32 @@ impl MotorTables {
         }
         let total_impulse_ns = impulse_ns.last().copied().unwrap_or(0.0);
         let burn_time_s = times_s.last().copied().unwrap_or(0.0);
-        let collapsed = times_s.windows(2).any(|w| !(w[1] > w[0]))
+        let collapsed = times_s.windows(2).any(|w| w[1] <= w[0] || w[1].is_nan())
             || slope_n_per_s.iter().any(|s| !s.is_finite())
-            || !(total_impulse_ns > 0.0 && total_impulse_ns.is_finite());
+            || !total_impulse_ns.is_finite()
+            || total_impulse_ns <= 0.0
+            || !(propellant_mass_kg / total_impulse_ns).is_finite();
         if collapsed {
             return Err(MotorError::InvalidOption {
                 motor: motor.source.clone(),
                 field: "impulse_scale / time_scale",
                 value: k_i / k_t,
-                rule: "scaling leaves the curve without strictly increasing times or finite thrust",
+                rule: "the scaled curve must keep strictly increasing times, finite thrust and a finite positive impulse",
             });
         }
 
         let r2 = 0.25 * diameter_m * diameter_m;
         let l2 = length_m * length_m;
         // Thin shell: axial m r², transverse m (r²/2 + L²/12).
-        let casing_inertia = Matrix3::from_diagonal(&Vector3::new(r2, 0.5 * r2 + l2 / 12.0, 0.5 * r2 + l2 / 12.0)) * dry_mass_kg;
+        let casing_inertia = Matrix3::from_diagonal(&Vector3::new(
+            r2,
+            0.5 * r2 + l2 / 12.0,
+            0.5 * r2 + l2 / 12.0,
+        )) * dry_mass_kg;
         // Solid cylinder: axial m r²/2, transverse m (3 r² + L²)/12.
         let transverse = (3.0 * r2 + l2) / 12.0;
-        let propellant_inertia_per_kg = Matrix3::from_diagonal(&Vector3::new(0.5 * r2, transverse, transverse));
+        let propellant_inertia_per_kg =
+            Matrix3::from_diagonal(&Vector3::new(0.5 * r2, transverse, transverse));
         Ok(MotorTables {
             times_s,
             thrust_n,
@@ -193,7 +225,9 @@ impl MotorTables {
     /// The segment holding `t_s` (`t_i ≤ t < t_{i+1}`), for `0 ≤ t < burn time`.
     #[inline]
     fn segment(&self, t_s: f64) -> usize {
-        self.times_s.partition_point(|&x| x <= t_s).saturating_sub(1)
+        self.times_s
+            .partition_point(|&x| x <= t_s)
+            .saturating_sub(1)
     }
 
     /// Impulse delivered from ignition (t = 0) to `t_s`, N·s: 0 before, the total after
@@ -228,7 +262,10 @@ impl MotorTables {
             };
         }
         if t_s < 0.0 {
-            return MotorState { propellant_kg: self.propellant_mass_kg, ..MotorState::default() };
+            return MotorState {
+                propellant_kg: self.propellant_mass_kg,
+                ..MotorState::default()
+            };
         }
         if t_s >= self.burn_time_s {
             return MotorState::default();

@@ -56,7 +56,9 @@ pub enum StepOutcome {
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum IntegratorError {
     /// Relative tolerance out of range.
-    #[error("integrator tolerance `rtol` = {value}: must be finite and within [{RTOL_MIN}, {RTOL_MAX}]")]
+    #[error(
+        "integrator tolerance `rtol` = {value}: must be finite and within [{RTOL_MIN}, {RTOL_MAX}]"
+    )]
     RelativeTolerance {
         /// The rejected value.
         value: f64,

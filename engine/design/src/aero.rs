@@ -1,1 +1,0 @@
-//! Barrowman aerodynamic coefficients (placeholder: filled by the aerodynamics work).

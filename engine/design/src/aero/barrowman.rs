@@ -1,0 +1,439 @@
+//! Barrowman's normal-force slopes and centers of pressure of each component at Mach 0,
+//! referenced to the area of the design's reference diameter.
+//!
+//! Sources: J. S. Barrowman, *The Practical Calculation of the Aerodynamic Characteristics of
+//! Slender Finned Vehicles*, M.Sc. thesis, Catholic University of America, 1967; J. and J.
+//! Barrowman, *The Theoretical Prediction of the Center of Pressure*, NARAM-8, 1966; S.
+//! Niskanen, *Development of an Open Source model rocket simulation software*, 2009, §3.2;
+//! and, for comparison, RocketPy 1.13 (`rocketpy/rocket/aero_surface/nose_cone.py`,
+//! `tail.py`, `fins/_geometry.py`, `fins/trapezoidal_fins.py`).
+//!
+//! **Bodies of revolution** (slender-body theory): a section whose cross-section grows from
+//! `A_fore` to `A_aft` over its length `L` has `CNα = 2 (A_aft − A_fore)/A_ref` and its center
+//! of pressure at `x_cp = (L A_aft − V)/(A_aft − A_fore)` aft of its fore end, `V` its volume.
+//! For a nose (`A_fore = 0`) this is `x_cp = L − V/A_base`. A boattail (`A_aft < A_fore`) has
+//! a negative `CNα`. Closed forms of `x_cp/L` for noses: conical 2/3; tangent ogive
+//! `1 − V/(π R² L)` with `V = π (L ρ² − L³/3 − (ρ − R) ρ² asin(L/ρ))`, `ρ = (R² + L²)/(2R)`
+//! (→ 7/15 ≈ 0.467 for `L/R` large); elliptical 1/3; power series `r ∝ x^k`: `2k/(2k + 1)`;
+//! parabolic series `K`: `1 − (4/3 − K + K²/5)/(2 − K)²` (7/15 for `K = 1`); Haack series
+//! `c`: `1/2 − 3c/16` (von Kármán 1/2, LV-Haack 7/16). hpr integrates the volume of the
+//! actual profile (see [`super::profile`]); the tests check it against these forms.
+//!
+//! *Difference from RocketPy*: RocketPy puts the LV-Haack CP at `0.563 L` and the parabolic
+//! CP at `0.5 L`; the volume formula gives `7L/16 = 0.4375 L` and `7L/15` (its 0.5 is the
+//! power-series-½ value). hpr uses the volume formula for every shape. RocketPy's tail
+//! (transition) is always conical; hpr uses the transition's shape (identical for conical).
+//!
+//! **Trapezoidal fin sets** (root chord `C_r`, tip chord `C_t`, semi-span `s`, sweep `X_r` of
+//! the tip's leading edge aft of the root's, `N` fins, body radius `r` at the fins, reference
+//! diameter `d`):
+//! `CNα = K_fb · F(N) · 8 (s/d)² / (1 + sqrt(1 + (2 l_m/(C_r + C_t))²))`,
+//! with `l_m = sqrt(s² + (X_r + C_t/2 − C_r/2)²)` the mid-chord line, `K_fb = 1 + r/(s + r)`
+//! the body interference factor, and `F(N)` the number-of-fins factor: `N/2` (so that for
+//! `N = 3, 4` this is Barrowman's `4N (s/d)²/(…)`), except 2.37, 2.74, 2.99, 3.24 for
+//! `N = 5..8` (Niskanen's fin-fin interference reduction 0.948, 0.913, 0.854, 0.81 times
+//! `N/2`, as RocketPy's `Fins.fin_num_correction`). The CP is
+//! `X_f + X_r (C_r + 2C_t)/(3 (C_r + C_t)) + (C_r + C_t − C_r C_t/(C_r + C_t))/6`
+//! aft of the root's leading edge `X_f`.
+//! At Mach 0 this equals RocketPy's Diederich-based slope exactly (see [`super::mach`]).
+
+use super::profile::Section;
+use crate::design::NoseShape;
+use std::f64::consts::PI;
+
+/// Normal-force slope (per radian, on the reference area) and center of pressure of one
+/// component.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lift {
+    /// `dCN/dα` at α = 0, 1/rad, referenced to the design's reference area.
+    pub cn_alpha: f64,
+    /// Center of pressure, m aft of the component's fore end (fin sets: the root's leading
+    /// edge).
+    pub x_cp_m: f64,
+}
+
+/// Slender-body lift of a nose or transition. A section whose ends have equal areas has no
+/// lift; its CP is put at its middle.
+pub fn body_section_lift(section: &Section, ref_area_m2: f64) -> Lift {
+    let a_fore = PI * section.fore_radius_m.powi(2);
+    let a_aft = PI * section.aft_radius_m.powi(2);
+    let l = section.length_m;
+    if a_aft == a_fore {
+        return Lift {
+            cn_alpha: 0.0,
+            x_cp_m: l / 2.0,
+        };
+    }
+    let v = section.volume_m3();
+    Lift {
+        cn_alpha: 2.0 * (a_aft - a_fore) / ref_area_m2,
+        x_cp_m: (l * a_aft - v) / (a_aft - a_fore),
+    }
+}
+
+/// Lift of a nose cone.
+pub fn nose_cone_lift(
+    shape: NoseShape,
+    length_m: f64,
+    base_radius_m: f64,
+    ref_area_m2: f64,
+) -> Lift {
+    body_section_lift(&Section::nose(shape, length_m, base_radius_m), ref_area_m2)
+}
+
+/// A set of identical trapezoidal fins.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrapezoidalFins {
+    pub count: u32,
+    pub root_chord_m: f64,
+    pub tip_chord_m: f64,
+    /// Semi-span from the body surface.
+    pub span_m: f64,
+    /// Axial distance from the root's leading edge to the tip's leading edge.
+    pub sweep_m: f64,
+    /// Body radius at the fins.
+    pub body_radius_m: f64,
+    pub cant_rad: f64,
+}
+
+/// Derived planform numbers of a fin (the names of RocketPy's `_TrapezoidalGeometry`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FinGeometry {
+    /// Area of one fin, m² (`Af`).
+    pub area_m2: f64,
+    /// Aspect ratio `2 s²/Af` (`AR`).
+    pub aspect_ratio: f64,
+    /// Mid-chord sweep angle, rad (`gamma_c`).
+    pub mid_chord_sweep_rad: f64,
+    /// Length of the mid-chord line, m (`l_m = s / cos γc`).
+    pub mid_chord_length_m: f64,
+    /// Leading-edge sweep angle, rad.
+    pub leading_edge_sweep_rad: f64,
+    /// Span-wise position of the mean aerodynamic chord from the root, m (`Yma`).
+    pub y_mac_m: f64,
+    /// Length of the mean aerodynamic chord, m.
+    pub mac_length_m: f64,
+    /// `τ = (s + r)/r`.
+    pub tau: f64,
+    /// Body interference factor on lift `K_fb = 1 + 1/τ = 1 + r/(s + r)`.
+    pub lift_interference: f64,
+    /// Roll forcing interference factor `K_f` (Barrowman 1967, in RocketPy's form).
+    pub roll_forcing_interference: f64,
+    /// Roll damping interference factor `K_d`.
+    pub roll_damping_interference: f64,
+    /// Roll geometric constant `G = [(C_r + 3C_t) s³ + 4 (C_r + 2C_t) r s² + 6 (C_r + C_t) s r²]/12`, m⁴.
+    pub roll_geometric_constant_m4: f64,
+}
+
+impl TrapezoidalFins {
+    /// The planform numbers (RocketPy `_TrapezoidalGeometry.evaluate_geometrical_parameters`).
+    pub fn geometry(&self) -> FinGeometry {
+        let (cr, ct, s, xr, r) = (
+            self.root_chord_m,
+            self.tip_chord_m,
+            self.span_m,
+            self.sweep_m,
+            self.body_radius_m,
+        );
+        let area = (cr + ct) * s / 2.0;
+        let gamma_c = ((xr + 0.5 * ct - 0.5 * cr) / s).atan();
+        let tau = (s + r) / r;
+        let lambda = ct / cr;
+        let asin_term = ((tau * tau - 1.0) / (tau * tau + 1.0)).asin();
+        let t2 = tau * tau;
+        let tm1 = tau - 1.0;
+        let kf = (1.0 / (PI * PI))
+            * ((PI * PI / 4.0) * ((tau + 1.0).powi(2) / t2)
+                + (PI * (t2 + 1.0).powi(2) / (t2 * tm1 * tm1)) * asin_term
+                - (2.0 * PI * (tau + 1.0)) / (tau * tm1)
+                + ((t2 + 1.0).powi(2) / (t2 * tm1 * tm1)) * asin_term * asin_term
+                - (4.0 * (tau + 1.0)) / (tau * tm1) * asin_term
+                + (8.0 / (tm1 * tm1)) * ((t2 + 1.0) / (2.0 * tau)).ln());
+        let kd = 1.0
+            + (((tau - lambda) / tau) - ((1.0 - lambda) / tm1) * tau.ln())
+                / (((tau + 1.0) * (tau - lambda)) / 2.0
+                    - ((1.0 - lambda) * (tau.powi(3) - 1.0)) / (3.0 * tm1));
+        let g = ((cr + 3.0 * ct) * s.powi(3)
+            + 4.0 * (cr + 2.0 * ct) * r * s * s
+            + 6.0 * (cr + ct) * s * r * r)
+            / 12.0;
+        FinGeometry {
+            area_m2: area,
+            aspect_ratio: 2.0 * s * s / area,
+            mid_chord_sweep_rad: gamma_c,
+            mid_chord_length_m: s / gamma_c.cos(),
+            leading_edge_sweep_rad: (xr / s).atan(),
+            y_mac_m: (s / 3.0) * (cr + 2.0 * ct) / (cr + ct),
+            mac_length_m: (2.0 / 3.0) * (cr + ct - cr * ct / (cr + ct)),
+            tau,
+            lift_interference: 1.0 + 1.0 / tau,
+            roll_forcing_interference: kf,
+            roll_damping_interference: kd,
+            roll_geometric_constant_m4: g,
+        }
+    }
+
+    /// Center of pressure, m aft of the root's leading edge.
+    pub fn x_cp_m(&self) -> f64 {
+        let (cr, ct, xr) = (self.root_chord_m, self.tip_chord_m, self.sweep_m);
+        xr * (cr + 2.0 * ct) / (3.0 * (cr + ct)) + (cr + ct - cr * ct / (cr + ct)) / 6.0
+    }
+
+    /// Barrowman's normal-force slope of the whole set at Mach 0, on the area of `ref_diameter_m`.
+    pub fn cn_alpha_mach0(&self, ref_diameter_m: f64) -> f64 {
+        let (cr, ct, s) = (self.root_chord_m, self.tip_chord_m, self.span_m);
+        let lm = self.geometry().mid_chord_length_m;
+        let k_fb = 1.0 + self.body_radius_m / (s + self.body_radius_m);
+        let per_half_pair = 8.0 * (s / ref_diameter_m).powi(2)
+            / (1.0 + (1.0 + (2.0 * lm / (cr + ct)).powi(2)).sqrt());
+        k_fb * fin_count_factor(self.count) * per_half_pair
+    }
+
+    /// Lift of the set at Mach 0.
+    pub fn lift_mach0(&self, ref_diameter_m: f64) -> Lift {
+        Lift {
+            cn_alpha: self.cn_alpha_mach0(ref_diameter_m),
+            x_cp_m: self.x_cp_m(),
+        }
+    }
+}
+
+/// Number-of-fins factor `F(N)` multiplying a single fin's slope: `N/2`, except RocketPy's
+/// (Niskanen's) reduced values 2.37, 2.74, 2.99, 3.24 for 5 to 8 fins.
+pub fn fin_count_factor(count: u32) -> f64 {
+    match count {
+        5 => 2.37,
+        6 => 2.74,
+        7 => 2.99,
+        8 => 3.24,
+        n => n as f64 / 2.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const L: f64 = 0.4;
+    const R: f64 = 0.05;
+
+    fn cp_over_length(shape: NoseShape) -> f64 {
+        nose_cone_lift(shape, L, R, PI * R * R).x_cp_m / L
+    }
+
+    fn assert_rel(got: f64, want: f64, tol: f64, what: &str) {
+        assert!(
+            ((got - want) / want).abs() <= tol,
+            "{what}: got {got}, want {want}"
+        );
+    }
+
+    #[test]
+    fn a_conical_nose_has_its_center_of_pressure_at_two_thirds_of_its_length() {
+        assert_rel(
+            cp_over_length(NoseShape::Conical),
+            2.0 / 3.0,
+            1e-9,
+            "conical",
+        );
+    }
+
+    #[test]
+    fn a_von_karman_nose_has_its_center_of_pressure_at_half_its_length() {
+        assert_rel(
+            cp_over_length(NoseShape::Haack { c: 0.0 }),
+            0.5,
+            1e-7,
+            "von Karman",
+        );
+    }
+
+    #[test]
+    fn an_lv_haack_nose_has_its_center_of_pressure_at_seven_sixteenths_of_its_length() {
+        assert_rel(
+            cp_over_length(NoseShape::Haack { c: 1.0 / 3.0 }),
+            7.0 / 16.0,
+            1e-7,
+            "LV-Haack",
+        );
+    }
+
+    #[test]
+    fn a_haack_nose_of_any_parameter_has_its_cp_at_one_half_minus_three_sixteenths_of_c() {
+        for c in [0.1, 0.2, 0.5] {
+            assert_rel(
+                cp_over_length(NoseShape::Haack { c }),
+                0.5 - 3.0 * c / 16.0,
+                1e-7,
+                "Haack",
+            );
+        }
+    }
+
+    #[test]
+    fn an_elliptical_nose_has_its_center_of_pressure_at_a_third_of_its_length() {
+        assert_rel(
+            cp_over_length(NoseShape::Elliptical),
+            1.0 / 3.0,
+            1e-9,
+            "elliptical",
+        );
+    }
+
+    #[test]
+    fn a_power_series_nose_has_its_center_of_pressure_at_2k_over_2k_plus_1() {
+        for k in [0.25, 0.5, 0.75, 1.0] {
+            assert_rel(
+                cp_over_length(NoseShape::PowerSeries { k }),
+                2.0 * k / (2.0 * k + 1.0),
+                1e-7,
+                "power",
+            );
+        }
+    }
+
+    #[test]
+    fn a_parabolic_series_nose_matches_its_closed_form_and_the_full_parabola_is_seven_fifteenths() {
+        for k in [0.0f64, 0.5, 0.75, 1.0] {
+            let want = 1.0 - (4.0 / 3.0 - k + k * k / 5.0) / (2.0 - k).powi(2);
+            assert_rel(
+                cp_over_length(NoseShape::Parabolic { k }),
+                want,
+                1e-9,
+                "parabolic",
+            );
+        }
+        assert_rel(
+            cp_over_length(NoseShape::Parabolic { k: 1.0 }),
+            7.0 / 15.0,
+            1e-9,
+            "parabola",
+        );
+    }
+
+    #[test]
+    fn a_tangent_ogive_matches_its_closed_form_volume_and_tends_to_seven_fifteenths_when_slender() {
+        for (l, r) in [(0.4, 0.05), (0.25, 0.0282)] {
+            let rho: f64 = (r * r + l * l) / (2.0 * r);
+            let v =
+                PI * (l * rho * rho - l.powi(3) / 3.0 - (rho - r) * rho * rho * (l / rho).asin());
+            let want = 1.0 - v / (PI * r * r * l);
+            let got = nose_cone_lift(NoseShape::Ogive, l, r, PI * r * r).x_cp_m / l;
+            assert_rel(got, want, 1e-9, "ogive");
+        }
+        // L/R = 200: the closed form cancels ~8 digits in f64, so the reference is the same
+        // formula evaluated with 40 digits (mpmath): 0.466_662_857_158_730.
+        let slender = nose_cone_lift(NoseShape::Ogive, 10.0, 0.05, PI * 0.0025).x_cp_m / 10.0;
+        assert_rel(slender, 0.466_662_857_158_730, 1e-10, "slender ogive");
+        assert!((slender - 7.0 / 15.0).abs() < 1e-5, "{slender}");
+        // The 0.4 x 0.05 ogive, closed form with 40 digits: 0.464_291_879_715_363_6.
+        assert_rel(
+            cp_over_length(NoseShape::Ogive),
+            0.464_291_879_715_363_6,
+            1e-10,
+            "0.4 x 0.05 ogive",
+        );
+    }
+
+    #[test]
+    fn a_nose_smaller_than_the_reference_diameter_lifts_in_proportion_to_its_base_area() {
+        // CNα = 2 (A_base/A_ref) = 2 (0.05/0.06)² = 1.388888...
+        let lift = nose_cone_lift(NoseShape::Conical, L, R, PI * 0.06 * 0.06);
+        assert!((lift.cn_alpha - 2.0 * (0.05f64 / 0.06).powi(2)).abs() < 1e-12);
+        assert!((nose_cone_lift(NoseShape::Ogive, L, R, PI * R * R).cn_alpha - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_conical_boattail_has_negative_lift_at_barrowmans_frustum_cp() {
+        // Calisto's tail: 0.0635 -> 0.0435 m over 0.06 m, A_ref on r = 0.0635.
+        let s = Section {
+            shape: NoseShape::Conical,
+            length_m: 0.06,
+            fore_radius_m: 0.0635,
+            aft_radius_m: 0.0435,
+        };
+        let lift = body_section_lift(&s, PI * 0.0635 * 0.0635);
+        // 2 ((0.0435/0.0635)² − 1) = −1.0614421229
+        let want_cn = 2.0 * ((0.0435f64 / 0.0635).powi(2) - 1.0);
+        assert!((lift.cn_alpha - want_cn).abs() < 1e-12);
+        assert!((lift.cn_alpha - (-1.0614421229)).abs() < 1e-9);
+        // Barrowman: x = L/3 (1 + (1 − q)/(1 − q²)), q = r_fore/r_aft = 0.0635/0.0435
+        let q: f64 = 0.0635 / 0.0435;
+        let want_x = 0.06 / 3.0 * (1.0 + (1.0 - q) / (1.0 - q * q));
+        assert!(
+            (lift.x_cp_m - want_x).abs() < 1e-12,
+            "{} vs {want_x}",
+            lift.x_cp_m
+        );
+        assert!((lift.x_cp_m - 0.0281308411).abs() < 1e-9);
+    }
+
+    /// The example fin set of docs/design-format (3 fins, 54 mm body).
+    fn example_fins() -> TrapezoidalFins {
+        TrapezoidalFins {
+            count: 3,
+            root_chord_m: 0.12,
+            tip_chord_m: 0.05,
+            span_m: 0.07,
+            sweep_m: 0.06,
+            body_radius_m: 0.0563 / 2.0,
+            cant_rad: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_three_fin_set_matches_a_hand_calculation_of_barrowmans_formulas() {
+        // Hand calculation, d = 0.0563, r = 0.02815:
+        //   mid-chord offset  = X_r + C_t/2 − C_r/2 = 0.06 + 0.025 − 0.06 = 0.025
+        //   l_m = sqrt(0.07² + 0.025²) = sqrt(0.005525) = 0.0743303437
+        //   2 l_m/(C_r + C_t) = 0.1486606875/0.17 = 0.8744746320
+        //   1 + sqrt(1 + 0.7647058824) = 1 + 1.3284223283 = 2.3284223283
+        //   4N (s/d)² = 12 (0.07/0.0563)² = 18.5507100063
+        //   K_fb = 1 + 0.02815/(0.07 + 0.02815) = 1.2868059093
+        //   CNα = 1.2868059093 · 18.5507100063 / 2.3284223283 = 10.2520762527
+        let f = example_fins();
+        let sd = 0.07 / 0.0563;
+        let lm = (0.07f64 * 0.07 + 0.025 * 0.025).sqrt();
+        let want = (1.0 + 0.02815 / 0.09815) * 4.0 * 3.0 * sd * sd
+            / (1.0 + (1.0 + (2.0 * lm / 0.17).powi(2)).sqrt());
+        let got = f.cn_alpha_mach0(0.0563);
+        assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+        assert!((got - 10.2520762527).abs() < 1e-9, "{got}");
+        // CP: X_r (C_r + 2C_t)/(3(C_r + C_t)) + (C_r + C_t − C_r C_t/(C_r + C_t))/6
+        //   = 0.06 · 0.22/0.51 + (0.17 − 0.006/0.17)/6 = 0.0258823529 + 0.0224509804 = 0.0483333333
+        assert!((f.x_cp_m() - 0.0483333333).abs() < 1e-9, "{}", f.x_cp_m());
+    }
+
+    #[test]
+    fn four_fins_lift_four_thirds_as_much_as_three_and_five_follow_rocketpys_reduced_factor() {
+        let three = example_fins();
+        let four = TrapezoidalFins { count: 4, ..three };
+        let five = TrapezoidalFins { count: 5, ..three };
+        let ratio = four.cn_alpha_mach0(0.0563) / three.cn_alpha_mach0(0.0563);
+        assert!((ratio - 4.0 / 3.0).abs() < 1e-12);
+        let ratio5 = five.cn_alpha_mach0(0.0563) / three.cn_alpha_mach0(0.0563);
+        assert!((ratio5 - 2.37 / 1.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_fin_geometry_matches_rocketpys_definitions_for_calisto() {
+        // Calisto fins: C_r 0.12, C_t 0.04, s 0.1, X_r = C_r − C_t = 0.08, r = 0.0635.
+        let f = TrapezoidalFins {
+            count: 4,
+            root_chord_m: 0.12,
+            tip_chord_m: 0.04,
+            span_m: 0.1,
+            sweep_m: 0.08,
+            body_radius_m: 0.0635,
+            cant_rad: 0.0,
+        };
+        let g = f.geometry();
+        assert!((g.area_m2 - 0.008).abs() < 1e-15);
+        assert!((g.aspect_ratio - 2.5).abs() < 1e-12);
+        // γc = atan((0.08 + 0.02 − 0.06)/0.1) = atan(0.4)
+        assert!((g.mid_chord_sweep_rad - 0.4f64.atan()).abs() < 1e-15);
+        // Yma = 0.1/3 · 0.2/0.16 = 0.0416666..
+        assert!((g.y_mac_m - 0.1 / 3.0 * 0.2 / 0.16).abs() < 1e-15);
+        assert!((g.tau - 0.1635 / 0.0635).abs() < 1e-12);
+    }
+}

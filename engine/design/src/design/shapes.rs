@@ -1,0 +1,185 @@
+//! Profiles `r(x)` of nose cones and transitions, and the outer radius of any body component.
+//!
+//! The mass code integrates these profiles and the aerodynamics code reads them (planform
+//! areas, volumes, the body radius under the fins), so both use the same functions. The
+//! formulas are the standard ones (as in OpenRocket and the usual nose-cone references):
+//!
+//! | shape | `r(x)`, `0 <= x <= L`, base radius `R`, `ξ = x/L` |
+//! |---|---|
+//! | conical | `R ξ` |
+//! | tangent ogive | `sqrt(ρ² − (L − x)²) + R − ρ`, `ρ = (R² + L²)/(2R)` (for `L < R` the hemisphere is stretched: `x → x R/L`, `L → R`) |
+//! | Haack series `c` | `R sqrt((θ − sin 2θ / 2 + c sin³θ)/π)`, `θ = acos(1 − 2ξ)` (`c = 0` von Kármán, `1/3` LV-Haack) |
+//! | elliptical | `R sqrt(1 − (1 − ξ)²)` |
+//! | power series `k` | `R ξᵏ` |
+//! | parabolic series `K'` | `R (2ξ − K' ξ²)/(2 − K')` |
+//!
+//! A transition from fore radius `r₁` to aft radius `r₂` uses the nose profile of height
+//! `|r₂ − r₁|` with its tip at the smaller end, as OpenRocket does (unclipped):
+//! `r = r₁ + f(x)` when `r₁ < r₂`, `r = r₂ + f(L − x)` otherwise.
+
+use super::model::{ComponentKind, NoseShape, TransitionShape};
+use std::f64::consts::PI;
+
+/// Radius of a nose cone of the given shape, length and base radius at `x_m` aft of its tip.
+/// `x_m` is clamped to `[0, length_m]`. Returns 0 for a non-positive length.
+pub fn profile_radius(shape: NoseShape, length_m: f64, base_radius_m: f64, x_m: f64) -> f64 {
+    if length_m <= 0.0 || base_radius_m <= 0.0 {
+        return 0.0;
+    }
+    let x = x_m.clamp(0.0, length_m);
+    let big_r = base_radius_m;
+    let xi = x / length_m;
+    let r = match shape {
+        NoseShape::Conical => big_r * xi,
+        NoseShape::Ogive => {
+            // A tangent ogive shorter than its radius does not exist: stretch a hemisphere.
+            let (l, x) = if length_m < big_r {
+                (big_r, x * big_r / length_m)
+            } else {
+                (length_m, x)
+            };
+            let rho = (big_r * big_r + l * l) / (2.0 * big_r);
+            let d = l - x;
+            (rho * rho - d * d).max(0.0).sqrt() + big_r - rho
+        }
+        NoseShape::Haack { c } => {
+            let theta = (1.0 - 2.0 * xi).clamp(-1.0, 1.0).acos();
+            let s = theta.sin();
+            let arg = (theta - (2.0 * theta).sin() / 2.0 + c * s * s * s) / PI;
+            big_r * arg.max(0.0).sqrt()
+        }
+        NoseShape::Elliptical => {
+            let u = 1.0 - xi;
+            big_r * (1.0 - u * u).max(0.0).sqrt()
+        }
+        NoseShape::PowerSeries { k } => big_r * xi.powf(k),
+        NoseShape::Parabolic { k } => big_r * (2.0 * xi - k * xi * xi) / (2.0 - k),
+    };
+    r.clamp(0.0, big_r)
+}
+
+/// The nose shape a transition shape uses for its profile.
+pub fn transition_nose_shape(shape: TransitionShape) -> NoseShape {
+    match shape {
+        TransitionShape::Conical => NoseShape::Conical,
+        TransitionShape::Ogive => NoseShape::Ogive,
+        TransitionShape::Elliptical => NoseShape::Elliptical,
+        TransitionShape::PowerSeries { k } => NoseShape::PowerSeries { k },
+        TransitionShape::Haack { c } => NoseShape::Haack { c },
+        TransitionShape::Parabolic { k } => NoseShape::Parabolic { k },
+    }
+}
+
+/// Radius of a transition at `x_m` aft of its fore end (`x_m` clamped to `[0, length_m]`).
+pub fn transition_radius(
+    shape: TransitionShape,
+    length_m: f64,
+    fore_radius_m: f64,
+    aft_radius_m: f64,
+    x_m: f64,
+) -> f64 {
+    let nose = transition_nose_shape(shape);
+    let x = x_m.clamp(0.0, length_m.max(0.0));
+    if fore_radius_m == aft_radius_m {
+        fore_radius_m
+    } else if fore_radius_m < aft_radius_m {
+        fore_radius_m + profile_radius(nose, length_m, aft_radius_m - fore_radius_m, x)
+    } else {
+        aft_radius_m + profile_radius(nose, length_m, fore_radius_m - aft_radius_m, length_m - x)
+    }
+}
+
+/// Outer radius of a body component (nose cone, body tube, transition) `x_m` aft of its fore
+/// end (clamped to the component), or `None` for any other kind. Shoulders are not included.
+pub fn body_radius(kind: &ComponentKind, length_m: f64, x_m: f64) -> Option<f64> {
+    match kind {
+        ComponentKind::NoseCone(n) => Some(profile_radius(
+            n.shape,
+            length_m,
+            n.base_diameter_m / 2.0,
+            x_m,
+        )),
+        ComponentKind::BodyTube(b) => Some(b.outer_diameter_m / 2.0),
+        ComponentKind::Transition(t) => Some(transition_radius(
+            t.shape,
+            length_m,
+            t.fore_diameter_m / 2.0,
+            t.aft_diameter_m / 2.0,
+            x_m,
+        )),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ALL: [NoseShape; 8] = [
+        NoseShape::Conical,
+        NoseShape::Ogive,
+        NoseShape::Haack { c: 0.0 },
+        NoseShape::Haack { c: 1.0 / 3.0 },
+        NoseShape::Elliptical,
+        NoseShape::PowerSeries { k: 0.5 },
+        NoseShape::Parabolic { k: 1.0 },
+        NoseShape::Parabolic { k: 0.5 },
+    ];
+
+    #[test]
+    fn every_nose_profile_starts_at_zero_and_ends_at_the_base_radius() {
+        for shape in ALL {
+            assert_eq!(profile_radius(shape, 0.3, 0.05, 0.0), 0.0, "{shape:?} tip");
+            let base = profile_radius(shape, 0.3, 0.05, 0.3);
+            assert!((base - 0.05).abs() <= 1e-15, "{shape:?} base {base}");
+        }
+    }
+
+    #[test]
+    fn the_profiles_match_their_formulas_at_a_quarter_of_the_length() {
+        // L = 0.4, R = 0.05, x = 0.1 (ξ = 1/4); values by hand from the formulas.
+        let (l, r, x) = (0.4, 0.05, 0.1);
+        let cone = profile_radius(NoseShape::Conical, l, r, x);
+        assert!((cone - 0.0125).abs() < 1e-17);
+        // Tangent ogive: ρ = (0.0025 + 0.16)/0.1 = 1.625; r = sqrt(1.625² − 0.3²) + 0.05 − 1.625.
+        let ogive = profile_radius(NoseShape::Ogive, l, r, x);
+        let expect = (1.625f64 * 1.625 - 0.09).sqrt() + 0.05 - 1.625;
+        assert!((ogive - expect).abs() < 1e-15, "{ogive} vs {expect}");
+        // Elliptical: R sqrt(1 − 0.75²) = 0.05 sqrt(0.4375).
+        let ell = profile_radius(NoseShape::Elliptical, l, r, x);
+        assert!((ell - 0.05 * 0.4375f64.sqrt()).abs() < 1e-16);
+        // Von Kármán: θ = acos(0.5) = π/3; r = R sqrt((π/3 − sin(2π/3)/2)/π).
+        let vk = profile_radius(NoseShape::Haack { c: 0.0 }, l, r, x);
+        let th = PI / 3.0;
+        let expect = 0.05 * ((th - (3.0f64).sqrt() / 4.0) / PI).sqrt();
+        assert!((vk - expect).abs() < 1e-15, "{vk} vs {expect}");
+        // Power series k = 1/2: R sqrt(1/4) = R/2.
+        let p = profile_radius(NoseShape::PowerSeries { k: 0.5 }, l, r, x);
+        assert!((p - 0.025).abs() < 1e-17);
+        // Parabolic K' = 1: R (1/2 − 1/16)/1 = 0.4375 R.
+        let q = profile_radius(NoseShape::Parabolic { k: 1.0 }, l, r, x);
+        assert!((q - 0.4375 * 0.05).abs() < 1e-17);
+    }
+
+    #[test]
+    fn a_tangent_ogive_meets_the_body_with_zero_slope() {
+        let (l, r) = (0.25, 0.03);
+        let h = 1e-6;
+        let slope = (profile_radius(NoseShape::Ogive, l, r, l)
+            - profile_radius(NoseShape::Ogive, l, r, l - h))
+            / h;
+        // The slope of a circle at its tangent point falls as h/ρ: ρ ≈ 1.06, so < 1e-5.
+        assert!(slope.abs() < 1e-5, "slope {slope}");
+    }
+
+    #[test]
+    fn a_transition_puts_the_nose_profile_at_its_smaller_end() {
+        let s = TransitionShape::PowerSeries { k: 0.5 };
+        // Growing 0.02 -> 0.04 over 0.1: at x = 0.025, r = 0.02 + 0.02 sqrt(0.25) = 0.03.
+        assert!((transition_radius(s, 0.1, 0.02, 0.04, 0.025) - 0.03).abs() < 1e-17);
+        // Shrinking 0.04 -> 0.02: mirror image, at x = 0.075 the same 0.03.
+        assert!((transition_radius(s, 0.1, 0.04, 0.02, 0.075) - 0.03).abs() < 1e-17);
+        assert_eq!(transition_radius(s, 0.1, 0.04, 0.02, 0.0), 0.04);
+        assert_eq!(transition_radius(s, 0.1, 0.04, 0.02, 0.1), 0.02);
+    }
+}

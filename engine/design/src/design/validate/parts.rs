@@ -1,0 +1,515 @@
+//! Parts inside or on a body component: fins, lugs, rail buttons (outside), inner tubes,
+//! rings, bulkheads, masses, parachutes and shock cords (inside). Each is placed along its
+//! parent by its `position` and must overlap its parent's axial extent and fit inside it.
+
+use super::{Builder, FIT_TOLERANCE_M, MAX_CANT_DEG, MAX_FINS};
+use crate::design::model::*;
+use crate::design::raw::*;
+use crate::design::shapes;
+use crate::error::{DesignError, Location, Rule};
+
+/// A radial offset `(y, z)` from a distance and an angle from +y toward +z, degrees.
+fn polar(distance_m: f64, angle_deg: f64) -> [f64; 2] {
+    let a = angle_deg.to_radians();
+    [distance_m * a.cos(), distance_m * a.sin()]
+}
+
+fn add(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] + b[0], a[1] + b[1]]
+}
+
+fn norm(a: [f64; 2]) -> f64 {
+    a[0].hypot(a[1])
+}
+
+/// The parent's axial extent, shoulders included, m aft of the nose tip.
+fn extent(c: &Component) -> (f64, f64) {
+    match &c.kind {
+        ComponentKind::NoseCone(n) => (
+            c.x_top_m,
+            c.x_bottom_m() + n.shoulder.map_or(0.0, |s| s.length_m),
+        ),
+        ComponentKind::Transition(t) => (
+            c.x_top_m - t.fore_shoulder.map_or(0.0, |s| s.length_m),
+            c.x_bottom_m() + t.aft_shoulder.map_or(0.0, |s| s.length_m),
+        ),
+        _ => (c.x_top_m, c.x_bottom_m()),
+    }
+}
+
+/// The largest inner radius of a component that holds parts (a filled nose or transition
+/// counts as its outer radius: a weight may be set into it).
+fn inner_radius(c: &Component) -> f64 {
+    let shoulder_in =
+        |s: Option<Shoulder>| s.map_or(0.0, |s| s.outer_diameter_m / 2.0 - s.wall_thickness_m);
+    match &c.kind {
+        ComponentKind::BodyTube(b) => b.outer_diameter_m / 2.0 - b.wall_thickness_m,
+        ComponentKind::InnerTube(t) => t.outer_diameter_m / 2.0 - t.wall_thickness_m,
+        ComponentKind::NoseCone(n) => {
+            let r = n.base_diameter_m / 2.0;
+            if n.filled {
+                r
+            } else {
+                (r - n.wall_thickness_m).max(shoulder_in(n.shoulder))
+            }
+        }
+        ComponentKind::Transition(t) => {
+            let r = t.fore_diameter_m.max(t.aft_diameter_m) / 2.0;
+            if t.filled {
+                r
+            } else {
+                (r - t.wall_thickness_m)
+                    .max(shoulder_in(t.fore_shoulder))
+                    .max(shoulder_in(t.aft_shoulder))
+            }
+        }
+        _ => 0.0,
+    }
+}
+
+impl Builder<'_> {
+    /// Checks a child of `parent` and adds it, then its own children.
+    pub(super) fn child(
+        &mut self,
+        rc: &RawComponent,
+        parent: ComponentIdx,
+        stage: usize,
+        path: &str,
+    ) -> Result<(), DesignError> {
+        let at = self.claim_id(rc.id(), path, false)?;
+        let p = self.components[parent].clone();
+        if rc.is_external() && !p.is_body() {
+            return Err(self.invalid(
+                &at,
+                Some("type"),
+                Rule::ExternalPartOffBody {
+                    kind: rc.type_name(),
+                },
+            ));
+        }
+        let mut cord = None;
+        // (length, kind, radial offset relative to the parent, radial half-width about the
+        // parent's axis for internal parts, position)
+        let (length, kind, offset, half_width, position) = match rc {
+            RawComponent::FinSet(f) => {
+                if f.count < 1 || f.count > MAX_FINS {
+                    return Err(self.invalid(
+                        &at,
+                        Some("count"),
+                        Rule::FinCount {
+                            got: f.count,
+                            max: MAX_FINS,
+                        },
+                    ));
+                }
+                let tip = self.non_negative(&at, "tip_chord_m", f.tip_chord_m)?;
+                if !(f.root_chord_m > 0.0 && f.root_chord_m.is_finite()) {
+                    let rule = if tip > 0.0 {
+                        Rule::FinRootChord {
+                            root_m: f.root_chord_m,
+                            tip_m: tip,
+                        }
+                    } else {
+                        Rule::NotPositive {
+                            got: f.root_chord_m,
+                        }
+                    };
+                    return Err(self.invalid(&at, Some("root_chord_m"), rule));
+                }
+                let root = f.root_chord_m;
+                let span = self.positive(&at, "span_m", f.span_m)?;
+                let sweep = self.finite(&at, "sweep_m", f.sweep_m)?;
+                let thickness = self.positive(&at, "thickness_m", f.thickness_m)?;
+                let cant = self.within(&at, "cant_deg", f.cant_deg, -MAX_CANT_DEG, MAX_CANT_DEG)?;
+                let rotation = self.finite(&at, "rotation_deg", f.rotation_deg)?;
+                let fins = FinSet {
+                    count: f.count,
+                    root_chord_m: root,
+                    tip_chord_m: tip,
+                    span_m: span,
+                    sweep_m: sweep,
+                    thickness_m: thickness,
+                    cant_deg: cant,
+                    body_radius_m: 0.0, // set once placed
+                    rotation_deg: rotation,
+                    cross_section: match f.cross_section {
+                        RawCrossSection::Square => FinCrossSection::Square,
+                        RawCrossSection::Rounded => FinCrossSection::Rounded,
+                        RawCrossSection::Airfoil => FinCrossSection::Airfoil,
+                    },
+                };
+                (
+                    root,
+                    ComponentKind::FinSet(fins),
+                    [0.0, 0.0],
+                    None,
+                    f.position,
+                )
+            }
+            RawComponent::LaunchLug(l) => {
+                let length = self.positive(&at, "length_m", l.length_m)?;
+                let od = self.positive(&at, "outer_diameter_m", l.outer_diameter_m)?;
+                let wall = self.wall(&at, "wall_thickness_m", l.wall_thickness_m, od / 2.0)?;
+                let angle = self.finite(&at, "angle_deg", l.angle_deg)?;
+                let lug = LaunchLug {
+                    outer_diameter_m: od,
+                    wall_thickness_m: wall,
+                    angle_deg: angle,
+                };
+                (
+                    length,
+                    ComponentKind::LaunchLug(lug),
+                    [0.0, 0.0],
+                    None,
+                    l.position,
+                )
+            }
+            RawComponent::RailButton(b) => {
+                let od = self.positive(&at, "outer_diameter_m", b.outer_diameter_m)?;
+                let height = self.positive(&at, "height_m", b.height_m)?;
+                let angle = self.finite(&at, "angle_deg", b.angle_deg)?;
+                let button = RailButton {
+                    outer_diameter_m: od,
+                    height_m: height,
+                    angle_deg: angle,
+                };
+                (
+                    od,
+                    ComponentKind::RailButton(button),
+                    [0.0, 0.0],
+                    None,
+                    b.position,
+                )
+            }
+            RawComponent::InnerTube(t) => {
+                let length = self.positive(&at, "length_m", t.length_m)?;
+                let od = self.positive(&at, "outer_diameter_m", t.outer_diameter_m)?;
+                let wall = self.wall(&at, "wall_thickness_m", t.wall_thickness_m, od / 2.0)?;
+                let dist = self.non_negative(&at, "radial_offset_m", t.radial_offset_m)?;
+                let angle = self.finite(&at, "radial_angle_deg", t.radial_angle_deg)?;
+                let own = polar(dist, angle);
+                let cluster = match &t.cluster {
+                    None => vec![[0.0, 0.0]],
+                    Some(v) if v.is_empty() => {
+                        return Err(self.invalid(&at, Some("cluster"), Rule::EmptyCluster));
+                    }
+                    Some(v) => {
+                        for (i, o) in v.iter().enumerate() {
+                            self.finite(&at, &format!("cluster[{i}][0]"), o[0])?;
+                            self.finite(&at, &format!("cluster[{i}][1]"), o[1])?;
+                        }
+                        v.clone()
+                    }
+                };
+                let half = cluster
+                    .iter()
+                    .map(|c| norm(add(own, *c)))
+                    .fold(0.0, f64::max)
+                    + od / 2.0;
+                let absolute = add(p.radial_offset_m, own);
+                let motor_mount = match &t.motor_mount {
+                    Some(m) => {
+                        let overhang = self.finite(&at, "motor_mount.overhang_m", m.overhang_m)?;
+                        if cluster.len() > 1 {
+                            return Err(self.invalid(
+                                &at,
+                                Some("cluster"),
+                                Rule::ClusteredMotorMount {
+                                    tubes: cluster.len(),
+                                },
+                            ));
+                        }
+                        let off = norm(add(absolute, cluster[0]));
+                        if off != 0.0 {
+                            return Err(self.invalid(
+                                &at,
+                                Some("radial_offset_m"),
+                                Rule::MotorMountOffAxis { offset_m: off },
+                            ));
+                        }
+                        if let Some(first) = self.motor_mount {
+                            let first = self.components[first.component].id.clone();
+                            return Err(self.invalid(
+                                &at,
+                                Some("motor_mount"),
+                                Rule::TwoMotorMounts { first },
+                            ));
+                        }
+                        Some(MotorMountSpec {
+                            overhang_m: overhang,
+                        })
+                    }
+                    None => None,
+                };
+                let tube = InnerTube {
+                    outer_diameter_m: od,
+                    wall_thickness_m: wall,
+                    motor_mount,
+                    cluster_offsets_m: cluster.iter().map(|c| add(absolute, *c)).collect(),
+                };
+                (
+                    length,
+                    ComponentKind::InnerTube(tube),
+                    own,
+                    Some(half),
+                    t.position,
+                )
+            }
+            RawComponent::CenteringRing(r) => {
+                let length = self.positive(&at, "length_m", r.length_m)?;
+                let od = self.positive(&at, "outer_diameter_m", r.outer_diameter_m)?;
+                let id = self.non_negative(&at, "inner_diameter_m", r.inner_diameter_m)?;
+                if id >= od {
+                    return Err(self.invalid(
+                        &at,
+                        Some("inner_diameter_m"),
+                        Rule::OutOfRange {
+                            got: id,
+                            min: 0.0,
+                            max: od,
+                        },
+                    ));
+                }
+                let ring = Ring {
+                    outer_diameter_m: od,
+                    inner_diameter_m: id,
+                };
+                (
+                    length,
+                    ComponentKind::CenteringRing(ring),
+                    [0.0, 0.0],
+                    Some(od / 2.0),
+                    r.position,
+                )
+            }
+            RawComponent::Bulkhead(b) => {
+                let length = self.positive(&at, "length_m", b.length_m)?;
+                let od = self.positive(&at, "outer_diameter_m", b.outer_diameter_m)?;
+                let ring = Ring {
+                    outer_diameter_m: od,
+                    inner_diameter_m: 0.0,
+                };
+                (
+                    length,
+                    ComponentKind::Bulkhead(ring),
+                    [0.0, 0.0],
+                    Some(od / 2.0),
+                    b.position,
+                )
+            }
+            RawComponent::MassComponent(m) => {
+                let (packed, length, own) = self.packed(
+                    &at,
+                    m.length_m,
+                    m.radius_m,
+                    m.radial_offset_m,
+                    m.radial_angle_deg,
+                    m.inertia_kg_m2,
+                )?;
+                let half = norm(own) + packed.radius_m;
+                (
+                    length,
+                    ComponentKind::MassComponent(packed),
+                    own,
+                    Some(half),
+                    m.position,
+                )
+            }
+            RawComponent::Parachute(c) => {
+                let (packed, length, own) = self.packed(
+                    &at,
+                    c.length_m,
+                    c.radius_m,
+                    c.radial_offset_m,
+                    c.radial_angle_deg,
+                    c.inertia_kg_m2,
+                )?;
+                let chute = Parachute {
+                    packed,
+                    canopy_diameter_m: self.positive(
+                        &at,
+                        "canopy_diameter_m",
+                        c.canopy_diameter_m,
+                    )?,
+                    cd: self.positive(&at, "cd", c.cd)?,
+                };
+                let half = norm(own) + packed.radius_m;
+                (
+                    length,
+                    ComponentKind::Parachute(chute),
+                    own,
+                    Some(half),
+                    c.position,
+                )
+            }
+            RawComponent::ShockCord(c) => {
+                let (packed, length, own) = self.packed(
+                    &at,
+                    c.length_m,
+                    c.radius_m,
+                    c.radial_offset_m,
+                    c.radial_angle_deg,
+                    c.inertia_kg_m2,
+                )?;
+                cord = Some((c.linear_density_kg_m, c.cord_length_m));
+                let half = norm(own) + packed.radius_m;
+                (
+                    length,
+                    ComponentKind::ShockCord(packed),
+                    own,
+                    Some(half),
+                    c.position,
+                )
+            }
+            RawComponent::NoseCone(_) | RawComponent::BodyTube(_) | RawComponent::Transition(_) => {
+                return Err(self.invalid(
+                    &at,
+                    Some("type"),
+                    Rule::BodyInsideComponent {
+                        kind: rc.type_name(),
+                    },
+                ));
+            }
+        };
+
+        let x_top = self.place(&at, &p, length, position)?;
+        let (parent_top, parent_bottom) = extent(&p);
+        let overlap = (x_top + length).min(parent_bottom) - x_top.max(parent_top);
+        if !(overlap > 0.0) {
+            return Err(self.invalid(
+                &at,
+                Some("position"),
+                Rule::OutsideParent {
+                    top_m: x_top,
+                    bottom_m: x_top + length,
+                    parent_top_m: parent_top,
+                    parent_bottom_m: parent_bottom,
+                },
+            ));
+        }
+        if let Some(half) = half_width {
+            let inner = inner_radius(&p);
+            if half > inner + FIT_TOLERANCE_M / 2.0 {
+                return Err(self.invalid(
+                    &at,
+                    None,
+                    Rule::WiderThanParent {
+                        width_m: 2.0 * half,
+                        inner_diameter_m: 2.0 * inner,
+                    },
+                ));
+            }
+        }
+
+        // Parts on the outside sit on the parent's surface where they are.
+        let mid = x_top + length / 2.0 - p.x_top_m;
+        let surface = shapes::body_radius(&p.kind, p.length_m, mid).unwrap_or(0.0);
+        let (kind, offset) = match kind {
+            ComponentKind::FinSet(mut f) => {
+                f.body_radius_m = surface;
+                (ComponentKind::FinSet(f), offset)
+            }
+            ComponentKind::LaunchLug(l) => {
+                let o = polar(surface + l.outer_diameter_m / 2.0, l.angle_deg);
+                (ComponentKind::LaunchLug(l), o)
+            }
+            ComponentKind::RailButton(b) => {
+                let o = polar(surface + b.height_m / 2.0, b.angle_deg);
+                (ComponentKind::RailButton(b), o)
+            }
+            k => (k, offset),
+        };
+        let absolute = add(p.radial_offset_m, offset);
+        let idx = self.push(
+            &at,
+            rc,
+            Some(parent),
+            stage,
+            x_top,
+            length,
+            absolute,
+            kind,
+            cord,
+        )?;
+
+        if let ComponentKind::InnerTube(InnerTube {
+            motor_mount: Some(m),
+            outer_diameter_m,
+            wall_thickness_m,
+            ..
+        }) = &self.components[idx].kind
+        {
+            let c = &self.components[idx];
+            let motor_aft_m =
+                self.resolved(&at, "motor_mount.overhang_m", c.x_bottom_m() + m.overhang_m)?;
+            self.motor_mount = Some(MotorMount {
+                component: idx,
+                motor_aft_m,
+                inner_diameter_m: outer_diameter_m - 2.0 * wall_thickness_m,
+                tube_length_m: c.length_m,
+            });
+        }
+
+        for (j, child) in rc.children().iter().enumerate() {
+            self.child(child, idx, stage, &format!("{path}.children[{j}]"))?;
+        }
+        Ok(())
+    }
+
+    /// A packed cylinder's shape: (shape, length, radial offset relative to the parent).
+    fn packed(
+        &self,
+        at: &Location,
+        length_m: f64,
+        radius_m: f64,
+        offset_m: f64,
+        angle_deg: f64,
+        inertia: Option<[f64; 2]>,
+    ) -> Result<(PackedCylinder, f64, [f64; 2]), DesignError> {
+        let length = self.positive(at, "length_m", length_m)?;
+        let radius = self.positive(at, "radius_m", radius_m)?;
+        let dist = self.non_negative(at, "radial_offset_m", offset_m)?;
+        let angle = self.finite(at, "radial_angle_deg", angle_deg)?;
+        let inertia_kg_m2 = match inertia {
+            None => None,
+            Some([axial, transverse]) => {
+                let transverse = self.positive(at, "inertia_kg_m2[1]", transverse)?;
+                let axial = self.positive(at, "inertia_kg_m2[0]", axial)?;
+                // A body of revolution has I_axial <= 2 I_transverse (triangle inequality).
+                self.within(at, "inertia_kg_m2[0]", axial, 0.0, 2.0 * transverse)?;
+                Some((axial, transverse))
+            }
+        };
+        Ok((
+            PackedCylinder {
+                radius_m: radius,
+                inertia_kg_m2,
+            },
+            length,
+            polar(dist, angle),
+        ))
+    }
+
+    /// Fore end of a child of `parent`, m aft of the nose tip, from its `position`
+    /// (default: fore ends aligned).
+    fn place(
+        &self,
+        at: &Location,
+        parent: &Component,
+        length: f64,
+        position: Option<RawPosition>,
+    ) -> Result<f64, DesignError> {
+        let pos = position.unwrap_or(RawPosition {
+            from: RawFrom::Top,
+            offset_m: 0.0,
+        });
+        let offset = self.finite(at, "position.offset_m", pos.offset_m)?;
+        let x = match pos.from {
+            RawFrom::Top => parent.x_top_m + offset,
+            RawFrom::Middle => parent.x_top_m + (parent.length_m - length) / 2.0 + offset,
+            RawFrom::Bottom => parent.x_bottom_m() - length + offset,
+            RawFrom::NoseTip => offset,
+        };
+        self.resolved(at, "position", x)
+    }
+}

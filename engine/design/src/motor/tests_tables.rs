@@ -1,0 +1,268 @@
+//! Tests of the flight tables: thrust, impulse and propellant against hand calculations,
+//! dispersion scales, and the motor's mass properties in closed form.
+
+use super::*;
+use nalgebra::{Matrix3, Vector3};
+
+/// A triangle: 0 N at 0 s, 200 N at 1 s, 0 N at 2 s (200 N·s); 50 mm × 400 mm, 0.3 kg of
+/// propellant in 0.5 kg.
+fn triangle() -> Motor {
+    let m = parse_eng("TRI 50 400 P 0.3 0.5 T\n1 200\n2 0\n", "triangle.eng").unwrap();
+    m.into_iter().next().unwrap()
+}
+
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * b.abs().max(1e-300)
+}
+
+#[test]
+fn the_triangle_motor_has_the_hand_calculated_thrust_impulse_and_propellant() {
+    let t = MotorTables::from_motor(&triangle()).unwrap();
+    assert_eq!(t.total_impulse_ns(), 200.0);
+    // Rising: F = 200 t, I = 100 t², m = 0.3 (1 − I/200), ṁ = −0.3 F/200, m̈ = −0.3·200/200.
+    let s = t.eval(0.5);
+    assert!(close(s.thrust_n, 100.0, 1e-15));
+    assert_eq!(s.thrust_rate_n_per_s, 200.0);
+    assert!(close(t.impulse_ns(0.5), 25.0, 1e-15));
+    assert!(close(s.propellant_kg, 0.2625, 1e-15));
+    assert!(close(s.propellant_rate_kg_s, -0.15, 1e-15));
+    assert!(close(s.propellant_accel_kg_s2, -0.3, 1e-15));
+    // Falling: I(1.5) = 100 + 200·0.5 − 100·0.25 = 175.
+    let s = t.eval(1.5);
+    assert!(close(s.thrust_n, 100.0, 1e-15));
+    assert_eq!(s.thrust_rate_n_per_s, -200.0);
+    assert!(close(t.impulse_ns(1.5), 175.0, 1e-15));
+    assert!(close(s.propellant_kg, 0.0375, 1e-14));
+    assert!(close(s.propellant_accel_kg_s2, 0.3, 1e-15));
+    // Before ignition: full and silent; at and after burnout: empty and silent.
+    assert_eq!(
+        t.eval(-0.1),
+        MotorState {
+            propellant_kg: 0.3,
+            ..MotorState::default()
+        }
+    );
+    assert_eq!(t.eval(2.0), MotorState::default());
+    assert_eq!(t.eval(50.0), MotorState::default());
+    assert!(t.eval(f64::NAN).thrust_n.is_nan());
+}
+
+#[test]
+fn the_impulse_at_each_sample_and_segment_midpoint_is_the_trapezoid_sum_for_every_bundled_motor() {
+    for (stem, m) in bundled() {
+        let tables = MotorTables::new(
+            &m,
+            &MotorOptions::default()
+                .with_impulse_scale(1.1)
+                .with_time_scale(0.9),
+        )
+        .unwrap();
+        let (times, thrust) = (m.times_s(), m.thrust_n());
+        let mut sum = 0.0;
+        for i in 1..times.len() {
+            let dt = times[i] - times[i - 1];
+            let mid_thrust = 0.5 * (thrust[i - 1] + thrust[i]);
+            // Half a segment of a linear ramp: trapezoid from F_{i-1} to the midpoint thrust.
+            let at_mid = sum + 0.5 * (thrust[i - 1] + mid_thrust) * 0.5 * dt;
+            let t_mid = 0.9 * 0.5 * (times[i - 1] + times[i]);
+            assert!(
+                close(tables.impulse_ns(t_mid), 1.1 * at_mid, 1e-12),
+                "{stem} segment {i}"
+            );
+            sum += mid_thrust * dt;
+            if i + 1 < times.len() {
+                assert!(
+                    close(tables.impulse_ns(0.9 * times[i]), 1.1 * sum, 1e-12),
+                    "{stem} sample {i}"
+                );
+            }
+        }
+        // Delivered at the last point = total impulse.
+        assert!(
+            close(
+                tables.impulse_ns(tables.burn_time_s()),
+                1.1 * m.total_impulse_ns(),
+                1e-12
+            ),
+            "{stem}"
+        );
+        let just_before = tables.burn_time_s() * (1.0 - 1e-15);
+        assert!(
+            close(
+                tables.impulse_ns(just_before),
+                1.1 * m.total_impulse_ns(),
+                1e-12
+            ),
+            "{stem}"
+        );
+        assert_eq!(
+            tables.eval(tables.burn_time_s()).propellant_kg,
+            0.0,
+            "{stem}"
+        );
+        assert!(
+            tables.eval(just_before).propellant_kg < 1e-12 * m.propellant_mass_kg,
+            "{stem}"
+        );
+    }
+}
+
+#[test]
+fn the_propellant_rate_is_the_derivative_of_the_propellant_mass() {
+    let m = find("Cesaroni_M1670").unwrap();
+    let t = MotorTables::from_motor(&m).unwrap();
+    let h = 1e-6;
+    let times = t.times_s().to_vec();
+    for w in times.windows(2) {
+        let mid = 0.5 * (w[0] + w[1]);
+        let s = t.eval(mid);
+        // m_p is quadratic on a segment: the central difference is exact but for rounding
+        // (~3.1 kg · 1e-16 / 1e-6 ≈ 3e-10 kg/s).
+        let fd = (t.eval(mid + h).propellant_kg - t.eval(mid - h).propellant_kg) / (2.0 * h);
+        assert!(
+            (fd - s.propellant_rate_kg_s).abs() < 1e-8,
+            "{mid}: {fd} vs {}",
+            s.propellant_rate_kg_s
+        );
+        let fd2 = (t.eval(mid + h).propellant_rate_kg_s - t.eval(mid - h).propellant_rate_kg_s)
+            / (2.0 * h);
+        assert!(
+            (fd2 - s.propellant_accel_kg_s2).abs() < 1e-6 * s.propellant_accel_kg_s2.abs().max(1.0),
+            "{mid}"
+        );
+        let fdf = (t.eval(mid + h).thrust_n - t.eval(mid - h).thrust_n) / (2.0 * h);
+        assert!(
+            (fdf - s.thrust_rate_n_per_s).abs() < 1e-6 * s.thrust_rate_n_per_s.abs().max(1.0),
+            "{mid}"
+        );
+    }
+}
+
+#[test]
+fn dispersion_scales_multiply_the_impulse_and_the_burn_time() {
+    let m = find("Cesaroni_I175").unwrap();
+    let t = MotorTables::new(
+        &m,
+        &MotorOptions::default()
+            .with_impulse_scale(1.2)
+            .with_time_scale(0.8),
+    )
+    .unwrap();
+    assert!(close(
+        t.total_impulse_ns(),
+        1.2 * m.total_impulse_ns(),
+        1e-14
+    ));
+    assert!(close(t.burn_time_s(), 2.0, 1e-15));
+    // The peak sample (0.877 s, 195.087 N) moves to 0.7016 s with 1.2/0.8 = 1.5 times the thrust.
+    assert!(close(t.eval(0.8 * 0.877).thrust_n, 1.5 * 195.087, 1e-14));
+    // Propellant rate still burns m_p0 over the (scaled) impulse.
+    let s = t.eval(0.8 * 0.877);
+    assert!(close(
+        s.propellant_rate_kg_s,
+        -m.propellant_mass_kg * 1.5 * 195.087 / (1.2 * m.total_impulse_ns()),
+        1e-14
+    ));
+    assert_eq!(t.eval(2.0).thrust_n, 0.0);
+    assert!(t.eval(1.99).thrust_n > 0.0);
+    let err = MotorTables::new(&m, &MotorOptions::default().with_time_scale(0.0))
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        err,
+        "motor Cesaroni_I175, option time_scale = 0: must be finite and greater than zero"
+    );
+    let err = MotorTables::new(&m, &MotorOptions::default().with_propellant_mass_kg(-1.0))
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        err,
+        "motor Cesaroni_I175, option propellant_mass_kg = -1: must be finite and not negative"
+    );
+}
+
+#[test]
+fn the_motor_at_ignition_is_a_shell_casing_and_a_solid_propellant_cylinder_at_mid_length() {
+    let m = find("Cesaroni_I175").unwrap();
+    let t = MotorTables::from_motor(&m).unwrap();
+    let p = t.mass_props(0.0, 1.5);
+    // 38 mm × 245 mm: r² = 0.019², casing 0.4375 − 0.2289 = 0.2086 kg, propellant 0.2289 kg.
+    let (r2, l2, dry, prop) = (0.019f64 * 0.019, 0.245f64 * 0.245, 0.2086, 0.2289);
+    let axial = dry * r2 + prop * r2 / 2.0;
+    let transverse = dry * (r2 / 2.0 + l2 / 12.0) + prop * (3.0 * r2 + l2) / 12.0;
+    assert!(close(p.mass_kg, 0.4375, 1e-15));
+    assert_eq!(p.cg_m, Vector3::new(1.5 - 0.1225, 0.0, 0.0));
+    assert!(close(p.inertia_cg[(0, 0)], axial, 1e-12));
+    assert!(close(p.inertia_cg[(1, 1)], transverse, 1e-12));
+    assert!(close(p.inertia_cg[(2, 2)], transverse, 1e-12));
+    assert_eq!(
+        p.inertia_cg - Matrix3::from_diagonal(&p.inertia_cg.diagonal()),
+        Matrix3::zeros()
+    );
+}
+
+#[test]
+fn the_motor_at_burnout_is_its_casing_alone() {
+    let m = find("Cesaroni_I175").unwrap();
+    let t = MotorTables::from_motor(&m).unwrap();
+    for time in [2.5, 3.0, 100.0] {
+        let p = t.mass_props(time, 0.8);
+        assert!(close(p.mass_kg, 0.2086, 1e-12));
+        assert!(close(p.cg_m.x, 0.8 - 0.1225, 1e-15));
+        assert!(close(p.axial_inertia(), 0.2086 * 0.019 * 0.019, 1e-12));
+        assert!(close(
+            p.transverse_inertia(),
+            0.2086 * (0.019 * 0.019 / 2.0 + 0.245 * 0.245 / 12.0),
+            1e-12
+        ));
+    }
+}
+
+#[test]
+fn mass_overrides_replace_the_file_masses() {
+    let m = triangle();
+    let t = MotorTables::new(
+        &m,
+        &MotorOptions::default()
+            .with_propellant_mass_kg(0.25)
+            .with_dry_mass_kg(0.4),
+    )
+    .unwrap();
+    assert!(close(t.mass_props(0.0, 1.0).mass_kg, 0.65, 1e-15));
+    assert!(close(t.mass_props(2.0, 1.0).mass_kg, 0.4, 1e-15));
+    // Half the impulse (100 N·s at 1 s) has burned half the propellant.
+    assert!(close(t.eval(1.0).propellant_kg, 0.125, 1e-15));
+    assert!(close(
+        t.eval(1.0).propellant_rate_kg_s,
+        -0.25 * 200.0 / 200.0,
+        1e-15
+    ));
+}
+
+#[test]
+fn the_mass_and_inertia_rates_are_the_derivatives_of_the_mass_properties() {
+    let m = find("AeroTech_J570W").unwrap();
+    let t = MotorTables::from_motor(&m).unwrap();
+    let h = 1e-6;
+    for time in [0.02, 0.5, 1.3, 1.95] {
+        let rates = t.mass_rates(&t.eval(time));
+        let (a, b) = (t.mass_props(time + h, 1.0), t.mass_props(time - h, 1.0));
+        assert!(
+            ((a.mass_kg - b.mass_kg) / (2.0 * h) - rates.mass_rate_kg_s).abs() < 1e-8,
+            "{time}"
+        );
+        let d_inertia = (a.inertia_cg - b.inertia_cg) / (2.0 * h);
+        assert!(
+            (d_inertia - rates.inertia_rate_kg_m2_s).abs().max() < 1e-9,
+            "{time}"
+        );
+        assert_eq!(a.cg_m, b.cg_m);
+        let d2 = (t.mass_rates(&t.eval(time + h)).inertia_rate_kg_m2_s
+            - t.mass_rates(&t.eval(time - h)).inertia_rate_kg_m2_s)
+            / (2.0 * h);
+        assert!(
+            (d2 - rates.inertia_accel_kg_m2_s2).abs().max() < 1e-6,
+            "{time}"
+        );
+    }
+}

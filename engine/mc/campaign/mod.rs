@@ -1,0 +1,2 @@
+//! Scenario campaigns (being written).
+pub mod cli;

@@ -1,0 +1,122 @@
+//! What a flight is set up with besides the design and the motor: the launch site, the rail,
+//! the parachutes and the integrator options. Each has a `validate` that says which field
+//! broke which rule.
+
+use crate::gravity::Gravity;
+use crate::trigger::Trigger;
+use crate::wind::Wind;
+
+/// The launch site and the air.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Environment {
+    /// Elevation of the launch site above mean sea level, m (the standard atmosphere is
+    /// evaluated at elevation + height above ground).
+    pub elevation_m: f64,
+    pub wind: Wind,
+    pub gravity: Gravity,
+    /// No air at all (density zero): for checks against exact answers.
+    pub vacuum: bool,
+}
+
+impl Default for Environment {
+    fn default() -> Self {
+        Environment {
+            elevation_m: 0.0,
+            wind: Wind::calm(),
+            gravity: Gravity::default(),
+            vacuum: false,
+        }
+    }
+}
+
+/// The launch rail. The rocket's aft end sits at the rail's foot, on the ground.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rail {
+    pub length_m: f64,
+    /// Angle above the horizon, degrees (90 = vertical).
+    pub inclination_deg: f64,
+    /// Direction the rail leans toward, degrees clockwise from north.
+    pub heading_deg: f64,
+}
+
+impl Default for Rail {
+    fn default() -> Self {
+        Rail {
+            length_m: 2.0,
+            inclination_deg: 90.0,
+            heading_deg: 0.0,
+        }
+    }
+}
+
+/// A parachute: its drag area, what opens it and how long it takes to open.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Parachute {
+    pub name: String,
+    /// Drag coefficient times reference area, m².
+    pub cds_m2: f64,
+    pub trigger: Trigger,
+    /// Time from the trigger to the open canopy, s.
+    pub lag_s: f64,
+}
+
+impl Parachute {
+    pub fn new(name: impl Into<String>, cds_m2: f64, trigger: Trigger, lag_s: f64) -> Parachute {
+        Parachute {
+            name: name.into(),
+            cds_m2,
+            trigger,
+            lag_s,
+        }
+    }
+}
+
+/// Which integrator flies the 6-DOF and descent phases.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Integrator {
+    /// Dormand–Prince 5(4) with error control on every state.
+    Adaptive {
+        rtol: f64,
+        /// Absolute tolerance of positions, m.
+        atol_position_m: f64,
+        /// Absolute tolerance of velocities, m/s.
+        atol_velocity_m_s: f64,
+        /// Absolute tolerance of the quaternion's components.
+        atol_quaternion: f64,
+        /// Absolute tolerance of the angular rates, rad/s.
+        atol_rate_rad_s: f64,
+    },
+    /// Classic fixed-step Runge–Kutta 4.
+    Rk4 { step_s: f64 },
+}
+
+impl Integrator {
+    /// The default: rtol 1e-8, atol 1e-5 m, 1e-5 m/s, 1e-9, 1e-6 rad/s.
+    pub const DEFAULT: Integrator = Integrator::Adaptive {
+        rtol: 1e-8,
+        atol_position_m: 1e-5,
+        atol_velocity_m_s: 1e-5,
+        atol_quaternion: 1e-9,
+        atol_rate_rad_s: 1e-6,
+    };
+}
+
+/// Options of a flight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimOptions {
+    pub integrator: Integrator,
+    /// The flight stops with `EventKind::TimeLimit` at this time, s.
+    pub max_time_s: f64,
+    /// Keep a sample at every accepted step (true) or none but the events (false, faster).
+    pub keep_samples: bool,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        SimOptions {
+            integrator: Integrator::DEFAULT,
+            max_time_s: 600.0,
+            keep_samples: true,
+        }
+    }
+}

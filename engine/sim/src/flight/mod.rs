@@ -1,0 +1,407 @@
+//! The single-flight simulator: [`Simulation`] sets a flight up (design, motor, launch site,
+//! rail, parachutes, shifts, options), checks every input, builds the [`FlightModel`]'s tables
+//! once, and flies it with [`Simulation::run`].
+//!
+//! The flight's physics lives in the kernels ([`crate::eom`], [`crate::massprops`],
+//! [`crate::aero_loads`], [`crate::cycloid`], the atmosphere); this module only assembles
+//! them and drives the integrator (see [`driver`]). The batch engine drives the same model.
+
+pub mod config;
+pub mod driver;
+pub mod model;
+pub mod output;
+
+pub use config::{Environment, Integrator, Parachute, Rail, SimOptions};
+pub use model::FlightModel;
+pub use output::{Flight, Metrics, Observer, Phase, Sample};
+
+use crate::aero_loads::{AeroTables, SurfaceTable};
+use crate::atmosphere::Atmosphere;
+use crate::eom::Nozzle;
+use crate::integrate::IntegratorError;
+use crate::massprops::MassModel;
+use crate::shifts::{self, MassShift, ShiftPlan, ShiftRefusal};
+use hpr_design::aero::{AeroModel, MachTable};
+use hpr_design::design::model::Design;
+use hpr_design::mass::{self, MassProps};
+use hpr_design::motor::{Motor, MotorOptions, MotorTables};
+
+/// Why a flight could not be set up or flown.
+#[derive(Debug, thiserror::Error)]
+pub enum SimError {
+    #[error("{0}")]
+    Setup(String),
+    #[error(transparent)]
+    Shift(#[from] ShiftRefusal),
+    #[error("motor: {0}")]
+    Motor(#[from] hpr_design::motor::MotorError),
+    #[error("aerodynamics: {0}")]
+    Aero(#[from] hpr_design::aero::AeroError),
+    #[error("the motor's thrust never beats the rocket's weight along the rail (peak thrust {max_thrust_n:.1} N, weight along the rail {weight_n:.1} N): the rocket never leaves the pad")]
+    NeverLeavesPad { max_thrust_n: f64, weight_n: f64 },
+    #[error("shift {index} would start at t = {time_s:.4} s, before the rocket leaves the rail; the rail has no stop at its foot, so a part thrown toward the tail on the pad could push the rocket up the rail and leave it hanging there; time the shift from the burnout or the apogee instead")]
+    ShiftBeforeRailExit { index: usize, time_s: f64 },
+    #[error("the flight went non-finite at t = {time_s} s; state {state}")]
+    NonFinite { time_s: f64, state: String },
+    #[error("integration failed in the {phase} phase at t = {time_s} s: {source}")]
+    Integration {
+        time_s: f64,
+        phase: String,
+        #[source]
+        source: IntegratorError,
+    },
+}
+
+/// A flight, set up and checked, ready to run.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    design: Design,
+    motor: Motor,
+    motor_options: MotorOptions,
+    env: Environment,
+    rail: Rail,
+    parachutes: Vec<Parachute>,
+    shifts: Vec<MassShift>,
+    plan: ShiftPlan,
+    options: SimOptions,
+    drag_scale: f64,
+    mass_adjustment: MassAdjustment,
+    model: FlightModel,
+}
+
+/// A change to the rocket's structure (everything but the motor): its mass changes by
+/// `delta_mass_kg` (inertia scaled in proportion) and its center of mass moves by
+/// `delta_cg_m` (positive aft). Used for dispersions of mass and center of mass.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MassAdjustment {
+    pub delta_mass_kg: f64,
+    pub delta_cg_m: f64,
+}
+
+impl MassAdjustment {
+    /// Apply to the structure's mass properties.
+    pub fn apply(&self, dry: &MassProps) -> MassProps {
+        let m = dry.mass_kg + self.delta_mass_kg;
+        MassProps {
+            mass_kg: m,
+            cg_m: dry.cg_m + nalgebra::Vector3::new(self.delta_cg_m, 0.0, 0.0),
+            inertia_cg: dry.inertia_cg * (m / dry.mass_kg),
+        }
+    }
+}
+
+impl Simulation {
+    /// Set up a flight of `design` on `motor` from `rail` at the site `env`.
+    pub fn new(
+        design: Design,
+        motor: Motor,
+        env: Environment,
+        rail: Rail,
+    ) -> Result<Simulation, SimError> {
+        Self::with_motor_options(design, motor, MotorOptions::default(), env, rail)
+    }
+
+    /// As [`Simulation::new`], with the motor's propellant/dry mass overrides or scales.
+    pub fn with_motor_options(
+        design: Design,
+        motor: Motor,
+        motor_options: MotorOptions,
+        env: Environment,
+        rail: Rail,
+    ) -> Result<Simulation, SimError> {
+        let plan = ShiftPlan {
+            parts: vec![],
+            part_of_shift: vec![],
+        };
+        let model = build_model(
+            &design,
+            &motor,
+            &motor_options,
+            &env,
+            &rail,
+            &[],
+            &[],
+            &plan,
+            &SimOptions::default(),
+            1.0,
+            &MassAdjustment::default(),
+        )?;
+        Ok(Simulation {
+            design,
+            motor,
+            motor_options,
+            env,
+            rail,
+            parachutes: vec![],
+            shifts: vec![],
+            plan,
+            options: SimOptions::default(),
+            drag_scale: 1.0,
+            mass_adjustment: MassAdjustment::default(),
+            model,
+        })
+    }
+
+    fn rebuild(mut self) -> Result<Simulation, SimError> {
+        self.model = build_model(
+            &self.design,
+            &self.motor,
+            &self.motor_options,
+            &self.env,
+            &self.rail,
+            &self.parachutes,
+            &self.shifts,
+            &self.plan,
+            &self.options,
+            self.drag_scale,
+            &self.mass_adjustment,
+        )?;
+        Ok(self)
+    }
+
+    /// Parachutes, opened in the order their triggers fire. Canopies add up: once a second
+    /// canopy opens, both drag (their CdS add), as a drogue left attached above a main does.
+    pub fn with_parachutes(mut self, parachutes: Vec<Parachute>) -> Result<Simulation, SimError> {
+        let delay = self.motor.delays_s.first().copied();
+        for (i, p) in parachutes.iter().enumerate() {
+            let what = format!("parachute {i} (\"{}\")", p.name);
+            if !(p.cds_m2.is_finite() && p.cds_m2 > 0.0) {
+                return Err(SimError::Setup(format!(
+                    "{what}: field \"cds_m2\" must be positive and finite (got {})",
+                    p.cds_m2
+                )));
+            }
+            if !(p.lag_s.is_finite() && p.lag_s >= 0.0) {
+                return Err(SimError::Setup(format!(
+                    "{what}: field \"lag_s\" must be finite and not negative (got {})",
+                    p.lag_s
+                )));
+            }
+            p.trigger
+                .validate()
+                .map_err(|e| SimError::Setup(format!("{what}: {e}")))?;
+            match p.trigger {
+                crate::trigger::Trigger::HeightDescending { height_m } if height_m <= 0.0 => {
+                    return Err(SimError::Setup(format!("{what}: trigger {}: the height must be above the ground, or the canopy never opens", p.trigger)));
+                }
+                crate::trigger::Trigger::BurnoutPlusDelay { delay_s: None } if delay.is_none() => {
+                    return Err(SimError::Setup(format!("{what}: trigger {}: the motor is plugged (no ejection delay), so this trigger never fires", p.trigger)));
+                }
+                _ => {}
+            }
+        }
+        self.parachutes = parachutes;
+        self.rebuild()
+    }
+
+    /// Mass shifts (the spec's `MassShift`). Every rule that can be checked before the flight
+    /// is checked here, and a refusal names the rule it broke.
+    pub fn with_shifts(mut self, shifts: Vec<MassShift>) -> Result<Simulation, SimError> {
+        if shifts.len() > model::MAX_SHIFTS {
+            return Err(SimError::Setup(format!(
+                "at most {} shifts in one flight (got {})",
+                model::MAX_SHIFTS,
+                shifts.len()
+            )));
+        }
+        let plan = shifts::plan(&self.design, &shifts, self.motor.delays_s.first().copied())?;
+        if plan.parts.len() > model::MAX_MOVING_PARTS {
+            return Err(SimError::Setup(format!(
+                "at most {} parts may move in one flight (got {})",
+                model::MAX_MOVING_PARTS,
+                plan.parts.len()
+            )));
+        }
+        self.shifts = shifts;
+        self.plan = plan;
+        self.rebuild()
+    }
+
+    /// Integrator and limits.
+    pub fn with_options(mut self, options: SimOptions) -> Result<Simulation, SimError> {
+        if !(options.max_time_s.is_finite() && options.max_time_s > 0.0) {
+            return Err(SimError::Setup(format!(
+                "options: field \"max_time_s\" must be positive and finite (got {})",
+                options.max_time_s
+            )));
+        }
+        if let Integrator::Rk4 { step_s } = options.integrator {
+            if !(step_s.is_finite() && step_s > 0.0) {
+                return Err(SimError::Setup(format!(
+                    "options: field \"step_s\" must be positive and finite (got {step_s})"
+                )));
+            }
+        }
+        self.options = options;
+        self.rebuild()
+    }
+
+    /// Multiply the drag coefficient by `scale` (a dispersion).
+    pub fn with_drag_scale(mut self, scale: f64) -> Result<Simulation, SimError> {
+        if !(scale.is_finite() && scale > 0.0) {
+            return Err(SimError::Setup(format!(
+                "drag scale must be positive and finite (got {scale})"
+            )));
+        }
+        self.drag_scale = scale;
+        self.rebuild()
+    }
+
+    /// Change the structure's mass and center of mass (a dispersion, see [`MassAdjustment`]).
+    pub fn with_mass_adjustment(
+        mut self,
+        delta_mass_kg: f64,
+        delta_cg_m: f64,
+    ) -> Result<Simulation, SimError> {
+        let dry = mass::dry(&self.design).mass_kg;
+        if !(delta_mass_kg.is_finite() && delta_cg_m.is_finite()) || dry + delta_mass_kg <= 0.0 {
+            return Err(SimError::Setup(format!("mass adjustment: delta_mass_kg {delta_mass_kg} and delta_cg_m {delta_cg_m} must be finite and leave a positive mass (structure {dry} kg)")));
+        }
+        self.mass_adjustment = MassAdjustment {
+            delta_mass_kg,
+            delta_cg_m,
+        };
+        self.rebuild()
+    }
+
+    pub fn design(&self) -> &Design {
+        &self.design
+    }
+    pub fn motor(&self) -> &Motor {
+        &self.motor
+    }
+    pub fn model(&self) -> &FlightModel {
+        &self.model
+    }
+    pub fn shifts(&self) -> &[MassShift] {
+        &self.shifts
+    }
+
+    /// Fly. The observer sees every sample and event as it happens (`&mut ()` sees nothing).
+    pub fn run<O: Observer>(&self, observer: &mut O) -> Result<Flight, SimError> {
+        driver::run(&self.model, observer)
+    }
+
+    /// Fly in free flight from the 6-DOF state `y0` at time `t0` (no pad, no rail; shifts may
+    /// start at once). The state is O's position and velocity (inertial), the attitude
+    /// quaternion and the body rates, as [`crate::eom`] lays them out.
+    pub fn run_from<O: Observer>(
+        &self,
+        observer: &mut O,
+        t0: f64,
+        y0: &[f64; crate::eom::N6],
+    ) -> Result<Flight, SimError> {
+        driver::run_from(&self.model, observer, t0, y0)
+    }
+
+    /// The rocket's mass, center of mass (m aft of the tip) and inertia about that center at
+    /// time `t_s` of `flight`, in the design's station frame.
+    pub fn mass_properties(&self, flight: &Flight, t_s: f64) -> MassProps {
+        let mut starts = [f64::INFINITY; model::MAX_SHIFTS];
+        for (k, s) in flight.shift_starts_s.iter().enumerate() {
+            if let Some(s) = s {
+                starts[k] = *s;
+            }
+        }
+        crate::massprops::to_station(&self.model.instant(&starts, t_s).mass)
+    }
+}
+
+/// Build every table of a flight once.
+#[allow(clippy::too_many_arguments)]
+pub fn build_model(
+    design: &Design,
+    motor: &Motor,
+    motor_options: &MotorOptions,
+    env: &Environment,
+    rail: &Rail,
+    parachutes: &[Parachute],
+    shifts: &[MassShift],
+    plan: &ShiftPlan,
+    options: &SimOptions,
+    drag_scale: f64,
+    adjustment: &MassAdjustment,
+) -> Result<FlightModel, SimError> {
+    let mount = design.motor_mount.ok_or_else(|| {
+        SimError::Setup(format!(
+            "design \"{}\": it has no motor mount (an inner tube with \"motor_mount\")",
+            design.name
+        ))
+    })?;
+    design
+        .motor_fits(motor.diameter_m, motor.length_m)
+        .map_err(|e| SimError::Setup(e.to_string()))?;
+    let tables = MotorTables::new(motor, motor_options)?;
+    let burnout = tables.burn_time_s();
+    let full = tables.mass_props(0.0, mount.motor_aft_m);
+    let casing = tables.mass_props(burnout, mount.motor_aft_m);
+    let propellant = MassProps {
+        mass_kg: full.mass_kg - casing.mass_kg,
+        cg_m: full.cg_m,
+        inertia_cg: full.inertia_cg - casing.inertia_cg,
+    };
+    let dry = adjustment.apply(&mass::dry(design));
+    let parts: Vec<MassProps> = plan
+        .parts
+        .iter()
+        .map(|&idx| mass::subtree(design, idx))
+        .collect();
+    let mass_model = MassModel::new(&dry, &casing, &propellant, &parts);
+    let fixed_cg_m = dry.combine(&casing).cg_m.x;
+    let nozzle = Nozzle::at(
+        mount.motor_aft_m,
+        0.5 * motor.diameter_m * NOZZLE_RADIUS_FRACTION,
+        mount.motor_aft_m - fixed_cg_m,
+    );
+
+    let aero_model = AeroModel::from_design(design)?;
+    let aero = AeroTables {
+        ref_area_m2: aero_model.ref_area_m2,
+        ref_diameter_m: aero_model.ref_diameter_m,
+        surfaces: aero_model
+            .surfaces
+            .iter()
+            .map(|s| SurfaceTable {
+                x_cp_m: s.x_cp_m,
+                cn_alpha: s.cn_alpha.clone(),
+            })
+            .collect(),
+        cd_power_off: MachTable::from_fn(|m| aero_model.cd_power_off(m)),
+        cd_power_on: MachTable::from_fn(|m| aero_model.cd_power_on(m)),
+        roll_forcing: MachTable::from_fn(|m| aero_model.roll_forcing_coefficient(m)),
+        roll_damping: MachTable::from_fn(|m| aero_model.roll_damping_coefficient(m)),
+        drag_scale,
+        cp_mach0_m: aero_model.cp_m(0.0),
+    };
+    let atmosphere = Atmosphere::standard(env.elevation_m)
+        .map_err(|e| SimError::Setup(format!("environment: {e}")))?;
+    let aft_m = design.length_m.max(mount.motor_aft_m);
+    let rail_geo = model::rail_geometry(rail, aft_m, design.rail_guides_m.map(|(upper, _)| upper))?;
+    let knots: Vec<f64> = tables
+        .times_s()
+        .iter()
+        .copied()
+        .filter(|&t| t > 0.0 && t < burnout)
+        .collect();
+    Ok(FlightModel {
+        mass: mass_model,
+        nozzle,
+        aero,
+        atmosphere,
+        env: env.clone(),
+        rail: rail_geo,
+        parachutes: parachutes.to_vec(),
+        shifts: model::shift_specs(shifts, plan),
+        options: *options,
+        burnout_s: burnout,
+        motor_delay_s: motor.delays_s.first().copied(),
+        thrust_knots_s: knots,
+        ref_diameter_m: aero_model.ref_diameter_m,
+        cp_mach0_m: aero_model.cp_m(0.0),
+        motor: tables,
+    })
+}
+
+/// The nozzle exit's radius as a fraction of the motor's radius, for the jet-damping terms
+/// (RocketPy's Calisto: 33 mm nozzle on a 75 mm motor, 0.88).
+pub const NOZZLE_RADIUS_FRACTION: f64 = 0.88;

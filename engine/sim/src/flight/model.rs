@@ -1,0 +1,389 @@
+//! The flight model: every table a flight reads, built once before it starts, and the pure
+//! per-instant evaluations (mass state, derivative) that the single flight and the batch
+//! engine's lanes both call.
+
+use super::config::{Environment, Parachute, Rail, SimOptions};
+use super::SimError;
+use crate::aero_loads::{aero_loads, AeroTables, AirAt};
+use crate::atmosphere::Atmosphere;
+use crate::cycloid::{self, CycloidState};
+use crate::eom::{self, MassState, Nozzle, N3, N6};
+use crate::frames;
+use crate::massprops::{mass_state, MassModel, PropellantState};
+use crate::shifts::{MassShift, ShiftPlan};
+use crate::trigger::Trigger;
+use hpr_design::motor::{MotorState, MotorTables};
+use nalgebra::{Matrix3, Vector3};
+
+/// Most parts that shifts may move in one flight (the kernel keeps their motions in a fixed
+/// array so that it allocates nothing).
+pub const MAX_MOVING_PARTS: usize = 8;
+
+/// A shift as the flight runs it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShiftSpec {
+    pub part: usize,
+    pub trigger: Trigger,
+    pub travel_m: f64,
+    pub duration_s: f64,
+}
+
+/// The rail as the flight needs it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RailGeometry {
+    /// Unit vector along the rail, inertial.
+    pub direction_n: Vector3<f64>,
+    /// Attitude on the rail.
+    pub attitude: [f64; 4],
+    /// Distance O travels along the rail until the upper guide (or the aft end) leaves it, m.
+    pub travel_to_exit_m: f64,
+    /// O's position at rest on the pad, inertial, m.
+    pub o_start_n: Vector3<f64>,
+}
+
+/// Everything a flight reads, built once.
+#[derive(Debug, Clone)]
+pub struct FlightModel {
+    pub mass: MassModel,
+    pub motor: MotorTables,
+    pub nozzle: Nozzle,
+    pub aero: AeroTables,
+    pub atmosphere: Atmosphere,
+    pub env: Environment,
+    pub rail: RailGeometry,
+    pub parachutes: Vec<Parachute>,
+    pub shifts: Vec<ShiftSpec>,
+    pub options: SimOptions,
+    /// Motor's burnout time (last thrust point), s.
+    pub burnout_s: f64,
+    /// Motor's first ejection delay, s (None if plugged).
+    pub motor_delay_s: Option<f64>,
+    /// Times at which the thrust curve bends (stop times of the powered flight), s.
+    pub thrust_knots_s: Vec<f64>,
+    /// Reference diameter, m, and the whole rocket's Mach-0 center of pressure, m aft of the tip.
+    pub ref_diameter_m: f64,
+    pub cp_mach0_m: f64,
+}
+
+/// Start times of each shift (infinite until its trigger fires).
+pub type ShiftStarts = [f64; MAX_SHIFTS];
+/// Most shifts in one flight.
+pub const MAX_SHIFTS: usize = 16;
+
+/// Everything at one instant that depends on time alone (and on which shifts have started).
+#[derive(Debug, Clone, Copy)]
+pub struct Instant {
+    pub motor: MotorState,
+    pub mass: MassState,
+}
+
+impl FlightModel {
+    /// The air the loads see (none in a vacuum).
+    #[inline]
+    fn air_at(&self, air: &crate::atmosphere::AirState) -> AirAt {
+        AirAt {
+            density_kg_m3: if self.env.vacuum {
+                0.0
+            } else {
+                air.density_kg_m3
+            },
+            speed_of_sound_m_s: air.speed_of_sound_m_s,
+        }
+    }
+
+    /// Motions of the moving parts at `t` given the shifts' start times.
+    #[inline]
+    pub fn motions(&self, starts: &ShiftStarts, t: f64) -> [CycloidState; MAX_MOVING_PARTS] {
+        let mut m = [CycloidState::default(); MAX_MOVING_PARTS];
+        for (k, s) in self.shifts.iter().enumerate() {
+            let start = starts[k];
+            if t > start {
+                let c = cycloid::evaluate(t, start, s.duration_s, s.travel_m);
+                let acc = &mut m[s.part];
+                acc.delta_m += c.delta_m;
+                acc.rate_m_s += c.rate_m_s;
+                acc.accel_m_s2 += c.accel_m_s2;
+            }
+        }
+        m
+    }
+
+    /// Motor and mass state at `t`.
+    #[inline]
+    pub fn instant(&self, starts: &ShiftStarts, t: f64) -> Instant {
+        let motor = self.motor.eval(t);
+        let prop = PropellantState {
+            mass_kg: motor.propellant_kg,
+            rate_kg_s: motor.propellant_rate_kg_s,
+            accel_kg_s2: motor.propellant_accel_kg_s2,
+        };
+        let motions = self.motions(starts, t);
+        let n = self.mass.parts.len();
+        Instant {
+            motor,
+            mass: mass_state(&self.mass, &prop, &motions[..n]),
+        }
+    }
+
+    /// Static margin (center of pressure at Mach 0 minus center of mass, in calibres).
+    #[inline]
+    pub fn static_margin(&self, ms: &MassState) -> f64 {
+        (self.cp_mach0_m - (-ms.r_cm.z)) / self.ref_diameter_m
+    }
+
+    /// Flight margin at `mach`.
+    #[inline]
+    pub fn flight_margin(&self, ms: &MassState, mach: f64) -> f64 {
+        (self.aero.cp_m(mach) - (-ms.r_cm.z)) / self.ref_diameter_m
+    }
+
+    /// Gravity vector in body axes for attitude matrix `r` (body → inertial) at height `h`.
+    #[inline]
+    fn gravity_b(&self, r: &Matrix3<f64>, h: f64) -> Vector3<f64> {
+        r.transpose() * Vector3::new(0.0, 0.0, -self.env.gravity.at(h))
+    }
+
+    #[inline]
+    fn wind_n(&self, h: f64) -> Vector3<f64> {
+        let [e, n] = self.env.wind.velocity_en(h);
+        Vector3::new(e, n, 0.0)
+    }
+
+    /// The 6-DOF derivative (free flight), also returning what the samples and events read.
+    #[inline]
+    pub fn derivative_6dof(
+        &self,
+        starts: &ShiftStarts,
+        t: f64,
+        y: &[f64; N6],
+        dy: &mut [f64; N6],
+    ) -> FlightAux {
+        let inst = self.instant(starts, t);
+        let ms = &inst.mass;
+        let r = frames::body_to_inertial(&[y[6], y[7], y[8], y[9]]);
+        let omega = Vector3::new(y[10], y[11], y[12]);
+        let cm_n = eom::center_of_mass_position(y, ms, &r);
+        let h = cm_n.z;
+        let air = self.atmosphere.at(h);
+        let wind_b = r.transpose() * self.wind_n(h);
+        let v_o_air_b = r.transpose() * Vector3::new(y[3], y[4], y[5]) - wind_b;
+        let v_cm_air_b = v_o_air_b + omega.cross(&ms.r_cm) + ms.r_cm_rate;
+        let air_at = self.air_at(&air);
+        let powered = inst.motor.thrust_n > 0.0;
+        let mut loads = aero_loads(
+            &self.aero,
+            &v_o_air_b,
+            &v_cm_air_b,
+            &omega,
+            &air_at,
+            powered,
+        );
+        loads.force_b.z += inst.motor.thrust_n;
+        let g_b = self.gravity_b(&r, h);
+        match eom::rigid_body_accelerations(ms, &loads, &g_b, &omega, &self.nozzle) {
+            Some((a_o, w_dot)) => {
+                eom::rigid_body_derivative(y, &a_o, &w_dot, &r, dy);
+                // Inertial acceleration of the center of mass (what an accelerometer at the
+                // center, plus gravity, would read): a_O + ω̇×r + ω×(ω×r) + 2ω×r′ + r″.
+                let a_cm_b = a_o
+                    + w_dot.cross(&ms.r_cm)
+                    + omega.cross(&omega.cross(&ms.r_cm))
+                    + omega.cross(&ms.r_cm_rate) * 2.0
+                    + ms.r_cm_accel;
+                FlightAux {
+                    mass: *ms,
+                    air_speed_m_s: v_cm_air_b.norm(),
+                    speed_of_sound_m_s: air.speed_of_sound_m_s,
+                    accel_cm_m_s2: (a_cm_b - g_b).norm(),
+                    alpha_rad: angle_of_attack(&v_cm_air_b),
+                }
+            }
+            None => {
+                dy.iter_mut().for_each(|d| *d = f64::NAN);
+                FlightAux::nan(*ms)
+            }
+        }
+    }
+
+    /// The rail's derivative: O slides along the rail; attitude fixed, no rotation.
+    #[inline]
+    pub fn derivative_rail(
+        &self,
+        starts: &ShiftStarts,
+        t: f64,
+        y: &[f64; N6],
+        dy: &mut [f64; N6],
+    ) -> FlightAux {
+        let inst = self.instant(starts, t);
+        let ms = &inst.mass;
+        let u = self.rail.direction_n;
+        let v = Vector3::new(y[3], y[4], y[5]);
+        let speed = v.dot(&u);
+        let h = (Vector3::new(y[0], y[1], y[2])
+            + frames::body_to_inertial(&self.rail.attitude) * ms.r_cm)
+            .z;
+        let air = self.atmosphere.at(h);
+        let r = frames::body_to_inertial(&self.rail.attitude);
+        let wind_b = r.transpose() * self.wind_n(h);
+        let v_air_b = r.transpose() * v - wind_b;
+        let air_at = self.air_at(&air);
+        let powered = inst.motor.thrust_n > 0.0;
+        let loads = aero_loads(
+            &self.aero,
+            &v_air_b,
+            &(v_air_b + ms.r_cm_rate),
+            &Vector3::zeros(),
+            &air_at,
+            powered,
+        );
+        let g_along = -self.env.gravity.at(h) * u.z;
+        let mut a = (inst.motor.thrust_n + loads.force_b.z) / ms.mass_kg + g_along;
+        if a < 0.0 && speed <= 0.0 {
+            a = 0.0;
+        }
+        dy[0] = y[3];
+        dy[1] = y[4];
+        dy[2] = y[5];
+        dy[3] = a * u.x;
+        dy[4] = a * u.y;
+        dy[5] = a * u.z;
+        dy[6..].iter_mut().for_each(|d| *d = 0.0);
+        FlightAux {
+            mass: *ms,
+            air_speed_m_s: v_air_b.norm(),
+            speed_of_sound_m_s: air.speed_of_sound_m_s,
+            accel_cm_m_s2: a.abs(),
+            alpha_rad: 0.0,
+        }
+    }
+
+    /// Descent under the open canopies (total `cds_m2`): the center of mass as a point.
+    #[inline]
+    pub fn derivative_descent(
+        &self,
+        starts: &ShiftStarts,
+        cds_m2: f64,
+        t: f64,
+        y: &[f64; N3],
+        dy: &mut [f64; N3],
+    ) -> FlightAux {
+        let inst = self.instant(starts, t);
+        let h = y[2];
+        let air = self.atmosphere.at(h);
+        let g = self.env.gravity.at(h);
+        let wind = self.wind_n(h);
+        eom::descent_derivative(
+            y,
+            inst.mass.mass_kg,
+            cds_m2,
+            self.air_at(&air).density_kg_m3,
+            g,
+            &wind,
+            dy,
+        );
+        let rel = Vector3::new(y[3], y[4], y[5]) - wind;
+        let a = Vector3::new(dy[3], dy[4], dy[5] + g);
+        FlightAux {
+            mass: inst.mass,
+            air_speed_m_s: rel.norm(),
+            speed_of_sound_m_s: air.speed_of_sound_m_s,
+            accel_cm_m_s2: a.norm(),
+            alpha_rad: f64::NAN,
+        }
+    }
+}
+
+/// What a derivative evaluation knows besides the derivative.
+#[derive(Debug, Clone, Copy)]
+pub struct FlightAux {
+    pub mass: MassState,
+    pub air_speed_m_s: f64,
+    pub speed_of_sound_m_s: f64,
+    /// Magnitude of the center's acceleration without gravity (what an accelerometer reads), m/s².
+    pub accel_cm_m_s2: f64,
+    pub alpha_rad: f64,
+}
+
+impl FlightAux {
+    fn nan(mass: MassState) -> FlightAux {
+        FlightAux {
+            mass,
+            air_speed_m_s: f64::NAN,
+            speed_of_sound_m_s: f64::NAN,
+            accel_cm_m_s2: f64::NAN,
+            alpha_rad: f64::NAN,
+        }
+    }
+}
+
+/// Angle between the rocket's axis and its velocity through the air, rad.
+#[inline]
+fn angle_of_attack(v_air_b: &Vector3<f64>) -> f64 {
+    let n = v_air_b.norm();
+    if n == 0.0 {
+        0.0
+    } else {
+        (v_air_b.z / n).clamp(-1.0, 1.0).acos()
+    }
+}
+
+/// Build the rail geometry: the aft end at the foot, O up the rail.
+pub fn rail_geometry(
+    rail: &Rail,
+    aft_m: f64,
+    upper_guide_m: Option<f64>,
+) -> Result<RailGeometry, SimError> {
+    let bad = |field: &str, rule: &str, v: f64| {
+        SimError::Setup(format!("rail: field \"{field}\" {rule} (got {v})"))
+    };
+    if !(rail.length_m.is_finite() && rail.length_m > 0.0) {
+        return Err(bad(
+            "length_m",
+            "must be positive and finite",
+            rail.length_m,
+        ));
+    }
+    if !(rail.inclination_deg.is_finite()
+        && rail.inclination_deg > 0.0
+        && rail.inclination_deg <= 90.0)
+    {
+        return Err(bad(
+            "inclination_deg",
+            "must be above 0 and at most 90 degrees",
+            rail.inclination_deg,
+        ));
+    }
+    if !rail.heading_deg.is_finite() {
+        return Err(bad("heading_deg", "must be finite", rail.heading_deg));
+    }
+    let guide_height = upper_guide_m.map_or(0.0, |g| aft_m - g);
+    let travel = rail.length_m - guide_height;
+    if travel <= 0.0 {
+        return Err(SimError::Setup(format!(
+            "rail: field \"length_m\" must be longer than the distance from the rocket's aft end to its upper rail guide ({guide_height:.3} m), or the rocket never rides it (got {} m)",
+            rail.length_m
+        )));
+    }
+    let attitude = frames::rail_attitude(rail.inclination_deg, rail.heading_deg);
+    let direction_n = frames::body_to_inertial(&attitude) * Vector3::z();
+    Ok(RailGeometry {
+        direction_n,
+        attitude,
+        travel_to_exit_m: travel,
+        o_start_n: direction_n * aft_m,
+    })
+}
+
+/// Group shifts for the model.
+pub fn shift_specs(shifts: &[MassShift], plan: &ShiftPlan) -> Vec<ShiftSpec> {
+    shifts
+        .iter()
+        .zip(&plan.part_of_shift)
+        .map(|(s, &part)| ShiftSpec {
+            part,
+            trigger: s.trigger,
+            travel_m: s.travel_m,
+            duration_s: s.duration_s,
+        })
+        .collect()
+}

@@ -1,0 +1,474 @@
+//! Dormand–Prince 5(4) with FSAL, per-component error control, a PI step-size controller,
+//! Hairer's starting-step estimate and Shampine's 4th-order continuous extension.
+//!
+//! References: J. R. Dormand, P. J. Prince, "A family of embedded Runge–Kutta formulae",
+//! J. Comput. Appl. Math. 6 (1980) 19–26 (tableau); L. F. Shampine, "Some practical
+//! Runge–Kutta formulas", Math. Comp. 46 (1986) 135–150 (dense output); E. Hairer,
+//! S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., Springer
+//! 1993, §II.4 (error norm, starting step), §II.5 (dense output), §IV.2 (PI control, as in
+//! their code DOPRI5).
+//!
+//! Error norm: `err = sqrt(mean_i (e_i / (atol_i + rtol·max(|y_i|, |y_new_i|)))²)`, with `e`
+//! the difference of the 5th- and 4th-order solutions; a step is accepted when `err <= 1` and
+//! the 5th-order solution is kept (local extrapolation).
+//!
+//! Step-size control (defaults in [`StepControl::default`], DOPRI5's): after an accepted step
+//! `h_new = h · clamp(safety · err^{-α} · err_prev^{β}, min_factor, max_factor)` with
+//! `α = 1/5 − 0.75 β`, `β = 0.04`, `safety = 0.9`, `min_factor = 0.2`, `max_factor = 10`,
+//! `err_prev = max(err of the last accepted step, 1e-4)`; right after a rejection the step may
+//! not grow. After a rejection `h_new = h · max(min_factor, safety · err^{-α})` (a NaN error
+//! counts as a rejection with `min_factor`). A step clipped to land on a stop time does not
+//! shrink the proposal for the next one.
+
+use super::{check_finite, clip_to_stop, DenseStepper, IntegratorError, StepOutcome, Tolerances};
+
+// Butcher tableau (c_i, a_ij), 5th-order weights b = a7j (FSAL), error weights e = b − b̂.
+const C2: f64 = 1.0 / 5.0;
+const C3: f64 = 3.0 / 10.0;
+const C4: f64 = 4.0 / 5.0;
+const C5: f64 = 8.0 / 9.0;
+const A21: f64 = 1.0 / 5.0;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+const A71: f64 = 35.0 / 384.0;
+const A73: f64 = 500.0 / 1113.0;
+const A74: f64 = 125.0 / 192.0;
+const A75: f64 = -2187.0 / 6784.0;
+const A76: f64 = 11.0 / 84.0;
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
+// Shampine's dense-output coefficients.
+const D1: f64 = -12715105075.0 / 11282082432.0;
+const D3: f64 = 87487479700.0 / 32700410799.0;
+const D4: f64 = -10690763975.0 / 1880347072.0;
+const D5: f64 = 701980252875.0 / 199316789632.0;
+const D6: f64 = -1453857185.0 / 822651844.0;
+const D7: f64 = 69997945.0 / 29380423.0;
+
+/// Settings of the step-size controller. All validated by [`Dopri54::new`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepControl {
+    /// Safety factor on the optimal step, in (0, 1). Default 0.9.
+    pub safety: f64,
+    /// PI exponent β on the previous error, in [0, 0.2]. Default 0.04 (0 = pure I control).
+    pub beta: f64,
+    /// Smallest ratio h_new / h, in (0, 1). Default 0.2.
+    pub min_factor: f64,
+    /// Largest ratio h_new / h, finite and > 1. Default 10.
+    pub max_factor: f64,
+    /// Absolute minimum step, s (≥ 0). Default 0: only the relative floor `10·ε·|t|` applies.
+    /// A step forced below `max(h_min, 10·ε·|t|)` is [`IntegratorError::StepSizeUnderflow`]
+    /// (steps shortened to land on a stop time are exempt).
+    pub h_min: f64,
+    /// Largest step, s (> `h_min`, may be ∞). Default ∞.
+    pub h_max: f64,
+    /// First step, s; 0 (default) = Hairer's estimate from the derivative.
+    pub h_initial: f64,
+}
+
+impl Default for StepControl {
+    fn default() -> Self {
+        Self {
+            safety: 0.9,
+            beta: 0.04,
+            min_factor: 0.2,
+            max_factor: 10.0,
+            h_min: 0.0,
+            h_max: f64::INFINITY,
+            h_initial: 0.0,
+        }
+    }
+}
+
+impl StepControl {
+    /// Check every setting against its documented range.
+    pub fn validate(&self) -> Result<(), IntegratorError> {
+        let bad = |field, value, rule| Err(IntegratorError::Setting { field, value, rule });
+        if !(self.safety > 0.0 && self.safety < 1.0) {
+            return bad("safety", self.safety, "must lie in (0, 1)");
+        }
+        if !(0.0..=0.2).contains(&self.beta) {
+            return bad("beta", self.beta, "must lie in [0, 0.2]");
+        }
+        if !(self.min_factor > 0.0 && self.min_factor < 1.0) {
+            return bad("min_factor", self.min_factor, "must lie in (0, 1)");
+        }
+        if !(self.max_factor.is_finite() && self.max_factor > 1.0) {
+            return bad("max_factor", self.max_factor, "must be finite and > 1");
+        }
+        if !(self.h_min.is_finite() && self.h_min >= 0.0) {
+            return bad("h_min", self.h_min, "must be finite and >= 0");
+        }
+        if self.h_max.is_nan() || self.h_max <= self.h_min {
+            return bad("h_max", self.h_max, "must be > h_min (infinity allowed)");
+        }
+        if !(self.h_initial.is_finite() && self.h_initial >= 0.0) {
+            return bad(
+                "h_initial",
+                self.h_initial,
+                "must be finite and >= 0 (0 = estimate)",
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Adaptive Dormand–Prince 5(4) stepper for one trajectory of `N` states.
+#[derive(Debug, Clone)]
+pub struct Dopri54<const N: usize> {
+    tol: Tolerances<N>,
+    control: StepControl,
+    t: f64,
+    t_prev: f64,
+    y: [f64; N],
+    y_prev: [f64; N],
+    dy: [f64; N],
+    /// Dense output: `y(θ) = y_prev + θ(c0 + (1−θ)(c1 + θ(c2 + (1−θ)c3)))`.
+    cont: [[f64; N]; 4],
+    /// Proposal for the next step; 0 = estimate it.
+    h_next: f64,
+    /// Error norm of the last accepted step (≥ 1e-4), for the PI controller.
+    err_prev: f64,
+    n_eval: u64,
+    n_accepted: u64,
+    n_rejected: u64,
+    initialized: bool,
+}
+
+impl<const N: usize> Dopri54<N> {
+    /// A stepper with tolerances `tol` and controller settings `control` (validated).
+    pub fn new(tol: Tolerances<N>, control: StepControl) -> Result<Self, IntegratorError> {
+        control.validate()?;
+        Ok(Self {
+            tol,
+            control,
+            t: 0.0,
+            t_prev: 0.0,
+            y: [0.0; N],
+            y_prev: [0.0; N],
+            dy: [0.0; N],
+            cont: [[0.0; N]; 4],
+            h_next: 0.0,
+            err_prev: 1e-4,
+            n_eval: 0,
+            n_accepted: 0,
+            n_rejected: 0,
+            initialized: false,
+        })
+    }
+
+    /// A stepper with tolerances `tol` and the default controller.
+    pub fn with_tolerances(tol: Tolerances<N>) -> Self {
+        Self::new(tol, StepControl::default()).expect("the default step control is valid")
+    }
+
+    /// The tolerances in force.
+    pub fn tolerances(&self) -> &Tolerances<N> {
+        &self.tol
+    }
+
+    /// The controller settings in force.
+    pub fn control(&self) -> &StepControl {
+        &self.control
+    }
+
+    /// Step size the next `step` will try first (0 before the first step after `init`).
+    pub fn h_next(&self) -> f64 {
+        self.h_next
+    }
+
+    /// Accepted steps so far.
+    pub fn n_accepted(&self) -> u64 {
+        self.n_accepted
+    }
+
+    /// Rejected attempts so far.
+    pub fn n_rejected(&self) -> u64 {
+        self.n_rejected
+    }
+
+    fn set_state<F>(&mut self, f: &mut F, t: f64, y: &[f64; N]) -> Result<(), IntegratorError>
+    where
+        F: FnMut(f64, &[f64; N], &mut [f64; N]),
+    {
+        check_finite("state", t, y)?;
+        let mut dy = [0.0; N];
+        f(t, y, &mut dy);
+        self.n_eval += 1;
+        check_finite("derivative", t, &dy)?;
+        self.t = t;
+        self.t_prev = t;
+        self.y = *y;
+        self.y_prev = *y;
+        self.dy = dy;
+        self.cont = [[0.0; N]; 4];
+        self.initialized = true;
+        Ok(())
+    }
+
+    /// Scale `atol_i + rtol·|y_i|` used by the starting-step estimate.
+    #[inline]
+    fn rms_scaled(&self, v: &[f64; N], y: &[f64; N]) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..N {
+            let sk = self.tol.atol[i] + self.tol.rtol * y[i].abs();
+            let q = v[i] / sk;
+            sum += q * q;
+        }
+        (sum / N as f64).sqrt()
+    }
+
+    /// Hairer's starting step (HNW I, §II.4): a step such that an explicit Euler step would
+    /// make an error of about 1 % of the tolerance, refined by a second derivative estimate
+    /// from one extra evaluation. The probe never crosses `t_stop`.
+    fn initial_step<F>(&mut self, f: &mut F, t_stop: f64) -> f64
+    where
+        F: FnMut(f64, &[f64; N], &mut [f64; N]),
+    {
+        if self.control.h_initial > 0.0 {
+            return self.control.h_initial;
+        }
+        let d0 = self.rms_scaled(&self.y, &self.y);
+        let d1 = self.rms_scaled(&self.dy, &self.y);
+        let mut h0 = if d0 < 1e-5 || d1 < 1e-5 {
+            1e-6
+        } else {
+            0.01 * d0 / d1
+        };
+        h0 = h0.min(self.control.h_max).min(t_stop - self.t);
+        let mut y1 = [0.0; N];
+        for (i, v) in y1.iter_mut().enumerate() {
+            *v = self.y[i] + h0 * self.dy[i];
+        }
+        let mut f1 = [0.0; N];
+        f(self.t + h0, &y1, &mut f1);
+        self.n_eval += 1;
+        let mut diff = [0.0; N];
+        for i in 0..N {
+            diff[i] = f1[i] - self.dy[i];
+        }
+        let d2 = self.rms_scaled(&diff, &self.y) / h0;
+        let d12 = d1.max(d2);
+        let h1 = if d12.is_nan() || d12 <= 1e-15 {
+            (h0 * 1e-3).max(1e-6)
+        } else {
+            (0.01 / d12).powf(1.0 / 5.0)
+        };
+        (100.0 * h0).min(h1).min(self.control.h_max)
+    }
+}
+
+impl<const N: usize> DenseStepper<N> for Dopri54<N> {
+    fn init<F>(&mut self, mut f: F, t0: f64, y0: &[f64; N]) -> Result<(), IntegratorError>
+    where
+        F: FnMut(f64, &[f64; N], &mut [f64; N]),
+    {
+        self.initialized = false;
+        self.h_next = 0.0;
+        self.err_prev = 1e-4;
+        self.set_state(&mut f, t0, y0)
+    }
+
+    fn restart<F>(&mut self, mut f: F, t: f64, y: &[f64; N]) -> Result<(), IntegratorError>
+    where
+        F: FnMut(f64, &[f64; N], &mut [f64; N]),
+    {
+        self.set_state(&mut f, t, y)
+    }
+
+    fn step<F>(&mut self, mut f: F, t_stop: f64) -> Result<StepOutcome, IntegratorError>
+    where
+        F: FnMut(f64, &[f64; N], &mut [f64; N]),
+    {
+        if !self.initialized {
+            return Err(IntegratorError::NotInitialized);
+        }
+        if t_stop.is_nan() || t_stop <= self.t {
+            return Err(IntegratorError::StopTimeNotAhead { t: self.t, t_stop });
+        }
+        let c = self.control;
+        let rtol = self.tol.rtol;
+        let alpha = 0.2 - 0.75 * c.beta;
+        let t = self.t;
+        let y = self.y;
+        let k1 = self.dy;
+        let mut h = if self.h_next > 0.0 {
+            self.h_next
+        } else {
+            self.initial_step(&mut f, t_stop)
+        };
+        let mut rejected = false;
+        let (mut k2, mut k3, mut k4) = ([0.0; N], [0.0; N], [0.0; N]);
+        let (mut k5, mut k6, mut k7) = ([0.0; N], [0.0; N], [0.0; N]);
+        let mut ys = [0.0; N];
+        let mut y_new = [0.0; N];
+        loop {
+            let h_proposal = h.min(c.h_max);
+            let (h_try, last) = clip_to_stop(t, h_proposal, t_stop);
+            h = h_try;
+            let h_floor = c.h_min.max(10.0 * f64::EPSILON * t.abs());
+            if !last && (h.is_nan() || h < h_floor || h <= 0.0) {
+                return Err(IntegratorError::StepSizeUnderflow {
+                    t,
+                    h,
+                    h_min: h_floor,
+                });
+            }
+            let t_end = if last { t_stop } else { t + h };
+
+            for i in 0..N {
+                ys[i] = y[i] + h * A21 * k1[i];
+            }
+            f(t + C2 * h, &ys, &mut k2);
+            for i in 0..N {
+                ys[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i]);
+            }
+            f(t + C3 * h, &ys, &mut k3);
+            for i in 0..N {
+                ys[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
+            }
+            f(t + C4 * h, &ys, &mut k4);
+            for i in 0..N {
+                ys[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
+            }
+            f(t + C5 * h, &ys, &mut k5);
+            for i in 0..N {
+                ys[i] = y[i]
+                    + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
+            }
+            f(t_end, &ys, &mut k6);
+            for i in 0..N {
+                y_new[i] = y[i]
+                    + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i]);
+            }
+            f(t_end, &y_new, &mut k7);
+            self.n_eval += 6;
+
+            let mut sum = 0.0;
+            for i in 0..N {
+                let e = h
+                    * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
+                let sk = self.tol.atol[i] + rtol * y[i].abs().max(y_new[i].abs());
+                let q = e / sk;
+                sum += q * q;
+            }
+            let err = (sum / N as f64).sqrt();
+            let fac_err = err.powf(alpha);
+
+            if err <= 1.0 {
+                let fac = (c.safety * self.err_prev.powf(c.beta) / fac_err)
+                    .clamp(c.min_factor, c.max_factor);
+                let mut h_new = h * fac;
+                if rejected {
+                    h_new = h_new.min(h);
+                }
+                if last && h < h_proposal {
+                    h_new = h_new.max(h_proposal);
+                }
+                self.err_prev = err.max(1e-4);
+                for i in 0..N {
+                    let ydiff = y_new[i] - y[i];
+                    let bspl = h * k1[i] - ydiff;
+                    self.cont[0][i] = ydiff;
+                    self.cont[1][i] = bspl;
+                    self.cont[2][i] = ydiff - h * k7[i] - bspl;
+                    self.cont[3][i] = h
+                        * (D1 * k1[i]
+                            + D3 * k3[i]
+                            + D4 * k4[i]
+                            + D5 * k5[i]
+                            + D6 * k6[i]
+                            + D7 * k7[i]);
+                }
+                self.t_prev = t;
+                self.y_prev = y;
+                self.t = t_end;
+                self.y = y_new;
+                self.dy = k7;
+                self.h_next = h_new;
+                self.n_accepted += 1;
+                return Ok(if last {
+                    StepOutcome::ReachedStop
+                } else {
+                    StepOutcome::Internal
+                });
+            }
+            // Rejected (a NaN error lands here too, and `min` then picks 1/min_factor).
+            self.n_rejected += 1;
+            rejected = true;
+            h /= (1.0 / c.min_factor).min(fac_err / c.safety);
+        }
+    }
+
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    fn y(&self) -> &[f64; N] {
+        &self.y
+    }
+
+    fn y_prev(&self) -> &[f64; N] {
+        &self.y_prev
+    }
+
+    fn dy(&self) -> &[f64; N] {
+        &self.dy
+    }
+
+    fn dense(&self, t_between: f64) -> [f64; N] {
+        if t_between == self.t {
+            return self.y;
+        }
+        if t_between == self.t_prev {
+            return self.y_prev;
+        }
+        let s = (t_between - self.t_prev) / (self.t - self.t_prev);
+        let s1 = 1.0 - s;
+        let mut out = [0.0; N];
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.y_prev[i]
+                + s * (self.cont[0][i]
+                    + s1 * (self.cont[1][i] + s * (self.cont[2][i] + s1 * self.cont[3][i])));
+        }
+        out
+    }
+
+    fn dense_component(&self, t_between: f64, i: usize) -> f64 {
+        if t_between == self.t {
+            return self.y[i];
+        }
+        if t_between == self.t_prev {
+            return self.y_prev[i];
+        }
+        let s = (t_between - self.t_prev) / (self.t - self.t_prev);
+        let s1 = 1.0 - s;
+        self.y_prev[i]
+            + s * (self.cont[0][i]
+                + s1 * (self.cont[1][i] + s * (self.cont[2][i] + s1 * self.cont[3][i])))
+    }
+
+    fn n_eval(&self) -> u64 {
+        self.n_eval
+    }
+}
