@@ -241,3 +241,6 @@ pub fn mass_table(design: &Design) -> Vec<MassRow> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests;

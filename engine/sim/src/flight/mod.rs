@@ -294,6 +294,21 @@ impl Simulation {
         driver::run_from(&self.model, observer, t0, y0)
     }
 
+    /// Mass properties at `t_s` with every part where the design puts it (no shift), station frame.
+    pub fn mass_properties_at(&self, t_s: f64) -> MassProps {
+        crate::massprops::to_station(
+            &self
+                .model
+                .instant(&[f64::INFINITY; model::MAX_SHIFTS], t_s)
+                .mass,
+        )
+    }
+
+    /// Static margin, calibres, for a center of mass `cg_m` aft of the tip.
+    pub fn static_margin_for(&self, cg_m: f64) -> f64 {
+        (self.model.cp_mach0_m - cg_m) / self.model.ref_diameter_m
+    }
+
     /// The rocket's mass, center of mass (m aft of the tip) and inertia about that center at
     /// time `t_s` of `flight`, in the design's station frame.
     pub fn mass_properties(&self, flight: &Flight, t_s: f64) -> MassProps {

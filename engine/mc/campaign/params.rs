@@ -1,0 +1,169 @@
+//! The inputs a scenario can sweep or disperse: their key paths (as the TOML file writes
+//! them under `[sweep]` and `[dispersions]`), their column names in the output, their units
+//! and the range of values a flight accepts.
+
+/// One input of a flight that a scenario may sweep or disperse. Parachutes and shifts are
+/// numbered in the order the scenario lists them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Param {
+    /// Mass of the rocket without its motor, kg (nominal: the design's, ballast included).
+    StructureMassKg,
+    /// Center of mass of the rocket without its motor, m aft of the nose tip.
+    StructureCgM,
+    /// Mass of the design's ballast component, kg.
+    BallastKg,
+    /// Total impulse of the motor, N·s (nominal: its thrust curve's).
+    MotorImpulseNs,
+    /// Burn time of the motor, s (nominal: its thrust curve's).
+    MotorBurnTimeS,
+    /// Multiplier of the drag coefficient (nominal 1).
+    DragScale,
+    /// Launch site elevation above sea level, m.
+    ElevationM,
+    WindSpeedMS,
+    /// Direction the wind blows from, degrees clockwise from north.
+    WindFromDeg,
+    RailLengthM,
+    RailInclinationDeg,
+    RailHeadingDeg,
+    ParachuteCdsM2(usize),
+    ParachuteLagS(usize),
+    /// The number in the parachute's trigger (its time, height or delay).
+    ParachuteTrigger(usize),
+    ShiftTravelM(usize),
+    ShiftDurationS(usize),
+    /// The number in the shift's trigger (its time, height or delay).
+    ShiftTrigger(usize),
+}
+
+/// The global inputs, in their canonical order (the order of the output's columns and of the
+/// sweep's axes), with their key and unit.
+pub const GLOBAL: [(Param, &str, &str); 12] = [
+    (Param::StructureMassKg, "structure_mass_kg", "kg"),
+    (Param::StructureCgM, "structure_cg_m", "m"),
+    (Param::BallastKg, "ballast_kg", "kg"),
+    (Param::MotorImpulseNs, "motor_impulse_ns", "N·s"),
+    (Param::MotorBurnTimeS, "motor_burn_time_s", "s"),
+    (Param::DragScale, "drag_scale", "1"),
+    (Param::ElevationM, "elevation_m", "m"),
+    (Param::WindSpeedMS, "wind_speed_m_s", "m/s"),
+    (Param::WindFromDeg, "wind_from_deg", "deg"),
+    (Param::RailLengthM, "rail_length_m", "m"),
+    (Param::RailInclinationDeg, "rail_inclination_deg", "deg"),
+    (Param::RailHeadingDeg, "rail_heading_deg", "deg"),
+];
+
+/// The rule a value of an input must obey.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Domain {
+    Finite,
+    Positive,
+    NonNegative,
+    /// At least this much.
+    AtLeast(f64),
+    /// Above `lo` and at most `hi`.
+    Within(f64, f64),
+}
+
+impl Domain {
+    /// `Ok` if `v` obeys the rule, else the rule in words.
+    pub fn check(&self, v: f64) -> Result<(), String> {
+        let ok = v.is_finite()
+            && match *self {
+                Domain::Finite => true,
+                Domain::Positive => v > 0.0,
+                Domain::NonNegative => v >= 0.0,
+                Domain::AtLeast(lo) => v >= lo,
+                Domain::Within(lo, hi) => v > lo && v <= hi,
+            };
+        if ok {
+            Ok(())
+        } else {
+            Err(match *self {
+                Domain::Finite => format!("must be finite (got {v})"),
+                Domain::Positive => format!("must be positive and finite (got {v})"),
+                Domain::NonNegative => format!("must be finite and not negative (got {v})"),
+                Domain::AtLeast(lo) => format!("must be at least {lo} (got {v})"),
+                Domain::Within(lo, hi) => format!("must be above {lo} and at most {hi} (got {v})"),
+            })
+        }
+    }
+}
+
+impl Param {
+    /// Unit of the input's values ("1" for a pure number).
+    pub fn unit(&self) -> &'static str {
+        match self {
+            Param::ParachuteCdsM2(_) => "m²",
+            Param::ParachuteLagS(_) | Param::ShiftDurationS(_) => "s",
+            Param::ShiftTravelM(_) => "m",
+            Param::ParachuteTrigger(_) | Param::ShiftTrigger(_) => "",
+            p => GLOBAL.iter().find(|g| g.0 == *p).map_or("", |g| g.2),
+        }
+    }
+
+    /// The values a flight accepts. The trigger numbers are checked by their trigger.
+    pub fn domain(&self) -> Domain {
+        match self {
+            Param::StructureMassKg | Param::MotorImpulseNs | Param::MotorBurnTimeS | Param::DragScale | Param::RailLengthM => Domain::Positive,
+            Param::BallastKg | Param::WindSpeedMS | Param::ParachuteLagS(_) => Domain::NonNegative,
+            Param::ParachuteCdsM2(_) => Domain::Positive,
+            Param::StructureCgM | Param::ElevationM | Param::WindFromDeg | Param::RailHeadingDeg | Param::ShiftTravelM(_) => Domain::Finite,
+            Param::RailInclinationDeg => Domain::Within(0.0, 90.0),
+            Param::ShiftDurationS(_) => Domain::AtLeast(0.01),
+            Param::ParachuteTrigger(_) => Domain::NonNegative,
+            Param::ShiftTrigger(_) => Domain::NonNegative,
+        }
+    }
+
+    /// The global input with this key, if any.
+    pub fn global(key: &str) -> Option<Param> {
+        GLOBAL.iter().find(|g| g.1 == key).map(|g| g.0)
+    }
+
+    /// The key of a global input (`None` for parachute and shift inputs, whose key needs
+    /// their names: see `Scenario::key`).
+    pub fn global_key(&self) -> Option<&'static str> {
+        GLOBAL.iter().find(|g| g.0 == *self).map(|g| g.1)
+    }
+}
+
+/// Unit of a trigger's number by its field name.
+pub fn trigger_unit(field: &str) -> &'static str {
+    match field {
+        "height_m" => "m",
+        _ => "s",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_global_input_has_a_unit_and_a_key_that_ends_in_it() {
+        for (p, key, unit) in GLOBAL {
+            assert_eq!(p.unit(), unit);
+            assert_eq!(Param::global(key), Some(p));
+            let suffix = match unit {
+                "kg" => "_kg",
+                "m" => "_m",
+                "N·s" => "_ns",
+                "s" => "_s",
+                "m/s" => "_m_s",
+                "deg" => "_deg",
+                _ => "",
+            };
+            assert!(key.ends_with(suffix), "{key} should end in {suffix}");
+        }
+    }
+
+    #[test]
+    fn domains_say_the_rule_a_value_breaks() {
+        assert_eq!(Param::ParachuteCdsM2(0).domain().check(-1.0), Err("must be positive and finite (got -1)".into()));
+        assert!(Param::RailInclinationDeg.domain().check(90.0).is_ok());
+        assert!(Param::RailInclinationDeg.domain().check(0.0).is_err());
+        assert_eq!(Param::ShiftDurationS(0).domain().check(0.005), Err("must be at least 0.01 (got 0.005)".into()));
+        assert!(Param::WindSpeedMS.domain().check(f64::NAN).is_err());
+    }
+}

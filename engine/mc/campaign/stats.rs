@@ -1,0 +1,332 @@
+//! Statistics of a campaign, per sweep point: the distribution of every metric, the landing
+//! dispersion ellipses and the sensitivity of every metric to every dispersed input.
+//!
+//! - Percentiles interpolate linearly between order statistics (Hyndman & Fan's type 7, the
+//!   default of NumPy and R, DuckDB's `quantile_cont`): the p-quantile of n sorted values is
+//!   at position (n − 1) p. The standard deviation is the sample one (n − 1).
+//! - The landing ellipses are the contours of the 2×2 covariance of the landing points at
+//!   Mahalanobis distance k = 1, 2, 3: semi-axes k √λ along the covariance's eigenvectors. For a
+//!   normal scatter they hold 39.3 %, 86.5 % and 98.9 % of the landings.
+//! - Sensitivity: within a sweep point, each metric is fitted by least squares (faer's
+//!   column-pivoted QR) as a linear function of the dispersed inputs, all standardized. The
+//!   share of the metric's variance given to an input is its standardized coefficient squared,
+//!   β*² = (β σ_x / σ_y)². For independent inputs, as the draws are, the shares add up to the
+//!   fit's R² (up to sampling noise); 1 − R² is what the linear model does not explain
+//!   (nonlinearity and interactions).
+//!
+//! Only variants that landed enter the statistics; `failures` counts the others. Missing
+//! values are NaN here (a metric is never NaN otherwise: see `fly`).
+
+use faer::linalg::solvers::SolveLstsq;
+use faer::Mat;
+
+/// The distribution of one metric's values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Summary {
+    pub count: u64,
+    pub mean: f64,
+    /// Sample standard deviation (None with fewer than two values).
+    pub std: Option<f64>,
+    pub min: f64,
+    pub p1: f64,
+    pub p5: f64,
+    pub p50: f64,
+    pub p95: f64,
+    pub p99: f64,
+    pub max: f64,
+}
+
+/// The q-quantile (0 ≤ q ≤ 1) of sorted values, type 7.
+pub fn quantile(sorted: &[f64], q: f64) -> f64 {
+    let pos = (sorted.len() - 1) as f64 * q;
+    let lo = pos.floor() as usize;
+    let hi = (lo + 1).min(sorted.len() - 1);
+    sorted[lo] + (pos - lo as f64) * (sorted[hi] - sorted[lo])
+}
+
+/// Summary of the finite values among `values` (None if there are none).
+pub fn summarize(values: impl IntoIterator<Item = f64>) -> Option<Summary> {
+    let mut v: Vec<f64> = values.into_iter().filter(|x| x.is_finite()).collect();
+    if v.is_empty() {
+        return None;
+    }
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let std = (v.len() > 1).then(|| (v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0)).sqrt());
+    v.sort_by(f64::total_cmp);
+    Some(Summary {
+        count: v.len() as u64,
+        mean,
+        std,
+        min: v[0],
+        p1: quantile(&v, 0.01),
+        p5: quantile(&v, 0.05),
+        p50: quantile(&v, 0.5),
+        p95: quantile(&v, 0.95),
+        p99: quantile(&v, 0.99),
+        max: v[v.len() - 1],
+    })
+}
+
+/// A landing dispersion ellipse at 1 σ (multiply the semi-axes by k for k σ).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ellipse {
+    pub count: u64,
+    pub center_x_m: f64,
+    pub center_y_m: f64,
+    pub var_x_m2: f64,
+    pub var_y_m2: f64,
+    pub cov_xy_m2: f64,
+    pub semi_major_m: f64,
+    pub semi_minor_m: f64,
+    /// Direction of the major axis, degrees counterclockwise from +x (east) toward +y
+    /// (north), in (−90, 90].
+    pub major_axis_deg: f64,
+}
+
+/// Semi-axes (√ of the eigenvalues, major first) and the major axis's angle (degrees from
+/// +x toward +y) of the 2×2 covariance `[[vxx, vxy], [vxy, vyy]]`.
+pub fn covariance_axes(vxx: f64, vyy: f64, vxy: f64) -> (f64, f64, f64) {
+    let mid = 0.5 * (vxx + vyy);
+    let r = (0.25 * (vxx - vyy) * (vxx - vyy) + vxy * vxy).sqrt();
+    let (l1, l2) = (mid + r, (mid - r).max(0.0));
+    let mut angle = 0.5 * (2.0 * vxy).atan2(vxx - vyy).to_degrees();
+    if angle <= -90.0 {
+        angle += 180.0;
+    }
+    (l1.sqrt(), l2.sqrt(), angle)
+}
+
+/// The 1 σ ellipse of the points (x, y) that are both finite (None with fewer than 3).
+pub fn ellipse(xs: &[f64], ys: &[f64]) -> Option<Ellipse> {
+    let pts: Vec<(f64, f64)> = xs.iter().zip(ys).filter(|(x, y)| x.is_finite() && y.is_finite()).map(|(x, y)| (*x, *y)).collect();
+    if pts.len() < 3 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let cx = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let cy = pts.iter().map(|p| p.1).sum::<f64>() / n;
+    let (mut vxx, mut vyy, mut vxy) = (0.0, 0.0, 0.0);
+    for (x, y) in &pts {
+        vxx += (x - cx) * (x - cx);
+        vyy += (y - cy) * (y - cy);
+        vxy += (x - cx) * (y - cy);
+    }
+    let (vxx, vyy, vxy) = (vxx / (n - 1.0), vyy / (n - 1.0), vxy / (n - 1.0));
+    let (a, b, angle) = covariance_axes(vxx, vyy, vxy);
+    Some(Ellipse { count: pts.len() as u64, center_x_m: cx, center_y_m: cy, var_x_m2: vxx, var_y_m2: vyy, cov_xy_m2: vxy, semi_major_m: a, semi_minor_m: b, major_axis_deg: angle })
+}
+
+/// A linear fit of one metric on the dispersed inputs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sensitivity {
+    pub count: u64,
+    pub r2: f64,
+    /// Per input: the metric's change per unit of the input (None for an input that did not
+    /// vary).
+    pub coefficients: Vec<Option<f64>>,
+    /// Per input: the standardized coefficient β σ_x / σ_y.
+    pub standardized: Vec<Option<f64>>,
+    /// Per input: the share of the metric's variance, β*².
+    pub shares: Vec<Option<f64>>,
+}
+
+/// Fit `y` on the columns `xs` (rows where y and every x are finite). None when the metric
+/// does not vary or there are not more rows than inputs + 1.
+pub fn sensitivity(xs: &[&[f64]], y: &[f64]) -> Option<Sensitivity> {
+    let rows: Vec<usize> = (0..y.len()).filter(|&r| y[r].is_finite() && xs.iter().all(|x| x[r].is_finite())).collect();
+    let n = rows.len();
+    let mean_sd = |f: &dyn Fn(usize) -> f64| {
+        let m = rows.iter().map(|&r| f(r)).sum::<f64>() / n as f64;
+        let s = (rows.iter().map(|&r| (f(r) - m) * (f(r) - m)).sum::<f64>() / (n as f64 - 1.0)).sqrt();
+        (m, s)
+    };
+    if n < 3 {
+        return None;
+    }
+    let (my, sy) = mean_sd(&|r| y[r]);
+    if !(sy > 0.0) {
+        return None;
+    }
+    // Inputs that vary (relative to their size: a constant column carries rounding only).
+    let stats: Vec<(f64, f64)> = xs.iter().map(|x| mean_sd(&|r| x[r])).collect();
+    let used: Vec<usize> = (0..xs.len()).filter(|&j| stats[j].1 > 1e-12 * stats[j].0.abs().max(f64::MIN_POSITIVE)).collect();
+    let p = used.len();
+    let mut out = Sensitivity { count: n as u64, r2: 0.0, coefficients: vec![None; xs.len()], standardized: vec![None; xs.len()], shares: vec![None; xs.len()] };
+    if p == 0 {
+        return Some(out);
+    }
+    if n <= p + 1 {
+        return None;
+    }
+    let z = Mat::<f64>::from_fn(n, p, |i, k| {
+        let j = used[k];
+        (xs[j][rows[i]] - stats[j].0) / stats[j].1
+    });
+    let yc = Mat::<f64>::from_fn(n, 1, |i, _| y[rows[i]] - my);
+    let b = z.col_piv_qr().solve_lstsq(&yc);
+    let fitted = &z * &b;
+    let ss_res: f64 = (0..n).map(|i| (yc[(i, 0)] - fitted[(i, 0)]).powi(2)).sum();
+    let ss_tot = sy * sy * (n as f64 - 1.0);
+    out.r2 = 1.0 - ss_res / ss_tot;
+    for (k, &j) in used.iter().enumerate() {
+        let bk = b[(k, 0)];
+        out.coefficients[j] = Some(bk / stats[j].1);
+        out.standardized[j] = Some(bk / sy);
+        out.shares[j] = Some((bk / sy) * (bk / sy));
+    }
+    Some(out)
+}
+
+/// The numbers of a campaign's rows the statistics read, column by column (NaN for a missing
+/// value).
+#[derive(Debug, Clone, Default)]
+pub struct Table {
+    pub point: Vec<u32>,
+    pub landed: Vec<bool>,
+    /// One column per input of the plan.
+    pub inputs: Vec<Vec<f64>>,
+    /// One column per metric.
+    pub metrics: Vec<Vec<f64>>,
+}
+
+/// Statistics of one sweep point.
+#[derive(Debug, Clone)]
+pub struct PointStats {
+    pub point: usize,
+    pub variants: u64,
+    pub failures: u64,
+    /// Per metric.
+    pub summaries: Vec<Option<Summary>>,
+    pub ellipse: Option<Ellipse>,
+    /// Per metric (fits on the dispersed inputs).
+    pub sensitivity: Vec<Option<Sensitivity>>,
+}
+
+/// Statistics of every sweep point. `dispersed[j]` says whether input j is dispersed;
+/// `landing` gives the metric indices of the landing x and y.
+pub fn compute(table: &Table, points: usize, dispersed: &[bool], landing: (usize, usize)) -> Vec<PointStats> {
+    let mut rows_of: Vec<Vec<usize>> = vec![vec![]; points];
+    for (r, &p) in table.point.iter().enumerate() {
+        rows_of[p as usize].push(r);
+    }
+    let inputs: Vec<usize> = (0..table.inputs.len()).filter(|&j| dispersed[j]).collect();
+    rows_of
+        .iter()
+        .enumerate()
+        .map(|(point, rows)| {
+            let landed: Vec<usize> = rows.iter().copied().filter(|&r| table.landed[r]).collect();
+            let col = |c: &Vec<f64>| -> Vec<f64> { landed.iter().map(|&r| c[r]).collect() };
+            let xs: Vec<Vec<f64>> = inputs.iter().map(|&j| col(&table.inputs[j])).collect();
+            let x_refs: Vec<&[f64]> = xs.iter().map(Vec::as_slice).collect();
+            let metric_cols: Vec<Vec<f64>> = table.metrics.iter().map(col).collect();
+            PointStats {
+                point,
+                variants: rows.len() as u64,
+                failures: (rows.len() - landed.len()) as u64,
+                summaries: metric_cols.iter().map(|m| summarize(m.iter().copied())).collect(),
+                ellipse: ellipse(&metric_cols[landing.0], &metric_cols[landing.1]),
+                sensitivity: metric_cols.iter().map(|m| if x_refs.is_empty() { None } else { sensitivity(&x_refs, m) }).collect(),
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percentiles_of_1_to_100_interpolate_between_order_statistics() {
+        // Type 7: position (n − 1) q = 99 q, so p1 = 1 + 0.99, p5 = 1 + 4.95, p50 = 50.5...
+        let s = summarize((1..=100).rev().map(f64::from)).unwrap();
+        assert_eq!(s.count, 100);
+        assert_eq!(s.min, 1.0);
+        assert_eq!(s.max, 100.0);
+        assert!((s.p1 - 1.99).abs() < 1e-12);
+        assert!((s.p5 - 5.95).abs() < 1e-12);
+        assert!((s.p50 - 50.5).abs() < 1e-12);
+        assert!((s.p95 - 95.05).abs() < 1e-12);
+        assert!((s.p99 - 99.01).abs() < 1e-12);
+        assert!((s.mean - 50.5).abs() < 1e-12);
+        // Sample variance of 1..n is n(n + 1)/12 = 841.666...
+        assert!((s.std.unwrap() - (100.0 * 101.0 / 12.0f64).sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_summary_skips_missing_values_and_one_value_has_no_spread() {
+        let s = summarize([f64::NAN, 3.0, f64::NAN]).unwrap();
+        assert_eq!((s.count, s.mean, s.std, s.p5, s.p95), (1, 3.0, None, 3.0, 3.0));
+        assert!(summarize([f64::NAN]).is_none());
+    }
+
+    #[test]
+    fn the_ellipse_of_a_known_covariance_has_its_eigen_axes() {
+        // Diagonal: axes along x and y.
+        assert_eq!(covariance_axes(4.0, 1.0, 0.0), (2.0, 1.0, 0.0));
+        // [[2, 1], [1, 2]]: eigenvalues 3 and 1, major axis at 45°.
+        let (a, b, t) = covariance_axes(2.0, 2.0, 1.0);
+        assert!((a - 3f64.sqrt()).abs() < 1e-15 && (b - 1.0).abs() < 1e-15 && (t - 45.0).abs() < 1e-12);
+        // [[1, 0], [0, 9]]: major axis along y, 90°.
+        let (a, b, t) = covariance_axes(1.0, 9.0, 0.0);
+        assert_eq!((a, b, t), (3.0, 1.0, 90.0));
+        // [[5, −2], [−2, 2]]: eigenvalues 6 and 1, major axis along (2, −1): −26.565°.
+        let (a, b, t) = covariance_axes(5.0, 2.0, -2.0);
+        assert!((a - 6f64.sqrt()).abs() < 1e-14 && (b - 1.0).abs() < 1e-14);
+        assert!((t - (-0.5f64).atan().to_degrees()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_ellipse_of_four_points_has_their_sample_covariance() {
+        // Points (±2, 0) and (0, ±1) about (10, 20): var x = 8/3, var y = 2/3, cov 0.
+        let xs = [12.0, 8.0, 10.0, 10.0, f64::NAN];
+        let ys = [20.0, 20.0, 21.0, 19.0, 5.0];
+        let e = ellipse(&xs, &ys).unwrap();
+        assert_eq!((e.count, e.center_x_m, e.center_y_m), (4, 10.0, 20.0));
+        assert!((e.semi_major_m - (8.0f64 / 3.0).sqrt()).abs() < 1e-15);
+        assert!((e.semi_minor_m - (2.0f64 / 3.0).sqrt()).abs() < 1e-15);
+        assert_eq!(e.major_axis_deg, 0.0);
+    }
+
+    #[test]
+    fn regression_recovers_known_linear_coefficients() {
+        // y = 3 + 2 x1 − 0.5 x2 exactly, x from a fixed pseudo-random sequence.
+        let n = 200;
+        let x1: Vec<f64> = (0..n).map(|i| ((i * 37 % 101) as f64) / 10.0).collect();
+        let x2: Vec<f64> = (0..n).map(|i| ((i * 53 % 97) as f64) * 3.0 - 40.0).collect();
+        let x3: Vec<f64> = vec![7.0; n]; // an input that did not vary
+        let y: Vec<f64> = (0..n).map(|i| 3.0 + 2.0 * x1[i] - 0.5 * x2[i]).collect();
+        let s = sensitivity(&[&x1, &x2, &x3], &y).unwrap();
+        assert!((s.coefficients[0].unwrap() - 2.0).abs() < 1e-10);
+        assert!((s.coefficients[1].unwrap() + 0.5).abs() < 1e-10);
+        assert_eq!(s.coefficients[2], None);
+        assert!((s.r2 - 1.0).abs() < 1e-10);
+        // The shares are (β σ_x / σ_y)², computed here by hand from the columns.
+        let sd = |v: &[f64]| {
+            let m = v.iter().sum::<f64>() / v.len() as f64;
+            (v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (v.len() - 1) as f64).sqrt()
+        };
+        let share1 = (2.0 * sd(&x1) / sd(&y)).powi(2);
+        assert!((s.shares[0].unwrap() - share1).abs() < 1e-10);
+    }
+
+    #[test]
+    fn regression_needs_more_rows_than_inputs_and_a_metric_that_varies() {
+        assert!(sensitivity(&[&[1.0, 2.0, 3.0]], &[5.0, 5.0, 5.0]).is_none());
+        assert!(sensitivity(&[&[1.0, 2.0, 3.0], &[3.0, 1.0, 2.0]], &[1.0, 2.0, 4.0]).is_none());
+    }
+
+    #[test]
+    fn statistics_group_by_point_and_count_failures() {
+        let table = Table {
+            point: vec![0, 0, 0, 1, 1],
+            landed: vec![true, true, false, true, true],
+            inputs: vec![vec![1.0, 2.0, 3.0, 4.0, 5.0]],
+            metrics: vec![vec![10.0, 20.0, f64::NAN, 1.0, 3.0], vec![0.0; 5], vec![0.0; 5]],
+        };
+        let st = compute(&table, 2, &[true], (1, 2));
+        assert_eq!((st[0].variants, st[0].failures), (3, 1));
+        assert_eq!(st[0].summaries[0].unwrap().mean, 15.0);
+        assert_eq!(st[1].summaries[0].unwrap().mean, 2.0);
+    }
+}

@@ -1,0 +1,233 @@
+//! Variants: the sweep grid × the variants of each point, each variant a row of every input's
+//! value, and how the rows are cut into shards and chunks.
+//!
+//! Variant `id` runs over `0 .. points × variants_per_point`: its sweep point is
+//! `id / variants_per_point` and its replicate `id % variants_per_point`. Points are numbered
+//! with the swept inputs in canonical order, the last one varying fastest. An input's value is
+//! its sweep value at the point (or its nominal), scattered by its dispersion with draws from
+//! stream `replicate` (common random numbers: replicate r of every point sees the same random
+//! numbers, so differences between sweep points are not drowned in noise) or stream `id`
+//! (independent points). Either way a variant's values depend only on (seed, id).
+//!
+//! A shard K of N takes the variants `id ≡ K (mod N)` (interleaved, so that every shard gets
+//! its share of every sweep point and the shards take about as long); its variants are cut in
+//! order into chunks of `chunk_size`, the unit of work and of resumption.
+
+use super::sample::{input_rng, Dispersion};
+
+/// One input as the variants need it: its nominal (the center when it is not swept), its
+/// sweep and its dispersion.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanInput {
+    pub key: String,
+    pub nominal: f64,
+    pub sweep: Option<Vec<f64>>,
+    pub dispersion: Option<Dispersion>,
+}
+
+/// Everything that decides the variants' values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    pub seed: u64,
+    pub variants_per_point: u64,
+    pub common_random_numbers: bool,
+    pub inputs: Vec<PlanInput>,
+}
+
+/// One variant: its id, sweep point, replicate, and the value of every input of the plan (in
+/// the plan's order).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variant {
+    pub id: u64,
+    pub point: usize,
+    pub replicate: u64,
+    pub values: Vec<f64>,
+}
+
+impl Plan {
+    /// Number of sweep points.
+    pub fn points(&self) -> usize {
+        self.inputs.iter().filter_map(|i| i.sweep.as_ref()).map(Vec::len).product()
+    }
+
+    /// Number of variants.
+    pub fn total(&self) -> u64 {
+        self.points() as u64 * self.variants_per_point
+    }
+
+    /// For each input, the index of its value in its sweep at `point` (`None` if not swept).
+    pub fn point_indices(&self, point: usize) -> Vec<Option<usize>> {
+        let mut rest = point;
+        let mut idx = vec![None; self.inputs.len()];
+        for (j, input) in self.inputs.iter().enumerate().rev() {
+            if let Some(s) = &input.sweep {
+                idx[j] = Some(rest % s.len());
+                rest /= s.len();
+            }
+        }
+        idx
+    }
+
+    /// The center of every input at `point`: its sweep value there, or its nominal.
+    pub fn centers(&self, point: usize) -> Vec<f64> {
+        self.point_indices(point)
+            .iter()
+            .zip(&self.inputs)
+            .map(|(k, input)| match (k, &input.sweep) {
+                (Some(k), Some(s)) => s[*k],
+                _ => input.nominal,
+            })
+            .collect()
+    }
+
+    /// The swept inputs' values at `point`, in order.
+    pub fn sweep_values(&self, point: usize) -> Vec<f64> {
+        self.centers(point).into_iter().zip(&self.inputs).filter(|(_, i)| i.sweep.is_some()).map(|(c, _)| c).collect()
+    }
+
+    /// Variant `id` (which must be below [`Plan::total`]).
+    pub fn variant(&self, id: u64) -> Variant {
+        let point = (id / self.variants_per_point) as usize;
+        let replicate = id % self.variants_per_point;
+        let stream = if self.common_random_numbers { replicate } else { id };
+        let values = self
+            .centers(point)
+            .into_iter()
+            .zip(&self.inputs)
+            .map(|(c, input)| match &input.dispersion {
+                Some(d) => d.sample(c, &mut input_rng(self.seed, stream, &input.key)),
+                None => c,
+            })
+            .collect();
+        Variant { id, point, replicate, values }
+    }
+}
+
+/// Shard K of N: the variants `id ≡ K (mod N)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    pub k: u64,
+    pub n: u64,
+}
+
+impl Shard {
+    /// The whole run.
+    pub const ALL: Shard = Shard { k: 0, n: 1 };
+
+    /// Parse `K/N` (0 ≤ K < N).
+    pub fn parse(s: &str) -> Result<Shard, String> {
+        let (k, n) = s.split_once('/').ok_or_else(|| format!("--shard must be K/N, for instance 0/4 (got \"{s}\")"))?;
+        let k: u64 = k.trim().parse().map_err(|_| format!("--shard K/N: K must be a whole number (got \"{k}\")"))?;
+        let n: u64 = n.trim().parse().map_err(|_| format!("--shard K/N: N must be a whole number (got \"{n}\")"))?;
+        if n == 0 || k >= n {
+            return Err(format!("--shard K/N needs 0 <= K < N (got {k}/{n})"));
+        }
+        Ok(Shard { k, n })
+    }
+
+    /// How many of `total` variants the shard takes.
+    pub fn count(&self, total: u64) -> u64 {
+        if self.k >= total {
+            0
+        } else {
+            (total - self.k).div_ceil(self.n)
+        }
+    }
+
+    /// The id of the shard's `q`-th variant.
+    pub fn id(&self, q: u64) -> u64 {
+        self.k + q * self.n
+    }
+
+    /// Whether this is the whole run.
+    pub fn is_all(&self) -> bool {
+        self.n == 1
+    }
+}
+
+/// The shard's chunks: for chunk c, the range of the shard's positions it holds.
+pub fn chunks(shard_count: u64, chunk_size: usize) -> Vec<std::ops::Range<u64>> {
+    let s = chunk_size as u64;
+    (0..shard_count.div_ceil(s)).map(|c| c * s..((c + 1) * s).min(shard_count)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::campaign::sample::Shape;
+
+    fn plan(crn: bool) -> Plan {
+        let normal = Some(Dispersion { shape: Shape::Normal { bias: 0.0, sigma: 1.0 }, relative: false });
+        Plan {
+            seed: 5,
+            variants_per_point: 4,
+            common_random_numbers: crn,
+            inputs: vec![
+                PlanInput { key: "a".into(), nominal: 1.0, sweep: Some(vec![10.0, 20.0, 30.0]), dispersion: None },
+                PlanInput { key: "b".into(), nominal: 2.0, sweep: None, dispersion: normal },
+                PlanInput { key: "c".into(), nominal: 3.0, sweep: Some(vec![0.5, 0.7]), dispersion: normal },
+            ],
+        }
+    }
+
+    #[test]
+    fn points_run_over_the_grid_with_the_last_swept_input_fastest() {
+        let p = plan(true);
+        assert_eq!(p.points(), 6);
+        assert_eq!(p.total(), 24);
+        let grid: Vec<Vec<f64>> = (0..6).map(|k| p.sweep_values(k)).collect();
+        assert_eq!(grid, vec![vec![10.0, 0.5], vec![10.0, 0.7], vec![20.0, 0.5], vec![20.0, 0.7], vec![30.0, 0.5], vec![30.0, 0.7]]);
+        assert_eq!(p.centers(3), vec![20.0, 2.0, 0.7]);
+    }
+
+    #[test]
+    fn a_variant_holds_its_point_s_values_and_its_draws_around_them() {
+        let p = plan(true);
+        let v = p.variant(13); // point 3, replicate 1
+        assert_eq!((v.point, v.replicate), (3, 1));
+        assert_eq!(v.values[0], 20.0);
+        let d = p.inputs[1].dispersion.unwrap();
+        assert_eq!(v.values[1], d.sample(2.0, &mut input_rng(5, 1, "b")));
+        assert_eq!(v.values[2], d.sample(0.7, &mut input_rng(5, 1, "c")));
+    }
+
+    #[test]
+    fn with_common_random_numbers_every_point_sees_the_same_draws() {
+        let p = plan(true);
+        let (a, b) = (p.variant(1), p.variant(1 + 4 * 5)); // replicate 1 of points 0 and 5
+        assert_eq!(a.values[1], b.values[1]);
+        assert!((a.values[2] - 0.5 - (b.values[2] - 0.7)).abs() < 1e-15);
+        let q = plan(false);
+        assert_ne!(q.variant(1).values[1], q.variant(21).values[1]);
+    }
+
+    #[test]
+    fn shards_interleave_and_together_hold_every_variant_once() {
+        let total = 23;
+        let mut seen = vec![0; total as usize];
+        for k in 0..4 {
+            let s = Shard { k, n: 4 };
+            for q in 0..s.count(total) {
+                assert_eq!(s.id(q) % 4, k);
+                seen[s.id(q) as usize] += 1;
+            }
+        }
+        assert!(seen.iter().all(|&c| c == 1));
+        assert_eq!(Shard { k: 5, n: 8 }.count(3), 0);
+    }
+
+    #[test]
+    fn shard_arguments_are_checked() {
+        assert_eq!(Shard::parse("2/4"), Ok(Shard { k: 2, n: 4 }));
+        assert!(Shard::parse("4/4").unwrap_err().contains("0 <= K < N"));
+        assert!(Shard::parse("1").unwrap_err().contains("K/N"));
+        assert!(Shard::parse("a/2").unwrap_err().contains("whole number"));
+    }
+
+    #[test]
+    fn chunks_cut_a_shard_in_order_with_a_short_last_chunk() {
+        assert_eq!(chunks(10, 4), vec![0..4, 4..8, 8..10]);
+        assert_eq!(chunks(8, 4), vec![0..4, 4..8]);
+        assert!(chunks(0, 4).is_empty());
+    }
+}

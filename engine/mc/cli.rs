@@ -1,0 +1,196 @@
+//! The `inspect` and `fly` commands, and the re-export of `run` (see [`crate::campaign`]).
+//! Each command loads its inputs, calls the library, and prints through [`crate::report`].
+
+use crate::report;
+use anyhow::{anyhow, Context, Result};
+use hpr_design::motor::{self, Motor};
+use hpr_design::Design;
+use hpr_sim::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
+use hpr_sim::trigger::Trigger;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+pub use crate::campaign::cli::{run, RunArgs, RunCommand};
+
+#[derive(clap::Args, Debug)]
+pub struct InspectArgs {
+    /// The design (JSON).
+    pub design: PathBuf,
+    /// Motor: a file path, a bundled file stem (Cesaroni_I175) or a designation. Defaults to
+    /// the design's own motor.
+    #[arg(long)]
+    pub motor: Option<String>,
+    /// Print JSON instead of tables.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct FlyArgs {
+    /// The design (JSON).
+    pub design: PathBuf,
+    /// Motor (see `inspect --motor`).
+    #[arg(long)]
+    pub motor: Option<String>,
+    /// Print JSON instead of tables.
+    #[arg(long)]
+    pub json: bool,
+    /// Write the samples to FILE.csv or FILE.parquet.
+    #[arg(long, value_name = "FILE")]
+    pub trajectory: Option<PathBuf>,
+    /// Rail length, m.
+    #[arg(long, default_value_t = 2.0)]
+    pub rail_length_m: f64,
+    /// Rail inclination above the horizon, degrees.
+    #[arg(long, default_value_t = 90.0)]
+    pub inclination_deg: f64,
+    /// Rail heading, degrees clockwise from north.
+    #[arg(long, default_value_t = 0.0)]
+    pub heading_deg: f64,
+    /// Launch site elevation above sea level, m.
+    #[arg(long, default_value_t = 0.0)]
+    pub elevation_m: f64,
+    /// Constant wind speed, m/s.
+    #[arg(long, default_value_t = 0.0)]
+    pub wind_m_s: f64,
+    /// Direction the wind blows from, degrees clockwise from north.
+    #[arg(long, default_value_t = 0.0)]
+    pub wind_from_deg: f64,
+    /// Drogue CdS, m², opened at apogee (default: the design's first parachute).
+    #[arg(long)]
+    pub drogue_cds_m2: Option<f64>,
+    /// Main CdS, m², opened on the way down at --main-height-m (default: the design's second parachute).
+    #[arg(long)]
+    pub main_cds_m2: Option<f64>,
+    /// Height of the main's opening above ground, m.
+    #[arg(long, default_value_t = 300.0)]
+    pub main_height_m: f64,
+    /// Time from a trigger to an open canopy, s.
+    #[arg(long, default_value_t = 1.0)]
+    pub lag_s: f64,
+}
+
+/// The design and its motor (the `--motor` choice, else the design's own).
+pub fn load(design: &PathBuf, motor: &Option<String>) -> Result<(Design, Motor)> {
+    let d = Design::load(design).map_err(|e| anyhow!("{e}"))?;
+    let name = match motor {
+        Some(m) => m.clone(),
+        None => d.default_motor.clone().ok_or_else(|| {
+            anyhow!(
+                "{}: the design names no motor (field \"motor\"); give --motor",
+                design.display()
+            )
+        })?,
+    };
+    let m = motor::find(&name).map_err(|e| anyhow!("{e}"))?;
+    Ok((d, m))
+}
+
+/// A rail long enough for any design (for commands that do not fly).
+fn roomy_rail(design: &Design) -> Rail {
+    Rail {
+        length_m: design.length_m + 5.0,
+        ..Rail::default()
+    }
+}
+
+pub fn inspect(a: &InspectArgs) -> Result<ExitCode> {
+    let (design, motor) = load(&a.design, &a.motor)?;
+    let sim = Simulation::new(
+        design.clone(),
+        motor.clone(),
+        Environment::default(),
+        roomy_rail(&design),
+    )
+    .map_err(|e| anyhow!("{e}"))?;
+    let r = report::Inspection::of(&sim);
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&r.to_json())?);
+    } else {
+        print!("{}", r.to_text());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The parachutes of a `fly`: the flags, else the design's parachute components (the first at
+/// apogee, the second at the main height).
+pub fn parachutes_for(
+    design: &Design,
+    drogue: Option<f64>,
+    main: Option<f64>,
+    main_height_m: f64,
+    lag_s: f64,
+) -> Vec<Parachute> {
+    let from_design: Vec<f64> = design
+        .components
+        .iter()
+        .filter_map(|c| match &c.kind {
+            hpr_design::ComponentKind::Parachute(p) => {
+                Some(p.cd * std::f64::consts::PI * (0.5 * p.canopy_diameter_m).powi(2))
+            }
+            _ => None,
+        })
+        .collect();
+    let drogue = drogue.or(from_design.first().copied());
+    let main = main.or(if from_design.len() > 1 {
+        from_design.get(1).copied()
+    } else {
+        None
+    });
+    let mut out = Vec::new();
+    if let Some(c) = drogue {
+        out.push(Parachute::new("drogue", c, Trigger::Apogee, lag_s));
+    }
+    if let Some(c) = main {
+        out.push(Parachute::new(
+            "main",
+            c,
+            Trigger::HeightDescending {
+                height_m: main_height_m,
+            },
+            lag_s,
+        ));
+    }
+    out
+}
+
+pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
+    let (design, motor) = load(&a.design, &a.motor)?;
+    let wind = hpr_sim::wind::Wind::constant(a.wind_m_s, a.wind_from_deg)
+        .map_err(|e| anyhow!("--wind: {e}"))?;
+    let env = Environment {
+        elevation_m: a.elevation_m,
+        wind,
+        ..Environment::default()
+    };
+    let rail = Rail {
+        length_m: a.rail_length_m,
+        inclination_deg: a.inclination_deg,
+        heading_deg: a.heading_deg,
+    };
+    let chutes = parachutes_for(
+        &design,
+        a.drogue_cds_m2,
+        a.main_cds_m2,
+        a.main_height_m,
+        a.lag_s,
+    );
+    let sim = Simulation::new(design, motor, env, rail)
+        .and_then(|s| s.with_parachutes(chutes))
+        .and_then(|s| s.with_options(SimOptions::default()))
+        .map_err(|e| anyhow!("{e}"))?;
+    let flight = sim.run(&mut ()).map_err(|e| anyhow!("{e}"))?;
+    if let Some(path) = &a.trajectory {
+        report::write_trajectory(path, &flight)
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report::flight_json(&sim, &flight))?
+        );
+    } else {
+        print!("{}", report::flight_text(&sim, &flight));
+    }
+    Ok(ExitCode::SUCCESS)
+}

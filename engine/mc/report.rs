@@ -1,0 +1,347 @@
+//! What the commands print: text tables for people and JSON for scripts, from the same
+//! figures; and the trajectory files (CSV or Parquet) of `fly`.
+
+use anyhow::{bail, Result};
+use hpr_design::mass;
+use hpr_sim::flight::{Flight, Simulation};
+use serde_json::{json, Value};
+use std::fmt::Write as _;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The figures `inspect` reports.
+pub struct Inspection {
+    pub design: String,
+    pub motor: Value,
+    pub liftoff: Value,
+    pub burnout: Value,
+    pub cp_m: f64,
+    pub ref_diameter_m: f64,
+    pub components: Vec<Value>,
+}
+
+fn mass_json(sim: &Simulation, t: f64) -> Value {
+    let p = sim.mass_properties_at(t);
+    json!({
+        "time_s": t,
+        "mass_kg": p.mass_kg,
+        "cg_m": p.cg_m.x,
+        "inertia_axial_kg_m2": p.axial_inertia(),
+        "inertia_transverse_kg_m2": p.transverse_inertia(),
+        "static_margin_cal": sim.static_margin_for(p.cg_m.x),
+    })
+}
+
+impl Inspection {
+    pub fn of(sim: &Simulation) -> Inspection {
+        let d = sim.design();
+        let m = sim.motor();
+        let burnout = sim.model().burnout_s;
+        let components = mass::mass_table(d)
+            .iter()
+            .map(|r| {
+                let c = &d.components[r.idx];
+                json!({
+                    "id": r.id, "type": r.kind, "depth": r.depth,
+                    "x_top_m": c.x_top_m, "length_m": c.length_m,
+                    "mass_kg": r.own.mass_kg, "cg_m": r.own.cg_m.x,
+                    "subtree_mass_kg": r.subtree.mass_kg, "subtree_cg_m": r.subtree.cg_m.x,
+                })
+            })
+            .collect();
+        Inspection {
+            design: d.name.clone(),
+            motor: json!({
+                "designation": m.designation, "common_name": m.common_name, "manufacturer": m.manufacturer_name(),
+                "file": m.source, "class": m.impulse_class().to_string(),
+                "total_impulse_ns": m.total_impulse_ns(), "burn_time_s": m.burn_time_s(), "average_thrust_n": m.average_thrust_n(),
+                "peak_thrust_n": m.peak_thrust_n(), "propellant_mass_kg": sim.model().motor.propellant_mass_kg(),
+                "loaded_mass_kg": sim.model().motor.ignition_mass_kg(), "diameter_m": m.diameter_m, "length_m": m.length_m,
+            }),
+            liftoff: mass_json(sim, 0.0),
+            burnout: mass_json(sim, burnout),
+            cp_m: sim.model().cp_mach0_m,
+            ref_diameter_m: sim.model().ref_diameter_m,
+            components,
+        }
+    }
+
+    pub fn to_json(&self) -> Value {
+        json!({
+            "design": self.design, "motor": self.motor, "liftoff": self.liftoff, "after_burnout": self.burnout,
+            "center_of_pressure_m": self.cp_m, "reference_diameter_m": self.ref_diameter_m, "components": self.components,
+        })
+    }
+
+    pub fn to_text(&self) -> String {
+        let mut s = String::new();
+        let m = &self.motor;
+        let _ = writeln!(s, "design  {}", self.design);
+        let _ = writeln!(
+            s,
+            "motor   {} {} ({}): class {}, {:.1} N·s over {:.3} s, average {:.1} N, peak {:.1} N, propellant {:.4} kg of {:.4} kg",
+            m["manufacturer"].as_str().unwrap_or(""),
+            m["designation"].as_str().unwrap_or(""),
+            m["file"].as_str().unwrap_or(""),
+            m["class"].as_str().unwrap_or(""),
+            m["total_impulse_ns"].as_f64().unwrap_or(f64::NAN),
+            m["burn_time_s"].as_f64().unwrap_or(f64::NAN),
+            m["average_thrust_n"].as_f64().unwrap_or(f64::NAN),
+            m["peak_thrust_n"].as_f64().unwrap_or(f64::NAN),
+            m["propellant_mass_kg"].as_f64().unwrap_or(f64::NAN),
+            m["loaded_mass_kg"].as_f64().unwrap_or(f64::NAN),
+        );
+        let _ = writeln!(
+            s,
+            "reference diameter {:.4} m; center of pressure (Mach 0) {:.4} m aft of the nose tip",
+            self.ref_diameter_m, self.cp_m
+        );
+        let _ = writeln!(
+            s,
+            "\n{:<15} {:>9} {:>10} {:>9} {:>12} {:>16} {:>14}",
+            "", "time (s)", "mass (kg)", "CG (m)", "I axial", "I transverse", "margin (cal)"
+        );
+        for (name, v) in [("liftoff", &self.liftoff), ("after burnout", &self.burnout)] {
+            let f = |k: &str| v[k].as_f64().unwrap_or(f64::NAN);
+            let _ = writeln!(
+                s,
+                "{:<15} {:>9.3} {:>10.4} {:>9.4} {:>12.6} {:>16.5} {:>14.3}",
+                name,
+                f("time_s"),
+                f("mass_kg"),
+                f("cg_m"),
+                f("inertia_axial_kg_m2"),
+                f("inertia_transverse_kg_m2"),
+                f("static_margin_cal")
+            );
+        }
+        let _ = writeln!(
+            s,
+            "(CG in m aft of the nose tip; inertias in kg·m² about the center of mass)\n"
+        );
+        let _ = writeln!(
+            s,
+            "{:<28} {:<15} {:>9} {:>9} {:>10} {:>9} {:>11}",
+            "component", "type", "top (m)", "length", "mass (kg)", "CG (m)", "with parts"
+        );
+        for c in &self.components {
+            let depth = c["depth"].as_u64().unwrap_or(0) as usize;
+            let name = format!("{}{}", "  ".repeat(depth), c["id"].as_str().unwrap_or(""));
+            let f = |k: &str| c[k].as_f64().unwrap_or(f64::NAN);
+            let _ = writeln!(
+                s,
+                "{:<28} {:<15} {:>9.4} {:>9.4} {:>10.4} {:>9.4} {:>11.4}",
+                name,
+                c["type"].as_str().unwrap_or(""),
+                f("x_top_m"),
+                f("length_m"),
+                f("mass_kg"),
+                f("cg_m"),
+                f("subtree_mass_kg")
+            );
+        }
+        s
+    }
+}
+
+fn opt(v: Option<f64>) -> Value {
+    v.map_or(Value::Null, |x| json!(x))
+}
+
+pub fn flight_json(sim: &Simulation, f: &Flight) -> Value {
+    let m = &f.metrics;
+    json!({
+        "design": sim.design().name,
+        "motor": sim.motor().designation,
+        "metrics": {
+            "apogee_m": opt(m.apogee_m), "apogee_time_s": opt(m.apogee_time_s),
+            "max_speed_m_s": m.max_speed_m_s, "max_mach": m.max_mach, "max_accel_m_s2": m.max_accel_m_s2,
+            "liftoff_time_s": opt(m.liftoff_time_s), "rail_exit_time_s": opt(m.rail_exit_time_s), "rail_exit_speed_m_s": opt(m.rail_exit_speed_m_s),
+            "burnout_time_s": opt(m.burnout_time_s),
+            "static_margin_liftoff_cal": opt(m.static_margin_liftoff_cal), "static_margin_rail_exit_cal": opt(m.static_margin_rail_exit_cal),
+            "static_margin_burnout_cal": opt(m.static_margin_burnout_cal), "static_margin_min_cal": opt(m.static_margin_min_cal),
+            "flight_margin_min_cal": opt(m.flight_margin_min_cal),
+            "landing_time_s": opt(m.landing_time_s),
+            "landing_x_m": opt(m.landing_position_m.map(|p| p[0])), "landing_y_m": opt(m.landing_position_m.map(|p| p[1])),
+            "landing_speed_m_s": opt(m.landing_speed_m_s),
+        },
+        "events": f.events.iter().map(|e| json!({"event": e.kind.name(), "time_s": e.time_s, "altitude_m": e.altitude_m, "speed_m_s": e.speed_m_s})).collect::<Vec<_>>(),
+        "derivative_evaluations": f.derivative_evaluations,
+        "steps": f.steps,
+    })
+}
+
+pub fn flight_text(sim: &Simulation, f: &Flight) -> String {
+    let m = &f.metrics;
+    let mut s = String::new();
+    let o = |v: Option<f64>, unit: &str, digits: usize| {
+        v.map_or("—".to_string(), |x| format!("{x:.digits$} {unit}"))
+    };
+    let _ = writeln!(s, "{} on {}", sim.design().name, sim.motor().designation);
+    let _ = writeln!(
+        s,
+        "apogee              {} at {}",
+        o(m.apogee_m, "m", 1),
+        o(m.apogee_time_s, "s", 3)
+    );
+    let _ = writeln!(
+        s,
+        "max speed           {:.2} m/s (Mach {:.3})",
+        m.max_speed_m_s, m.max_mach
+    );
+    let _ = writeln!(s, "max acceleration    {:.1} m/s²", m.max_accel_m_s2);
+    let _ = writeln!(
+        s,
+        "rail exit           {} at {}",
+        o(m.rail_exit_speed_m_s, "m/s", 2),
+        o(m.rail_exit_time_s, "s", 4)
+    );
+    let _ = writeln!(
+        s,
+        "static margin       {} at liftoff, {} at rail exit, {} at burnout, {} at least",
+        o(m.static_margin_liftoff_cal, "cal", 3),
+        o(m.static_margin_rail_exit_cal, "cal", 3),
+        o(m.static_margin_burnout_cal, "cal", 3),
+        o(m.static_margin_min_cal, "cal", 3)
+    );
+    let _ = writeln!(
+        s,
+        "flight margin       {} at least",
+        o(m.flight_margin_min_cal, "cal", 3)
+    );
+    let _ = writeln!(
+        s,
+        "landing             {} at {}, {} east and {} north of the rail",
+        o(m.landing_speed_m_s, "m/s", 2),
+        o(m.landing_time_s, "s", 2),
+        o(m.landing_position_m.map(|p| p[0]), "m", 1),
+        o(m.landing_position_m.map(|p| p[1]), "m", 1)
+    );
+    let _ = writeln!(s, "\nevents");
+    for e in &f.events {
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>10.4} s {:>10.1} m {:>9.2} m/s",
+            e.kind.name(),
+            e.time_s,
+            e.altitude_m,
+            e.speed_m_s
+        );
+    }
+    let _ = writeln!(
+        s,
+        "({} steps, {} derivative evaluations)",
+        f.steps, f.derivative_evaluations
+    );
+    s
+}
+
+/// Column names (with units) and values of a sample, shared by the CSV and Parquet writers.
+const COLUMNS: [&str; 20] = [
+    "time_s",
+    "x_m",
+    "y_m",
+    "altitude_m",
+    "vx_m_s",
+    "vy_m_s",
+    "vz_m_s",
+    "speed_m_s",
+    "mach",
+    "alpha_deg",
+    "accel_m_s2",
+    "thrust_n",
+    "mass_kg",
+    "cg_m",
+    "static_margin_cal",
+    "flight_margin_cal",
+    "q0",
+    "q1",
+    "q2",
+    "q3",
+];
+
+fn row(s: &hpr_sim::flight::Sample) -> [f64; 20] {
+    [
+        s.t_s,
+        s.position_m[0],
+        s.position_m[1],
+        s.altitude_m,
+        s.velocity_m_s[0],
+        s.velocity_m_s[1],
+        s.velocity_m_s[2],
+        s.speed_m_s,
+        s.mach,
+        s.alpha_deg,
+        s.accel_m_s2,
+        s.thrust_n,
+        s.mass_kg,
+        s.cg_m,
+        s.static_margin_cal,
+        s.flight_margin_cal,
+        s.quaternion[0],
+        s.quaternion[1],
+        s.quaternion[2],
+        s.quaternion[3],
+    ]
+}
+
+/// Write the samples as CSV or Parquet (by the file's extension), through a temporary file
+/// renamed at the end so that no half-written file is left.
+pub fn write_trajectory(path: &Path, f: &Flight) -> Result<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let tmp = path.with_extension(format!("{ext}.partial"));
+    match ext.as_str() {
+        "csv" => {
+            let mut out = String::with_capacity(f.samples.len() * 200);
+            out.push_str("phase,");
+            out.push_str(&COLUMNS.join(","));
+            out.push('\n');
+            for s in &f.samples {
+                out.push_str(s.phase.name());
+                for v in row(s) {
+                    let _ = write!(out, ",{v}");
+                }
+                out.push('\n');
+            }
+            std::fs::write(&tmp, out)?;
+        }
+        "parquet" => {
+            use arrow::array::{ArrayRef, Float64Array, StringArray};
+            use arrow::datatypes::{DataType, Field, Schema};
+            use arrow::record_batch::RecordBatch;
+            let mut fields = vec![Field::new("phase", DataType::Utf8, false)];
+            fields.extend(
+                COLUMNS
+                    .iter()
+                    .map(|c| Field::new(*c, DataType::Float64, true)),
+            );
+            let schema = Arc::new(Schema::new(fields));
+            let mut cols: Vec<ArrayRef> = vec![Arc::new(StringArray::from_iter_values(
+                f.samples.iter().map(|s| s.phase.name()),
+            ))];
+            for j in 0..COLUMNS.len() {
+                cols.push(Arc::new(Float64Array::from_iter_values(
+                    f.samples.iter().map(|s| row(s)[j]),
+                )));
+            }
+            let batch = RecordBatch::try_new(schema.clone(), cols)?;
+            let file = std::fs::File::create(&tmp)?;
+            let props = parquet::file::properties::WriterProperties::builder()
+                .set_compression(parquet::basic::Compression::ZSTD(Default::default()))
+                .build();
+            let mut w = parquet::arrow::ArrowWriter::try_new(file, schema, Some(props))?;
+            w.write(&batch)?;
+            w.close()?;
+        }
+        _ => bail!(
+            "{}: the trajectory file must end in .csv or .parquet",
+            path.display()
+        ),
+    }
+    std::fs::rename(&tmp, path)?;
+    Ok(())
+}
