@@ -112,8 +112,8 @@ pub fn inspect(a: &InspectArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The parachutes of a `fly`: the flags, else the design's parachute components (the first at
-/// apogee, the second at the main height).
+/// The parachutes of a `fly`: the flags, else the design's parachute components (the smaller
+/// canopy at apogee, the larger at the main height).
 pub fn parachutes_for(
     design: &Design,
     drogue: Option<f64>,
@@ -121,7 +121,7 @@ pub fn parachutes_for(
     main_height_m: f64,
     lag_s: f64,
 ) -> Vec<Parachute> {
-    let from_design: Vec<f64> = design
+    let mut from_design: Vec<f64> = design
         .components
         .iter()
         .filter_map(|c| match &c.kind {
@@ -131,6 +131,7 @@ pub fn parachutes_for(
             _ => None,
         })
         .collect();
+    from_design.sort_by(f64::total_cmp);
     let drogue = drogue.or(from_design.first().copied());
     let main = main.or(if from_design.len() > 1 {
         from_design.get(1).copied()

@@ -255,8 +255,9 @@ pub struct InnerTube {
     pub wall_thickness_m: f64,
     /// Present when this tube holds a motor.
     pub motor_mount: Option<MotorMountSpec>,
-    /// Offsets (y, z) of each tube of a cluster, m; a single tube has one entry `[0, 0]`
-    /// (or the tube's own radial offset).
+    /// Offsets (y, z) of each tube of a cluster from the rocket's axis (station frame), m:
+    /// the tube's own radial offset (and its parent's) plus the cluster offset. A single tube
+    /// has one entry, its own offset (`[0, 0]` on the axis).
     pub cluster_offsets_m: Vec<[f64; 2]>,
 }
 

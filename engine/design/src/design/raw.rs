@@ -12,6 +12,9 @@ use serde::Deserialize;
 #[serde(deny_unknown_fields)]
 pub struct RawDesign {
     pub name: String,
+    /// Free text for people: where the design comes from, what was tuned.
+    #[serde(default)]
+    pub notes: Option<String>,
     /// Default motor: a path, a file stem or a designation.
     #[serde(default)]
     pub motor: Option<String>,

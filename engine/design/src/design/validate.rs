@@ -12,6 +12,8 @@ mod drag;
 mod parts;
 
 #[cfg(test)]
+mod doc_example;
+#[cfg(test)]
 mod fuzz;
 #[cfg(test)]
 mod tests;

@@ -172,6 +172,8 @@ impl<'a, O: Observer> Run<'a, O> {
         if !self.burnout_done && t >= m.burnout_s {
             self.burnout_done = true;
             self.metrics.burnout_time_s = Some(m.burnout_s);
+            self.metrics.static_margin_burnout_cal =
+                Some(m.static_margin(&m.instant(&self.starts, m.burnout_s).mass));
             self.push_event(EventKind::Burnout, m.burnout_s, altitude_m, speed_m_s);
         }
         let (burnout, delay) = (m.burnout_s, m.motor_delay_s);

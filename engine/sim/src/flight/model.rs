@@ -183,8 +183,8 @@ impl FlightModel {
         match eom::rigid_body_accelerations(ms, &loads, &g_b, &omega, &self.nozzle) {
             Some((a_o, w_dot)) => {
                 eom::rigid_body_derivative(y, &a_o, &w_dot, &r, dy);
-                // Inertial acceleration of the center of mass (what an accelerometer at the
-                // center, plus gravity, would read): a_O + ω̇×r + ω×(ω×r) + 2ω×r′ + r″.
+                // Inertial acceleration of the center of mass (as RocketPy and OpenRocket
+                // report it): a_O + ω̇×r + ω×(ω×r) + 2ω×r′ + r″.
                 let a_cm_b = a_o
                     + w_dot.cross(&ms.r_cm)
                     + omega.cross(&omega.cross(&ms.r_cm))
@@ -194,7 +194,7 @@ impl FlightModel {
                     mass: *ms,
                     air_speed_m_s: v_cm_air_b.norm(),
                     speed_of_sound_m_s: air.speed_of_sound_m_s,
-                    accel_cm_m_s2: (a_cm_b - g_b).norm(),
+                    accel_cm_m_s2: a_cm_b.norm(),
                     alpha_rad: angle_of_attack(&v_cm_air_b),
                 }
             }
@@ -299,7 +299,7 @@ pub struct FlightAux {
     pub mass: MassState,
     pub air_speed_m_s: f64,
     pub speed_of_sound_m_s: f64,
-    /// Magnitude of the center's acceleration without gravity (what an accelerometer reads), m/s².
+    /// Magnitude of the center of mass's inertial acceleration, m/s².
     pub accel_cm_m_s2: f64,
     pub alpha_rad: f64,
 }

@@ -53,6 +53,9 @@ fn pointers(v: &Value, here: String, out: &mut Vec<String>) {
 enum Mutation {
     /// Replace the value with another (a nasty number, or a value of another type).
     Replace(Index, Value),
+    /// Multiply a number by a factor near 1 (mostly keeps the design valid, to exercise the
+    /// mass code on many accepted shapes).
+    Scale(Index, f64),
     /// Remove a key or an array element.
     Remove(Index),
     /// Duplicate an array element, or copy a value under another key of its object.
@@ -72,6 +75,8 @@ fn mutation() -> impl Strategy<Value = Mutation> {
     ];
     prop_oneof![
         (any::<Index>(), other).prop_map(|(i, v)| Mutation::Replace(i, v)),
+        (any::<Index>(), 0.5f64..2.0).prop_map(|(i, f)| Mutation::Scale(i, f)),
+        (any::<Index>(), 0.5f64..2.0).prop_map(|(i, f)| Mutation::Scale(i, f)),
         any::<Index>().prop_map(Mutation::Remove),
         any::<Index>().prop_map(Mutation::Duplicate),
     ]
@@ -88,6 +93,13 @@ fn apply(v: &mut Value, m: &Mutation) {
         Mutation::Replace(i, new) => {
             if let Some(slot) = v.pointer_mut(&pick(i)) {
                 *slot = new.clone();
+            }
+        }
+        Mutation::Scale(i, f) => {
+            if let Some(slot) = v.pointer_mut(&pick(i)) {
+                if let Some(x) = slot.as_f64() {
+                    *slot = json!(x * f);
+                }
             }
         }
         Mutation::Remove(i) | Mutation::Duplicate(i) => {

@@ -375,7 +375,7 @@ impl Builder<'_> {
         let x_top = self.place(&at, &p, length, position)?;
         let (parent_top, parent_bottom) = extent(&p);
         let overlap = (x_top + length).min(parent_bottom) - x_top.max(parent_top);
-        if !(overlap > 0.0) {
+        if overlap <= 0.0 || overlap.is_nan() {
             return Err(self.invalid(
                 &at,
                 Some("position"),
