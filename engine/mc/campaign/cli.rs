@@ -1,17 +1,267 @@
-//! Command-line arguments of `hpr-mc run` (being written).
+//! `hpr-mc SCENARIO.toml` and `hpr-mc run SCENARIO.toml`: the arguments, the run, the
+//! printed summary and the exit code.
+//!
+//! Exit codes: 0 every variant landed; 1 the run finished but some variants did not land
+//! (their count is printed; their rows say why); 2 bad input or usage (a scenario that breaks
+//! a rule, a missing file, bad arguments) or an error that stopped the run (a file that can't
+//! be written). An interrupted run (Ctrl-C) leaves no half-written file; rerun it with
+//! `--resume` to fly only what is missing.
+
+use super::fly::Prepared;
+use super::run::{run_campaign, RunConfig, RunReport};
+use super::stats::Summary;
+use super::variants::Shard;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-#[derive(clap::Args, Debug, Default)]
-pub struct RunArgs {}
+/// Options of a scenario run.
+#[derive(clap::Args, Debug, Default, Clone)]
+pub struct RunArgs {
+    /// Variants per sweep point (replaces the scenario's variants_per_point).
+    #[arg(long, value_name = "N")]
+    pub variants: Option<u64>,
+    /// Seed of the random draws (replaces the scenario's seed).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Worker threads (default: one per core). The results do not depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Output directory (default: results/<scenario name>).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+    /// Run only the variants with id % N == K, written to *-shard-K-of-N.parquet.
+    #[arg(long, value_name = "K/N", value_parser = Shard::parse)]
+    pub shard: Option<Shard>,
+    /// Keep the complete chunks of an interrupted run and fly only the missing ones.
+    #[arg(long)]
+    pub resume: bool,
+}
 
+/// `hpr-mc run SCENARIO.toml [options]`.
 #[derive(clap::Args, Debug)]
 pub struct RunCommand {
+    /// The scenario file (TOML; see docs/scenarios.md).
     pub scenario: PathBuf,
     #[command(flatten)]
     pub args: RunArgs,
 }
 
-pub fn run(_scenario: &Path, _args: &RunArgs) -> anyhow::Result<ExitCode> {
-    anyhow::bail!("scenario runs are not built yet")
+impl RunArgs {
+    pub fn config(&self) -> RunConfig {
+        RunConfig {
+            seed: self.seed,
+            variants_per_point: self.variants,
+            threads: self.threads,
+            out: self.out.clone(),
+            quiet: self.quiet,
+            shard: self.shard,
+            resume: self.resume,
+            max_chunks: None,
+        }
+    }
+}
+
+/// Run a scenario, print its summary, and say by the exit code whether every variant landed.
+pub fn run(scenario: &Path, args: &RunArgs) -> anyhow::Result<ExitCode> {
+    if args.threads == Some(0) {
+        anyhow::bail!("--threads must be at least 1");
+    }
+    let report = run_campaign(scenario, &args.config())?;
+    print!("{}", summary_text(&report));
+    let failures = report.failures();
+    if failures > 0 {
+        eprintln!(
+            "hpr-mc: {failures} of {} variants did not land ({} refused, {} failed, {} reached the time limit); their rows in {} say why",
+            report.variants,
+            report.refused,
+            report.failed,
+            report.time_limit,
+            report.outputs.variants.display()
+        );
+        return Ok(ExitCode::from(1));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A number in 9 characters with about 5 significant digits.
+fn num(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 {
+        "0".into()
+    } else if !(1e-3..1e6).contains(&a) {
+        format!("{x:.3e}")
+    } else {
+        let digits = a.log10().floor() as i32 + 1;
+        format!("{x:.*}", (5 - digits).clamp(0, 6) as usize)
+    }
+}
+
+/// The metrics whose sensitivity is printed (all are in sensitivity.parquet).
+const SENSITIVITY_PRINTED: [&str; 4] = [
+    "apogee_m",
+    "static_margin_min_cal",
+    "landing_x_m",
+    "landing_y_m",
+];
+
+/// The printed summary: per sweep point, each metric's mean, std, p5, p50 and p95, the 1 σ
+/// landing ellipse, and the largest shares of variance of a few metrics.
+pub fn summary_text(r: &RunReport) -> String {
+    use std::fmt::Write;
+    let p: &Prepared = &r.prepared;
+    let mut s = String::new();
+    let shard = if r.shard.is_all() {
+        String::new()
+    } else {
+        format!(" (shard {}/{})", r.shard.k, r.shard.n)
+    };
+    let secs = r.elapsed.as_secs_f64();
+    let _ = writeln!(
+        s,
+        "{}{shard}: {} variants ({} sweep points × {} per point), {} landed, {} did not · {:.1} s",
+        p.scenario.name,
+        r.variants,
+        p.plan.points(),
+        p.scenario.variants_per_point,
+        r.landed,
+        r.failures(),
+        secs
+    );
+    if !r.complete {
+        let _ = writeln!(
+            s,
+            "stopped after {} chunks; rerun with --resume to finish",
+            r.chunks_flown
+        );
+        return s;
+    }
+    let _ = writeln!(
+        s,
+        "wrote {}, {}, {}, {}",
+        r.outputs.variants.display(),
+        r.outputs.summary.display(),
+        r.outputs.ellipses.display(),
+        r.outputs.sensitivity.display()
+    );
+    let width = p
+        .metrics
+        .iter()
+        .map(|m| m.name.len())
+        .max()
+        .unwrap_or(6)
+        .max(6);
+    let swept: Vec<_> = p.scenario.swept().collect();
+    for st in &r.stats {
+        let _ = writeln!(s);
+        let at: Vec<String> = swept
+            .iter()
+            .zip(p.plan.sweep_values(st.point))
+            .map(|(i, v)| format!("{} = {v} {}", i.key, i.unit))
+            .collect();
+        let at = if at.is_empty() {
+            String::new()
+        } else {
+            format!(": {}", at.join(", "))
+        };
+        let _ = writeln!(
+            s,
+            "point {}{at}  ({} variants, {} did not land)",
+            st.point, st.variants, st.failures
+        );
+        let _ = writeln!(
+            s,
+            "  {:<width$} {:>10} {:>10} {:>10} {:>10} {:>10}",
+            "metric", "mean", "std", "p5", "p50", "p95"
+        );
+        for (m, sum) in p.metrics.iter().zip(&st.summaries) {
+            let row = |x: &Summary| {
+                [
+                    num(x.mean),
+                    x.std.map_or("-".into(), num),
+                    num(x.p5),
+                    num(x.p50),
+                    num(x.p95),
+                ]
+            };
+            let cells = sum.as_ref().map_or_else(
+                || {
+                    [
+                        "-".to_string(),
+                        "-".into(),
+                        "-".into(),
+                        "-".into(),
+                        "-".into(),
+                    ]
+                },
+                row,
+            );
+            let _ = writeln!(
+                s,
+                "  {:<width$} {:>10} {:>10} {:>10} {:>10} {:>10}",
+                m.name, cells[0], cells[1], cells[2], cells[3], cells[4]
+            );
+        }
+        if let Some(e) = st.ellipse {
+            let _ = writeln!(
+                s,
+                "  landing ellipse (1 sigma; 2 and 3 sigma scale it): center {} m east, {} m north; semi-axes {} × {} m, major axis {}° from east",
+                num(e.center_x_m),
+                num(e.center_y_m),
+                num(e.semi_major_m),
+                num(e.semi_minor_m),
+                num(e.major_axis_deg)
+            );
+        }
+        let dispersed: Vec<&str> = p
+            .scenario
+            .inputs
+            .iter()
+            .filter(|i| i.dispersion.is_some())
+            .map(|i| i.column.as_str())
+            .collect();
+        for name in SENSITIVITY_PRINTED {
+            let Some(m) = p.metrics.iter().position(|c| c.name == name) else {
+                continue;
+            };
+            let Some(fit) = &st.sensitivity[m] else {
+                continue;
+            };
+            let mut shares: Vec<(f64, &str)> = fit
+                .shares
+                .iter()
+                .zip(&dispersed)
+                .filter_map(|(x, n)| x.map(|x| (x, *n)))
+                .collect();
+            shares.sort_by(|a, b| b.0.total_cmp(&a.0));
+            let top: Vec<String> = shares
+                .iter()
+                .take(4)
+                .map(|(x, n)| format!("{n} {:.0}%", 100.0 * x))
+                .collect();
+            let _ = writeln!(
+                s,
+                "  variance of {name} (linear fit R² {:.2}): {}",
+                fit.r2,
+                top.join(", ")
+            );
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::num;
+
+    #[test]
+    fn numbers_print_with_about_five_significant_digits() {
+        assert_eq!(num(1749.83), "1749.8");
+        assert_eq!(num(0.012345), "0.012345");
+        assert_eq!(num(-2.5), "-2.5000");
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(1.5e7), "1.500e7");
+    }
 }

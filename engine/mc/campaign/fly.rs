@@ -169,21 +169,41 @@ impl Prepared {
     /// need them. Errors name the scenario's key.
     pub fn new(scenario: Scenario) -> Result<Prepared, ScenarioError> {
         let file = scenario.file.display().to_string();
-        let bad = |key: &str, rule: String| ScenarioError::Invalid { file: file.clone(), key: key.to_string(), rule };
-        let design = Design::load(&scenario.design_file).map_err(|e| bad("design.file", e.to_string()))?;
+        let bad = |key: &str, rule: String| ScenarioError::Invalid {
+            file: file.clone(),
+            key: key.to_string(),
+            rule,
+        };
+        let design =
+            Design::load(&scenario.design_file).map_err(|e| bad("design.file", e.to_string()))?;
         let motor = motor::find(&scenario.motor).map_err(|e| bad("motor.name", e.to_string()))?;
 
         let uses_ballast = scenario.inputs.iter().find(|i| i.param == Param::BallastKg);
         let ballast = match &scenario.ballast {
             None => {
                 if let Some(i) = uses_ballast {
-                    let section = if i.sweep.is_some() { "sweep" } else { "dispersions" };
-                    return Err(bad(&format!("{section}.ballast_kg"), "needs design.ballast, the id of the design's ballast component".into()));
+                    let section = if i.sweep.is_some() {
+                        "sweep"
+                    } else {
+                        "dispersions"
+                    };
+                    return Err(bad(
+                        &format!("{section}.ballast_kg"),
+                        "needs design.ballast, the id of the design's ballast component".into(),
+                    ));
                 }
                 None
             }
             Some(id) => {
-                let idx = design.component_index(id).ok_or_else(|| bad("design.ballast", format!("the design \"{}\" has no component with id \"{id}\"", design.name)))?;
+                let idx = design.component_index(id).ok_or_else(|| {
+                    bad(
+                        "design.ballast",
+                        format!(
+                            "the design \"{}\" has no component with id \"{id}\"",
+                            design.name
+                        ),
+                    )
+                })?;
                 check_ballast(&design, idx).map_err(|r| bad("design.ballast", r))?;
                 Some(idx)
             }
@@ -202,11 +222,19 @@ impl Prepared {
         };
         let mut parachutes = Vec::new();
         for (i, p) in scenario.parachutes.iter().enumerate() {
-            parachutes.push([p.cds_m2, p.lag_s, trigger_nominal(&p.trigger, format!("parachutes[{i}].trigger"))?]);
+            parachutes.push([
+                p.cds_m2,
+                p.lag_s,
+                trigger_nominal(&p.trigger, format!("parachutes[{i}].trigger"))?,
+            ]);
         }
         let mut shifts = Vec::new();
         for (i, s) in scenario.shifts.iter().enumerate() {
-            shifts.push([s.travel_m, s.duration_s, trigger_nominal(&s.trigger, format!("shifts[{i}].trigger"))?]);
+            shifts.push([
+                s.travel_m,
+                s.duration_s,
+                trigger_nominal(&s.trigger, format!("shifts[{i}].trigger"))?,
+            ]);
         }
         let nominal = Setup {
             structure_mass_kg: dry.mass_kg,
@@ -218,7 +246,11 @@ impl Prepared {
             elevation_m: scenario.environment.elevation_m,
             wind_speed_m_s: scenario.environment.wind_speed_m_s,
             wind_from_deg: scenario.environment.wind_from_deg,
-            rail: [scenario.rail.length_m, scenario.rail.inclination_deg, scenario.rail.heading_deg],
+            rail: [
+                scenario.rail.length_m,
+                scenario.rail.inclination_deg,
+                scenario.rail.heading_deg,
+            ],
             parachutes,
             shifts,
         };
@@ -226,15 +258,47 @@ impl Prepared {
             seed: scenario.seed,
             variants_per_point: scenario.variants_per_point,
             common_random_numbers: scenario.common_random_numbers,
-            inputs: scenario.inputs.iter().map(|i| PlanInput { key: i.key.clone(), nominal: nominal.get(i.param), sweep: i.sweep.clone(), dispersion: i.dispersion }).collect(),
+            inputs: scenario
+                .inputs
+                .iter()
+                .map(|i| PlanInput {
+                    key: i.key.clone(),
+                    nominal: nominal.get(i.param),
+                    sweep: i.sweep.clone(),
+                    dispersion: i.dispersion,
+                })
+                .collect(),
         };
-        let mut metrics: Vec<Column> = FIXED_METRICS.iter().map(|(n, u)| Column { name: n.to_string(), unit: u }).collect();
+        let mut metrics: Vec<Column> = FIXED_METRICS
+            .iter()
+            .map(|(n, u)| Column {
+                name: n.to_string(),
+                unit: u,
+            })
+            .collect();
         for s in &scenario.shifts {
-            metrics.push(Column { name: format!("shift_{}_start_time_s", s.name), unit: "s" });
-            metrics.push(Column { name: format!("shift_{}_margin_before_cal", s.name), unit: "cal" });
-            metrics.push(Column { name: format!("shift_{}_margin_after_cal", s.name), unit: "cal" });
+            metrics.push(Column {
+                name: format!("shift_{}_start_time_s", s.name),
+                unit: "s",
+            });
+            metrics.push(Column {
+                name: format!("shift_{}_margin_before_cal", s.name),
+                unit: "cal",
+            });
+            metrics.push(Column {
+                name: format!("shift_{}_margin_after_cal", s.name),
+                unit: "cal",
+            });
         }
-        let prepared = Prepared { scenario, plan, metrics, design, motor, ballast, nominal };
+        let prepared = Prepared {
+            scenario,
+            plan,
+            metrics,
+            design,
+            motor,
+            ballast,
+            nominal,
+        };
 
         // Every sweep point's nominal flight must set up, and a dispersion relative to its
         // center needs a center that is not zero.
@@ -247,15 +311,30 @@ impl Prepared {
                     }
                 }
             }
-            let setup = prepared.setup(&centers).map_err(|r| bad(&prepared.point_key(point), r))?;
-            prepared.simulation(&setup).map_err(|r| bad(&prepared.point_key(point), format!("the nominal flight{} can't be set up: {r}", prepared.at_point(point))))?;
+            let setup = prepared
+                .setup(&centers)
+                .map_err(|r| bad(&prepared.point_key(point), r))?;
+            prepared.simulation(&setup).map_err(|r| {
+                bad(
+                    &prepared.point_key(point),
+                    format!(
+                        "the nominal flight{} can't be set up: {r}",
+                        prepared.at_point(point)
+                    ),
+                )
+            })?;
         }
         Ok(prepared)
     }
 
     /// " at sweep point k (key = v, ...)", or "" without a sweep.
     fn at_point(&self, point: usize) -> String {
-        let swept: Vec<String> = self.scenario.swept().zip(self.plan.sweep_values(point)).map(|(i, v)| format!("{} = {v}", i.key)).collect();
+        let swept: Vec<String> = self
+            .scenario
+            .swept()
+            .zip(self.plan.sweep_values(point))
+            .map(|(i, v)| format!("{} = {v}", i.key))
+            .collect();
         if swept.is_empty() {
             String::new()
         } else {
@@ -291,7 +370,11 @@ impl Prepared {
     fn setup(&self, values: &[f64]) -> Result<Setup, String> {
         let mut s = self.nominal.clone();
         for (input, &v) in self.scenario.inputs.iter().zip(values) {
-            input.param.domain().check(v).map_err(|r| format!("{} = {v}: {r}", input.key))?;
+            input
+                .param
+                .domain()
+                .check(v)
+                .map_err(|r| format!("{} = {v}: {r}", input.key))?;
             s.set(input.param, v);
         }
         Ok(s)
@@ -306,29 +389,80 @@ impl Prepared {
                 design.components[idx].mass_spec = MassSpec::Mass(s.ballast_kg);
             }
         }
-        let options = MotorOptions::default().with_impulse_scale(s.impulse_ns / self.nominal.impulse_ns).with_time_scale(s.burn_time_s / self.nominal.burn_time_s);
-        let gravity = if self.scenario.environment.inverse_square_gravity { Gravity::inverse_square(s.elevation_m).map_err(|e| err(&e))? } else { Gravity::default() };
-        let env = Environment { elevation_m: s.elevation_m, wind: Wind::constant(s.wind_speed_m_s, s.wind_from_deg).map_err(|e| err(&e))?, gravity, vacuum: false };
-        let rail = Rail { length_m: s.rail[0], inclination_deg: s.rail[1], heading_deg: s.rail[2] };
+        let options = MotorOptions::default()
+            .with_impulse_scale(s.impulse_ns / self.nominal.impulse_ns)
+            .with_time_scale(s.burn_time_s / self.nominal.burn_time_s);
+        let gravity = if self.scenario.environment.inverse_square_gravity {
+            Gravity::inverse_square(s.elevation_m).map_err(|e| err(&e))?
+        } else {
+            Gravity::default()
+        };
+        let env = Environment {
+            elevation_m: s.elevation_m,
+            wind: Wind::constant(s.wind_speed_m_s, s.wind_from_deg).map_err(|e| err(&e))?,
+            gravity,
+            vacuum: false,
+        };
+        let rail = Rail {
+            length_m: s.rail[0],
+            inclination_deg: s.rail[1],
+            heading_deg: s.rail[2],
+        };
         // A change of ballast is in the design; the structure's own dispersion comes on top
         // of it (structure_mass_kg and structure_cg_m are at the nominal ballast).
         let delta_mass = s.structure_mass_kg - self.nominal.structure_mass_kg;
         let delta_cg = s.structure_cg_m - self.nominal.structure_cg_m;
-        let mut sim = Simulation::with_motor_options(design, self.motor.clone(), options, env, rail).map_err(|e| err(&e))?;
+        let mut sim =
+            Simulation::with_motor_options(design, self.motor.clone(), options, env, rail)
+                .map_err(|e| err(&e))?;
         if !self.scenario.parachutes.is_empty() {
-            let chutes = self.scenario.parachutes.iter().zip(&s.parachutes).map(|(p, v)| Parachute::new(p.name.clone(), v[0], with_trigger_value(&p.trigger, v[2]), v[1])).collect();
+            let chutes = self
+                .scenario
+                .parachutes
+                .iter()
+                .zip(&s.parachutes)
+                .map(|(p, v)| {
+                    Parachute::new(
+                        p.name.clone(),
+                        v[0],
+                        with_trigger_value(&p.trigger, v[2]),
+                        v[1],
+                    )
+                })
+                .collect();
             sim = sim.with_parachutes(chutes).map_err(|e| err(&e))?;
         }
         if !self.scenario.shifts.is_empty() {
-            let shifts = self.scenario.shifts.iter().zip(&s.shifts).map(|(sh, v)| MassShift::new(with_trigger_value(&sh.trigger, v[2]), sh.component.clone(), v[0], v[1])).collect();
+            let shifts = self
+                .scenario
+                .shifts
+                .iter()
+                .zip(&s.shifts)
+                .map(|(sh, v)| {
+                    MassShift::new(
+                        with_trigger_value(&sh.trigger, v[2]),
+                        sh.component.clone(),
+                        v[0],
+                        v[1],
+                    )
+                })
+                .collect();
             sim = sim.with_shifts(shifts).map_err(|e| err(&e))?;
         }
-        sim = sim.with_options(SimOptions { integrator: self.scenario.integrator, max_time_s: self.scenario.max_time_s, keep_samples: false }).map_err(|e| err(&e))?;
+        sim = sim
+            .with_options(SimOptions {
+                integrator: self.scenario.integrator,
+                max_time_s: self.scenario.max_time_s,
+                keep_samples: false,
+            })
+            .map_err(|e| err(&e))?;
         if s.drag_scale != 1.0 {
             sim = sim.with_drag_scale(s.drag_scale).map_err(|e| err(&e))?;
         }
         if delta_mass != 0.0 || delta_cg != 0.0 {
-            sim = sim.with_mass_adjustment(delta_mass, delta_cg).map_err(|e| err(&e))?;
+            sim = sim
+                .with_mass_adjustment(delta_mass, delta_cg)
+                .map_err(|e| err(&e))?;
         }
         Ok(sim)
     }
@@ -336,7 +470,12 @@ impl Prepared {
     /// Fly one variant.
     pub fn fly(&self, v: &Variant) -> VariantResult {
         let none = vec![None; self.metrics.len()];
-        let refused = |e: String| VariantResult { id: v.id, status: Status::Refused, error: Some(e), metrics: none.clone() };
+        let refused = |e: String| VariantResult {
+            id: v.id,
+            status: Status::Refused,
+            error: Some(e),
+            metrics: none.clone(),
+        };
         let setup = match self.setup(&v.values) {
             Ok(s) => s,
             Err(e) => return refused(format!("sampled {e}")),
@@ -348,10 +487,26 @@ impl Prepared {
         let flown = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| sim.run(&mut ())));
         let flight = match flown {
             Ok(Ok(f)) => f,
-            Ok(Err(e)) => return VariantResult { id: v.id, status: Status::Failed, error: Some(e.to_string()), metrics: none },
+            Ok(Err(e)) => {
+                return VariantResult {
+                    id: v.id,
+                    status: Status::Failed,
+                    error: Some(e.to_string()),
+                    metrics: none,
+                }
+            }
             Err(panic) => {
-                let msg = panic.downcast_ref::<String>().cloned().or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
-                return VariantResult { id: v.id, status: Status::Failed, error: Some(format!("the simulator panicked: {msg}")), metrics: none };
+                let msg = panic
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_default();
+                return VariantResult {
+                    id: v.id,
+                    status: Status::Failed,
+                    error: Some(format!("the simulator panicked: {msg}")),
+                    metrics: none,
+                };
             }
         };
         let metrics = self.metrics_of(&sim, &flight, &setup);
@@ -360,9 +515,17 @@ impl Prepared {
         } else if let Some(e) = flight.event(EventKind::TimeLimit) {
             (Status::TimeLimit, Some(format!("the flight reached its time limit (integrator.max_time_s = {} s) before landing", e.time_s)))
         } else {
-            (Status::Failed, Some("the flight ended without landing".to_string()))
+            (
+                Status::Failed,
+                Some("the flight ended without landing".to_string()),
+            )
         };
-        VariantResult { id: v.id, status, error, metrics }
+        VariantResult {
+            id: v.id,
+            status,
+            error,
+            metrics,
+        }
     }
 
     fn metrics_of(&self, sim: &Simulation, f: &Flight, setup: &Setup) -> Vec<Option<f64>> {
@@ -387,15 +550,25 @@ impl Prepared {
             m.landing_speed_m_s,
         ];
         let model = sim.model();
-        let end_s = f.events.iter().map(|e| e.time_s).fold(f64::NEG_INFINITY, f64::max);
-        let margin = |t: f64| (t <= end_s).then(|| (model.cp_mach0_m - sim.mass_properties(f, t).cg_m.x) / model.ref_diameter_m);
+        let end_s = f
+            .events
+            .iter()
+            .map(|e| e.time_s)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let margin = |t: f64| {
+            (t <= end_s).then(|| {
+                (model.cp_mach0_m - sim.mass_properties(f, t).cg_m.x) / model.ref_diameter_m
+            })
+        };
         for (k, _) in self.scenario.shifts.iter().enumerate() {
             let start = f.shift_starts_s.get(k).copied().flatten();
             out.push(start);
             out.push(start.and_then(margin));
             out.push(start.and_then(|t| margin(t + setup.shifts[k][1])));
         }
-        out.into_iter().map(|x| x.filter(|v| v.is_finite())).collect()
+        out.into_iter()
+            .map(|x| x.filter(|v| v.is_finite()))
+            .collect()
     }
 }
 
@@ -403,7 +576,10 @@ impl Prepared {
 fn check_ballast(design: &Design, idx: usize) -> Result<(), String> {
     let c = &design.components[idx];
     if c.overrides.mass_kg.is_some() {
-        return Err(format!("the component \"{}\" has a mass override, which would hide any change of its mass", c.id));
+        return Err(format!(
+            "the component \"{}\" has a mass override, which would hide any change of its mass",
+            c.id
+        ));
     }
     if design.stages[c.stage].overrides.mass_kg.is_some() {
         return Err(format!("the component \"{}\" is in a stage whose mass is overridden, which would hide any change of its mass", c.id));

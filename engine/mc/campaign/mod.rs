@@ -1,2 +1,31 @@
-//! Scenario campaigns (being written).
+//! Scenario campaigns: a scenario file (TOML) names a design, a motor, the launch site, the
+//! rail, parachutes, shifts and integrator options, sweeps some inputs over a grid and
+//! disperses some with distributions; the campaign flies every variant and writes the rows and
+//! their statistics to Parquet.
+//!
+//! - [`scenario`]: the TOML format and its rules ([`params`]: the inputs it can sweep or
+//!   disperse).
+//! - [`sample`]: the distributions and the counter-based random streams (a variant's draws
+//!   depend only on the seed and its id).
+//! - [`variants`]: the sweep grid × variants per point, shards and chunks.
+//! - [`fly`]: a variant applied to the base setup and flown ([`fly::fly_chunk`] is the step
+//!   the batch engine replaces).
+//! - [`stats`]: percentiles, landing ellipses, sensitivity (faer).
+//! - [`parquet`]: the output files, written atomically and streamed by row groups.
+//! - [`run`]: the loop (rayon, shards, resume, progress) and [`cli`]: arguments, printed
+//!   summary, exit codes.
+
 pub mod cli;
+pub mod fly;
+pub mod params;
+pub mod parquet;
+pub mod run;
+pub mod sample;
+pub mod scenario;
+pub mod stats;
+pub mod variants;
+
+pub use fly::{fly_chunk, Prepared, Status, VariantResult};
+pub use run::{run_campaign, RunConfig, RunReport};
+pub use scenario::{Scenario, ScenarioError};
+pub use variants::{Plan, Shard, Variant};

@@ -105,10 +105,18 @@ impl Param {
     /// The values a flight accepts. The trigger numbers are checked by their trigger.
     pub fn domain(&self) -> Domain {
         match self {
-            Param::StructureMassKg | Param::MotorImpulseNs | Param::MotorBurnTimeS | Param::DragScale | Param::RailLengthM => Domain::Positive,
+            Param::StructureMassKg
+            | Param::MotorImpulseNs
+            | Param::MotorBurnTimeS
+            | Param::DragScale
+            | Param::RailLengthM => Domain::Positive,
             Param::BallastKg | Param::WindSpeedMS | Param::ParachuteLagS(_) => Domain::NonNegative,
             Param::ParachuteCdsM2(_) => Domain::Positive,
-            Param::StructureCgM | Param::ElevationM | Param::WindFromDeg | Param::RailHeadingDeg | Param::ShiftTravelM(_) => Domain::Finite,
+            Param::StructureCgM
+            | Param::ElevationM
+            | Param::WindFromDeg
+            | Param::RailHeadingDeg
+            | Param::ShiftTravelM(_) => Domain::Finite,
             Param::RailInclinationDeg => Domain::Within(0.0, 90.0),
             Param::ShiftDurationS(_) => Domain::AtLeast(0.01),
             Param::ParachuteTrigger(_) => Domain::NonNegative,
@@ -160,10 +168,16 @@ mod tests {
 
     #[test]
     fn domains_say_the_rule_a_value_breaks() {
-        assert_eq!(Param::ParachuteCdsM2(0).domain().check(-1.0), Err("must be positive and finite (got -1)".into()));
+        assert_eq!(
+            Param::ParachuteCdsM2(0).domain().check(-1.0),
+            Err("must be positive and finite (got -1)".into())
+        );
         assert!(Param::RailInclinationDeg.domain().check(90.0).is_ok());
         assert!(Param::RailInclinationDeg.domain().check(0.0).is_err());
-        assert_eq!(Param::ShiftDurationS(0).domain().check(0.005), Err("must be at least 0.01 (got 0.005)".into()));
+        assert_eq!(
+            Param::ShiftDurationS(0).domain().check(0.005),
+            Err("must be at least 0.01 (got 0.005)".into())
+        );
         assert!(Param::WindSpeedMS.domain().check(f64::NAN).is_err());
     }
 }

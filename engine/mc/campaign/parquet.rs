@@ -15,7 +15,9 @@ use super::fly::{Prepared, Status, VariantResult};
 use super::stats::{PointStats, Table};
 use super::variants::{Shard, Variant};
 use anyhow::{bail, Context};
-use arrow::array::{Array, ArrayRef, Float64Array, StringArray, UInt32Array, UInt64Array, UInt8Array};
+use arrow::array::{
+    Array, ArrayRef, Float64Array, StringArray, UInt32Array, UInt64Array, UInt8Array,
+};
 use arrow::datatypes::{DataType, Field, Schema, SchemaRef};
 use arrow::record_batch::RecordBatch;
 use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
@@ -64,9 +66,15 @@ impl RunMeta {
             ("hpr_mc.scenario".into(), self.scenario_text.clone()),
             ("hpr_mc.scenario_hash".into(), self.scenario_hash.clone()),
             ("hpr_mc.seed".into(), self.seed.to_string()),
-            ("hpr_mc.variants_per_point".into(), self.variants_per_point.to_string()),
+            (
+                "hpr_mc.variants_per_point".into(),
+                self.variants_per_point.to_string(),
+            ),
             ("hpr_mc.points".into(), self.points.to_string()),
-            ("hpr_mc.shard".into(), format!("{}/{}", self.shard.k, self.shard.n)),
+            (
+                "hpr_mc.shard".into(),
+                format!("{}/{}", self.shard.k, self.shard.n),
+            ),
             ("hpr_mc.chunk_size".into(), self.chunk_size.to_string()),
         ]
     }
@@ -98,7 +106,17 @@ fn field(name: &str, dt: DataType, nullable: bool, unit: Option<&str>) -> Field 
 
 /// The swept inputs' fields (`sweep_<column>`).
 fn sweep_fields(p: &Prepared) -> Vec<Field> {
-    p.scenario.swept().map(|i| field(&format!("sweep_{}", i.column), DataType::Float64, false, Some(i.unit))).collect()
+    p.scenario
+        .swept()
+        .map(|i| {
+            field(
+                &format!("sweep_{}", i.column),
+                DataType::Float64,
+                false,
+                Some(i.unit),
+            )
+        })
+        .collect()
 }
 
 /// Schema of variants.parquet: ids, the sweep point's values, every input's value, the
@@ -110,45 +128,92 @@ pub fn variants_schema(p: &Prepared, meta: &RunMeta) -> SchemaRef {
         field("replicate", DataType::UInt64, false, None),
     ];
     fields.extend(sweep_fields(p));
-    fields.extend(p.scenario.inputs.iter().map(|i| field(&i.column, DataType::Float64, false, Some(i.unit))));
+    fields.extend(
+        p.scenario
+            .inputs
+            .iter()
+            .map(|i| field(&i.column, DataType::Float64, false, Some(i.unit))),
+    );
     fields.push(field("status", DataType::Utf8, false, None));
     fields.push(field("error", DataType::Utf8, true, None));
-    fields.extend(p.metrics.iter().map(|m| field(&m.name, DataType::Float64, true, Some(m.unit))));
-    Arc::new(Schema::new_with_metadata(fields, meta.pairs().into_iter().collect()))
+    fields.extend(
+        p.metrics
+            .iter()
+            .map(|m| field(&m.name, DataType::Float64, true, Some(m.unit))),
+    );
+    Arc::new(Schema::new_with_metadata(
+        fields,
+        meta.pairs().into_iter().collect(),
+    ))
 }
 
 /// The rows of `variants` and their `results` (same order) as one batch.
-pub fn variants_batch(p: &Prepared, schema: &SchemaRef, variants: &[Variant], results: &[VariantResult]) -> anyhow::Result<RecordBatch> {
+pub fn variants_batch(
+    p: &Prepared,
+    schema: &SchemaRef,
+    variants: &[Variant],
+    results: &[VariantResult],
+) -> anyhow::Result<RecordBatch> {
     let mut cols: Vec<ArrayRef> = vec![
         Arc::new(UInt64Array::from_iter_values(variants.iter().map(|v| v.id))),
-        Arc::new(UInt32Array::from_iter_values(variants.iter().map(|v| v.point as u32))),
-        Arc::new(UInt64Array::from_iter_values(variants.iter().map(|v| v.replicate))),
+        Arc::new(UInt32Array::from_iter_values(
+            variants.iter().map(|v| v.point as u32),
+        )),
+        Arc::new(UInt64Array::from_iter_values(
+            variants.iter().map(|v| v.replicate),
+        )),
     ];
-    let swept: Vec<usize> = p.scenario.inputs.iter().enumerate().filter(|(_, i)| i.sweep.is_some()).map(|(j, _)| j).collect();
+    let swept: Vec<usize> = p
+        .scenario
+        .inputs
+        .iter()
+        .enumerate()
+        .filter(|(_, i)| i.sweep.is_some())
+        .map(|(j, _)| j)
+        .collect();
     for (k, _) in swept.iter().enumerate() {
-        cols.push(Arc::new(Float64Array::from_iter_values(variants.iter().map(|v| p.plan.sweep_values(v.point)[k]))));
+        cols.push(Arc::new(Float64Array::from_iter_values(
+            variants.iter().map(|v| p.plan.sweep_values(v.point)[k]),
+        )));
     }
     for j in 0..p.scenario.inputs.len() {
-        cols.push(Arc::new(Float64Array::from_iter_values(variants.iter().map(|v| v.values[j]))));
+        cols.push(Arc::new(Float64Array::from_iter_values(
+            variants.iter().map(|v| v.values[j]),
+        )));
     }
-    cols.push(Arc::new(StringArray::from_iter_values(results.iter().map(|r| r.status.name()))));
-    cols.push(Arc::new(StringArray::from(results.iter().map(|r| r.error.clone()).collect::<Vec<_>>())));
+    cols.push(Arc::new(StringArray::from_iter_values(
+        results.iter().map(|r| r.status.name()),
+    )));
+    cols.push(Arc::new(StringArray::from(
+        results.iter().map(|r| r.error.clone()).collect::<Vec<_>>(),
+    )));
     for m in 0..p.metrics.len() {
-        cols.push(Arc::new(Float64Array::from(results.iter().map(|r| r.metrics[m]).collect::<Vec<_>>())));
+        cols.push(Arc::new(Float64Array::from(
+            results.iter().map(|r| r.metrics[m]).collect::<Vec<_>>(),
+        )));
     }
     Ok(RecordBatch::try_new(schema.clone(), cols)?)
 }
 
 /// The temporary name a file is written under before its rename.
 pub fn temporary(path: &Path) -> PathBuf {
-    let mut name = path.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+    let mut name = path
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_default();
     name.push(".tmp");
     path.with_file_name(name)
 }
 
 /// Write a Parquet file atomically: `fill` writes the batches, the file is synced and renamed
 /// into place. On an error the temporary file is removed.
-pub fn write_atomic(path: &Path, schema: &SchemaRef, pairs: &[(String, String)], row_group_rows: usize, fill: impl FnOnce(&mut ArrowWriter<File>) -> anyhow::Result<()>) -> anyhow::Result<()> {
+pub fn write_atomic(
+    path: &Path,
+    schema: &SchemaRef,
+    pairs: &[(String, String)],
+    row_group_rows: usize,
+    fill: impl FnOnce(&mut ArrowWriter<File>) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
     let tmp = temporary(path);
     let result = (|| -> anyhow::Result<()> {
         let file = File::create(&tmp).with_context(|| format!("can't create {}", tmp.display()))?;
@@ -166,7 +231,8 @@ pub fn write_atomic(path: &Path, schema: &SchemaRef, pairs: &[(String, String)],
         Ok(())
     })();
     match result {
-        Ok(()) => std::fs::rename(&tmp, path).with_context(|| format!("can't rename {} to {}", tmp.display(), path.display())),
+        Ok(()) => std::fs::rename(&tmp, path)
+            .with_context(|| format!("can't rename {} to {}", tmp.display(), path.display())),
         Err(e) => {
             let _ = std::fs::remove_file(&tmp);
             Err(e.context(format!("writing {}", path.display())))
@@ -177,9 +243,18 @@ pub fn write_atomic(path: &Path, schema: &SchemaRef, pairs: &[(String, String)],
 /// The key-value metadata of a Parquet file.
 pub fn read_pairs(path: &Path) -> anyhow::Result<HashMap<String, String>> {
     let file = File::open(path).with_context(|| format!("can't open {}", path.display()))?;
-    let builder = ParquetRecordBatchReaderBuilder::try_new(file).with_context(|| format!("{} is not a readable Parquet file", path.display()))?;
-    let kv = builder.metadata().file_metadata().key_value_metadata().cloned().unwrap_or_default();
-    Ok(kv.into_iter().filter_map(|kv| kv.value.map(|v| (kv.key, v))).collect())
+    let builder = ParquetRecordBatchReaderBuilder::try_new(file)
+        .with_context(|| format!("{} is not a readable Parquet file", path.display()))?;
+    let kv = builder
+        .metadata()
+        .file_metadata()
+        .key_value_metadata()
+        .cloned()
+        .unwrap_or_default();
+    Ok(kv
+        .into_iter()
+        .filter_map(|kv| kv.value.map(|v| (kv.key, v)))
+        .collect())
 }
 
 /// Row count of a Parquet file.
@@ -190,9 +265,13 @@ pub fn row_count(path: &Path) -> anyhow::Result<u64> {
 }
 
 /// Every record batch of a Parquet file, in order.
-pub fn read_batches(path: &Path) -> anyhow::Result<impl Iterator<Item = anyhow::Result<RecordBatch>>> {
+pub fn read_batches(
+    path: &Path,
+) -> anyhow::Result<impl Iterator<Item = anyhow::Result<RecordBatch>>> {
     let file = File::open(path).with_context(|| format!("can't open {}", path.display()))?;
-    let reader = ParquetRecordBatchReaderBuilder::try_new(file)?.with_batch_size(8192).build()?;
+    let reader = ParquetRecordBatchReaderBuilder::try_new(file)?
+        .with_batch_size(8192)
+        .build()?;
     Ok(reader.map(|b| b.map_err(anyhow::Error::from)))
 }
 
@@ -209,16 +288,25 @@ pub fn accumulate(p: &Prepared, table: &mut Table, batch: &RecordBatch) -> anyho
         table.inputs = vec![vec![]; p.scenario.inputs.len()];
         table.metrics = vec![vec![]; p.metrics.len()];
     }
-    let point = batch.column_by_name("point").and_then(|c| c.as_any().downcast_ref::<UInt32Array>()).context("no UInt32 column point")?;
-    let status = batch.column_by_name("status").and_then(|c| c.as_any().downcast_ref::<StringArray>()).context("no string column status")?;
+    let point = batch
+        .column_by_name("point")
+        .and_then(|c| c.as_any().downcast_ref::<UInt32Array>())
+        .context("no UInt32 column point")?;
+    let status = batch
+        .column_by_name("status")
+        .and_then(|c| c.as_any().downcast_ref::<StringArray>())
+        .context("no string column status")?;
     table.point.extend(point.values().iter().copied());
-    table.landed.extend((0..status.len()).map(|r| status.value(r) == Status::Landed.name()));
+    table
+        .landed
+        .extend((0..status.len()).map(|r| status.value(r) == Status::Landed.name()));
     for (j, input) in p.scenario.inputs.iter().enumerate() {
         table.inputs[j].extend(f64_column(batch, &input.column)?.values().iter().copied());
     }
     for (m, metric) in p.metrics.iter().enumerate() {
         let c = f64_column(batch, &metric.name)?;
-        table.metrics[m].extend((0..c.len()).map(|r| if c.is_null(r) { f64::NAN } else { c.value(r) }));
+        table.metrics[m]
+            .extend((0..c.len()).map(|r| if c.is_null(r) { f64::NAN } else { c.value(r) }));
     }
     Ok(())
 }
@@ -227,8 +315,17 @@ pub fn accumulate(p: &Prepared, table: &mut Table, batch: &RecordBatch) -> anyho
 pub fn check_schema(path: &Path, expected: &SchemaRef) -> anyhow::Result<()> {
     let file = File::open(path).with_context(|| format!("can't open {}", path.display()))?;
     let builder = ParquetRecordBatchReaderBuilder::try_new(file)?;
-    let got: Vec<&str> = builder.schema().fields().iter().map(|f| f.name().as_str()).collect();
-    let want: Vec<&str> = expected.fields().iter().map(|f| f.name().as_str()).collect();
+    let got: Vec<&str> = builder
+        .schema()
+        .fields()
+        .iter()
+        .map(|f| f.name().as_str())
+        .collect();
+    let want: Vec<&str> = expected
+        .fields()
+        .iter()
+        .map(|f| f.name().as_str())
+        .collect();
     if got != want {
         bail!("{} has other columns than this scenario's", path.display());
     }
@@ -238,7 +335,13 @@ pub fn check_schema(path: &Path, expected: &SchemaRef) -> anyhow::Result<()> {
 /// The sweep columns of a statistics file, one value per row (`rows` holds each row's point).
 fn sweep_columns(p: &Prepared, rows: &[usize]) -> Vec<ArrayRef> {
     let n = p.scenario.swept().count();
-    (0..n).map(|k| Arc::new(Float64Array::from_iter_values(rows.iter().map(|&pt| p.plan.sweep_values(pt)[k]))) as ArrayRef).collect()
+    (0..n)
+        .map(|k| {
+            Arc::new(Float64Array::from_iter_values(
+                rows.iter().map(|&pt| p.plan.sweep_values(pt)[k]),
+            )) as ArrayRef
+        })
+        .collect()
 }
 
 fn opt(values: impl IntoIterator<Item = Option<f64>>) -> ArrayRef {
@@ -247,7 +350,11 @@ fn opt(values: impl IntoIterator<Item = Option<f64>>) -> ArrayRef {
 
 /// summary.parquet: per sweep point and metric, the count of values, the failures and the
 /// distribution (null where there is no value).
-pub fn summary_batch(p: &Prepared, meta: &RunMeta, stats: &[PointStats]) -> anyhow::Result<RecordBatch> {
+pub fn summary_batch(
+    p: &Prepared,
+    meta: &RunMeta,
+    stats: &[PointStats],
+) -> anyhow::Result<RecordBatch> {
     let mut fields = vec![field("point", DataType::UInt32, false, None)];
     fields.extend(sweep_fields(p));
     fields.push(field("metric", DataType::Utf8, false, None));
@@ -258,19 +365,47 @@ pub fn summary_batch(p: &Prepared, meta: &RunMeta, stats: &[PointStats]) -> anyh
     for f in ["mean", "std", "min", "p1", "p5", "p50", "p95", "p99", "max"] {
         fields.push(field(f, DataType::Float64, true, None));
     }
-    let schema = Arc::new(Schema::new_with_metadata(fields, meta.pairs().into_iter().collect()));
-    let rows: Vec<(usize, usize)> = stats.iter().flat_map(|s| (0..p.metrics.len()).map(move |m| (s.point, m))).collect();
+    let schema = Arc::new(Schema::new_with_metadata(
+        fields,
+        meta.pairs().into_iter().collect(),
+    ));
+    let rows: Vec<(usize, usize)> = stats
+        .iter()
+        .flat_map(|s| (0..p.metrics.len()).map(move |m| (s.point, m)))
+        .collect();
     let pts: Vec<usize> = rows.iter().map(|r| r.0).collect();
     let sum = |r: &(usize, usize)| stats[r.0].summaries[r.1];
-    let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(pts.iter().map(|&x| x as u32)))];
+    let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(
+        pts.iter().map(|&x| x as u32),
+    ))];
     cols.extend(sweep_columns(p, &pts));
-    cols.push(Arc::new(StringArray::from_iter_values(rows.iter().map(|r| p.metrics[r.1].name.as_str()))));
-    cols.push(Arc::new(StringArray::from_iter_values(rows.iter().map(|r| p.metrics[r.1].unit))));
-    cols.push(Arc::new(UInt64Array::from_iter_values(rows.iter().map(|r| stats[r.0].variants))));
-    cols.push(Arc::new(UInt64Array::from_iter_values(rows.iter().map(|r| stats[r.0].failures))));
-    cols.push(Arc::new(UInt64Array::from_iter_values(rows.iter().map(|r| sum(r).map_or(0, |s| s.count)))));
+    cols.push(Arc::new(StringArray::from_iter_values(
+        rows.iter().map(|r| p.metrics[r.1].name.as_str()),
+    )));
+    cols.push(Arc::new(StringArray::from_iter_values(
+        rows.iter().map(|r| p.metrics[r.1].unit),
+    )));
+    cols.push(Arc::new(UInt64Array::from_iter_values(
+        rows.iter().map(|r| stats[r.0].variants),
+    )));
+    cols.push(Arc::new(UInt64Array::from_iter_values(
+        rows.iter().map(|r| stats[r.0].failures),
+    )));
+    cols.push(Arc::new(UInt64Array::from_iter_values(
+        rows.iter().map(|r| sum(r).map_or(0, |s| s.count)),
+    )));
     type Get = fn(&super::stats::Summary) -> Option<f64>;
-    let getters: [Get; 9] = [|s| Some(s.mean), |s| s.std, |s| Some(s.min), |s| Some(s.p1), |s| Some(s.p5), |s| Some(s.p50), |s| Some(s.p95), |s| Some(s.p99), |s| Some(s.max)];
+    let getters: [Get; 9] = [
+        |s| Some(s.mean),
+        |s| s.std,
+        |s| Some(s.min),
+        |s| Some(s.p1),
+        |s| Some(s.p5),
+        |s| Some(s.p50),
+        |s| Some(s.p95),
+        |s| Some(s.p99),
+        |s| Some(s.max),
+    ];
     for g in getters {
         cols.push(opt(rows.iter().map(|r| sum(r).and_then(|s| g(&s)))));
     }
@@ -278,22 +413,52 @@ pub fn summary_batch(p: &Prepared, meta: &RunMeta, stats: &[PointStats]) -> anyh
 }
 
 /// ellipses.parquet: per sweep point and k = 1, 2, 3, the k σ landing ellipse.
-pub fn ellipses_batch(p: &Prepared, meta: &RunMeta, stats: &[PointStats]) -> anyhow::Result<RecordBatch> {
+pub fn ellipses_batch(
+    p: &Prepared,
+    meta: &RunMeta,
+    stats: &[PointStats],
+) -> anyhow::Result<RecordBatch> {
     let mut fields = vec![field("point", DataType::UInt32, false, None)];
     fields.extend(sweep_fields(p));
     fields.push(field("sigma", DataType::UInt8, false, None));
     fields.push(field("count", DataType::UInt64, false, None));
-    for (f, u) in [("center_x_m", "m"), ("center_y_m", "m"), ("semi_major_m", "m"), ("semi_minor_m", "m"), ("major_axis_deg", "deg"), ("var_x_m2", "m²"), ("var_y_m2", "m²"), ("cov_xy_m2", "m²")] {
+    for (f, u) in [
+        ("center_x_m", "m"),
+        ("center_y_m", "m"),
+        ("semi_major_m", "m"),
+        ("semi_minor_m", "m"),
+        ("major_axis_deg", "deg"),
+        ("var_x_m2", "m²"),
+        ("var_y_m2", "m²"),
+        ("cov_xy_m2", "m²"),
+    ] {
         fields.push(field(f, DataType::Float64, false, Some(u)));
     }
-    let schema = Arc::new(Schema::new_with_metadata(fields, meta.pairs().into_iter().collect()));
-    let rows: Vec<(usize, u8, super::stats::Ellipse)> = stats.iter().filter_map(|s| s.ellipse.map(|e| (s.point, e))).flat_map(|(pt, e)| (1..=3u8).map(move |k| (pt, k, e))).collect();
+    let schema = Arc::new(Schema::new_with_metadata(
+        fields,
+        meta.pairs().into_iter().collect(),
+    ));
+    let rows: Vec<(usize, u8, super::stats::Ellipse)> = stats
+        .iter()
+        .filter_map(|s| s.ellipse.map(|e| (s.point, e)))
+        .flat_map(|(pt, e)| (1..=3u8).map(move |k| (pt, k, e)))
+        .collect();
     let pts: Vec<usize> = rows.iter().map(|r| r.0).collect();
-    let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(pts.iter().map(|&x| x as u32)))];
+    let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(
+        pts.iter().map(|&x| x as u32),
+    ))];
     cols.extend(sweep_columns(p, &pts));
-    cols.push(Arc::new(UInt8Array::from_iter_values(rows.iter().map(|r| r.1))));
-    cols.push(Arc::new(UInt64Array::from_iter_values(rows.iter().map(|r| r.2.count))));
-    let f = |g: &dyn Fn(u8, &super::stats::Ellipse) -> f64| -> ArrayRef { Arc::new(Float64Array::from_iter_values(rows.iter().map(|r| g(r.1, &r.2)))) };
+    cols.push(Arc::new(UInt8Array::from_iter_values(
+        rows.iter().map(|r| r.1),
+    )));
+    cols.push(Arc::new(UInt64Array::from_iter_values(
+        rows.iter().map(|r| r.2.count),
+    )));
+    let f = |g: &dyn Fn(u8, &super::stats::Ellipse) -> f64| -> ArrayRef {
+        Arc::new(Float64Array::from_iter_values(
+            rows.iter().map(|r| g(r.1, &r.2)),
+        ))
+    };
     cols.push(f(&|_, e| e.center_x_m));
     cols.push(f(&|_, e| e.center_y_m));
     cols.push(f(&|k, e| f64::from(k) * e.semi_major_m));
@@ -306,8 +471,12 @@ pub fn ellipses_batch(p: &Prepared, meta: &RunMeta, stats: &[PointStats]) -> any
 }
 
 /// sensitivity.parquet: per sweep point, metric and dispersed input, the fit's coefficient,
-/// standardized coefficient and share of the metric's variance.
-pub fn sensitivity_batch(p: &Prepared, meta: &RunMeta, stats: &[PointStats]) -> anyhow::Result<RecordBatch> {
+/// standardized coefficient, correlation and share of the metric's variance (see `stats`).
+pub fn sensitivity_batch(
+    p: &Prepared,
+    meta: &RunMeta,
+    stats: &[PointStats],
+) -> anyhow::Result<RecordBatch> {
     let mut fields = vec![field("point", DataType::UInt32, false, None)];
     fields.extend(sweep_fields(p));
     for f in ["metric", "input", "coefficient_unit"] {
@@ -316,30 +485,69 @@ pub fn sensitivity_batch(p: &Prepared, meta: &RunMeta, stats: &[PointStats]) -> 
     fields.push(field("count", DataType::UInt64, false, None));
     fields.push(field("r2", DataType::Float64, false, Some("1")));
     fields.push(field("coefficient", DataType::Float64, true, None));
-    fields.push(field("standardized_coefficient", DataType::Float64, true, Some("1")));
+    fields.push(field(
+        "standardized_coefficient",
+        DataType::Float64,
+        true,
+        Some("1"),
+    ));
+    fields.push(field("correlation", DataType::Float64, true, Some("1")));
     fields.push(field("share", DataType::Float64, true, Some("1")));
-    let schema = Arc::new(Schema::new_with_metadata(fields, meta.pairs().into_iter().collect()));
-    let dispersed: Vec<usize> = p.scenario.inputs.iter().enumerate().filter(|(_, i)| i.dispersion.is_some()).map(|(j, _)| j).collect();
+    let schema = Arc::new(Schema::new_with_metadata(
+        fields,
+        meta.pairs().into_iter().collect(),
+    ));
+    let dispersed: Vec<usize> = p
+        .scenario
+        .inputs
+        .iter()
+        .enumerate()
+        .filter(|(_, i)| i.dispersion.is_some())
+        .map(|(j, _)| j)
+        .collect();
     let mut rows = vec![];
     for s in stats {
         for (m, fit) in s.sensitivity.iter().enumerate() {
             if let Some(fit) = fit {
                 for (k, &j) in dispersed.iter().enumerate() {
-                    rows.push((s.point, m, j, fit.count, fit.r2, fit.coefficients[k], fit.standardized[k], fit.shares[k]));
+                    rows.push((
+                        s.point,
+                        m,
+                        j,
+                        fit.count,
+                        fit.r2,
+                        fit.coefficients[k],
+                        fit.standardized[k],
+                        fit.correlations[k],
+                        fit.shares[k],
+                    ));
                 }
             }
         }
     }
     let pts: Vec<usize> = rows.iter().map(|r| r.0).collect();
-    let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(pts.iter().map(|&x| x as u32)))];
+    let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(
+        pts.iter().map(|&x| x as u32),
+    ))];
     cols.extend(sweep_columns(p, &pts));
-    cols.push(Arc::new(StringArray::from_iter_values(rows.iter().map(|r| p.metrics[r.1].name.clone()))));
-    cols.push(Arc::new(StringArray::from_iter_values(rows.iter().map(|r| p.scenario.inputs[r.2].column.clone()))));
-    cols.push(Arc::new(StringArray::from_iter_values(rows.iter().map(|r| format!("{}/{}", p.metrics[r.1].unit, p.scenario.inputs[r.2].unit)))));
-    cols.push(Arc::new(UInt64Array::from_iter_values(rows.iter().map(|r| r.3))));
-    cols.push(Arc::new(Float64Array::from_iter_values(rows.iter().map(|r| r.4))));
+    cols.push(Arc::new(StringArray::from_iter_values(
+        rows.iter().map(|r| p.metrics[r.1].name.clone()),
+    )));
+    cols.push(Arc::new(StringArray::from_iter_values(
+        rows.iter().map(|r| p.scenario.inputs[r.2].column.clone()),
+    )));
+    cols.push(Arc::new(StringArray::from_iter_values(rows.iter().map(
+        |r| format!("{}/{}", p.metrics[r.1].unit, p.scenario.inputs[r.2].unit),
+    ))));
+    cols.push(Arc::new(UInt64Array::from_iter_values(
+        rows.iter().map(|r| r.3),
+    )));
+    cols.push(Arc::new(Float64Array::from_iter_values(
+        rows.iter().map(|r| r.4),
+    )));
     cols.push(opt(rows.iter().map(|r| r.5)));
     cols.push(opt(rows.iter().map(|r| r.6)));
     cols.push(opt(rows.iter().map(|r| r.7)));
+    cols.push(opt(rows.iter().map(|r| r.8)));
     Ok(RecordBatch::try_new(schema, cols)?)
 }

@@ -61,7 +61,11 @@ impl Outputs {
     /// File names for `shard` in `dir`: `variants.parquet`..., or
     /// `variants-shard-K-of-N.parquet`... for one shard of several.
     pub fn new(dir: &Path, shard: Shard) -> Outputs {
-        let suffix = if shard.is_all() { String::new() } else { format!("-shard-{}-of-{}", shard.k, shard.n) };
+        let suffix = if shard.is_all() {
+            String::new()
+        } else {
+            format!("-shard-{}-of-{}", shard.k, shard.n)
+        };
         let f = |stem: &str| dir.join(format!("{stem}{suffix}.parquet"));
         Outputs {
             dir: dir.to_path_buf(),
@@ -118,14 +122,18 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
     let started = Instant::now();
     let prepared = prepare(scenario, cfg)?;
     let shard = cfg.shard.unwrap_or(Shard::ALL);
-    let dir = cfg.out.clone().unwrap_or_else(|| Path::new("results").join(&prepared.scenario.name));
+    let dir = cfg
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("results").join(&prepared.scenario.name));
     let outputs = Outputs::new(&dir, shard);
     let meta = RunMeta::of(&prepared, shard);
     let schema = pq::variants_schema(&prepared, &meta);
     let total = prepared.plan.total();
     let count = shard.count(total);
     let chunk_list = chunks(count, prepared.scenario.chunk_size);
-    std::fs::create_dir_all(&outputs.parts).with_context(|| format!("can't create {}", outputs.parts.display()))?;
+    std::fs::create_dir_all(&outputs.parts)
+        .with_context(|| format!("can't create {}", outputs.parts.display()))?;
 
     let mut report = RunReport {
         prepared,
@@ -145,7 +153,12 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
     let (p, out) = (&report.prepared, &report.outputs);
 
     // A resumed run whose merged file is already there only recomputes the statistics.
-    let finished = cfg.resume && out.variants.is_file() && pq::read_pairs(&out.variants).map(|kv| meta.mismatch(&kv).is_none()).unwrap_or(false) && pq::row_count(&out.variants)? == count;
+    let finished = cfg.resume
+        && out.variants.is_file()
+        && pq::read_pairs(&out.variants)
+            .map(|kv| meta.mismatch(&kv).is_none())
+            .unwrap_or(false)
+        && pq::row_count(&out.variants)? == count;
     if !finished {
         let done = scan_parts(out, &meta, &chunk_list, cfg.resume)?;
         report.chunks_kept = done.iter().filter(|d| **d).count();
@@ -153,17 +166,32 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         if let Some(m) = cfg.max_chunks {
             missing.truncate(m);
         }
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads.unwrap_or(0)).build().context("can't start the worker threads")?;
-        let flights_left: u64 = missing.iter().map(|&c| chunk_list[c].end - chunk_list[c].start).sum();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(cfg.threads.unwrap_or(0))
+            .build()
+            .context("can't start the worker threads")?;
+        let flights_left: u64 = missing
+            .iter()
+            .map(|&c| chunk_list[c].end - chunk_list[c].start)
+            .sum();
         let bar = progress(flights_left, cfg.quiet);
         pool.install(|| {
             missing.par_iter().try_for_each(|&c| -> anyhow::Result<()> {
-                let variants: Vec<Variant> = chunk_list[c].clone().map(|q| p.plan.variant(shard.id(q))).collect();
+                let variants: Vec<Variant> = chunk_list[c]
+                    .clone()
+                    .map(|q| p.plan.variant(shard.id(q)))
+                    .collect();
                 let results = fly_chunk(p, &variants);
                 let batch = pq::variants_batch(p, &schema, &variants, &results)?;
                 let mut pairs = meta.pairs();
                 pairs.push(("hpr_mc.chunk".into(), c.to_string()));
-                pq::write_atomic(&out.part(c), &schema, &pairs, p.scenario.row_group_rows, |w| Ok(w.write(&batch)?))?;
+                pq::write_atomic(
+                    &out.part(c),
+                    &schema,
+                    &pairs,
+                    p.scenario.row_group_rows,
+                    |w| Ok(w.write(&batch)?),
+                )?;
                 bar.inc(variants.len() as u64);
                 Ok(())
             })
@@ -176,18 +204,25 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         }
         // Merge the parts, in order, into the variants file, reading the statistics' table.
         let mut table = Table::default();
-        pq::write_atomic(&out.variants, &schema, &meta.pairs(), p.scenario.row_group_rows, |w| {
-            for c in 0..chunk_list.len() {
-                for batch in pq::read_batches(&out.part(c))? {
-                    let batch = batch?;
-                    pq::accumulate(p, &mut table, &batch)?;
-                    w.write(&batch)?;
+        pq::write_atomic(
+            &out.variants,
+            &schema,
+            &meta.pairs(),
+            p.scenario.row_group_rows,
+            |w| {
+                for c in 0..chunk_list.len() {
+                    for batch in pq::read_batches(&out.part(c))? {
+                        let batch = batch?;
+                        pq::accumulate(p, &mut table, &batch)?;
+                        w.write(&batch)?;
+                    }
                 }
-            }
-            Ok(())
-        })?;
+                Ok(())
+            },
+        )?;
         finish(&mut report, &meta, &table)?;
-        std::fs::remove_dir_all(&report.outputs.parts).with_context(|| format!("can't remove {}", report.outputs.parts.display()))?;
+        std::fs::remove_dir_all(&report.outputs.parts)
+            .with_context(|| format!("can't remove {}", report.outputs.parts.display()))?;
         let _ = std::fs::remove_dir(report.outputs.dir.join("parts"));
     } else {
         pq::check_schema(&out.variants, &schema)?;
@@ -207,7 +242,12 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
 /// Count the statuses, compute and write the statistics.
 fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Result<()> {
     let p = &report.prepared;
-    let dispersed: Vec<bool> = p.scenario.inputs.iter().map(|i| i.dispersion.is_some()).collect();
+    let dispersed: Vec<bool> = p
+        .scenario
+        .inputs
+        .iter()
+        .map(|i| i.dispersion.is_some())
+        .collect();
     report.stats = stats::compute(table, p.plan.points(), &dispersed, LANDING_XY);
     // Statuses other than landed are re-read from the status strings through `landed`; the
     // kinds are counted from the files below.
@@ -218,11 +258,17 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
     let pairs = meta.pairs();
     let rg = p.scenario.row_group_rows;
     let summary = pq::summary_batch(p, meta, &report.stats)?;
-    pq::write_atomic(&out.summary, &summary.schema(), &pairs, rg, |w| Ok(w.write(&summary)?))?;
+    pq::write_atomic(&out.summary, &summary.schema(), &pairs, rg, |w| {
+        Ok(w.write(&summary)?)
+    })?;
     let ellipses = pq::ellipses_batch(p, meta, &report.stats)?;
-    pq::write_atomic(&out.ellipses, &ellipses.schema(), &pairs, rg, |w| Ok(w.write(&ellipses)?))?;
+    pq::write_atomic(&out.ellipses, &ellipses.schema(), &pairs, rg, |w| {
+        Ok(w.write(&ellipses)?)
+    })?;
     let sens = pq::sensitivity_batch(p, meta, &report.stats)?;
-    pq::write_atomic(&out.sensitivity, &sens.schema(), &pairs, rg, |w| Ok(w.write(&sens)?))?;
+    pq::write_atomic(&out.sensitivity, &sens.schema(), &pairs, rg, |w| {
+        Ok(w.write(&sens)?)
+    })?;
     Ok(())
 }
 
@@ -231,7 +277,10 @@ fn count_failures(path: &Path) -> anyhow::Result<(u64, u64, u64)> {
     let (mut t, mut r, mut f) = (0, 0, 0);
     for batch in pq::read_batches(path)? {
         let batch = batch?;
-        let status = batch.column_by_name("status").and_then(|c| c.as_any().downcast_ref::<arrow::array::StringArray>()).context("no status column")?;
+        let status = batch
+            .column_by_name("status")
+            .and_then(|c| c.as_any().downcast_ref::<arrow::array::StringArray>())
+            .context("no status column")?;
         for s in status.iter().flatten() {
             if s == Status::TimeLimit.name() {
                 t += 1;
@@ -247,12 +296,26 @@ fn count_failures(path: &Path) -> anyhow::Result<(u64, u64, u64)> {
 
 /// Which chunks have a complete part from this run. Without `resume`, every part of this
 /// shard is removed first (a fresh start). Leftover temporary files are always removed.
-fn scan_parts(out: &Outputs, meta: &RunMeta, chunk_list: &[std::ops::Range<u64>], resume: bool) -> anyhow::Result<Vec<bool>> {
+fn scan_parts(
+    out: &Outputs,
+    meta: &RunMeta,
+    chunk_list: &[std::ops::Range<u64>],
+    resume: bool,
+) -> anyhow::Result<Vec<bool>> {
     let mut done = vec![false; chunk_list.len()];
-    for entry in std::fs::read_dir(&out.parts).with_context(|| format!("can't read {}", out.parts.display()))? {
+    for entry in std::fs::read_dir(&out.parts)
+        .with_context(|| format!("can't read {}", out.parts.display()))?
+    {
         let path = entry?.path();
-        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("").to_string();
-        let chunk = name.strip_prefix("chunk-").and_then(|r| r.strip_suffix(".parquet")).and_then(|n| n.parse::<usize>().ok());
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("")
+            .to_string();
+        let chunk = name
+            .strip_prefix("chunk-")
+            .and_then(|r| r.strip_suffix(".parquet"))
+            .and_then(|n| n.parse::<usize>().ok());
         match chunk {
             Some(c) if resume => {
                 let kv = pq::read_pairs(&path)?;
@@ -260,12 +323,15 @@ fn scan_parts(out: &Outputs, meta: &RunMeta, chunk_list: &[std::ops::Range<u64>]
                     bail!("{} is a part of another run ({why}); to start over, run without --resume, or remove {}", path.display(), out.parts.display());
                 }
                 let expected = chunk_list.get(c).map(|r| r.end - r.start);
-                if kv.get("hpr_mc.chunk") != Some(&c.to_string()) || expected != Some(pq::row_count(&path)?) {
+                if kv.get("hpr_mc.chunk") != Some(&c.to_string())
+                    || expected != Some(pq::row_count(&path)?)
+                {
                     bail!("{} does not hold chunk {c} of this run; to start over, run without --resume, or remove {}", path.display(), out.parts.display());
                 }
                 done[c] = true;
             }
-            _ => std::fs::remove_file(&path).with_context(|| format!("can't remove {}", path.display()))?,
+            _ => std::fs::remove_file(&path)
+                .with_context(|| format!("can't remove {}", path.display()))?,
         }
     }
     Ok(done)
@@ -278,7 +344,10 @@ fn progress(len: u64, quiet: bool) -> ProgressBar {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
-    let style = ProgressStyle::with_template("{elapsed_precise} [{wide_bar}] {pos}/{len} flights, {per_sec}, {eta} left").unwrap_or_else(|_| ProgressStyle::default_bar());
+    let style = ProgressStyle::with_template(
+        "{elapsed_precise} [{wide_bar}] {pos}/{len} flights, {per_sec}, {eta} left",
+    )
+    .unwrap_or_else(|_| ProgressStyle::default_bar());
     bar.set_style(style.progress_chars("=> "));
     bar
 }

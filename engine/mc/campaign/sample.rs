@@ -27,8 +27,8 @@
 //! `value = center × exp(mu + sigma Z)`. A normal may instead give its `mean` as a value, which
 //! replaces the center.
 
-use rand::{RngExt, SeedableRng};
 use rand::rngs::ChaCha8Rng;
+use rand::{RngExt, SeedableRng};
 use rand_distr::{Distribution, Exp1, StandardNormal, Triangular};
 
 /// The shape of a dispersion. For every shape but [`Shape::LogNormal`] the parameters
@@ -40,7 +40,12 @@ pub enum Shape {
     /// `value ~ N(mean, sigma²)` whatever the center (a normal given by its mean).
     NormalAbout { mean: f64, sigma: f64 },
     /// `d ~ N(bias, sigma²)` restricted to `[min, max]` (either may be infinite).
-    TruncatedNormal { bias: f64, sigma: f64, min: f64, max: f64 },
+    TruncatedNormal {
+        bias: f64,
+        sigma: f64,
+        min: f64,
+        max: f64,
+    },
     /// `d ~ U(min, max)`.
     Uniform { min: f64, max: f64 },
     /// `d` triangular on `[min, max]` with its peak at `mode`.
@@ -62,8 +67,14 @@ impl Dispersion {
         let d = match self.shape {
             Shape::Normal { bias, sigma } => bias + sigma * standard_normal(rng),
             Shape::NormalAbout { mean, sigma } => return mean + sigma * standard_normal(rng),
-            Shape::TruncatedNormal { bias, sigma, min, max } => {
-                bias + sigma * truncated_standard_normal((min - bias) / sigma, (max - bias) / sigma, rng)
+            Shape::TruncatedNormal {
+                bias,
+                sigma,
+                min,
+                max,
+            } => {
+                bias + sigma
+                    * truncated_standard_normal((min - bias) / sigma, (max - bias) / sigma, rng)
             }
             Shape::Uniform { min, max } => min + (max - min) * unit_open(rng),
             Shape::Triangular { min, mode, max } => match Triangular::new(min, max, mode) {
@@ -71,7 +82,9 @@ impl Dispersion {
                 // Checked when the scenario is read; a degenerate triangle is its one point.
                 Err(_) => mode,
             },
-            Shape::LogNormal { mu, sigma } => return center * (mu + sigma * standard_normal(rng)).exp(),
+            Shape::LogNormal { mu, sigma } => {
+                return center * (mu + sigma * standard_normal(rng)).exp()
+            }
         };
         if self.relative {
             center * (1.0 + d)
@@ -96,13 +109,20 @@ impl Dispersion {
         let (m, s) = match self.shape {
             Shape::Normal { bias, sigma } => (bias, sigma),
             Shape::NormalAbout { mean, sigma } => return (mean, sigma),
-            Shape::TruncatedNormal { bias, sigma, min, max } => {
+            Shape::TruncatedNormal {
+                bias,
+                sigma,
+                min,
+                max,
+            } => {
                 let (m, s) = truncated_standard_moments((min - bias) / sigma, (max - bias) / sigma);
                 (bias + sigma * m, sigma * s)
             }
             Shape::Uniform { min, max } => (0.5 * (min + max), (max - min) / 12f64.sqrt()),
             Shape::Triangular { min, mode, max } => {
-                let var = (min * min + mode * mode + max * max - min * mode - min * max - mode * max) / 18.0;
+                let var =
+                    (min * min + mode * mode + max * max - min * mode - min * max - mode * max)
+                        / 18.0;
                 ((min + mode + max) / 3.0, var.sqrt())
             }
             Shape::LogNormal { mu, sigma } => {
@@ -238,7 +258,12 @@ fn erfc(x: f64) -> f64 {
         * (-z * z - 1.265_512_23
             + t * (1.000_023_68
                 + t * (0.374_091_96
-                    + t * (0.096_784_18 + t * (-0.186_288_06 + t * (0.278_868_07 + t * (-1.135_203_98 + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77)))))))))
+                    + t * (0.096_784_18
+                        + t * (-0.186_288_06
+                            + t * (0.278_868_07
+                                + t * (-1.135_203_98
+                                    + t * (1.488_515_87
+                                        + t * (-0.822_152_23 + t * 0.170_872_77)))))))))
             .exp();
     if x >= 0.0 {
         r
@@ -263,7 +288,9 @@ mod tests {
     use super::*;
 
     fn draws(d: &Dispersion, center: f64, n: u64) -> Vec<f64> {
-        (0..n).map(|i| d.sample(center, &mut input_rng(7, i, "x"))).collect()
+        (0..n)
+            .map(|i| d.sample(center, &mut input_rng(7, i, "x")))
+            .collect()
     }
 
     fn mean_std(v: &[f64]) -> (f64, f64) {
@@ -285,13 +312,25 @@ mod tests {
         let (em, es) = d.moments(center);
         let tol_m = 4.5 * es / (n as f64).sqrt();
         let tol_s = 4.5 * es / (2.0 * n as f64).sqrt() * 1.5;
-        assert!((m - em).abs() < tol_m, "{d:?}: mean {m} expected {em} ± {tol_m}");
-        assert!((s - es).abs() < tol_s, "{d:?}: std {s} expected {es} ± {tol_s}");
+        assert!(
+            (m - em).abs() < tol_m,
+            "{d:?}: mean {m} expected {em} ± {tol_m}"
+        );
+        assert!(
+            (s - es).abs() < tol_s,
+            "{d:?}: std {s} expected {es} ± {tol_s}"
+        );
     }
 
     #[test]
     fn the_same_seed_variant_and_input_give_the_same_draw_and_others_differ() {
-        let d = Dispersion { shape: Shape::Normal { bias: 0.0, sigma: 1.0 }, relative: false };
+        let d = Dispersion {
+            shape: Shape::Normal {
+                bias: 0.0,
+                sigma: 1.0,
+            },
+            relative: false,
+        };
         let a = d.sample(10.0, &mut input_rng(42, 17, "wind_speed_m_s"));
         let b = d.sample(10.0, &mut input_rng(42, 17, "wind_speed_m_s"));
         assert_eq!(a.to_bits(), b.to_bits());
@@ -312,47 +351,113 @@ mod tests {
         assert_eq!(first, ours.random::<u64>());
         // ChaCha8's keystream block 0 for the all-zero key and nonce starts 3e 00 ef 2f
         // 89 5f 40 d6 (the published ChaCha8 test vector, Bernstein's reference code).
-        assert_eq!(first, u64::from_le_bytes([0x3e, 0x00, 0xef, 0x2f, 0x89, 0x5f, 0x40, 0xd6]));
+        assert_eq!(
+            first,
+            u64::from_le_bytes([0x3e, 0x00, 0xef, 0x2f, 0x89, 0x5f, 0x40, 0xd6])
+        );
     }
 
     #[test]
     fn a_normal_has_its_mean_and_sigma_in_100k_draws() {
-        check_moments(Dispersion { shape: Shape::Normal { bias: 0.5, sigma: 2.0 }, relative: false }, 10.0);
-        check_moments(Dispersion { shape: Shape::NormalAbout { mean: 6500.0, sigma: 1000.0 }, relative: false }, 6026.0);
+        check_moments(
+            Dispersion {
+                shape: Shape::Normal {
+                    bias: 0.5,
+                    sigma: 2.0,
+                },
+                relative: false,
+            },
+            10.0,
+        );
+        check_moments(
+            Dispersion {
+                shape: Shape::NormalAbout {
+                    mean: 6500.0,
+                    sigma: 1000.0,
+                },
+                relative: false,
+            },
+            6026.0,
+        );
     }
 
     #[test]
     fn a_relative_normal_scales_with_the_center() {
-        let d = Dispersion { shape: Shape::Normal { bias: 0.0, sigma: 0.05 }, relative: true };
+        let d = Dispersion {
+            shape: Shape::Normal {
+                bias: 0.0,
+                sigma: 0.05,
+            },
+            relative: true,
+        };
         check_moments(d, 200.0);
         assert_eq!(d.moments(200.0), (200.0, 10.0));
     }
 
     #[test]
     fn a_uniform_and_a_triangular_have_their_moments_in_100k_draws() {
-        check_moments(Dispersion { shape: Shape::Uniform { min: -1.0, max: 3.0 }, relative: false }, 0.0);
-        check_moments(Dispersion { shape: Shape::Triangular { min: -1.0, mode: 0.0, max: 2.0 }, relative: false }, 5.0);
+        check_moments(
+            Dispersion {
+                shape: Shape::Uniform {
+                    min: -1.0,
+                    max: 3.0,
+                },
+                relative: false,
+            },
+            0.0,
+        );
+        check_moments(
+            Dispersion {
+                shape: Shape::Triangular {
+                    min: -1.0,
+                    mode: 0.0,
+                    max: 2.0,
+                },
+                relative: false,
+            },
+            5.0,
+        );
     }
 
     #[test]
     fn a_lognormal_has_its_moments_in_100k_draws() {
-        check_moments(Dispersion { shape: Shape::LogNormal { mu: 0.0, sigma: 0.2 }, relative: false }, 3.0);
+        check_moments(
+            Dispersion {
+                shape: Shape::LogNormal {
+                    mu: 0.0,
+                    sigma: 0.2,
+                },
+                relative: false,
+            },
+            3.0,
+        );
     }
 
     #[test]
     fn a_truncated_normal_has_its_moments_and_stays_in_its_bounds() {
         let cases = [
-            (0.0, 1.0, -1.0, 1.0),           // narrow, holding 0
-            (0.0, 1.0, -3.0, 4.0),           // wide, holding 0
-            (0.0, 1.0, 1.5, f64::INFINITY),  // upper tail
-            (0.0, 1.0, 3.0, 3.2),            // short piece of the tail
+            (0.0, 1.0, -1.0, 1.0),              // narrow, holding 0
+            (0.0, 1.0, -3.0, 4.0),              // wide, holding 0
+            (0.0, 1.0, 1.5, f64::INFINITY),     // upper tail
+            (0.0, 1.0, 3.0, 3.2),               // short piece of the tail
             (0.2, 0.5, f64::NEG_INFINITY, 0.0), // lower tail, mirrored
-            (0.0, 2.0, 0.5, 9.0),            // long piece of the tail
+            (0.0, 2.0, 0.5, 9.0),               // long piece of the tail
         ];
         for (bias, sigma, min, max) in cases {
-            let d = Dispersion { shape: Shape::TruncatedNormal { bias, sigma, min, max }, relative: false };
+            let d = Dispersion {
+                shape: Shape::TruncatedNormal {
+                    bias,
+                    sigma,
+                    min,
+                    max,
+                },
+                relative: false,
+            };
             let v = draws(&d, 1.0, 100_000);
-            assert!(v.iter().all(|x| *x >= 1.0 + min && *x <= 1.0 + max), "{d:?} left its bounds");
+            assert!(
+                v.iter().all(|x| *x >= 1.0 + min && *x <= 1.0 + max),
+                "{d:?} left its bounds"
+            );
             check_moments(d, 1.0);
         }
     }

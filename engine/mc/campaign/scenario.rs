@@ -25,7 +25,11 @@ pub enum ScenarioError {
         source: std::io::Error,
     },
     #[error("{file}: {key}: {rule}")]
-    Invalid { file: String, key: String, rule: String },
+    Invalid {
+        file: String,
+        key: String,
+        rule: String,
+    },
 }
 
 impl ScenarioError {
@@ -158,7 +162,9 @@ impl TryFrom<toml::Value> for RawTrigger {
                     other => return Err(format!("trigger {k}: must be a number (got {other})")),
                 };
                 if !(x.is_finite() && x >= 0.0) {
-                    return Err(format!("trigger {k}: must be finite and not negative (got {x})"));
+                    return Err(format!(
+                        "trigger {k}: must be finite and not negative (got {x})"
+                    ));
                 }
                 match k.as_str() {
                     "time_s" => Ok(RawTrigger(Trigger::Time { time_s: x })),
@@ -367,27 +373,47 @@ pub fn with_trigger_value(t: &Trigger, v: f64) -> Trigger {
 impl Scenario {
     /// Read and validate the scenario file at `path`.
     pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { file: path.display().to_string(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+            file: path.display().to_string(),
+            source,
+        })?;
         Scenario::parse(&text, path)
     }
 
     /// Validate `text`, read from `path` (relative paths in it start at `path`'s directory).
     pub fn parse(text: &str, path: &Path) -> Result<Scenario, ScenarioError> {
         let file = path.display().to_string();
-        let bad = |key: &str, rule: String| ScenarioError::Invalid { file: file.clone(), key: key.to_string(), rule };
-        let de = toml::Deserializer::parse(text).map_err(|e| bad("(syntax)", one_line(&e.to_string())))?;
+        let bad = |key: &str, rule: String| ScenarioError::Invalid {
+            file: file.clone(),
+            key: key.to_string(),
+            rule,
+        };
+        let de = toml::Deserializer::parse(text)
+            .map_err(|e| bad("(syntax)", one_line(&e.to_string())))?;
         let mut raw: RawScenario = serde_path_to_error::deserialize(de).map_err(|e| {
             let key = e.path().to_string();
-            let key = if key == "." { "(top level)".to_string() } else { key };
+            let key = if key == "." {
+                "(top level)".to_string()
+            } else {
+                key
+            };
             bad(&key, one_line(&e.into_inner().to_string()))
         })?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
 
         let name = match raw.name.take() {
             Some(n) => n,
-            None => path.file_stem().and_then(|s| s.to_str()).unwrap_or("scenario").to_string(),
+            None => path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("scenario")
+                .to_string(),
         };
-        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
+        if name.is_empty()
+            || !name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+        {
             return Err(bad("name", format!("must be letters, digits, '_' or '-' (it names the output directory; got \"{name}\")")));
         }
         if raw.variants_per_point == 0 {
@@ -396,16 +422,26 @@ impl Scenario {
 
         let design_file = dir.join(&raw.design.file);
         if !design_file.is_file() {
-            return Err(bad("design.file", format!("no such file: {}", design_file.display())));
+            return Err(bad(
+                "design.file",
+                format!("no such file: {}", design_file.display()),
+            ));
         }
         if let Some(b) = &raw.design.ballast {
             if b.is_empty() {
-                return Err(bad("design.ballast", "must be the id of a component of the design".into()));
+                return Err(bad(
+                    "design.ballast",
+                    "must be the id of a component of the design".into(),
+                ));
             }
         }
         let motor_path = dir.join(&raw.motor.name);
         let motor = if raw.motor.name.trim().is_empty() {
-            return Err(bad("motor.name", "must name a motor: a bundled motor (Cesaroni_I175, I175...) or an .eng/.rse file".into()));
+            return Err(bad(
+                "motor.name",
+                "must name a motor: a bundled motor (Cesaroni_I175, I175...) or an .eng/.rse file"
+                    .into(),
+            ));
         } else if motor_path.is_file() {
             motor_path.display().to_string()
         } else {
@@ -414,19 +450,47 @@ impl Scenario {
 
         let env = raw.environment.take().unwrap_or_default();
         let environment = EnvironmentSpec {
-            elevation_m: finite(&bad, "environment.elevation_m", env.elevation_m.unwrap_or(0.0))?,
-            wind_speed_m_s: check_param(&bad, "environment.wind_speed_m_s", Param::WindSpeedMS, env.wind_speed_m_s.unwrap_or(0.0))?,
-            wind_from_deg: finite(&bad, "environment.wind_from_deg", env.wind_from_deg.unwrap_or(0.0))?,
+            elevation_m: finite(
+                &bad,
+                "environment.elevation_m",
+                env.elevation_m.unwrap_or(0.0),
+            )?,
+            wind_speed_m_s: check_param(
+                &bad,
+                "environment.wind_speed_m_s",
+                Param::WindSpeedMS,
+                env.wind_speed_m_s.unwrap_or(0.0),
+            )?,
+            wind_from_deg: finite(
+                &bad,
+                "environment.wind_from_deg",
+                env.wind_from_deg.unwrap_or(0.0),
+            )?,
             inverse_square_gravity: match env.gravity.as_deref() {
                 None | Some("standard") => false,
                 Some("inverse_square") => true,
-                Some(other) => return Err(bad("environment.gravity", format!("must be \"standard\" or \"inverse_square\" (got \"{other}\")"))),
+                Some(other) => {
+                    return Err(bad(
+                        "environment.gravity",
+                        format!("must be \"standard\" or \"inverse_square\" (got \"{other}\")"),
+                    ))
+                }
             },
         };
         let r = raw.rail.take().unwrap_or_default();
         let rail = RailSpec {
-            length_m: check_param(&bad, "rail.length_m", Param::RailLengthM, r.length_m.unwrap_or(2.0))?,
-            inclination_deg: check_param(&bad, "rail.inclination_deg", Param::RailInclinationDeg, r.inclination_deg.unwrap_or(90.0))?,
+            length_m: check_param(
+                &bad,
+                "rail.length_m",
+                Param::RailLengthM,
+                r.length_m.unwrap_or(2.0),
+            )?,
+            inclination_deg: check_param(
+                &bad,
+                "rail.inclination_deg",
+                Param::RailInclinationDeg,
+                r.inclination_deg.unwrap_or(90.0),
+            )?,
             heading_deg: finite(&bad, "rail.heading_deg", r.heading_deg.unwrap_or(0.0))?,
         };
 
@@ -435,7 +499,13 @@ impl Scenario {
             let key = |f: &str| format!("parachutes[{i}].{f}");
             check_name(&bad, &key("name"), &p.name)?;
             if parachutes.iter().any(|q: &ParachuteSpec| q.name == p.name) {
-                return Err(bad(&key("name"), format!("two parachutes are named \"{}\"; give each its own name", p.name)));
+                return Err(bad(
+                    &key("name"),
+                    format!(
+                        "two parachutes are named \"{}\"; give each its own name",
+                        p.name
+                    ),
+                ));
             }
             parachutes.push(ParachuteSpec {
                 name: p.name.clone(),
@@ -456,7 +526,12 @@ impl Scenario {
                 name,
                 component: s.component.clone(),
                 travel_m: check_param(&bad, &key("travel_m"), Param::ShiftTravelM(i), s.travel_m)?,
-                duration_s: check_param(&bad, &key("duration_s"), Param::ShiftDurationS(i), s.duration_s)?,
+                duration_s: check_param(
+                    &bad,
+                    &key("duration_s"),
+                    Param::ShiftDurationS(i),
+                    s.duration_s,
+                )?,
                 trigger: s.trigger.0,
             });
         }
@@ -465,11 +540,17 @@ impl Scenario {
         let run = raw.run.take().unwrap_or_default();
         let chunk_size = run.chunk_size.unwrap_or(32);
         if !(1..=1_000_000).contains(&chunk_size) {
-            return Err(bad("run.chunk_size", format!("must be from 1 to 1000000 variants (got {chunk_size})")));
+            return Err(bad(
+                "run.chunk_size",
+                format!("must be from 1 to 1000000 variants (got {chunk_size})"),
+            ));
         }
         let row_group_rows = run.row_group_rows.unwrap_or(8192);
         if !(1..=10_000_000).contains(&row_group_rows) {
-            return Err(bad("run.row_group_rows", format!("must be from 1 to 10000000 rows (got {row_group_rows})")));
+            return Err(bad(
+                "run.row_group_rows",
+                format!("must be from 1 to 10000000 rows (got {row_group_rows})"),
+            ));
         }
 
         let mut scenario = Scenario {
@@ -497,31 +578,50 @@ impl Scenario {
         };
         scenario.inputs = inputs(&scenario, &bad, raw.sweep.take(), raw.dispersions.take())?;
         if scenario.total_variants().is_none() {
-            return Err(bad("variants_per_point", "sweep points × variants per point is too many to count".into()));
+            return Err(bad(
+                "variants_per_point",
+                "sweep points × variants per point is too many to count".into(),
+            ));
         }
         Ok(scenario)
     }
 
     /// The scenario with the command line's seed and variants per point.
-    pub fn with_overrides(mut self, seed: Option<u64>, variants_per_point: Option<u64>) -> Result<Scenario, ScenarioError> {
+    pub fn with_overrides(
+        mut self,
+        seed: Option<u64>,
+        variants_per_point: Option<u64>,
+    ) -> Result<Scenario, ScenarioError> {
         if let Some(s) = seed {
             self.seed = s;
         }
         if let Some(n) = variants_per_point {
             if n == 0 {
-                return Err(ScenarioError::Invalid { file: self.file.display().to_string(), key: "--variants".into(), rule: "must be at least 1".into() });
+                return Err(ScenarioError::Invalid {
+                    file: self.file.display().to_string(),
+                    key: "--variants".into(),
+                    rule: "must be at least 1".into(),
+                });
             }
             self.variants_per_point = n;
         }
         if self.total_variants().is_none() {
-            return Err(ScenarioError::Invalid { file: self.file.display().to_string(), key: "--variants".into(), rule: "sweep points × variants per point is too many to count".into() });
+            return Err(ScenarioError::Invalid {
+                file: self.file.display().to_string(),
+                key: "--variants".into(),
+                rule: "sweep points × variants per point is too many to count".into(),
+            });
         }
         Ok(self)
     }
 
     /// Number of sweep points (1 without a sweep).
     pub fn points(&self) -> usize {
-        self.inputs.iter().filter_map(|i| i.sweep.as_ref()).map(Vec::len).product()
+        self.inputs
+            .iter()
+            .filter_map(|i| i.sweep.as_ref())
+            .map(Vec::len)
+            .product()
     }
 
     /// Sweep points × variants per point, if it fits in 64 bits.
@@ -542,10 +642,18 @@ impl Scenario {
         match p {
             Param::ParachuteCdsM2(i) => format!("parachutes.{}.cds_m2", self.parachutes[i].name),
             Param::ParachuteLagS(i) => format!("parachutes.{}.lag_s", self.parachutes[i].name),
-            Param::ParachuteTrigger(i) => format!("parachutes.{}.{}", self.parachutes[i].name, trigger_field(&self.parachutes[i].trigger).unwrap_or("trigger")),
+            Param::ParachuteTrigger(i) => format!(
+                "parachutes.{}.{}",
+                self.parachutes[i].name,
+                trigger_field(&self.parachutes[i].trigger).unwrap_or("trigger")
+            ),
             Param::ShiftTravelM(i) => format!("shifts.{}.travel_m", self.shifts[i].name),
             Param::ShiftDurationS(i) => format!("shifts.{}.duration_s", self.shifts[i].name),
-            Param::ShiftTrigger(i) => format!("shifts.{}.{}", self.shifts[i].name, trigger_field(&self.shifts[i].trigger).unwrap_or("trigger")),
+            Param::ShiftTrigger(i) => format!(
+                "shifts.{}.{}",
+                self.shifts[i].name,
+                trigger_field(&self.shifts[i].trigger).unwrap_or("trigger")
+            ),
             _ => unreachable!("global inputs have a global key"),
         }
     }
@@ -565,8 +673,12 @@ impl Scenario {
     /// The unit of an input.
     pub fn unit(&self, p: Param) -> &'static str {
         match p {
-            Param::ParachuteTrigger(i) => trigger_unit(trigger_field(&self.parachutes[i].trigger).unwrap_or("")),
-            Param::ShiftTrigger(i) => trigger_unit(trigger_field(&self.shifts[i].trigger).unwrap_or("")),
+            Param::ParachuteTrigger(i) => {
+                trigger_unit(trigger_field(&self.parachutes[i].trigger).unwrap_or(""))
+            }
+            Param::ShiftTrigger(i) => {
+                trigger_unit(trigger_field(&self.shifts[i].trigger).unwrap_or(""))
+            }
             _ => p.unit(),
         }
     }
@@ -574,7 +686,13 @@ impl Scenario {
 
 /// A TOML error on one line (the crate's messages show the offending line in a box).
 fn one_line(s: &str) -> String {
-    s.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('|') && !l.chars().all(|c| c == '^' || c == ' ')).collect::<Vec<_>>().join("; ")
+    s.lines()
+        .map(str::trim)
+        .filter(|l| {
+            !l.is_empty() && !l.starts_with('|') && !l.chars().all(|c| c == '^' || c == ' ')
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 type Bad<'a> = dyn Fn(&str, String) -> ScenarioError + 'a;
@@ -594,7 +712,10 @@ fn check_param(bad: &Bad, key: &str, p: Param, v: f64) -> Result<f64, ScenarioEr
 
 fn check_name(bad: &Bad, key: &str, name: &str) -> Result<(), ScenarioError> {
     if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-        return Err(bad(key, format!("must be letters, digits and '_' (it names output columns; got \"{name}\")")));
+        return Err(bad(
+            key,
+            format!("must be letters, digits and '_' (it names output columns; got \"{name}\")"),
+        ));
     }
     Ok(())
 }
@@ -602,7 +723,10 @@ fn check_name(bad: &Bad, key: &str, name: &str) -> Result<(), ScenarioError> {
 fn integrator(bad: &Bad, r: RawIntegrator) -> Result<(Integrator, f64), ScenarioError> {
     let max_time_s = r.max_time_s.unwrap_or(600.0);
     if !(max_time_s.is_finite() && max_time_s > 0.0) {
-        return Err(bad("integrator.max_time_s", format!("must be positive and finite (got {max_time_s})")));
+        return Err(bad(
+            "integrator.max_time_s",
+            format!("must be positive and finite (got {max_time_s})"),
+        ));
     }
     let pos = |key: &str, v: Option<f64>, default: f64| -> Result<f64, ScenarioError> {
         let v = v.unwrap_or(default);
@@ -615,32 +739,81 @@ fn integrator(bad: &Bad, r: RawIntegrator) -> Result<(Integrator, f64), Scenario
     match r.method.as_deref().unwrap_or("adaptive") {
         "adaptive" => {
             if r.step_s.is_some() {
-                return Err(bad("integrator.step_s", "only the \"rk4\" method has a fixed step; the adaptive one takes tolerances".into()));
+                return Err(bad(
+                    "integrator.step_s",
+                    "only the \"rk4\" method has a fixed step; the adaptive one takes tolerances"
+                        .into(),
+                ));
             }
-            let Integrator::Adaptive { rtol, atol_position_m, atol_velocity_m_s, atol_quaternion, atol_rate_rad_s } = Integrator::DEFAULT else {
+            let Integrator::Adaptive {
+                rtol,
+                atol_position_m,
+                atol_velocity_m_s,
+                atol_quaternion,
+                atol_rate_rad_s,
+            } = Integrator::DEFAULT
+            else {
                 unreachable!("the default integrator is adaptive")
             };
             Ok((
                 Integrator::Adaptive {
                     rtol: pos("integrator.rtol", r.rtol, rtol)?,
-                    atol_position_m: pos("integrator.atol_position_m", r.atol_position_m, atol_position_m)?,
-                    atol_velocity_m_s: pos("integrator.atol_velocity_m_s", r.atol_velocity_m_s, atol_velocity_m_s)?,
-                    atol_quaternion: pos("integrator.atol_quaternion", r.atol_quaternion, atol_quaternion)?,
-                    atol_rate_rad_s: pos("integrator.atol_rate_rad_s", r.atol_rate_rad_s, atol_rate_rad_s)?,
+                    atol_position_m: pos(
+                        "integrator.atol_position_m",
+                        r.atol_position_m,
+                        atol_position_m,
+                    )?,
+                    atol_velocity_m_s: pos(
+                        "integrator.atol_velocity_m_s",
+                        r.atol_velocity_m_s,
+                        atol_velocity_m_s,
+                    )?,
+                    atol_quaternion: pos(
+                        "integrator.atol_quaternion",
+                        r.atol_quaternion,
+                        atol_quaternion,
+                    )?,
+                    atol_rate_rad_s: pos(
+                        "integrator.atol_rate_rad_s",
+                        r.atol_rate_rad_s,
+                        atol_rate_rad_s,
+                    )?,
                 },
                 max_time_s,
             ))
         }
         "rk4" => {
-            for (k, v) in [("rtol", r.rtol), ("atol_position_m", r.atol_position_m), ("atol_velocity_m_s", r.atol_velocity_m_s), ("atol_quaternion", r.atol_quaternion), ("atol_rate_rad_s", r.atol_rate_rad_s)] {
+            for (k, v) in [
+                ("rtol", r.rtol),
+                ("atol_position_m", r.atol_position_m),
+                ("atol_velocity_m_s", r.atol_velocity_m_s),
+                ("atol_quaternion", r.atol_quaternion),
+                ("atol_rate_rad_s", r.atol_rate_rad_s),
+            ] {
                 if v.is_some() {
-                    return Err(bad(&format!("integrator.{k}"), "the \"rk4\" method takes a fixed step_s, not tolerances".into()));
+                    return Err(bad(
+                        &format!("integrator.{k}"),
+                        "the \"rk4\" method takes a fixed step_s, not tolerances".into(),
+                    ));
                 }
             }
-            let step = r.step_s.ok_or_else(|| bad("integrator.step_s", "the \"rk4\" method needs a step_s".into()))?;
-            Ok((Integrator::Rk4 { step_s: pos("integrator.step_s", Some(step), 0.0)? }, max_time_s))
+            let step = r.step_s.ok_or_else(|| {
+                bad(
+                    "integrator.step_s",
+                    "the \"rk4\" method needs a step_s".into(),
+                )
+            })?;
+            Ok((
+                Integrator::Rk4 {
+                    step_s: pos("integrator.step_s", Some(step), 0.0)?,
+                },
+                max_time_s,
+            ))
         }
-        other => Err(bad("integrator.method", format!("must be \"adaptive\" or \"rk4\" (got \"{other}\")"))),
+        other => Err(bad(
+            "integrator.method",
+            format!("must be \"adaptive\" or \"rk4\" (got \"{other}\")"),
+        )),
     }
 }
 
@@ -653,20 +826,39 @@ struct PartEntries<T> {
 
 fn parachute_entries<T>(i: usize, p: RawParachuteParams<T>) -> PartEntries<T> {
     PartEntries {
-        fixed: vec![("cds_m2", Param::ParachuteCdsM2(i), p.cds_m2), ("lag_s", Param::ParachuteLagS(i), p.lag_s)],
-        trigger: vec![("time_s", p.time_s), ("height_m", p.height_m), ("delay_s", p.delay_s)],
+        fixed: vec![
+            ("cds_m2", Param::ParachuteCdsM2(i), p.cds_m2),
+            ("lag_s", Param::ParachuteLagS(i), p.lag_s),
+        ],
+        trigger: vec![
+            ("time_s", p.time_s),
+            ("height_m", p.height_m),
+            ("delay_s", p.delay_s),
+        ],
     }
 }
 
 fn shift_entries<T>(i: usize, s: RawShiftParams<T>) -> PartEntries<T> {
     PartEntries {
-        fixed: vec![("travel_m", Param::ShiftTravelM(i), s.travel_m), ("duration_s", Param::ShiftDurationS(i), s.duration_s)],
-        trigger: vec![("time_s", s.time_s), ("height_m", s.height_m), ("delay_s", s.delay_s)],
+        fixed: vec![
+            ("travel_m", Param::ShiftTravelM(i), s.travel_m),
+            ("duration_s", Param::ShiftDurationS(i), s.duration_s),
+        ],
+        trigger: vec![
+            ("time_s", s.time_s),
+            ("height_m", s.height_m),
+            ("delay_s", s.delay_s),
+        ],
     }
 }
 
 /// Collect the swept and dispersed inputs, keyed by input, checking names and triggers.
-fn collect<T>(scenario: &Scenario, bad: &Bad, section: &str, raw: Option<RawParams<T>>) -> Result<BTreeMap<Param, T>, ScenarioError> {
+fn collect<T>(
+    scenario: &Scenario,
+    bad: &Bad,
+    section: &str,
+    raw: Option<RawParams<T>>,
+) -> Result<BTreeMap<Param, T>, ScenarioError> {
     let mut out = BTreeMap::new();
     let Some(mut raw) = raw else { return Ok(out) };
     for ((p, _, _), v) in GLOBAL.iter().zip(raw.globals()) {
@@ -675,8 +867,24 @@ fn collect<T>(scenario: &Scenario, bad: &Bad, section: &str, raw: Option<RawPara
         }
     }
     let parts: [(&str, &str, Vec<(String, Trigger)>); 2] = [
-        ("parachutes", "parachute", scenario.parachutes.iter().map(|p| (p.name.clone(), p.trigger)).collect()),
-        ("shifts", "shift", scenario.shifts.iter().map(|s| (s.name.clone(), s.trigger)).collect()),
+        (
+            "parachutes",
+            "parachute",
+            scenario
+                .parachutes
+                .iter()
+                .map(|p| (p.name.clone(), p.trigger))
+                .collect(),
+        ),
+        (
+            "shifts",
+            "shift",
+            scenario
+                .shifts
+                .iter()
+                .map(|s| (s.name.clone(), s.trigger))
+                .collect(),
+        ),
     ];
     let mut tables: [Vec<(String, PartEntries<T>)>; 2] = [vec![], vec![]];
     for (name, p) in std::mem::take(&mut raw.parachutes) {
@@ -690,7 +898,10 @@ fn collect<T>(scenario: &Scenario, bad: &Bad, section: &str, raw: Option<RawPara
     for (k, entries) in tables.into_iter().enumerate() {
         let (plural, singular, names) = &parts[k];
         for (name, e) in entries {
-            let i = names.iter().position(|n| n.0 == name).expect("checked by index_of");
+            let i = names
+                .iter()
+                .position(|n| n.0 == name)
+                .expect("checked by index_of");
             for (_, p, v) in e.fixed {
                 if let Some(v) = v {
                     out.insert(p, v);
@@ -705,23 +916,50 @@ fn collect<T>(scenario: &Scenario, bad: &Bad, section: &str, raw: Option<RawPara
                     Some(f) => return Err(bad(&key, format!("the {singular}'s trigger is {trigger}: its number is {f}, not {field}"))),
                     None => return Err(bad(&key, format!("the {singular}'s trigger is {trigger}, which has no number to sweep or disperse"))),
                 }
-                out.insert(if k == 0 { Param::ParachuteTrigger(i) } else { Param::ShiftTrigger(i) }, v);
+                out.insert(
+                    if k == 0 {
+                        Param::ParachuteTrigger(i)
+                    } else {
+                        Param::ShiftTrigger(i)
+                    },
+                    v,
+                );
             }
         }
     }
     Ok(out)
 }
 
-fn index_of(bad: &Bad, section: &str, part: &(&str, &str, Vec<(String, Trigger)>), name: &str) -> Result<usize, ScenarioError> {
+fn index_of(
+    bad: &Bad,
+    section: &str,
+    part: &(&str, &str, Vec<(String, Trigger)>),
+    name: &str,
+) -> Result<usize, ScenarioError> {
     let (plural, _, names) = part;
     names.iter().position(|n| n.0 == name).ok_or_else(|| {
         let list: Vec<&str> = names.iter().map(|n| n.0.as_str()).collect();
-        let known = if list.is_empty() { format!("the scenario has no {plural}") } else { format!("the scenario's {plural}: {}", list.join(", ")) };
-        bad(&format!("{section}.{plural}.{name}"), format!("no {} is named \"{name}\" ({known})", &plural[..plural.len() - 1]))
+        let known = if list.is_empty() {
+            format!("the scenario has no {plural}")
+        } else {
+            format!("the scenario's {plural}: {}", list.join(", "))
+        };
+        bad(
+            &format!("{section}.{plural}.{name}"),
+            format!(
+                "no {} is named \"{name}\" ({known})",
+                &plural[..plural.len() - 1]
+            ),
+        )
     })
 }
 
-fn inputs(scenario: &Scenario, bad: &Bad, sweep: Option<RawParams<Vec<f64>>>, disp: Option<RawParams<RawDist>>) -> Result<Vec<InputSpec>, ScenarioError> {
+fn inputs(
+    scenario: &Scenario,
+    bad: &Bad,
+    sweep: Option<RawParams<Vec<f64>>>,
+    disp: Option<RawParams<RawDist>>,
+) -> Result<Vec<InputSpec>, ScenarioError> {
     let sweep = collect(scenario, bad, "sweep", sweep)?;
     let disp = collect(scenario, bad, "dispersions", disp)?;
     let mut params: Vec<Param> = sweep.keys().chain(disp.keys()).copied().collect();
@@ -738,9 +976,14 @@ fn inputs(scenario: &Scenario, bad: &Bad, sweep: Option<RawParams<Vec<f64>>>, di
                     return Err(bad(&k, "empty sweep: give at least one value".into()));
                 }
                 for (j, &v) in values.iter().enumerate() {
-                    p.domain().check(v).map_err(|r| bad(&format!("{k}[{j}]"), r))?;
+                    p.domain()
+                        .check(v)
+                        .map_err(|r| bad(&format!("{k}[{j}]"), r))?;
                     if values[..j].contains(&v) {
-                        return Err(bad(&format!("{k}[{j}]"), format!("the value {v} appears twice in the sweep")));
+                        return Err(bad(
+                            &format!("{k}[{j}]"),
+                            format!("the value {v} appears twice in the sweep"),
+                        ));
                     }
                 }
                 Some(values.clone())
@@ -748,16 +991,37 @@ fn inputs(scenario: &Scenario, bad: &Bad, sweep: Option<RawParams<Vec<f64>>>, di
         };
         let dispersion = match disp.get(&p) {
             None => None,
-            Some(d) => Some(dispersion(bad, &format!("dispersions.{key}"), d, sweep_values.is_some())?),
+            Some(d) => Some(dispersion(
+                bad,
+                &format!("dispersions.{key}"),
+                d,
+                sweep_values.is_some(),
+            )?),
         };
-        out.push(InputSpec { param: p, column: scenario.column(p), unit: scenario.unit(p), key, sweep: sweep_values, dispersion });
+        out.push(InputSpec {
+            param: p,
+            column: scenario.column(p),
+            unit: scenario.unit(p),
+            key,
+            sweep: sweep_values,
+            dispersion,
+        });
     }
     // Two keys landing on one block slot would share draws; FNV-1a 32 makes this very
     // unlikely, but it is checked.
     for (a, ia) in out.iter().enumerate() {
         for ib in &out[..a] {
-            if ia.dispersion.is_some() && ib.dispersion.is_some() && super::sample::slot(&ia.key) == super::sample::slot(&ib.key) {
-                return Err(bad(&format!("dispersions.{}", ia.key), format!("its random stream collides with that of {}; rename a parachute or a shift", ib.key)));
+            if ia.dispersion.is_some()
+                && ib.dispersion.is_some()
+                && super::sample::slot(&ia.key) == super::sample::slot(&ib.key)
+            {
+                return Err(bad(
+                    &format!("dispersions.{}", ia.key),
+                    format!(
+                        "its random stream collides with that of {}; rename a parachute or a shift",
+                        ib.key
+                    ),
+                ));
             }
         }
     }
@@ -765,11 +1029,22 @@ fn inputs(scenario: &Scenario, bad: &Bad, sweep: Option<RawParams<Vec<f64>>>, di
 }
 
 fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersion, ScenarioError> {
-    let fields = [("sigma", d.sigma), ("bias", d.bias), ("mean", d.mean), ("min", d.min), ("max", d.max), ("mode", d.mode), ("mu", d.mu)];
+    let fields = [
+        ("sigma", d.sigma),
+        ("bias", d.bias),
+        ("mean", d.mean),
+        ("min", d.min),
+        ("max", d.max),
+        ("mode", d.mode),
+        ("mu", d.mu),
+    ];
     for (f, v) in fields {
         if let Some(v) = v {
             if v.is_nan() || (v.is_infinite() && f != "min" && f != "max") {
-                return Err(bad(&format!("{key}.{f}"), format!("must be finite (got {v})")));
+                return Err(bad(
+                    &format!("{key}.{f}"),
+                    format!("must be finite (got {v})"),
+                ));
             }
         }
     }
@@ -785,24 +1060,44 @@ fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersi
     };
     for (f, v) in fields {
         if v.is_some() && !allowed.contains(&f) {
-            return Err(bad(&format!("{key}.{f}"), format!("a {} distribution has no {f} (it takes {})", d.dist, allowed.join(", "))));
+            return Err(bad(
+                &format!("{key}.{f}"),
+                format!(
+                    "a {} distribution has no {f} (it takes {})",
+                    d.dist,
+                    allowed.join(", ")
+                ),
+            ));
         }
     }
     let relative = d.relative.unwrap_or(false);
-    let need = |f: &str, v: Option<f64>| v.ok_or_else(|| bad(&format!("{key}.{f}"), format!("a {} distribution needs {f}", d.dist)));
+    let need = |f: &str, v: Option<f64>| {
+        v.ok_or_else(|| {
+            bad(
+                &format!("{key}.{f}"),
+                format!("a {} distribution needs {f}", d.dist),
+            )
+        })
+    };
     let sigma = |v: Option<f64>| -> Result<f64, ScenarioError> {
         let s = need("sigma", v)?;
         if s > 0.0 {
             Ok(s)
         } else {
-            Err(bad(&format!("{key}.sigma"), format!("must be positive (got {s})")))
+            Err(bad(
+                &format!("{key}.sigma"),
+                format!("must be positive (got {s})"),
+            ))
         }
     };
     let ordered = |min: f64, max: f64| -> Result<(), ScenarioError> {
         if min < max {
             Ok(())
         } else {
-            Err(bad(&format!("{key}.max"), format!("must be greater than min (min {min}, max {max})")))
+            Err(bad(
+                &format!("{key}.max"),
+                format!("must be greater than min (min {min}, max {max})"),
+            ))
         }
     };
     let shape = match d.dist.as_str() {
@@ -819,17 +1114,32 @@ fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersi
         "truncated_normal" => {
             let s = sigma(d.sigma)?;
             if d.min.is_none() && d.max.is_none() {
-                return Err(bad(&format!("{key}.min"), "a truncated_normal distribution needs min, max or both (a normal has neither)".into()));
+                return Err(bad(
+                    &format!("{key}.min"),
+                    "a truncated_normal distribution needs min, max or both (a normal has neither)"
+                        .into(),
+                ));
             }
-            let (min, max) = (d.min.unwrap_or(f64::NEG_INFINITY), d.max.unwrap_or(f64::INFINITY));
+            let (min, max) = (
+                d.min.unwrap_or(f64::NEG_INFINITY),
+                d.max.unwrap_or(f64::INFINITY),
+            );
             ordered(min, max)?;
-            Shape::TruncatedNormal { bias: d.bias.unwrap_or(0.0), sigma: s, min, max }
+            Shape::TruncatedNormal {
+                bias: d.bias.unwrap_or(0.0),
+                sigma: s,
+                min,
+                max,
+            }
         }
         "uniform" => {
             let (min, max) = (need("min", d.min)?, need("max", d.max)?);
             for (f, v) in [("min", min), ("max", max)] {
                 if !v.is_finite() {
-                    return Err(bad(&format!("{key}.{f}"), format!("must be finite (got {v})")));
+                    return Err(bad(
+                        &format!("{key}.{f}"),
+                        format!("must be finite (got {v})"),
+                    ));
                 }
             }
             ordered(min, max)?;
@@ -839,7 +1149,10 @@ fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersi
             let (min, max) = (need("min", d.min)?, need("max", d.max)?);
             for (f, v) in [("min", min), ("max", max)] {
                 if !v.is_finite() {
-                    return Err(bad(&format!("{key}.{f}"), format!("must be finite (got {v})")));
+                    return Err(bad(
+                        &format!("{key}.{f}"),
+                        format!("must be finite (got {v})"),
+                    ));
                 }
             }
             ordered(min, max)?;
@@ -853,7 +1166,10 @@ fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersi
             if d.relative.is_some() {
                 return Err(bad(&format!("{key}.relative"), "a lognormal dispersion is always relative (value = nominal × exp(mu + sigma Z)); remove relative".into()));
             }
-            Shape::LogNormal { mu: d.mu.unwrap_or(0.0), sigma: sigma(d.sigma)? }
+            Shape::LogNormal {
+                mu: d.mu.unwrap_or(0.0),
+                sigma: sigma(d.sigma)?,
+            }
         }
     };
     Ok(Dispersion { shape, relative })

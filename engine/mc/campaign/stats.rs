@@ -9,10 +9,14 @@
 //!   normal scatter they hold 39.3 %, 86.5 % and 98.9 % of the landings.
 //! - Sensitivity: within a sweep point, each metric is fitted by least squares (faer's
 //!   column-pivoted QR) as a linear function of the dispersed inputs, all standardized. The
-//!   share of the metric's variance given to an input is its standardized coefficient squared,
-//!   β*² = (β σ_x / σ_y)². For independent inputs, as the draws are, the shares add up to the
-//!   fit's R² (up to sampling noise); 1 − R² is what the linear model does not explain
-//!   (nonlinearity and interactions).
+//!   share of the metric's variance given to an input is Pratt's measure β*·r: its
+//!   standardized coefficient β* = β σ_x / σ_y times its correlation r with the metric. The
+//!   shares add up exactly to the fit's R²; 1 − R² is what a linear model does not explain
+//!   (nonlinearity, interactions). For independent inputs, as the draws are, β*·r tends to
+//!   β*², the square of the standardized coefficient, but in a finite sample the inputs are
+//!   slightly correlated and the squares alone can add up to well over 1 (with 50 variants and
+//!   16 inputs we saw 1.58), while Pratt's shares cannot. A share may come out slightly
+//!   negative for an input that does nothing.
 //!
 //! Only variants that landed enter the statistics; `failures` counts the others. Missing
 //! values are NaN here (a metric is never NaN otherwise: see `fly`).
@@ -52,7 +56,8 @@ pub fn summarize(values: impl IntoIterator<Item = f64>) -> Option<Summary> {
     }
     let n = v.len() as f64;
     let mean = v.iter().sum::<f64>() / n;
-    let std = (v.len() > 1).then(|| (v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0)).sqrt());
+    let std = (v.len() > 1)
+        .then(|| (v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0)).sqrt());
     v.sort_by(f64::total_cmp);
     Some(Summary {
         count: v.len() as u64,
@@ -99,7 +104,12 @@ pub fn covariance_axes(vxx: f64, vyy: f64, vxy: f64) -> (f64, f64, f64) {
 
 /// The 1 σ ellipse of the points (x, y) that are both finite (None with fewer than 3).
 pub fn ellipse(xs: &[f64], ys: &[f64]) -> Option<Ellipse> {
-    let pts: Vec<(f64, f64)> = xs.iter().zip(ys).filter(|(x, y)| x.is_finite() && y.is_finite()).map(|(x, y)| (*x, *y)).collect();
+    let pts: Vec<(f64, f64)> = xs
+        .iter()
+        .zip(ys)
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .map(|(x, y)| (*x, *y))
+        .collect();
     if pts.len() < 3 {
         return None;
     }
@@ -114,7 +124,17 @@ pub fn ellipse(xs: &[f64], ys: &[f64]) -> Option<Ellipse> {
     }
     let (vxx, vyy, vxy) = (vxx / (n - 1.0), vyy / (n - 1.0), vxy / (n - 1.0));
     let (a, b, angle) = covariance_axes(vxx, vyy, vxy);
-    Some(Ellipse { count: pts.len() as u64, center_x_m: cx, center_y_m: cy, var_x_m2: vxx, var_y_m2: vyy, cov_xy_m2: vxy, semi_major_m: a, semi_minor_m: b, major_axis_deg: angle })
+    Some(Ellipse {
+        count: pts.len() as u64,
+        center_x_m: cx,
+        center_y_m: cy,
+        var_x_m2: vxx,
+        var_y_m2: vyy,
+        cov_xy_m2: vxy,
+        semi_major_m: a,
+        semi_minor_m: b,
+        major_axis_deg: angle,
+    })
 }
 
 /// A linear fit of one metric on the dispersed inputs.
@@ -127,18 +147,23 @@ pub struct Sensitivity {
     pub coefficients: Vec<Option<f64>>,
     /// Per input: the standardized coefficient β σ_x / σ_y.
     pub standardized: Vec<Option<f64>>,
-    /// Per input: the share of the metric's variance, β*².
+    /// Per input: its correlation with the metric.
+    pub correlations: Vec<Option<f64>>,
+    /// Per input: the share of the metric's variance, Pratt's β*·r (they add up to R²).
     pub shares: Vec<Option<f64>>,
 }
 
 /// Fit `y` on the columns `xs` (rows where y and every x are finite). None when the metric
 /// does not vary or there are not more rows than inputs + 1.
 pub fn sensitivity(xs: &[&[f64]], y: &[f64]) -> Option<Sensitivity> {
-    let rows: Vec<usize> = (0..y.len()).filter(|&r| y[r].is_finite() && xs.iter().all(|x| x[r].is_finite())).collect();
+    let rows: Vec<usize> = (0..y.len())
+        .filter(|&r| y[r].is_finite() && xs.iter().all(|x| x[r].is_finite()))
+        .collect();
     let n = rows.len();
     let mean_sd = |f: &dyn Fn(usize) -> f64| {
         let m = rows.iter().map(|&r| f(r)).sum::<f64>() / n as f64;
-        let s = (rows.iter().map(|&r| (f(r) - m) * (f(r) - m)).sum::<f64>() / (n as f64 - 1.0)).sqrt();
+        let s =
+            (rows.iter().map(|&r| (f(r) - m) * (f(r) - m)).sum::<f64>() / (n as f64 - 1.0)).sqrt();
         (m, s)
     };
     if n < 3 {
@@ -150,9 +175,18 @@ pub fn sensitivity(xs: &[&[f64]], y: &[f64]) -> Option<Sensitivity> {
     }
     // Inputs that vary (relative to their size: a constant column carries rounding only).
     let stats: Vec<(f64, f64)> = xs.iter().map(|x| mean_sd(&|r| x[r])).collect();
-    let used: Vec<usize> = (0..xs.len()).filter(|&j| stats[j].1 > 1e-12 * stats[j].0.abs().max(f64::MIN_POSITIVE)).collect();
+    let used: Vec<usize> = (0..xs.len())
+        .filter(|&j| stats[j].1 > 1e-12 * stats[j].0.abs().max(f64::MIN_POSITIVE))
+        .collect();
     let p = used.len();
-    let mut out = Sensitivity { count: n as u64, r2: 0.0, coefficients: vec![None; xs.len()], standardized: vec![None; xs.len()], shares: vec![None; xs.len()] };
+    let mut out = Sensitivity {
+        count: n as u64,
+        r2: 0.0,
+        coefficients: vec![None; xs.len()],
+        standardized: vec![None; xs.len()],
+        correlations: vec![None; xs.len()],
+        shares: vec![None; xs.len()],
+    };
     if p == 0 {
         return Some(out);
     }
@@ -171,9 +205,11 @@ pub fn sensitivity(xs: &[&[f64]], y: &[f64]) -> Option<Sensitivity> {
     out.r2 = 1.0 - ss_res / ss_tot;
     for (k, &j) in used.iter().enumerate() {
         let bk = b[(k, 0)];
+        let r = (0..n).map(|i| z[(i, k)] * yc[(i, 0)]).sum::<f64>() / ((n as f64 - 1.0) * sy);
         out.coefficients[j] = Some(bk / stats[j].1);
         out.standardized[j] = Some(bk / sy);
-        out.shares[j] = Some((bk / sy) * (bk / sy));
+        out.correlations[j] = Some(r);
+        out.shares[j] = Some(bk / sy * r);
     }
     Some(out)
 }
@@ -205,7 +241,12 @@ pub struct PointStats {
 
 /// Statistics of every sweep point. `dispersed[j]` says whether input j is dispersed;
 /// `landing` gives the metric indices of the landing x and y.
-pub fn compute(table: &Table, points: usize, dispersed: &[bool], landing: (usize, usize)) -> Vec<PointStats> {
+pub fn compute(
+    table: &Table,
+    points: usize,
+    dispersed: &[bool],
+    landing: (usize, usize),
+) -> Vec<PointStats> {
     let mut rows_of: Vec<Vec<usize>> = vec![vec![]; points];
     for (r, &p) in table.point.iter().enumerate() {
         rows_of[p as usize].push(r);
@@ -224,9 +265,21 @@ pub fn compute(table: &Table, points: usize, dispersed: &[bool], landing: (usize
                 point,
                 variants: rows.len() as u64,
                 failures: (rows.len() - landed.len()) as u64,
-                summaries: metric_cols.iter().map(|m| summarize(m.iter().copied())).collect(),
+                summaries: metric_cols
+                    .iter()
+                    .map(|m| summarize(m.iter().copied()))
+                    .collect(),
                 ellipse: ellipse(&metric_cols[landing.0], &metric_cols[landing.1]),
-                sensitivity: metric_cols.iter().map(|m| if x_refs.is_empty() { None } else { sensitivity(&x_refs, m) }).collect(),
+                sensitivity: metric_cols
+                    .iter()
+                    .map(|m| {
+                        if x_refs.is_empty() {
+                            None
+                        } else {
+                            sensitivity(&x_refs, m)
+                        }
+                    })
+                    .collect(),
             }
         })
         .collect()
@@ -256,7 +309,10 @@ mod tests {
     #[test]
     fn a_summary_skips_missing_values_and_one_value_has_no_spread() {
         let s = summarize([f64::NAN, 3.0, f64::NAN]).unwrap();
-        assert_eq!((s.count, s.mean, s.std, s.p5, s.p95), (1, 3.0, None, 3.0, 3.0));
+        assert_eq!(
+            (s.count, s.mean, s.std, s.p5, s.p95),
+            (1, 3.0, None, 3.0, 3.0)
+        );
         assert!(summarize([f64::NAN]).is_none());
     }
 
@@ -266,7 +322,9 @@ mod tests {
         assert_eq!(covariance_axes(4.0, 1.0, 0.0), (2.0, 1.0, 0.0));
         // [[2, 1], [1, 2]]: eigenvalues 3 and 1, major axis at 45°.
         let (a, b, t) = covariance_axes(2.0, 2.0, 1.0);
-        assert!((a - 3f64.sqrt()).abs() < 1e-15 && (b - 1.0).abs() < 1e-15 && (t - 45.0).abs() < 1e-12);
+        assert!(
+            (a - 3f64.sqrt()).abs() < 1e-15 && (b - 1.0).abs() < 1e-15 && (t - 45.0).abs() < 1e-12
+        );
         // [[1, 0], [0, 9]]: major axis along y, 90°.
         let (a, b, t) = covariance_axes(1.0, 9.0, 0.0);
         assert_eq!((a, b, t), (3.0, 1.0, 90.0));
@@ -293,7 +351,9 @@ mod tests {
         // y = 3 + 2 x1 − 0.5 x2 exactly, x from a fixed pseudo-random sequence.
         let n = 200;
         let x1: Vec<f64> = (0..n).map(|i| ((i * 37 % 101) as f64) / 10.0).collect();
-        let x2: Vec<f64> = (0..n).map(|i| ((i * 53 % 97) as f64) * 3.0 - 40.0).collect();
+        let x2: Vec<f64> = (0..n)
+            .map(|i| ((i * 53 % 97) as f64) * 3.0 - 40.0)
+            .collect();
         let x3: Vec<f64> = vec![7.0; n]; // an input that did not vary
         let y: Vec<f64> = (0..n).map(|i| 3.0 + 2.0 * x1[i] - 0.5 * x2[i]).collect();
         let s = sensitivity(&[&x1, &x2, &x3], &y).unwrap();
@@ -301,13 +361,24 @@ mod tests {
         assert!((s.coefficients[1].unwrap() + 0.5).abs() < 1e-10);
         assert_eq!(s.coefficients[2], None);
         assert!((s.r2 - 1.0).abs() < 1e-10);
-        // The shares are (β σ_x / σ_y)², computed here by hand from the columns.
-        let sd = |v: &[f64]| {
-            let m = v.iter().sum::<f64>() / v.len() as f64;
-            (v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (v.len() - 1) as f64).sqrt()
+        // The shares are β σ_x / σ_y × corr(x, y), computed here by hand from the columns,
+        // and they add up to R² = 1.
+        let m = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        let cov = |a: &[f64], b: &[f64]| {
+            let (ma, mb) = (m(a), m(b));
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| (x - ma) * (y - mb))
+                .sum::<f64>()
+                / (a.len() - 1) as f64
         };
-        let share1 = (2.0 * sd(&x1) / sd(&y)).powi(2);
-        assert!((s.shares[0].unwrap() - share1).abs() < 1e-10);
+        let share = |x: &[f64], beta: f64| {
+            beta * cov(x, x).sqrt() / cov(&y, &y).sqrt() * cov(x, &y)
+                / (cov(x, x) * cov(&y, &y)).sqrt()
+        };
+        assert!((s.shares[0].unwrap() - share(&x1, 2.0)).abs() < 1e-10);
+        assert!((s.shares[1].unwrap() - share(&x2, -0.5)).abs() < 1e-10);
+        assert!((s.shares[0].unwrap() + s.shares[1].unwrap() - 1.0).abs() < 1e-10);
     }
 
     #[test]
@@ -322,7 +393,11 @@ mod tests {
             point: vec![0, 0, 0, 1, 1],
             landed: vec![true, true, false, true, true],
             inputs: vec![vec![1.0, 2.0, 3.0, 4.0, 5.0]],
-            metrics: vec![vec![10.0, 20.0, f64::NAN, 1.0, 3.0], vec![0.0; 5], vec![0.0; 5]],
+            metrics: vec![
+                vec![10.0, 20.0, f64::NAN, 1.0, 3.0],
+                vec![0.0; 5],
+                vec![0.0; 5],
+            ],
         };
         let st = compute(&table, 2, &[true], (1, 2));
         assert_eq!((st[0].variants, st[0].failures), (3, 1));

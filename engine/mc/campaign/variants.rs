@@ -47,7 +47,11 @@ pub struct Variant {
 impl Plan {
     /// Number of sweep points.
     pub fn points(&self) -> usize {
-        self.inputs.iter().filter_map(|i| i.sweep.as_ref()).map(Vec::len).product()
+        self.inputs
+            .iter()
+            .filter_map(|i| i.sweep.as_ref())
+            .map(Vec::len)
+            .product()
     }
 
     /// Number of variants.
@@ -82,14 +86,23 @@ impl Plan {
 
     /// The swept inputs' values at `point`, in order.
     pub fn sweep_values(&self, point: usize) -> Vec<f64> {
-        self.centers(point).into_iter().zip(&self.inputs).filter(|(_, i)| i.sweep.is_some()).map(|(c, _)| c).collect()
+        self.centers(point)
+            .into_iter()
+            .zip(&self.inputs)
+            .filter(|(_, i)| i.sweep.is_some())
+            .map(|(c, _)| c)
+            .collect()
     }
 
     /// Variant `id` (which must be below [`Plan::total`]).
     pub fn variant(&self, id: u64) -> Variant {
         let point = (id / self.variants_per_point) as usize;
         let replicate = id % self.variants_per_point;
-        let stream = if self.common_random_numbers { replicate } else { id };
+        let stream = if self.common_random_numbers {
+            replicate
+        } else {
+            id
+        };
         let values = self
             .centers(point)
             .into_iter()
@@ -99,7 +112,12 @@ impl Plan {
                 None => c,
             })
             .collect();
-        Variant { id, point, replicate, values }
+        Variant {
+            id,
+            point,
+            replicate,
+            values,
+        }
     }
 }
 
@@ -116,9 +134,17 @@ impl Shard {
 
     /// Parse `K/N` (0 ≤ K < N).
     pub fn parse(s: &str) -> Result<Shard, String> {
-        let (k, n) = s.split_once('/').ok_or_else(|| format!("--shard must be K/N, for instance 0/4 (got \"{s}\")"))?;
-        let k: u64 = k.trim().parse().map_err(|_| format!("--shard K/N: K must be a whole number (got \"{k}\")"))?;
-        let n: u64 = n.trim().parse().map_err(|_| format!("--shard K/N: N must be a whole number (got \"{n}\")"))?;
+        let (k, n) = s
+            .split_once('/')
+            .ok_or_else(|| format!("--shard must be K/N, for instance 0/4 (got \"{s}\")"))?;
+        let k: u64 = k
+            .trim()
+            .parse()
+            .map_err(|_| format!("--shard K/N: K must be a whole number (got \"{k}\")"))?;
+        let n: u64 = n
+            .trim()
+            .parse()
+            .map_err(|_| format!("--shard K/N: N must be a whole number (got \"{n}\")"))?;
         if n == 0 || k >= n {
             return Err(format!("--shard K/N needs 0 <= K < N (got {k}/{n})"));
         }
@@ -148,7 +174,9 @@ impl Shard {
 /// The shard's chunks: for chunk c, the range of the shard's positions it holds.
 pub fn chunks(shard_count: u64, chunk_size: usize) -> Vec<std::ops::Range<u64>> {
     let s = chunk_size as u64;
-    (0..shard_count.div_ceil(s)).map(|c| c * s..((c + 1) * s).min(shard_count)).collect()
+    (0..shard_count.div_ceil(s))
+        .map(|c| c * s..((c + 1) * s).min(shard_count))
+        .collect()
 }
 
 #[cfg(test)]
@@ -157,15 +185,36 @@ mod tests {
     use crate::campaign::sample::Shape;
 
     fn plan(crn: bool) -> Plan {
-        let normal = Some(Dispersion { shape: Shape::Normal { bias: 0.0, sigma: 1.0 }, relative: false });
+        let normal = Some(Dispersion {
+            shape: Shape::Normal {
+                bias: 0.0,
+                sigma: 1.0,
+            },
+            relative: false,
+        });
         Plan {
             seed: 5,
             variants_per_point: 4,
             common_random_numbers: crn,
             inputs: vec![
-                PlanInput { key: "a".into(), nominal: 1.0, sweep: Some(vec![10.0, 20.0, 30.0]), dispersion: None },
-                PlanInput { key: "b".into(), nominal: 2.0, sweep: None, dispersion: normal },
-                PlanInput { key: "c".into(), nominal: 3.0, sweep: Some(vec![0.5, 0.7]), dispersion: normal },
+                PlanInput {
+                    key: "a".into(),
+                    nominal: 1.0,
+                    sweep: Some(vec![10.0, 20.0, 30.0]),
+                    dispersion: None,
+                },
+                PlanInput {
+                    key: "b".into(),
+                    nominal: 2.0,
+                    sweep: None,
+                    dispersion: normal,
+                },
+                PlanInput {
+                    key: "c".into(),
+                    nominal: 3.0,
+                    sweep: Some(vec![0.5, 0.7]),
+                    dispersion: normal,
+                },
             ],
         }
     }
@@ -176,7 +225,17 @@ mod tests {
         assert_eq!(p.points(), 6);
         assert_eq!(p.total(), 24);
         let grid: Vec<Vec<f64>> = (0..6).map(|k| p.sweep_values(k)).collect();
-        assert_eq!(grid, vec![vec![10.0, 0.5], vec![10.0, 0.7], vec![20.0, 0.5], vec![20.0, 0.7], vec![30.0, 0.5], vec![30.0, 0.7]]);
+        assert_eq!(
+            grid,
+            vec![
+                vec![10.0, 0.5],
+                vec![10.0, 0.7],
+                vec![20.0, 0.5],
+                vec![20.0, 0.7],
+                vec![30.0, 0.5],
+                vec![30.0, 0.7]
+            ]
+        );
         assert_eq!(p.centers(3), vec![20.0, 2.0, 0.7]);
     }
 

@@ -56,9 +56,16 @@ impl Default for Gravity {
 }
 
 impl Gravity {
-    /// A constant `g_m_s2` (> 0, finite) at every height.
+    /// A constant `g_m_s2` (≥ 0, finite) at every height. Zero is allowed: checks in free
+    /// space (no gravity, no air) against exact answers use it.
     pub fn constant(g_m_s2: f64) -> Result<Self, GravityError> {
-        check_positive("g_m_s2", g_m_s2)?;
+        if !(g_m_s2.is_finite() && g_m_s2 >= 0.0) {
+            return Err(GravityError::Setting {
+                field: "g_m_s2",
+                value: g_m_s2,
+                rule: "must be finite and >= 0",
+            });
+        }
         Ok(Self {
             g0_m_s2: g_m_s2,
             model: Model::Constant,

@@ -613,6 +613,18 @@ fn descent_phase<O: Observer>(
         let mut evals = 0u64;
         each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t0, y0)).map_err(|e| integ(t0, e, name))?;
         run.evaluations += evals;
+        let mut dy = [0.0; N3];
+        let aux = model.derivative_descent(&starts, cds, t0, y0, &mut dy);
+        run.record(
+            Phase::Descent,
+            t0,
+            Vector3::new(y0[0], y0[1], y0[2]),
+            Vector3::new(y0[3], y0[4], y0[5]),
+            [f64::NAN; 4],
+            [0.0; 3],
+            &aux,
+            model.motor.eval(t0).thrust_n,
+        );
     }
     loop {
         let t_now = each!(stepper, s => s.t());

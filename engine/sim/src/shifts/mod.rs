@@ -345,3 +345,8 @@ impl fmt::Display for MassShift {
         )
     }
 }
+
+#[cfg(test)]
+mod refusals;
+#[cfg(test)]
+mod tests;
