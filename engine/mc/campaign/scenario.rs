@@ -1174,3 +1174,7 @@ fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersi
     };
     Ok(Dispersion { shape, relative })
 }
+
+#[cfg(test)]
+#[path = "scenario_tests.rs"]
+mod tests;
