@@ -98,10 +98,12 @@ pub fn aero_loads(
             continue;
         }
         let speed = speed2.sqrt();
-        let alpha = (-u.z / speed).clamp(-1.0, 1.0).acos();
+        let cross = cross2.sqrt();
+        // The angle between u and −b3: atan2 is exact near zero, where acos(−u_z/|u|) loses
+        // half its digits (and it is cheaper).
+        let alpha = cross.atan2(-u.z);
         let mach = speed / air.speed_of_sound_m_s;
         let n = 0.5 * rho * speed2 * t.ref_area_m2 * s.cn_alpha.at(mach) * alpha;
-        let cross = cross2.sqrt();
         let f = Vector3::new(n * u.x / cross, n * u.y / cross, 0.0);
         force += f;
         moment += p.cross(&f);

@@ -177,10 +177,12 @@ mod tests {
 
     #[test]
     fn bad_gravity_settings_are_typed_errors() {
-        for bad in [0.0, -9.8, f64::NAN, f64::INFINITY] {
+        for bad in [-9.8, f64::NAN, f64::INFINITY] {
             let e = Gravity::constant(bad).unwrap_err();
             assert!(e.to_string().contains("g_m_s2"));
         }
+        // Zero gravity is allowed (free-space checks).
+        assert_eq!(Gravity::constant(0.0).unwrap().at(1000.0), 0.0);
         let e = Gravity::inverse_square_with(9.8, -1.0, 0.0).unwrap_err();
         assert!(e.to_string().contains("radius_m"));
         let e = Gravity::inverse_square(f64::NAN).unwrap_err();

@@ -11,7 +11,8 @@ use crate::eom::{self, N3, N6};
 use crate::events::{Event, EventKind};
 use crate::frames;
 use crate::integrate::{
-    brent_root, locate_event, Crossing, DenseStepper, Dopri54, IntegratorError, Rk4, Tolerances,
+    brent_root, brent_root_bracketed, locate_event, Crossing, DenseStepper, Dopri54,
+    IntegratorError, Rk4, Tolerances,
 };
 use crate::shifts::STOPS_PER_SHIFT;
 use crate::trigger::Trigger;
@@ -434,6 +435,54 @@ fn pad<O: Observer>(run: &mut Run<'_, O>) -> Result<(f64, [f64; N6]), SimError> 
     Ok((t_lift, y))
 }
 
+/// An event function of the rail and free-flight phases.
+#[derive(Debug, Clone, Copy)]
+enum G {
+    /// O's travel along the rail minus the travel to the exit.
+    RailTravel,
+    /// The center of mass's vertical speed.
+    VerticalSpeed,
+    /// The center of mass's height minus this, m.
+    Height(f64),
+}
+
+/// What the driver knows at the end of a step: the center's position and velocity and the
+/// figures a sample needs, from one mass-state evaluation.
+#[derive(Debug, Clone, Copy)]
+struct EndPoint {
+    pos: Vector3<f64>,
+    vel: Vector3<f64>,
+    aux: FlightAux,
+}
+
+impl G {
+    /// The function's value from an end point (no further evaluation).
+    #[inline]
+    fn at_end(self, model: &FlightModel, y: &[f64; N6], ep: &EndPoint) -> f64 {
+        match self {
+            G::RailTravel => {
+                (Vector3::new(y[0], y[1], y[2]) - model.rail.o_start_n).dot(&model.rail.direction_n)
+                    - model.rail.travel_to_exit_m
+            }
+            G::VerticalSpeed => ep.vel.z,
+            G::Height(h) => ep.pos.z - h,
+        }
+    }
+
+    /// The function's value at any `(t, y)` (for root-finding on the dense output).
+    #[inline]
+    fn at(self, model: &FlightModel, starts: &ShiftStarts, t: f64, y: &[f64; N6]) -> f64 {
+        match self {
+            G::RailTravel => {
+                (Vector3::new(y[0], y[1], y[2]) - model.rail.o_start_n).dot(&model.rail.direction_n)
+                    - model.rail.travel_to_exit_m
+            }
+            G::VerticalSpeed => cm_of(model, starts, t, y).1.z,
+            G::Height(h) => cm_of(model, starts, t, y).0.z - h,
+        }
+    }
+}
+
 /// Rail or free flight until the rail exit (rail), a canopy opens, landing or the time limit.
 fn six_dof_phase<O: Observer>(
     run: &mut Run<'_, O>,
@@ -451,27 +500,33 @@ fn six_dof_phase<O: Observer>(
             model.derivative_6dof(starts, t, y, dy)
         }
     };
+    // The end point of `(t, y)` whose derivative `dy` is known.
+    let end_point = |starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &[f64; N6]| -> EndPoint {
+        let (pos, vel, aux) = model.end_point(starts, t, y, dy, rail);
+        EndPoint { pos, vel, aux }
+    };
     let name = phase.name();
-    {
+    let mut events: Vec<(EventKind, G)> =
+        Vec::with_capacity(2 + model.parachutes.len() + model.shifts.len());
+    let (mut prev_y, mut prev) = {
         let starts = run.starts;
         let mut evals = 0u64;
         each!(stepper, s => s.init(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t0, y0))
             .map_err(|e| integ(t0, e, name))?;
         run.evaluations += evals;
-        let mut dy = [0.0; N6];
-        let aux = deriv(&starts, t0, y0, &mut dy);
-        let (pos, vel) = cm_of(model, &starts, t0, y0);
+        let ep = end_point(&starts, t0, y0, each!(stepper, s => s.dy()));
         run.record(
             phase,
             t0,
-            pos,
-            vel,
+            ep.pos,
+            ep.vel,
             [y0[6], y0[7], y0[8], y0[9]],
             [y0[10], y0[11], y0[12]],
-            &aux,
+            &ep.aux,
             model.motor.eval(t0).thrust_n,
         );
-    }
+        (*y0, ep)
+    };
     loop {
         let t_now = each!(stepper, s => s.t());
         let t_stop = run.next_stop(t_now);
@@ -483,75 +538,80 @@ fn six_dof_phase<O: Observer>(
         })?;
         run.evaluations += evals;
         run.steps += 1;
-        // Events in the step, earliest first.
+        let (t1, y1) = (each!(stepper, s => s.t()), *each!(stepper, s => s.y()));
+        let ep1 = end_point(&starts, t1, &y1, each!(stepper, s => s.dy()));
+        // The event functions that can fire now.
+        events.clear();
+        if rail {
+            events.push((EventKind::RailExit, G::RailTravel));
+        } else if !run.apogee_done {
+            events.push((EventKind::Apogee, G::VerticalSpeed));
+        } else {
+            events.push((EventKind::Landing, G::Height(0.0)));
+            for (i, p) in model.parachutes.iter().enumerate() {
+                if let (Trigger::HeightDescending { height_m }, None) =
+                    (p.trigger, run.chute_triggered[i])
+                {
+                    events.push((EventKind::ParachuteTrigger(i), G::Height(height_m)));
+                }
+            }
+            for (k, sh) in model.shifts.iter().enumerate() {
+                if let (Trigger::HeightDescending { height_m }, true) =
+                    (sh.trigger, starts[k].is_infinite())
+                {
+                    events.push((EventKind::Shift(k), G::Height(height_m)));
+                }
+            }
+        }
+        // Earliest crossing in the step: rail travel rises through zero, the rest fall.
         let mut found: Option<(f64, EventKind)> = None;
-        let mut consider = |t: Option<f64>, k: EventKind| {
-            if let Some(t) = t {
-                if found.is_none_or(|(tf, _)| t < tf) {
-                    found = Some((t, k));
-                }
-            }
-        };
-        let root_err = |e| SimError::Setup(format!("event location failed: {e}"));
-        each!(stepper, s => {
-            if rail {
-                let (o0, u, travel) = (model.rail.o_start_n, model.rail.direction_n, model.rail.travel_to_exit_m);
-                let g = |_t: f64, y: &[f64; N6]| (Vector3::new(y[0], y[1], y[2]) - o0).dot(&u) - travel;
-                consider(locate_event(&**s, g, Crossing::Rising, EVENT_TOL_S).map_err(root_err)?, EventKind::RailExit);
+        for &(kind, g) in &events {
+            let (g0, g1) = (g.at_end(model, &prev_y, &prev), g.at_end(model, &y1, &ep1));
+            let crossing = if rail {
+                Crossing::Rising
             } else {
-                if !run.apogee_done {
-                    let g = |t: f64, y: &[f64; N6]| cm_of(model, &starts, t, y).1.z;
-                    consider(locate_event(&**s, g, Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::Apogee);
-                }
-                if run.apogee_done {
-                    let g = |t: f64, y: &[f64; N6]| cm_of(model, &starts, t, y).0.z;
-                    consider(locate_event(&**s, g, Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::Landing);
-                    for (i, p) in model.parachutes.iter().enumerate() {
-                        if let (Trigger::HeightDescending { height_m }, None) = (p.trigger, run.chute_triggered[i]) {
-                            let g = |t: f64, y: &[f64; N6]| cm_of(model, &starts, t, y).0.z - height_m;
-                            consider(locate_event(&**s, g, Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::ParachuteTrigger(i));
-                        }
-                    }
-                    for (k, sh) in model.shifts.iter().enumerate() {
-                        if let (Trigger::HeightDescending { height_m }, true) = (sh.trigger, starts[k].is_infinite()) {
-                            let g = |t: f64, y: &[f64; N6]| cm_of(model, &starts, t, y).0.z - height_m;
-                            consider(locate_event(&**s, g, Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::Shift(k));
-                        }
-                    }
+                Crossing::Falling
+            };
+            if t1 > t_now && crossing.matches(g0, g1) {
+                let te = each!(stepper, s => brent_root_bracketed(|t| g.at(model, &starts, t, &s.dense(t)), t_now, g0, t1, g1, EVENT_TOL_S))
+                    .map_err(|e| SimError::Setup(format!("event location failed: {e}")))?;
+                if found.is_none_or(|(tf, _)| te < tf) {
+                    found = Some((te, kind));
                 }
             }
-        });
-        let (t_end, y_end) = match found {
+        }
+        let (t_end, y_end, ep) = match found {
             Some((te, _)) => {
                 let ye = each!(stepper, s => s.dense(te));
-                (te, ye)
+                let mut dy = [0.0; N6];
+                deriv(&run.starts, te, &ye, &mut dy);
+                (te, ye, end_point(&run.starts, te, &ye, &dy))
             }
-            None => (each!(stepper, s => s.t()), *each!(stepper, s => s.y())),
+            None => (t1, y1, ep1),
         };
-        let mut dy = [0.0; N6];
-        let aux = deriv(&run.starts, t_end, &y_end, &mut dy);
-        let (pos, vel) = cm_of(model, &run.starts, t_end, &y_end);
         run.record(
             phase,
             t_end,
-            pos,
-            vel,
+            ep.pos,
+            ep.vel,
             [y_end[6], y_end[7], y_end[8], y_end[9]],
             [y_end[10], y_end[11], y_end[12]],
-            &aux,
+            &ep.aux,
             model.motor.eval(t_end).thrust_n,
         );
+        let (pos, vel) = (ep.pos, ep.vel);
         let (alt, speed) = (pos.z, vel.norm());
-        let mut restart = false;
+        prev_y = y_end;
+        prev = ep;
         if let Some((te, kind)) = found {
-            restart = true;
             match kind {
                 EventKind::RailExit => {
                     run.rail_exit_done = true;
                     run.push_event(EventKind::RailExit, te, alt, speed);
                     run.metrics.rail_exit_time_s = Some(te);
                     run.metrics.rail_exit_speed_m_s = Some(speed);
-                    run.metrics.static_margin_rail_exit_cal = Some(model.static_margin(&aux.mass));
+                    run.metrics.static_margin_rail_exit_cal =
+                        Some(model.static_margin(&ep.aux.mass));
                     return Ok((te, y_end, PhaseEnd::RailExit));
                 }
                 EventKind::Apogee => {
@@ -570,22 +630,19 @@ fn six_dof_phase<O: Observer>(
                 _ => {}
             }
         }
-        let t_here = t_end;
-        if found.is_none() && matches!(outcome, crate::integrate::StepOutcome::ReachedStop)
-            || found.is_some()
+        if (found.is_some() || matches!(outcome, crate::integrate::StepOutcome::ReachedStop))
+            && run.at_stop(t_end, alt, speed)?
         {
-            if run.at_stop(t_here, alt, speed)? {
-                return Ok((t_here, y_end, PhaseEnd::Deploy));
-            }
+            return Ok((t_end, y_end, PhaseEnd::Deploy));
         }
-        if t_here >= model.options.max_time_s {
-            run.push_event(EventKind::TimeLimit, t_here, alt, speed);
-            return Ok((t_here, y_end, PhaseEnd::TimeLimit));
+        if t_end >= model.options.max_time_s {
+            run.push_event(EventKind::TimeLimit, t_end, alt, speed);
+            return Ok((t_end, y_end, PhaseEnd::TimeLimit));
         }
-        if restart {
+        if found.is_some() {
             let starts = run.starts;
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t_here, &y_end)).map_err(|e| integ(t_here, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t_end, &y_end)).map_err(|e| integ(t_end, e, name))?;
             run.evaluations += evals;
         }
     }

@@ -16,7 +16,7 @@ pub use model::FlightModel;
 pub use output::{Flight, Metrics, Observer, Phase, Sample};
 
 use crate::aero_loads::{AeroTables, SurfaceTable};
-use crate::atmosphere::Atmosphere;
+use crate::atmosphere::{AirTable, Atmosphere};
 use crate::eom::Nozzle;
 use crate::integrate::IntegratorError;
 use crate::massprops::MassModel;
@@ -25,6 +25,7 @@ use hpr_design::aero::{AeroModel, MachTable};
 use hpr_design::design::model::Design;
 use hpr_design::mass::{self, MassProps};
 use hpr_design::motor::{Motor, MotorOptions, MotorTables};
+use std::sync::Arc;
 
 /// Why a flight could not be set up or flown.
 #[derive(Debug, thiserror::Error)]
@@ -125,6 +126,7 @@ impl Simulation {
             &SimOptions::default(),
             1.0,
             &MassAdjustment::default(),
+            None,
         )?;
         Ok(Simulation {
             design,
@@ -155,6 +157,7 @@ impl Simulation {
             &self.options,
             self.drag_scale,
             &self.mass_adjustment,
+            Some(self.model.air.clone()),
         )?;
         Ok(self)
     }
@@ -336,6 +339,7 @@ pub fn build_model(
     options: &SimOptions,
     drag_scale: f64,
     adjustment: &MassAdjustment,
+    air: Option<Arc<AirTable>>,
 ) -> Result<FlightModel, SimError> {
     let mount = design.motor_mount.ok_or_else(|| {
         SimError::Setup(format!(
@@ -402,7 +406,10 @@ pub fn build_model(
         mass: mass_model,
         nozzle,
         aero,
-        atmosphere,
+        air: match air {
+            Some(a) if a.atmosphere() == &atmosphere => a,
+            _ => Arc::new(AirTable::new(&atmosphere)),
+        },
         env: env.clone(),
         rail: rail_geo,
         parachutes: parachutes.to_vec(),

@@ -5,7 +5,7 @@
 use super::config::{Environment, Parachute, Rail, SimOptions};
 use super::SimError;
 use crate::aero_loads::{aero_loads, AeroTables, AirAt};
-use crate::atmosphere::Atmosphere;
+use crate::atmosphere::{Air, AirTable};
 use crate::cycloid::{self, CycloidState};
 use crate::eom::{self, MassState, Nozzle, N3, N6};
 use crate::frames;
@@ -48,7 +48,8 @@ pub struct FlightModel {
     pub motor: MotorTables,
     pub nozzle: Nozzle,
     pub aero: AeroTables,
-    pub atmosphere: Atmosphere,
+    /// The standard atmosphere at the site, tabulated (see [`AirTable`]).
+    pub air: std::sync::Arc<AirTable>,
     pub env: Environment,
     pub rail: RailGeometry,
     pub parachutes: Vec<Parachute>,
@@ -80,7 +81,7 @@ pub struct Instant {
 impl FlightModel {
     /// The air the loads see (none in a vacuum).
     #[inline]
-    fn air_at(&self, air: &crate::atmosphere::AirState) -> AirAt {
+    fn air_at(&self, air: &Air) -> AirAt {
         AirAt {
             density_kg_m3: if self.env.vacuum {
                 0.0
@@ -164,7 +165,7 @@ impl FlightModel {
         let omega = Vector3::new(y[10], y[11], y[12]);
         let cm_n = eom::center_of_mass_position(y, ms, &r);
         let h = cm_n.z;
-        let air = self.atmosphere.at(h);
+        let air = self.air.at(h);
         let wind_b = r.transpose() * self.wind_n(h);
         let v_o_air_b = r.transpose() * Vector3::new(y[3], y[4], y[5]) - wind_b;
         let v_cm_air_b = v_o_air_b + omega.cross(&ms.r_cm) + ms.r_cm_rate;
@@ -222,7 +223,7 @@ impl FlightModel {
         let h = (Vector3::new(y[0], y[1], y[2])
             + frames::body_to_inertial(&self.rail.attitude) * ms.r_cm)
             .z;
-        let air = self.atmosphere.at(h);
+        let air = self.air.at(h);
         let r = frames::body_to_inertial(&self.rail.attitude);
         let wind_b = r.transpose() * self.wind_n(h);
         let v_air_b = r.transpose() * v - wind_b;
@@ -269,7 +270,7 @@ impl FlightModel {
     ) -> FlightAux {
         let inst = self.instant(starts, t);
         let h = y[2];
-        let air = self.atmosphere.at(h);
+        let air = self.air.at(h);
         let g = self.env.gravity.at(h);
         let wind = self.wind_n(h);
         eom::descent_derivative(
@@ -290,6 +291,53 @@ impl FlightModel {
             accel_cm_m_s2: a.norm(),
             alpha_rad: f64::NAN,
         }
+    }
+}
+
+impl FlightModel {
+    /// The center of mass's position and velocity (inertial) and a sample's figures at the end
+    /// of a step whose derivative `dy` is known (the integrator's FSAL stage): one mass-state
+    /// evaluation, no aerodynamics. Agrees with [`FlightModel::derivative_6dof`]'s figures.
+    pub fn end_point(
+        &self,
+        starts: &ShiftStarts,
+        t: f64,
+        y: &[f64; N6],
+        dy: &[f64; N6],
+        rail: bool,
+    ) -> (Vector3<f64>, Vector3<f64>, FlightAux) {
+        let ms = self.instant(starts, t).mass;
+        let q = if rail {
+            self.rail.attitude
+        } else {
+            [y[6], y[7], y[8], y[9]]
+        };
+        let r = frames::body_to_inertial(&q);
+        let omega = Vector3::new(y[10], y[11], y[12]);
+        let pos = eom::center_of_mass_position(y, &ms, &r);
+        let vel = eom::center_of_mass_velocity(y, &ms, &r);
+        let air = self.air.at(pos.z);
+        let v_air_n = vel - self.wind_n(pos.z);
+        let v_air_b = r.transpose() * v_air_n;
+        let a_o_n = Vector3::new(dy[3], dy[4], dy[5]);
+        let accel = if rail {
+            a_o_n.norm()
+        } else {
+            let w_dot = Vector3::new(dy[10], dy[11], dy[12]);
+            let rel = w_dot.cross(&ms.r_cm)
+                + omega.cross(&omega.cross(&ms.r_cm))
+                + omega.cross(&ms.r_cm_rate) * 2.0
+                + ms.r_cm_accel;
+            (a_o_n + r * rel).norm()
+        };
+        let aux = FlightAux {
+            mass: ms,
+            air_speed_m_s: v_air_n.norm(),
+            speed_of_sound_m_s: air.speed_of_sound_m_s,
+            accel_cm_m_s2: accel,
+            alpha_rad: if rail { 0.0 } else { angle_of_attack(&v_air_b) },
+        };
+        (pos, vel, aux)
     }
 }
 
@@ -323,7 +371,7 @@ fn angle_of_attack(v_air_b: &Vector3<f64>) -> f64 {
     if n == 0.0 {
         0.0
     } else {
-        (v_air_b.z / n).clamp(-1.0, 1.0).acos()
+        (v_air_b.x.hypot(v_air_b.y)).atan2(v_air_b.z)
     }
 }
 

@@ -1,0 +1,86 @@
+//! Shared set-up of the proof's flights: designs and motors from the repository, a vacuum,
+//! tight tolerances, and the state and mass of a sample.
+
+use hpr_design::motor::Motor;
+use hpr_design::Design;
+use hpr_sim::eom::{MassState, N6};
+use hpr_sim::flight::model::MAX_SHIFTS;
+use hpr_sim::flight::{Environment, Integrator, Sample, SimOptions, Simulation};
+use hpr_sim::gravity::Gravity;
+use nalgebra::{Matrix3, Vector3};
+use std::path::{Path, PathBuf};
+
+/// Standard gravity, m/s².
+pub const G0: f64 = 9.80665;
+
+/// A file of the repository.
+pub fn repo(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(path)
+}
+
+/// A design of `validation/designs/`.
+pub fn design(file: &str) -> Design {
+    Design::load(repo(&format!("validation/designs/{file}")))
+        .unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+/// A motor of the bundled library.
+pub fn motor(name: &str) -> Motor {
+    hpr_design::motor::find(name).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// No air, constant gravity `g`.
+pub fn vacuum(g: f64) -> Environment {
+    Environment {
+        vacuum: true,
+        gravity: Gravity::constant(g).expect("g >= 0"),
+        ..Environment::default()
+    }
+}
+
+/// Dormand–Prince at relative tolerance 1e-12 (absolute 1e-10 m, 1e-10 m/s, 1e-13, 1e-12 rad/s).
+pub const TIGHT: Integrator = Integrator::Adaptive {
+    rtol: 1e-12,
+    atol_position_m: 1e-10,
+    atol_velocity_m_s: 1e-10,
+    atol_quaternion: 1e-13,
+    atol_rate_rad_s: 1e-12,
+};
+
+/// Options with `integrator`, stopping at `max_time_s`, keeping every sample.
+pub fn options(integrator: Integrator, max_time_s: f64) -> SimOptions {
+    SimOptions {
+        integrator,
+        max_time_s,
+        keep_samples: true,
+    }
+}
+
+/// The mass state at `t` with no shift.
+pub fn mass_at(sim: &Simulation, t: f64) -> MassState {
+    sim.model().instant(&[f64::INFINITY; MAX_SHIFTS], t).mass
+}
+
+/// A 6-DOF state from O's position and velocity, a quaternion and body rates.
+pub fn state(o: [f64; 3], v: [f64; 3], q: [f64; 4], w: [f64; 3]) -> [f64; N6] {
+    [
+        o[0], o[1], o[2], v[0], v[1], v[2], q[0], q[1], q[2], q[3], w[0], w[1], w[2],
+    ]
+}
+
+/// The attitude and rates of a sample as a 6-DOF state (O's position and velocity zero:
+/// what the angular momentum about the center of mass needs).
+pub fn attitude_state(s: &Sample) -> [f64; N6] {
+    state([0.0; 3], [0.0; 3], s.quaternion, s.omega_rad_s)
+}
+
+/// Body → inertial rotation of a sample.
+pub fn rotation(s: &Sample) -> Matrix3<f64> {
+    hpr_sim::frames::body_to_inertial(&s.quaternion)
+}
+
+pub fn v3(a: [f64; 3]) -> Vector3<f64> {
+    Vector3::new(a[0], a[1], a[2])
+}

@@ -1,0 +1,117 @@
+//! Every event lands on its root: the apogee where the center's vertical speed is zero, the
+//! rail exit at the exact travel, a height trigger at its height, the landing at zero.
+
+use crate::common::*;
+use hpr_sim::events::EventKind;
+use hpr_sim::flight::{Environment, Flight, Parachute, Rail, Sample, SimOptions, Simulation};
+use hpr_sim::trigger::Trigger;
+use hpr_sim::wind::Wind;
+
+/// The sample recorded at an event (the driver records one at every event, from the dense
+/// output at the located time).
+fn sample_at<'a>(f: &'a Flight, kind: EventKind) -> (&'a Sample, f64) {
+    let e = f.event(kind).unwrap_or_else(|| panic!("no {kind:?}"));
+    let s = f
+        .samples
+        .iter()
+        .find(|s| s.t_s == e.time_s)
+        .unwrap_or_else(|| panic!("no sample at the {kind:?} time"));
+    (s, e.time_s)
+}
+
+#[test]
+fn every_event_lands_on_its_root() {
+    // The synthetic rocket on its I175 as `hpr-mc fly` sets it up (drogue, the smaller of
+    // the design's canopies, at apogee; main at 300 m), off an 85° rail in a 4 m/s wind.
+    let design = design("synthetic-54mm-three-fin.json");
+    let mut cds: Vec<f64> = design
+        .components
+        .iter()
+        .filter_map(|c| match &c.kind {
+            hpr_design::ComponentKind::Parachute(p) => {
+                Some(p.cd * std::f64::consts::PI * (0.5 * p.canopy_diameter_m).powi(2))
+            }
+            _ => None,
+        })
+        .collect();
+    cds.sort_by(f64::total_cmp);
+    let main_height = 300.0;
+    let chutes = vec![
+        Parachute::new("drogue", cds[0], Trigger::Apogee, 1.0),
+        Parachute::new(
+            "main",
+            cds[1],
+            Trigger::HeightDescending {
+                height_m: main_height,
+            },
+            1.0,
+        ),
+    ];
+    let env = Environment {
+        wind: Wind::constant(4.0, 250.0).unwrap(),
+        ..Environment::default()
+    };
+    let rail = Rail {
+        length_m: 2.0,
+        inclination_deg: 85.0,
+        heading_deg: 70.0,
+    };
+    let sim = Simulation::new(design, motor("Cesaroni_I175"), env, rail)
+        .and_then(|s| s.with_parachutes(chutes))
+        .and_then(|s| s.with_options(SimOptions::default()))
+        .expect("set up");
+    let f = sim.run(&mut ()).expect("flies");
+
+    // Apogee: the center's vertical speed in the sample at the event.
+    let (apo, _) = sample_at(&f, EventKind::Apogee);
+    let vz = apo.velocity_m_s[2];
+    let highest = f
+        .samples
+        .iter()
+        .map(|s| s.altitude_m)
+        .fold(f64::MIN, f64::max);
+
+    // Rail exit: O's travel along the rail, from the center of mass in the sample.
+    let (exit, t_exit) = sample_at(&f, EventKind::RailExit);
+    let rail = &sim.model().rail;
+    let ms = mass_at(&sim, t_exit);
+    let o = v3(exit.position_m) - rotation(exit) * ms.r_cm;
+    let travel = (o - rail.o_start_n).dot(&rail.direction_n);
+    let e_travel = travel - rail.travel_to_exit_m;
+
+    // The main's trigger and the landing.
+    let trig = f
+        .event(EventKind::ParachuteTrigger(1))
+        .expect("main trigger");
+    let land = f.event(EventKind::Landing).expect("landing");
+    let (land_s, _) = sample_at(&f, EventKind::Landing);
+
+    eprintln!(
+        "events: apogee {:.3} m at {:.4} s, vertical speed there {vz:.2e} m/s (highest sample \
+         {highest:.6} m); rail exit at {t_exit:.6} s, travel {travel:.12} m of {:.12} \
+         (error {e_travel:.2e} m); main trigger at {:.4} s, height {:.12} m (error {:.2e}); \
+         landing at {:.3} s, height {:.2e} m",
+        apo.altitude_m,
+        apo.t_s,
+        rail.travel_to_exit_m,
+        trig.time_s,
+        trig.altitude_m,
+        trig.altitude_m - main_height,
+        land.time_s,
+        land.altitude_m
+    );
+    // Time tolerance of the events 1e-12 s: at |dvz/dt| ≈ g the speed is off by ~1e-11,
+    // the heights by the speed times 1e-12 s.
+    assert!(vz.abs() <= 1e-9, "vertical speed at apogee {vz}");
+    assert!(highest <= apo.altitude_m, "a sample above the apogee");
+    assert!(e_travel.abs() <= 1e-9, "rail travel off by {e_travel} m");
+    assert!((trig.altitude_m - main_height).abs() <= 1e-9);
+    assert!(land.altitude_m.abs() <= 1e-9 && land_s.altitude_m.abs() <= 1e-9);
+    // In order: rail exit, apogee, drogue trigger and opening, main, landing.
+    let order: Vec<EventKind> = f.events.iter().map(|e| e.kind).collect();
+    let pos = |k| order.iter().position(|&x| x == k).unwrap();
+    assert!(pos(EventKind::RailExit) < pos(EventKind::Apogee));
+    assert!(pos(EventKind::Apogee) <= pos(EventKind::ParachuteTrigger(0)));
+    assert!(pos(EventKind::ParachuteDeploy(0)) < pos(EventKind::ParachuteTrigger(1)));
+    assert!(pos(EventKind::ParachuteDeploy(1)) < pos(EventKind::Landing));
+}

@@ -1,0 +1,15 @@
+//! The proof of the 6-DOF flight simulator (GitHub issue 3): flights checked against exact
+//! answers (the vacuum parabola, conservation of momentum and angular momentum, the rocket
+//! equation), the convergence order of RK4, events landing on their roots, RocketPy 1.13's
+//! Calisto, and bad input. Each test states its tolerance and prints what it measured
+//! (`cargo test --release -p hpr_sim --test flight_proof -- --nocapture`).
+//!
+//! An integration test (not a `#[cfg(test)]` module) because it needs nothing private: the
+//! public `Simulation`, `FlightModel` and `eom` are enough, which is also what users get.
+
+mod calisto;
+mod common;
+mod events;
+mod exact;
+mod inputs;
+mod rocket_equation;
