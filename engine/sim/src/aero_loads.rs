@@ -34,8 +34,6 @@ pub struct AeroTables {
     pub roll_forcing: MachTable,
     /// Roll damping coefficient against Mach; the moment is `−½ρV A_ref d² · damping · ω3 / 2`.
     pub roll_damping: MachTable,
-    /// Multiplies the drag coefficient (a dispersion; 1 by default).
-    pub drag_scale: f64,
     /// Center of pressure of the whole rocket at Mach 0, m aft of the tip.
     pub cp_mach0_m: f64,
 }
@@ -63,20 +61,20 @@ impl AeroTables {
         }
     }
 
-    /// Drag coefficient at `mach`, motor burning or not, with the drag scale.
+    /// Drag coefficient at `mach`, motor burning or not.
     #[inline]
     pub fn cd(&self, mach: f64, powered: bool) -> f64 {
-        self.drag_scale
-            * if powered {
-                self.cd_power_on.at(mach)
-            } else {
-                self.cd_power_off.at(mach)
-            }
+        if powered {
+            self.cd_power_on.at(mach)
+        } else {
+            self.cd_power_off.at(mach)
+        }
     }
 }
 
 /// Aerodynamic loads about O in body axes. `v_o_air_b` is O's velocity relative to the air and
-/// `v_cm_air_b` the center of mass's, both in body axes.
+/// `v_cm_air_b` the center of mass's, both in body axes; `drag_scale` multiplies the drag
+/// coefficient (a dispersion, 1 by default).
 #[inline]
 pub fn aero_loads(
     t: &AeroTables,
@@ -85,6 +83,7 @@ pub fn aero_loads(
     omega: &Vector3<f64>,
     air: &AirAt,
     powered: bool,
+    drag_scale: f64,
 ) -> Loads {
     let rho = air.density_kg_m3;
     let mut force = Vector3::zeros();
@@ -113,7 +112,7 @@ pub fn aero_loads(
         let v = v2.sqrt();
         let mach = v / air.speed_of_sound_m_s;
         let q = 0.5 * rho * v2;
-        force.z -= q * t.ref_area_m2 * t.cd(mach, powered);
+        force.z -= q * t.ref_area_m2 * drag_scale * t.cd(mach, powered);
         let d = t.ref_diameter_m;
         let forcing = q * t.ref_area_m2 * d * t.roll_forcing.at(mach);
         let damping =

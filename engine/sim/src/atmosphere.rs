@@ -228,18 +228,17 @@ fn air_state(t: f64, p: f64) -> AirState {
 /// Spacing of [`AirTable`], m.
 pub const AIR_TABLE_STEP_M: f64 = 10.0;
 
-/// Density and speed of sound of an [`Atmosphere`] tabulated every
-/// [`AIR_TABLE_STEP_M`] of height above ground, built once before a flight so that the
-/// derivative, called thousands of times, interpolates instead of evaluating powers and
-/// exponentials. Linear interpolation at 10 m spacing holds the density and the speed of
-/// sound to 5e-7 of themselves inside each layer of the standard atmosphere (below 11 km, where
-/// rockets of this kind fly, throughout), and to 1e-4 within 10 m of a layer boundary, where
-/// the lapse rate jumps; outside the table (below the ground or above 86 km) the exact model
-/// answers.
+/// Density and speed of sound of the standard atmosphere tabulated every
+/// [`AIR_TABLE_STEP_M`] of altitude above sea level, from −5 km to 86 km, built once per
+/// process ([`AirTable::standard`]) and shared by every flight and every lane of a batch, so
+/// that the derivative, called thousands of times, interpolates instead of evaluating powers
+/// and exponentials. Linear interpolation at 10 m spacing holds the density and the speed of
+/// sound to 5e-7 of themselves inside each layer (below 11 km, where rockets of this kind fly,
+/// throughout), and to 1e-4 within 10 m of a layer boundary, where the lapse rate jumps;
+/// outside the table the exact model answers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AirTable {
-    atmosphere: Atmosphere,
-    /// (density kg/m³, speed of sound m/s) at heights 0, 10, 20, ... m above ground.
+    /// (density kg/m³, speed of sound m/s) at altitudes −5000, −4990, ... m above sea level.
     nodes: Vec<(f64, f64)>,
 }
 
@@ -250,31 +249,28 @@ pub struct Air {
     pub speed_of_sound_m_s: f64,
 }
 
+static STANDARD_TABLE: std::sync::OnceLock<AirTable> = std::sync::OnceLock::new();
+
 impl AirTable {
-    pub fn new(atmosphere: &Atmosphere) -> AirTable {
-        let top = MAX_ALTITUDE_MSL_M - atmosphere.launch_elevation_m();
-        let n = (top / AIR_TABLE_STEP_M).floor().max(0.0) as usize + 1;
-        let nodes = (0..n)
-            .map(|i| {
-                let a = atmosphere.at(i as f64 * AIR_TABLE_STEP_M);
-                (a.density_kg_m3, a.speed_of_sound_m_s)
-            })
-            .collect();
-        AirTable {
-            atmosphere: atmosphere.clone(),
-            nodes,
-        }
+    /// The standard atmosphere's table, built on first use.
+    pub fn standard() -> &'static AirTable {
+        STANDARD_TABLE.get_or_init(|| {
+            let atm = Atmosphere::standard(0.0).expect("sea level is a valid site");
+            let n = ((MAX_ALTITUDE_MSL_M - MIN_ALTITUDE_MSL_M) / AIR_TABLE_STEP_M) as usize + 1;
+            let nodes = (0..n)
+                .map(|i| {
+                    let a = atm.at_msl(MIN_ALTITUDE_MSL_M + i as f64 * AIR_TABLE_STEP_M);
+                    (a.density_kg_m3, a.speed_of_sound_m_s)
+                })
+                .collect();
+            AirTable { nodes }
+        })
     }
 
-    /// The atmosphere the table was built from.
-    pub fn atmosphere(&self) -> &Atmosphere {
-        &self.atmosphere
-    }
-
-    /// Density and speed of sound at `height_agl_m` above ground.
+    /// Density and speed of sound at `altitude_msl_m` above sea level.
     #[inline]
-    pub fn at(&self, height_agl_m: f64) -> Air {
-        let x = height_agl_m / AIR_TABLE_STEP_M;
+    pub fn at_msl(&self, altitude_msl_m: f64) -> Air {
+        let x = (altitude_msl_m - MIN_ALTITUDE_MSL_M) / AIR_TABLE_STEP_M;
         if x >= 0.0 && x < (self.nodes.len() - 1) as f64 {
             let i = x as usize;
             let f = x - i as f64;
@@ -284,13 +280,19 @@ impl AirTable {
                 speed_of_sound_m_s: a.1 + f * (b.1 - a.1),
             }
         } else {
-            let a = self.atmosphere.at(height_agl_m);
+            let a = standard_msl(altitude_msl_m);
             Air {
                 density_kg_m3: a.density_kg_m3,
                 speed_of_sound_m_s: a.speed_of_sound_m_s,
             }
         }
     }
+}
+
+fn standard_msl(z: f64) -> AirState {
+    Atmosphere::standard(0.0)
+        .expect("sea level is a valid site")
+        .at_msl(z)
 }
 
 #[cfg(test)]
@@ -301,14 +303,14 @@ mod table_tests {
     fn the_air_table_follows_the_standard_atmosphere_to_its_interpolation_error() {
         for elevation in [0.0, 1400.0] {
             let atm = Atmosphere::standard(elevation).unwrap();
-            let table = AirTable::new(&atm);
+            let table = AirTable::standard();
             // Inside a layer the error is the interpolation's, h²/8 · ρ''/ρ (h = 10 m, scale
             // height ≥ 6 km): ≤ 5e-7. Within one step of a layer boundary (the first at 11 km)
             // the lapse rate's jump adds up to ΔL/T · h/4 ≈ 1e-4.
             let (mut er, mut ea, mut er_trop): (f64, f64, f64) = (0.0, 0.0, 0.0);
             let mut h = -50.0;
             while h < 90_000.0 {
-                let (t, x) = (table.at(h), atm.at(h));
+                let (t, x) = (table.at_msl(h + elevation), atm.at(h));
                 let e = (t.density_kg_m3 - x.density_kg_m3).abs() / x.density_kg_m3;
                 er = er.max(e);
                 if h + elevation < 10_990.0 {
@@ -325,7 +327,10 @@ mod table_tests {
             assert!(er_trop <= 5e-7, "{er_trop:e}");
             assert!(er <= 1e-4 && ea <= 1e-4, "{er:e} {ea:e}");
             // At the nodes the table is the model.
-            assert_eq!(table.at(1000.0).density_kg_m3, atm.at(1000.0).density_kg_m3);
+            assert_eq!(
+                table.at_msl(1000.0 + elevation).density_kg_m3,
+                atm.at(1000.0).density_kg_m3
+            );
         }
     }
 }

@@ -122,3 +122,41 @@ impl Default for SimOptions {
         }
     }
 }
+
+impl SimOptions {
+    /// Check every number: the time limit, RK4's step, the adaptive tolerances (the same
+    /// ranges as the integrators enforce, named by the fields a user sets).
+    pub fn validate(&self) -> Result<(), String> {
+        let positive = |field: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!(
+                    "options: field \"{field}\" must be positive and finite (got {v})"
+                ))
+            }
+        };
+        positive("max_time_s", self.max_time_s)?;
+        match self.integrator {
+            Integrator::Rk4 { step_s } => positive("step_s", step_s),
+            Integrator::Adaptive {
+                rtol,
+                atol_position_m,
+                atol_velocity_m_s,
+                atol_quaternion,
+                atol_rate_rad_s,
+            } => {
+                use crate::integrate::{RTOL_MAX, RTOL_MIN};
+                if !(RTOL_MIN..=RTOL_MAX).contains(&rtol) {
+                    return Err(format!(
+                        "options: field \"rtol\" must be finite and within [{RTOL_MIN:e}, {RTOL_MAX}] (got {rtol})"
+                    ));
+                }
+                positive("atol_position_m", atol_position_m)?;
+                positive("atol_velocity_m_s", atol_velocity_m_s)?;
+                positive("atol_quaternion", atol_quaternion)?;
+                positive("atol_rate_rad_s", atol_rate_rad_s)
+            }
+        }
+    }
+}

@@ -273,6 +273,23 @@ fn cm_of(
     )
 }
 
+/// The error of a flight that went non-finite at `t`, in or from the state `y`.
+fn non_finite<const N: usize>(t: f64, y: &[f64; N]) -> SimError {
+    SimError::NonFinite {
+        time_s: t,
+        state: format!("{y:?}"),
+    }
+}
+
+/// An integrator's error at `t` on the state `y`: a non-finite state or derivative is a
+/// [`SimError::NonFinite`], anything else an integration failure of the phase `what`.
+fn integ_at<const N: usize>(t: f64, y: &[f64; N], e: IntegratorError, what: &str) -> SimError {
+    match e {
+        IntegratorError::NonFinite { .. } => non_finite(t, y),
+        e => integ(t, e, what),
+    }
+}
+
 fn integ(t: f64, e: IntegratorError, what: &str) -> SimError {
     SimError::Integration {
         time_s: t,
@@ -338,6 +355,9 @@ fn fly<O: Observer>(
         Some((t0, y0)) => {
             run.rail_exit_done = true;
             run.burnout_done = t0 >= model.burnout_s;
+            // Started on the way down (or at the top), the apogee is behind it: the landing
+            // and the height triggers are armed at once.
+            run.apogee_done = cm_of(model, &run.starts, t0, &y0).1.z <= 0.0;
             run.stops.retain(|&s| s > t0);
             (t0, y0, Phase::Free)
         }
@@ -512,7 +532,7 @@ fn six_dof_phase<O: Observer>(
         let starts = run.starts;
         let mut evals = 0u64;
         each!(stepper, s => s.init(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t0, y0))
-            .map_err(|e| integ(t0, e, name))?;
+            .map_err(|e| integ_at(t0, y0, e, name))?;
         run.evaluations += evals;
         let ep = end_point(&starts, t0, y0, each!(stepper, s => s.dy()));
         run.record(
@@ -532,10 +552,24 @@ fn six_dof_phase<O: Observer>(
         let t_stop = run.next_stop(t_now);
         let starts = run.starts;
         let mut evals = 0u64;
-        let outcome = each!(stepper, s => s.step(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t_stop)).map_err(|e| match e {
-            IntegratorError::NonFinite { t, .. } => SimError::NonFinite { time_s: t, state: format!("{:?}", each!(stepper, s => *s.y())) },
-            e => integ(t_now, e, name),
+        // The first evaluation whose derivative was not finite (a NaN makes the adaptive
+        // stepper reject until its step underflows; RK4 would carry it into the state).
+        let mut bad: Option<(f64, [f64; N6])> = None;
+        let outcome = each!(stepper, s => s.step(|t, y, dy| {
+            evals += 1;
+            deriv(&starts, t, y, dy);
+            if bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
+                bad = Some((t, *y));
+            }
+        }, t_stop))
+        .map_err(|e| match bad {
+            Some((tb, yb)) => non_finite(tb, &yb),
+            None => integ_at(t_now, each!(stepper, s => s.y()), e, name),
         })?;
+        if !each!(stepper, s => s.y()).iter().all(|v| v.is_finite()) {
+            let (tb, yb) = bad.unwrap_or((each!(stepper, s => s.t()), *each!(stepper, s => s.y())));
+            return Err(non_finite(tb, &yb));
+        }
         run.evaluations += evals;
         run.steps += 1;
         let (t1, y1) = (each!(stepper, s => s.t()), *each!(stepper, s => s.y()));
@@ -642,7 +676,7 @@ fn six_dof_phase<O: Observer>(
         if found.is_some() {
             let starts = run.starts;
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t_end, &y_end)).map_err(|e| integ(t_end, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
         }
     }
@@ -668,7 +702,7 @@ fn descent_phase<O: Observer>(
     {
         let starts = run.starts;
         let mut evals = 0u64;
-        each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t0, y0)).map_err(|e| integ(t0, e, name))?;
+        each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t0, y0)).map_err(|e| integ_at(t0, y0, e, name))?;
         run.evaluations += evals;
         let mut dy = [0.0; N3];
         let aux = model.derivative_descent(&starts, cds, t0, y0, &mut dy);
@@ -688,10 +722,22 @@ fn descent_phase<O: Observer>(
         let t_stop = run.next_stop(t_now);
         let starts = run.starts;
         let mut evals = 0u64;
-        let outcome = each!(stepper, s => s.step(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t_stop)).map_err(|e| match e {
-            IntegratorError::NonFinite { t, .. } => SimError::NonFinite { time_s: t, state: format!("{:?}", each!(stepper, s => *s.y())) },
-            e => integ(t_now, e, name),
+        let mut bad: Option<(f64, [f64; N3])> = None;
+        let outcome = each!(stepper, s => s.step(|t, y, dy| {
+            evals += 1;
+            model.derivative_descent(&starts, cds, t, y, dy);
+            if bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
+                bad = Some((t, *y));
+            }
+        }, t_stop))
+        .map_err(|e| match bad {
+            Some((tb, yb)) => non_finite(tb, &yb),
+            None => integ_at(t_now, each!(stepper, s => s.y()), e, name),
         })?;
+        if !each!(stepper, s => s.y()).iter().all(|v| v.is_finite()) {
+            let (tb, yb) = bad.unwrap_or((each!(stepper, s => s.t()), *each!(stepper, s => s.y())));
+            return Err(non_finite(tb, &yb));
+        }
         run.evaluations += evals;
         run.steps += 1;
         let mut found: Option<(f64, EventKind)> = None;
@@ -773,7 +819,7 @@ fn descent_phase<O: Observer>(
             cds = new_cds;
             let starts = run.starts;
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t_end, &y_end)).map_err(|e| integ(t_end, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
         }
     }

@@ -67,6 +67,7 @@ pub struct Simulation {
     options: SimOptions,
     drag_scale: f64,
     mass_adjustment: MassAdjustment,
+    tables: Arc<DesignTables>,
     model: FlightModel,
 }
 
@@ -114,6 +115,7 @@ impl Simulation {
             parts: vec![],
             part_of_shift: vec![],
         };
+        let tables = Arc::new(DesignTables::new(&design)?);
         let model = build_model(
             &design,
             &motor,
@@ -126,7 +128,7 @@ impl Simulation {
             &SimOptions::default(),
             1.0,
             &MassAdjustment::default(),
-            None,
+            &tables,
         )?;
         Ok(Simulation {
             design,
@@ -140,6 +142,7 @@ impl Simulation {
             options: SimOptions::default(),
             drag_scale: 1.0,
             mass_adjustment: MassAdjustment::default(),
+            tables,
             model,
         })
     }
@@ -157,7 +160,7 @@ impl Simulation {
             &self.options,
             self.drag_scale,
             &self.mass_adjustment,
-            Some(self.model.air.clone()),
+            &self.tables,
         )?;
         Ok(self)
     }
@@ -222,19 +225,7 @@ impl Simulation {
 
     /// Integrator and limits.
     pub fn with_options(mut self, options: SimOptions) -> Result<Simulation, SimError> {
-        if !(options.max_time_s.is_finite() && options.max_time_s > 0.0) {
-            return Err(SimError::Setup(format!(
-                "options: field \"max_time_s\" must be positive and finite (got {})",
-                options.max_time_s
-            )));
-        }
-        if let Integrator::Rk4 { step_s } = options.integrator {
-            if !(step_s.is_finite() && step_s > 0.0) {
-                return Err(SimError::Setup(format!(
-                    "options: field \"step_s\" must be positive and finite (got {step_s})"
-                )));
-            }
-        }
+        options.validate().map_err(SimError::Setup)?;
         self.options = options;
         self.rebuild()
     }
@@ -325,6 +316,43 @@ impl Simulation {
     }
 }
 
+/// What a flight needs from the design alone, built once per design and shared (by `Arc`) by
+/// every flight of it: the structure's mass properties (shape integrals) and the aerodynamic
+/// tables.
+#[derive(Debug, Clone)]
+pub struct DesignTables {
+    /// Everything but the motor, every part where the design puts it (station frame).
+    pub dry: MassProps,
+    pub aero: Arc<AeroTables>,
+}
+
+impl DesignTables {
+    pub fn new(design: &Design) -> Result<DesignTables, SimError> {
+        let aero_model = AeroModel::from_design(design)?;
+        let aero = AeroTables {
+            ref_area_m2: aero_model.ref_area_m2,
+            ref_diameter_m: aero_model.ref_diameter_m,
+            surfaces: aero_model
+                .surfaces
+                .iter()
+                .map(|s| SurfaceTable {
+                    x_cp_m: s.x_cp_m,
+                    cn_alpha: s.cn_alpha.clone(),
+                })
+                .collect(),
+            cd_power_off: MachTable::from_fn(|m| aero_model.cd_power_off(m)),
+            cd_power_on: MachTable::from_fn(|m| aero_model.cd_power_on(m)),
+            roll_forcing: MachTable::from_fn(|m| aero_model.roll_forcing_coefficient(m)),
+            roll_damping: MachTable::from_fn(|m| aero_model.roll_damping_coefficient(m)),
+            cp_mach0_m: aero_model.cp_m(0.0),
+        };
+        Ok(DesignTables {
+            dry: mass::dry(design),
+            aero: Arc::new(aero),
+        })
+    }
+}
+
 /// Build every table of a flight once.
 #[allow(clippy::too_many_arguments)]
 pub fn build_model(
@@ -339,7 +367,7 @@ pub fn build_model(
     options: &SimOptions,
     drag_scale: f64,
     adjustment: &MassAdjustment,
-    air: Option<Arc<AirTable>>,
+    tables: &DesignTables,
 ) -> Result<FlightModel, SimError> {
     let mount = design.motor_mount.ok_or_else(|| {
         SimError::Setup(format!(
@@ -350,16 +378,16 @@ pub fn build_model(
     design
         .motor_fits(motor.diameter_m, motor.length_m)
         .map_err(|e| SimError::Setup(e.to_string()))?;
-    let tables = MotorTables::new(motor, motor_options)?;
-    let burnout = tables.burn_time_s();
-    let full = tables.mass_props(0.0, mount.motor_aft_m);
-    let casing = tables.mass_props(burnout, mount.motor_aft_m);
+    let motor_tables = MotorTables::new(motor, motor_options)?;
+    let burnout = motor_tables.burn_time_s();
+    let full = motor_tables.mass_props(0.0, mount.motor_aft_m);
+    let casing = motor_tables.mass_props(burnout, mount.motor_aft_m);
     let propellant = MassProps {
         mass_kg: full.mass_kg - casing.mass_kg,
         cg_m: full.cg_m,
         inertia_cg: full.inertia_cg - casing.inertia_cg,
     };
-    let dry = adjustment.apply(&mass::dry(design));
+    let dry = adjustment.apply(&tables.dry);
     let parts: Vec<MassProps> = plan
         .parts
         .iter()
@@ -373,30 +401,12 @@ pub fn build_model(
         mount.motor_aft_m - fixed_cg_m,
     );
 
-    let aero_model = AeroModel::from_design(design)?;
-    let aero = AeroTables {
-        ref_area_m2: aero_model.ref_area_m2,
-        ref_diameter_m: aero_model.ref_diameter_m,
-        surfaces: aero_model
-            .surfaces
-            .iter()
-            .map(|s| SurfaceTable {
-                x_cp_m: s.x_cp_m,
-                cn_alpha: s.cn_alpha.clone(),
-            })
-            .collect(),
-        cd_power_off: MachTable::from_fn(|m| aero_model.cd_power_off(m)),
-        cd_power_on: MachTable::from_fn(|m| aero_model.cd_power_on(m)),
-        roll_forcing: MachTable::from_fn(|m| aero_model.roll_forcing_coefficient(m)),
-        roll_damping: MachTable::from_fn(|m| aero_model.roll_damping_coefficient(m)),
-        drag_scale,
-        cp_mach0_m: aero_model.cp_m(0.0),
-    };
-    let atmosphere = Atmosphere::standard(env.elevation_m)
+    // Checks the site elevation (the flight reads the shared table).
+    Atmosphere::standard(env.elevation_m)
         .map_err(|e| SimError::Setup(format!("environment: {e}")))?;
     let aft_m = design.length_m.max(mount.motor_aft_m);
     let rail_geo = model::rail_geometry(rail, aft_m, design.rail_guides_m.map(|(upper, _)| upper))?;
-    let knots: Vec<f64> = tables
+    let knots: Vec<f64> = motor_tables
         .times_s()
         .iter()
         .copied()
@@ -405,11 +415,9 @@ pub fn build_model(
     Ok(FlightModel {
         mass: mass_model,
         nozzle,
-        aero,
-        air: match air {
-            Some(a) if a.atmosphere() == &atmosphere => a,
-            _ => Arc::new(AirTable::new(&atmosphere)),
-        },
+        aero: tables.aero.clone(),
+        drag_scale,
+        air: AirTable::standard(),
         env: env.clone(),
         rail: rail_geo,
         parachutes: parachutes.to_vec(),
@@ -418,9 +426,9 @@ pub fn build_model(
         burnout_s: burnout,
         motor_delay_s: motor.delays_s.first().copied(),
         thrust_knots_s: knots,
-        ref_diameter_m: aero_model.ref_diameter_m,
-        cp_mach0_m: aero_model.cp_m(0.0),
-        motor: tables,
+        ref_diameter_m: tables.aero.ref_diameter_m,
+        cp_mach0_m: tables.aero.cp_mach0_m,
+        motor: motor_tables,
     })
 }
 

@@ -47,9 +47,11 @@ pub struct FlightModel {
     pub mass: MassModel,
     pub motor: MotorTables,
     pub nozzle: Nozzle,
-    pub aero: AeroTables,
-    /// The standard atmosphere at the site, tabulated (see [`AirTable`]).
-    pub air: std::sync::Arc<AirTable>,
+    pub aero: std::sync::Arc<AeroTables>,
+    /// Multiplies the drag coefficient (a dispersion; 1 by default).
+    pub drag_scale: f64,
+    /// The standard atmosphere, tabulated (see [`AirTable`]), shared by every flight.
+    pub air: &'static AirTable,
     pub env: Environment,
     pub rail: RailGeometry,
     pub parachutes: Vec<Parachute>,
@@ -165,7 +167,7 @@ impl FlightModel {
         let omega = Vector3::new(y[10], y[11], y[12]);
         let cm_n = eom::center_of_mass_position(y, ms, &r);
         let h = cm_n.z;
-        let air = self.air.at(h);
+        let air = self.air.at_msl(h + self.env.elevation_m);
         let wind_b = r.transpose() * self.wind_n(h);
         let v_o_air_b = r.transpose() * Vector3::new(y[3], y[4], y[5]) - wind_b;
         let v_cm_air_b = v_o_air_b + omega.cross(&ms.r_cm) + ms.r_cm_rate;
@@ -178,6 +180,7 @@ impl FlightModel {
             &omega,
             &air_at,
             powered,
+            self.drag_scale,
         );
         loads.force_b.z += inst.motor.thrust_n;
         let g_b = self.gravity_b(&r, h);
@@ -223,7 +226,7 @@ impl FlightModel {
         let h = (Vector3::new(y[0], y[1], y[2])
             + frames::body_to_inertial(&self.rail.attitude) * ms.r_cm)
             .z;
-        let air = self.air.at(h);
+        let air = self.air.at_msl(h + self.env.elevation_m);
         let r = frames::body_to_inertial(&self.rail.attitude);
         let wind_b = r.transpose() * self.wind_n(h);
         let v_air_b = r.transpose() * v - wind_b;
@@ -236,6 +239,7 @@ impl FlightModel {
             &Vector3::zeros(),
             &air_at,
             powered,
+            self.drag_scale,
         );
         let g_along = -self.env.gravity.at(h) * u.z;
         let mut a = (inst.motor.thrust_n + loads.force_b.z) / ms.mass_kg + g_along;
@@ -270,7 +274,7 @@ impl FlightModel {
     ) -> FlightAux {
         let inst = self.instant(starts, t);
         let h = y[2];
-        let air = self.air.at(h);
+        let air = self.air.at_msl(h + self.env.elevation_m);
         let g = self.env.gravity.at(h);
         let wind = self.wind_n(h);
         eom::descent_derivative(
@@ -316,7 +320,7 @@ impl FlightModel {
         let omega = Vector3::new(y[10], y[11], y[12]);
         let pos = eom::center_of_mass_position(y, &ms, &r);
         let vel = eom::center_of_mass_velocity(y, &ms, &r);
-        let air = self.air.at(pos.z);
+        let air = self.air.at_msl(pos.z + self.env.elevation_m);
         let v_air_n = vel - self.wind_n(pos.z);
         let v_air_b = r.transpose() * v_air_n;
         let a_o_n = Vector3::new(dy[3], dy[4], dy[5]);

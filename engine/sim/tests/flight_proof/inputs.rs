@@ -194,7 +194,7 @@ fn poisoned(integrator: Integrator) -> hpr_sim::flight::FlightModel {
         })
         .unwrap();
     let mut model = sim.model().clone();
-    model.aero.drag_scale = f64::NAN;
+    model.drag_scale = f64::NAN;
     model
 }
 
