@@ -5,6 +5,7 @@
 
 pub mod aero_loads;
 pub mod atmosphere;
+pub mod batch;
 pub mod cycloid;
 pub mod eom;
 pub mod events;

@@ -92,6 +92,23 @@ impl Default for Wind {
 }
 
 impl Wind {
+    /// Speed (m/s) and from-direction (degrees clockwise from north) of a constant wind;
+    /// `None` for a table.
+    pub fn constant_parts(&self) -> Option<(f64, f64)> {
+        match self.profile {
+            Profile::Constant([e, n]) => {
+                let speed = e.hypot(n);
+                let from = if speed == 0.0 {
+                    0.0
+                } else {
+                    (-e).atan2(-n).to_degrees().rem_euclid(360.0)
+                };
+                Some((speed, from))
+            }
+            _ => None,
+        }
+    }
+
     /// No wind.
     pub fn calm() -> Self {
         Self {

@@ -67,6 +67,7 @@ pub struct Simulation {
     options: SimOptions,
     drag_scale: f64,
     mass_adjustment: MassAdjustment,
+    part_masses: Vec<(usize, f64)>,
     tables: Arc<DesignTables>,
     model: FlightModel,
 }
@@ -87,7 +88,13 @@ impl MassAdjustment {
         MassProps {
             mass_kg: m,
             cg_m: dry.cg_m + nalgebra::Vector3::new(self.delta_cg_m, 0.0, 0.0),
-            inertia_cg: dry.inertia_cg * (m / dry.mass_kg),
+            // A structure that weighs nothing (its parts' masses all zero) has no inertia to
+            // scale, and 0/0 would poison the flight with NaN.
+            inertia_cg: if dry.mass_kg > 0.0 {
+                dry.inertia_cg * (m / dry.mass_kg)
+            } else {
+                dry.inertia_cg
+            },
         }
     }
 }
@@ -128,6 +135,7 @@ impl Simulation {
             &SimOptions::default(),
             1.0,
             &MassAdjustment::default(),
+            &[],
             &tables,
         )?;
         Ok(Simulation {
@@ -142,6 +150,7 @@ impl Simulation {
             options: SimOptions::default(),
             drag_scale: 1.0,
             mass_adjustment: MassAdjustment::default(),
+            part_masses: vec![],
             tables,
             model,
         })
@@ -160,6 +169,7 @@ impl Simulation {
             &self.options,
             self.drag_scale,
             &self.mass_adjustment,
+            &self.part_masses,
             &self.tables,
         )?;
         Ok(self)
@@ -230,6 +240,42 @@ impl Simulation {
         self.rebuild()
     }
 
+    /// Give the part `component` (and what it holds, scaled alike) a mass of `mass_kg`, as a
+    /// dispersion of a ballast or payload does, without rebuilding the design. Refused for a
+    /// part whose mass an override hides, a body component or an external part.
+    pub fn with_part_mass(mut self, component: &str, mass_kg: f64) -> Result<Simulation, SimError> {
+        let bad = |rule: String| SimError::Setup(format!("part mass of \"{component}\": {rule}"));
+        let idx = self
+            .design
+            .component_index(component)
+            .ok_or_else(|| bad("the design has no such component".into()))?;
+        if !(mass_kg.is_finite() && mass_kg > 0.0) {
+            return Err(bad(format!(
+                "mass_kg must be positive and finite (got {mass_kg})"
+            )));
+        }
+        let c = &self.design.components[idx];
+        if c.is_body() || c.is_external() {
+            return Err(bad(
+                "only an internal part's mass can change this way".into()
+            ));
+        }
+        let hidden = c.overrides.mass_kg.is_some()
+            || self.design.stages[c.stage].overrides.mass_kg.is_some()
+            || std::iter::successors(c.parent, |&p| self.design.components[p].parent).any(|p| {
+                let o = &self.design.components[p].overrides;
+                o.mass_kg.is_some() && o.covers_children
+            });
+        if hidden {
+            return Err(bad(
+                "a mass override (its own, its stage's or a holder's) hides its mass".into(),
+            ));
+        }
+        self.part_masses.retain(|(i, _)| *i != idx);
+        self.part_masses.push((idx, mass_kg));
+        self.rebuild()
+    }
+
     /// Multiply the drag coefficient by `scale` (a dispersion).
     pub fn with_drag_scale(mut self, scale: f64) -> Result<Simulation, SimError> {
         if !(scale.is_finite() && scale > 0.0) {
@@ -256,6 +302,36 @@ impl Simulation {
             delta_cg_m,
         };
         self.rebuild()
+    }
+
+    /// Change the launch site and the rail (a dispersion of the wind, elevation or rail).
+    pub fn with_site(mut self, env: Environment, rail: Rail) -> Result<Simulation, SimError> {
+        self.env = env;
+        self.rail = rail;
+        self.rebuild()
+    }
+
+    /// Change the motor's options (its impulse and time scales, its masses).
+    pub fn with_motor_scales(mut self, options: MotorOptions) -> Result<Simulation, SimError> {
+        self.motor_options = options;
+        self.rebuild()
+    }
+
+    pub fn environment(&self) -> &Environment {
+        &self.env
+    }
+    pub fn rail(&self) -> &Rail {
+        &self.rail
+    }
+    pub fn parachutes(&self) -> &[Parachute] {
+        &self.parachutes
+    }
+    pub fn motor_options(&self) -> &MotorOptions {
+        &self.motor_options
+    }
+
+    pub fn options(&self) -> &SimOptions {
+        &self.options
     }
 
     pub fn design(&self) -> &Design {
@@ -367,6 +443,7 @@ pub fn build_model(
     options: &SimOptions,
     drag_scale: f64,
     adjustment: &MassAdjustment,
+    part_masses: &[(usize, f64)],
     tables: &DesignTables,
 ) -> Result<FlightModel, SimError> {
     let mount = design.motor_mount.ok_or_else(|| {
@@ -387,11 +464,27 @@ pub fn build_model(
         cg_m: full.cg_m,
         inertia_cg: full.inertia_cg - casing.inertia_cg,
     };
-    let dry = adjustment.apply(&tables.dry);
+    // A part whose mass changes (a dispersion of the ballast, say) keeps its shape, so its
+    // mass properties scale; the structure gains the difference. Mass properties are linear
+    // in the mass distribution, so adding the scaled difference (negative for a lighter part)
+    // is exact.
+    let scale_of = |idx: usize| {
+        part_masses
+            .iter()
+            .rev()
+            .find(|(i, _)| *i == idx)
+            .map(|&(_, m)| m / mass::subtree(design, idx).mass_kg)
+    };
+    let mut dry = tables.dry;
+    for &(idx, _) in part_masses {
+        let k = scale_of(idx).unwrap_or(1.0);
+        dry = dry.combine(&mass::subtree(design, idx).scaled(k - 1.0));
+    }
+    let dry = adjustment.apply(&dry);
     let parts: Vec<MassProps> = plan
         .parts
         .iter()
-        .map(|&idx| mass::subtree(design, idx))
+        .map(|&idx| mass::subtree(design, idx).scaled(scale_of(idx).unwrap_or(1.0)))
         .collect();
     let mass_model = MassModel::new(&dry, &casing, &propellant, &parts);
     let fixed_cg_m = dry.combine(&casing).cg_m.x;

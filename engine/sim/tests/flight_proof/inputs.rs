@@ -2,11 +2,13 @@
 //! non-finite stops with an error naming the time and the state, never a panic.
 
 use crate::common::*;
+use hpr_design::aero::MachTable;
 use hpr_design::motor::Motor;
 use hpr_sim::flight::{driver, Integrator, Parachute, Rail, SimError, SimOptions, Simulation};
 use hpr_sim::frames;
 use hpr_sim::trigger::Trigger;
 use hpr_sim::wind::Wind;
+use std::sync::Arc;
 
 fn example() -> Simulation {
     Simulation::new(
@@ -184,8 +186,9 @@ fn a_nan_wind_cannot_be_built() {
     assert!(e.contains("from_deg") && e.contains("finite"), "{e}");
 }
 
-/// A flight model whose drag scale was tweaked to NaN behind the checks (as a design whose
-/// numbers produce NaN would): the first evaluation off the pad with air speed is NaN.
+/// A flight model whose drag curve has a hole (NaN) from Mach 0.3 up, behind the checks (as a
+/// design whose numbers produce NaN somewhere in flight would): the flight is finite until
+/// the rocket reaches Mach 0.3, a few tenths of a second after the rail.
 fn poisoned(integrator: Integrator) -> hpr_sim::flight::FlightModel {
     let sim = example()
         .with_options(SimOptions {
@@ -194,12 +197,16 @@ fn poisoned(integrator: Integrator) -> hpr_sim::flight::FlightModel {
         })
         .unwrap();
     let mut model = sim.model().clone();
-    model.drag_scale = f64::NAN;
+    let mut aero = (*model.aero).clone();
+    let hole = |m: f64| if m < 0.3 { 0.45 } else { f64::NAN };
+    aero.cd_power_on = MachTable::from_fn(hole);
+    aero.cd_power_off = MachTable::from_fn(hole);
+    model.aero = Arc::new(aero);
     model
 }
 
 #[track_caller]
-fn non_finite(r: Result<hpr_sim::flight::Flight, SimError>, near_s: (f64, f64)) {
+fn non_finite(r: Result<hpr_sim::flight::Flight, SimError>, near_s: (f64, f64)) -> f64 {
     match r {
         Err(SimError::NonFinite { time_s, ref state }) => {
             let msg = r.as_ref().unwrap_err().to_string();
@@ -213,6 +220,7 @@ fn non_finite(r: Result<hpr_sim::flight::Flight, SimError>, near_s: (f64, f64)) 
                 msg.contains(state.as_str()) && state.starts_with('['),
                 "{msg}"
             );
+            time_s
         }
         Err(e) => panic!("expected a non-finite stop, got {e}"),
         Ok(f) => panic!(
@@ -224,16 +232,28 @@ fn non_finite(r: Result<hpr_sim::flight::Flight, SimError>, near_s: (f64, f64)) 
 
 #[test]
 fn a_flight_that_goes_non_finite_stops_with_the_time_and_the_state() {
-    // Off the pad (liftoff near 0.02 s) the drag is NaN: both integrators must stop there.
-    non_finite(
+    // When does the sound flight pass Mach 0.3? The poisoned one must stop there.
+    let sound = example().run(&mut ()).unwrap();
+    let t_mach = sound
+        .samples
+        .iter()
+        .find(|s| s.mach >= 0.3)
+        .expect("passes Mach 0.3")
+        .t_s;
+    let exit = sound.metrics.rail_exit_time_s.unwrap();
+    eprintln!("the sound flight leaves the rail at {exit:.4} s, passes Mach 0.3 by {t_mach:.4} s");
+    // The adaptive stepper rejects the NaN stages until its step underflows; RK4 would carry
+    // the NaN into the state: both must stop where the NaN first appeared.
+    let t = non_finite(
         driver::run(&poisoned(Integrator::DEFAULT), &mut ()),
-        (0.0, 0.1),
+        (exit, t_mach),
     );
-    non_finite(
+    let t4 = non_finite(
         driver::run(&poisoned(Integrator::Rk4 { step_s: 0.01 }), &mut ()),
-        (0.0, 0.1),
+        (exit, t_mach),
     );
-    // A NaN or infinite start state, or one whose rates overflow.
+    eprintln!("non-finite at {t:.6} s (adaptive), {t4:.6} s (RK4)");
+    // A NaN start state, or one whose rates overflow the first derivative.
     let sim = example();
     let t0 = sim.model().burnout_s + 1.0;
     let q = frames::rail_attitude(80.0, 0.0);
@@ -241,4 +261,46 @@ fn a_flight_that_goes_non_finite_stops_with_the_time_and_the_state() {
     non_finite(sim.run_from(&mut (), t0, &nan), (t0, t0));
     let wild = state([0.0, 0.0, 100.0], [0.0; 3], q, [1e160, 1e160, 0.0]);
     non_finite(sim.run_from(&mut (), t0, &wild), (t0, t0));
+}
+
+#[test]
+fn a_rocket_whose_parts_all_weigh_nothing_flies_on_its_motor_alone() {
+    // Explicit masses may be zero; with every one zero the structure has no mass and no
+    // inertia, and the flight must still be finite (the motor carries all the mass).
+    let path = repo("validation/designs/calisto.json");
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("\"mass_kg\": 14.426", "\"mass_kg\": 0.0");
+    let design = hpr_design::Design::from_json_str(&text, Some(&path)).unwrap();
+    assert_eq!(hpr_design::mass::dry(&design).mass_kg, 0.0);
+    let sim = Simulation::new(
+        design,
+        motor("Cesaroni_M1670"),
+        hpr_sim::flight::Environment::default(),
+        Rail {
+            length_m: 5.2,
+            ..Rail::default()
+        },
+    )
+    .and_then(|s| {
+        s.with_options(SimOptions {
+            max_time_s: 20.0,
+            ..SimOptions::default()
+        })
+    })
+    .unwrap();
+    let f = sim.run(&mut ()).expect("a finite flight");
+    let m0 = sim.mass_properties_at(0.0).mass_kg;
+    let motor_mass = sim.motor().total_mass_kg;
+    eprintln!(
+        "massless structure: {m0} kg at ignition (the motor's {motor_mass} kg), {:.1} m at \
+         {:.1} s",
+        f.samples.last().unwrap().altitude_m,
+        f.samples.last().unwrap().t_s
+    );
+    assert_eq!(m0, motor_mass);
+    assert!(f
+        .samples
+        .iter()
+        .all(|s| s.position_m.iter().all(|x| x.is_finite())));
 }
