@@ -40,8 +40,12 @@ pub struct RunArgs {
     pub resume: bool,
 }
 
+/// Exit codes, as `--help` shows them.
+pub const EXIT_CODES: &str = "Exit codes: 0 every variant landed; 1 the run finished but some variants did not land (counted; their rows say why); 2 bad input or usage, or an error that stopped the run. Ctrl-C leaves no half-written file: rerun with --resume to fly only what is missing.";
+
 /// `hpr-mc run SCENARIO.toml [options]`.
 #[derive(clap::Args, Debug)]
+#[command(after_help = EXIT_CODES)]
 pub struct RunCommand {
     /// The scenario file (TOML; see docs/scenarios.md).
     pub scenario: PathBuf,
@@ -121,11 +125,18 @@ pub fn summary_text(r: &RunReport) -> String {
     let secs = r.elapsed.as_secs_f64();
     let _ = writeln!(
         s,
-        "{}{shard}: {} variants ({} sweep points × {} per point), {} landed, {} did not · {:.1} s",
+        "{}{shard}: {} variants ({}), {} landed, {} did not · {:.1} s",
         p.scenario.name,
         r.variants,
-        p.plan.points(),
-        p.scenario.variants_per_point,
+        if p.plan.points() == 1 {
+            "no sweep".to_string()
+        } else {
+            format!(
+                "{} sweep points × {} per point",
+                p.plan.points(),
+                p.scenario.variants_per_point
+            )
+        },
         r.landed,
         r.failures(),
         secs
@@ -171,6 +182,9 @@ pub fn summary_text(r: &RunReport) -> String {
             "point {}{at}  ({} variants, {} did not land)",
             st.point, st.variants, st.failures
         );
+        if st.variants == st.failures {
+            continue;
+        }
         let _ = writeln!(
             s,
             "  {:<width$} {:>10} {:>10} {:>10} {:>10} {:>10}",

@@ -284,10 +284,6 @@ fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> anyhow::Result<&'a Floa
 
 /// Add the rows of a variants batch to the statistics' table.
 pub fn accumulate(p: &Prepared, table: &mut Table, batch: &RecordBatch) -> anyhow::Result<()> {
-    if table.inputs.is_empty() && table.metrics.is_empty() {
-        table.inputs = vec![vec![]; p.scenario.inputs.len()];
-        table.metrics = vec![vec![]; p.metrics.len()];
-    }
     let point = batch
         .column_by_name("point")
         .and_then(|c| c.as_any().downcast_ref::<UInt32Array>())

@@ -203,7 +203,7 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
             return Ok(report);
         }
         // Merge the parts, in order, into the variants file, reading the statistics' table.
-        let mut table = Table::default();
+        let mut table = Table::new(p.scenario.inputs.len(), p.metrics.len());
         pq::write_atomic(
             &out.variants,
             &schema,
@@ -226,7 +226,7 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         let _ = std::fs::remove_dir(report.outputs.dir.join("parts"));
     } else {
         pq::check_schema(&out.variants, &schema)?;
-        let mut table = Table::default();
+        let mut table = Table::new(p.scenario.inputs.len(), p.metrics.len());
         for batch in pq::read_batches(&out.variants)? {
             pq::accumulate(p, &mut table, &batch?)?;
         }

@@ -170,7 +170,7 @@ pub fn sensitivity(xs: &[&[f64]], y: &[f64]) -> Option<Sensitivity> {
         return None;
     }
     let (my, sy) = mean_sd(&|r| y[r]);
-    if !(sy > 0.0) {
+    if sy.is_nan() || sy <= 0.0 {
         return None;
     }
     // Inputs that vary (relative to their size: a constant column carries rounding only).
@@ -224,6 +224,18 @@ pub struct Table {
     pub inputs: Vec<Vec<f64>>,
     /// One column per metric.
     pub metrics: Vec<Vec<f64>>,
+}
+
+impl Table {
+    /// An empty table of `inputs` input columns and `metrics` metric columns.
+    pub fn new(inputs: usize, metrics: usize) -> Table {
+        Table {
+            point: vec![],
+            landed: vec![],
+            inputs: vec![vec![]; inputs],
+            metrics: vec![vec![]; metrics],
+        }
+    }
 }
 
 /// Statistics of one sweep point.

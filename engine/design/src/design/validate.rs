@@ -289,7 +289,10 @@ impl Builder<'_> {
             )?));
         }
         if let Some(m) = common.mass_kg {
-            return Ok(MassSpec::Mass(self.positive(at, "mass_kg", m)?));
+            // Zero is allowed: a part whose mass is lumped into another component (as
+            // RocketPy's rockets give one mass for the whole structure) still has a shape
+            // for the aerodynamics.
+            return Ok(MassSpec::Mass(self.non_negative(at, "mass_kg", m)?));
         }
         let kg_per_m = self.positive(at, "linear_density_kg_m", linear.unwrap_or(f64::NAN))?;
         let Some(cord_length) = cord_length else {

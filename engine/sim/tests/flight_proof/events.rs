@@ -9,7 +9,7 @@ use hpr_sim::wind::Wind;
 
 /// The sample recorded at an event (the driver records one at every event, from the dense
 /// output at the located time).
-fn sample_at<'a>(f: &'a Flight, kind: EventKind) -> (&'a Sample, f64) {
+fn sample_at(f: &Flight, kind: EventKind) -> (&Sample, f64) {
     let e = f.event(kind).unwrap_or_else(|| panic!("no {kind:?}"));
     let s = f
         .samples

@@ -173,8 +173,8 @@ fn a_negative_span_is_refused_with_file_component_field_and_value() {
 }
 
 #[test]
-fn zero_sizes_masses_and_densities_are_refused() {
-    let cases: [(&str, Value, &str, &str); 6] = [
+fn zero_sizes_and_densities_are_refused() {
+    let cases: [(&str, Value, &str, &str); 5] = [
         (
             "/stages/0/components/0/length_m",
             json!(0.0),
@@ -192,12 +192,6 @@ fn zero_sizes_masses_and_densities_are_refused() {
             json!(0.0),
             "body",
             "material.density_kg_m3",
-        ),
-        (
-            "/stages/0/components/1/children/5/mass_kg",
-            json!(0.0),
-            "ballast",
-            "mass_kg",
         ),
         (
             "/stages/0/components/0/shoulder/length_m",
@@ -220,6 +214,23 @@ fn zero_sizes_masses_and_densities_are_refused() {
         );
         assert_eq!((loc, f.as_deref()), (comp(id), Some(field)), "{pointer}");
     }
+}
+
+#[test]
+fn an_explicit_mass_may_be_zero_but_not_negative() {
+    // Zero: the part keeps its shape (for the aerodynamics) and weighs nothing.
+    let d = with(|v| *at(v, &format!("{BODY}/children/5/mass_kg")) = json!(0.0))
+        .expect("a zero explicit mass is accepted");
+    let ballast = d.component_index("ballast").unwrap();
+    assert_eq!(crate::mass::component_own(&d, ballast).mass_kg, 0.0);
+    let full = Design::load(example_path()).unwrap();
+    let dry_drop = crate::mass::dry(&full).mass_kg - crate::mass::dry(&d).mass_kg;
+    assert!((dry_drop - 0.2).abs() <= 1e-15, "{dry_drop}");
+    let (rule, loc, f) = invalid(with(|v| {
+        *at(v, &format!("{BODY}/children/5/mass_kg")) = json!(-0.1)
+    }));
+    assert!(matches!(rule, Rule::Negative { .. }), "{rule:?}");
+    assert_eq!((loc, f.as_deref()), (comp("ballast"), Some("mass_kg")));
 }
 
 #[test]

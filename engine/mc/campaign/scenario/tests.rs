@@ -2,12 +2,15 @@
 
 use super::*;
 use crate::campaign::fly::Prepared;
+use crate::campaign::sample::Shape;
 use std::path::PathBuf;
 
 /// A scenario file in the repository's `scenarios/` directory (so relative paths resolve);
 /// it is only parsed, never written.
 fn path() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenarios").join("test.toml")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("scenarios")
+        .join("test.toml")
 }
 
 const BASE: &str = r#"
@@ -41,7 +44,10 @@ fn refused(extra: &str) -> (String, String) {
     match parse(extra) {
         Ok(_) => panic!("the scenario was accepted:\n{extra}"),
         Err(ScenarioError::Invalid { key, rule, file }) => {
-            assert!(file.ends_with("test.toml"), "the error names the file: {file}");
+            assert!(
+                file.ends_with("test.toml"),
+                "the error names the file: {file}"
+            );
             (key, rule)
         }
         Err(e) => panic!("unexpected error {e}"),
@@ -62,7 +68,11 @@ shifts.ballast.time_s = { dist = "triangular", min = -0.1, max = 0.2 }
 "#,
     )
     .unwrap();
-    let keys: Vec<(&str, &str, &str)> = s.inputs.iter().map(|i| (i.key.as_str(), i.column.as_str(), i.unit)).collect();
+    let keys: Vec<(&str, &str, &str)> = s
+        .inputs
+        .iter()
+        .map(|i| (i.key.as_str(), i.column.as_str(), i.unit))
+        .collect();
     assert_eq!(
         keys,
         vec![
@@ -78,35 +88,87 @@ shifts.ballast.time_s = { dist = "triangular", min = -0.1, max = 0.2 }
     assert_eq!(s.name, "test");
     assert_eq!(s.shifts[0].name, "ballast");
     let d = s.inputs[4].dispersion.unwrap();
-    assert_eq!(d.shape, Shape::Triangular { min: -0.1, mode: 0.0, max: 0.2 });
+    assert_eq!(
+        d.shape,
+        Shape::Triangular {
+            min: -0.1,
+            mode: 0.0,
+            max: 0.2
+        }
+    );
 }
 
 #[test]
 fn an_unknown_key_is_refused_with_its_path() {
-    let (key, rule) = refused("[dispersions]\nwind_sped_m_s = { dist = \"normal\", sigma = 1.0 }\n");
+    let (key, rule) =
+        refused("[dispersions]\nwind_sped_m_s = { dist = \"normal\", sigma = 1.0 }\n");
     assert_eq!(key, "dispersions.wind_sped_m_s");
     assert!(rule.contains("unknown field `wind_sped_m_s`"), "{rule}");
-    assert!(rule.contains("wind_speed_m_s"), "the rule lists the known keys: {rule}");
+    assert!(
+        rule.contains("wind_speed_m_s"),
+        "the rule lists the known keys: {rule}"
+    );
     let (key, rule) = refused("[rail]\nlenght_m = 2.0\n");
     assert_eq!(key, "rail.lenght_m");
     assert!(rule.contains("unknown field"), "{rule}");
-    let (key, _) = refused("[dispersions]\nwind_speed_m_s = { dist = \"normal\", sigma = 1.0, sd = 2.0 }\n");
+    let (key, _) =
+        refused("[dispersions]\nwind_speed_m_s = { dist = \"normal\", sigma = 1.0, sd = 2.0 }\n");
     assert_eq!(key, "dispersions.wind_speed_m_s.sd");
 }
 
 #[test]
 fn bad_distribution_parameters_are_refused_with_the_rule() {
     let cases = [
-        ("wind_speed_m_s = { dist = \"normal\", sigma = -1.0 }", "dispersions.wind_speed_m_s.sigma", "must be positive"),
-        ("wind_speed_m_s = { dist = \"normal\", sigma = nan }", "dispersions.wind_speed_m_s.sigma", "must be finite"),
-        ("wind_speed_m_s = { dist = \"normal\" }", "dispersions.wind_speed_m_s.sigma", "needs sigma"),
-        ("wind_speed_m_s = { dist = \"uniform\", min = 1.0, max = 1.0 }", "dispersions.wind_speed_m_s.max", "greater than min"),
-        ("wind_speed_m_s = { dist = \"uniform\", min = 1.0, max = 2.0, sigma = 1.0 }", "dispersions.wind_speed_m_s.sigma", "has no sigma"),
-        ("wind_speed_m_s = { dist = \"triangular\", min = 0.1, max = 2.0 }", "dispersions.wind_speed_m_s.mode", "from min to max"),
-        ("wind_speed_m_s = { dist = \"truncated_normal\", sigma = 1.0 }", "dispersions.wind_speed_m_s.min", "needs min, max or both"),
-        ("wind_speed_m_s = { dist = \"lognormal\", sigma = 0.1, relative = true }", "dispersions.wind_speed_m_s.relative", "always relative"),
-        ("wind_speed_m_s = { dist = \"gauss\", sigma = 0.1 }", "dispersions.wind_speed_m_s.dist", "unknown distribution"),
-        ("wind_speed_m_s = { dist = \"normal\", sigma = 0.1, mean = 3.0, relative = true }", "dispersions.wind_speed_m_s.mean", "can't be relative"),
+        (
+            "wind_speed_m_s = { dist = \"normal\", sigma = -1.0 }",
+            "dispersions.wind_speed_m_s.sigma",
+            "must be positive",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"normal\", sigma = nan }",
+            "dispersions.wind_speed_m_s.sigma",
+            "must be finite",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"normal\" }",
+            "dispersions.wind_speed_m_s.sigma",
+            "needs sigma",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"uniform\", min = 1.0, max = 1.0 }",
+            "dispersions.wind_speed_m_s.max",
+            "greater than min",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"uniform\", min = 1.0, max = 2.0, sigma = 1.0 }",
+            "dispersions.wind_speed_m_s.sigma",
+            "has no sigma",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"triangular\", min = 0.1, max = 2.0 }",
+            "dispersions.wind_speed_m_s.mode",
+            "from min to max",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"truncated_normal\", sigma = 1.0 }",
+            "dispersions.wind_speed_m_s.min",
+            "needs min, max or both",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"lognormal\", sigma = 0.1, relative = true }",
+            "dispersions.wind_speed_m_s.relative",
+            "always relative",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"gauss\", sigma = 0.1 }",
+            "dispersions.wind_speed_m_s.dist",
+            "unknown distribution",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"normal\", sigma = 0.1, mean = 3.0, relative = true }",
+            "dispersions.wind_speed_m_s.mean",
+            "can't be relative",
+        ),
     ];
     for (line, key, rule) in cases {
         let (k, r) = refused(&format!("[dispersions]\n{line}\n"));
@@ -118,7 +180,13 @@ fn bad_distribution_parameters_are_refused_with_the_rule() {
 #[test]
 fn an_empty_or_out_of_range_sweep_is_refused() {
     let (k, r) = refused("[sweep]\nwind_speed_m_s = []\n");
-    assert_eq!((k.as_str(), r.as_str()), ("sweep.wind_speed_m_s", "empty sweep: give at least one value"));
+    assert_eq!(
+        (k.as_str(), r.as_str()),
+        (
+            "sweep.wind_speed_m_s",
+            "empty sweep: give at least one value"
+        )
+    );
     let (k, r) = refused("[sweep]\nrail_inclination_deg = [80.0, 95.0]\n");
     assert_eq!(k, "sweep.rail_inclination_deg[1]");
     assert!(r.contains("at most 90"), "{r}");
@@ -138,10 +206,15 @@ fn a_missing_design_file_is_refused_naming_the_key() {
 
 #[test]
 fn parts_and_triggers_must_exist_to_be_dispersed() {
-    let (k, r) = refused("[dispersions.parachutes.drogue]\ncds_m2 = { dist = \"normal\", sigma = 0.1 }\n");
+    let (k, r) =
+        refused("[dispersions.parachutes.drogue]\ncds_m2 = { dist = \"normal\", sigma = 0.1 }\n");
     assert_eq!(k, "dispersions.parachutes.drogue");
-    assert!(r.contains("no parachute is named \"drogue\"") && r.contains("main"), "{r}");
-    let (k, r) = refused("[dispersions.parachutes.main]\nheight_m = { dist = \"normal\", sigma = 10.0 }\n");
+    assert!(
+        r.contains("no parachute is named \"drogue\"") && r.contains("main"),
+        "{r}"
+    );
+    let (k, r) =
+        refused("[dispersions.parachutes.main]\nheight_m = { dist = \"normal\", sigma = 10.0 }\n");
     assert_eq!(k, "dispersions.parachutes.main.height_m");
     assert!(r.contains("apogee, which has no number"), "{r}");
     let (k, r) = refused("[sweep.shifts.ballast]\nheight_m = [100.0]\n");
@@ -161,7 +234,8 @@ fn triggers_integrators_and_names_are_checked() {
     assert_eq!(k, "integrator.rtol");
     let (k, _) = refused("[run]\nchunk_size = 0\n");
     assert_eq!(k, "run.chunk_size");
-    let (k, r) = refused("name = \"my run\"\n");
+    let e = Scenario::parse(&format!("name = \"my run\"\n{BASE}"), &path()).unwrap_err();
+    let (k, r) = (e.key().to_string(), e.to_string());
     assert_eq!(k, "name");
     assert!(r.contains("output directory"), "{r}");
 }
@@ -176,18 +250,30 @@ fn a_toml_syntax_error_says_where() {
 #[test]
 fn rules_that_need_the_design_and_motor_name_their_key() {
     let prep = |extra: &str| Prepared::new(parse(extra).unwrap()).unwrap_err();
-    let e = Prepared::new(Scenario::parse(&BASE.replace("Cesaroni_I175", "Nobody_Z9"), &path()).unwrap()).unwrap_err();
+    let e = Prepared::new(
+        Scenario::parse(&BASE.replace("Cesaroni_I175", "Nobody_Z9"), &path()).unwrap(),
+    )
+    .unwrap_err();
     assert_eq!(e.key(), "motor.name");
     let text = BASE.replace("ballast = \"ballast\"", "ballast = \"lead\"");
     let e = Prepared::new(Scenario::parse(&text, &path()).unwrap()).unwrap_err();
     assert_eq!(e.key(), "design.ballast");
-    assert!(e.to_string().contains("no component with id \"lead\""), "{e}");
+    assert!(
+        e.to_string().contains("no component with id \"lead\""),
+        "{e}"
+    );
     let e = prep("[sweep]\nwind_speed_m_s = [0.0, 3.0]\n[dispersions]\nwind_speed_m_s = { dist = \"normal\", sigma = 0.1, relative = true }\n");
     assert_eq!(e.key(), "dispersions.wind_speed_m_s");
-    assert!(e.to_string().contains("which is 0") && e.to_string().contains("wind_speed_m_s = 0"), "{e}");
+    assert!(
+        e.to_string().contains("which is 0") && e.to_string().contains("wind_speed_m_s = 0"),
+        "{e}"
+    );
     // A sweep point whose nominal flight the simulator refuses: 0.9 m of travel takes the
     // ballast out of the body tube.
     let e = prep("[sweep]\nshifts.ballast.travel_m = [0.1, 0.9]\n");
     assert_eq!(e.key(), "sweep");
-    assert!(e.to_string().contains("shifts.ballast.travel_m = 0.9") && e.to_string().contains("out of"), "{e}");
+    assert!(
+        e.to_string().contains("shifts.ballast.travel_m = 0.9") && e.to_string().contains("out of"),
+        "{e}"
+    );
 }

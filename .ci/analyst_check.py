@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""Read an hpr-mc campaign's Parquet files as an analyst would, and check them.
+
+    python .ci/analyst_check.py RESULTS_DIR
+
+RESULTS_DIR is a campaign's output directory (results/<name>/ by default). It must hold
+variants.parquet and summary.parquet (an unsharded run), or variants-shard-K-of-N.parquet
+files (a sharded run), or both (then they must hold the same rows).
+
+Checks, with pyarrow, Polars and DuckDB (pip install pyarrow polars duckdb):
+  * pyarrow: the schema (ids, status, error, the metrics), a "unit" in the field metadata of
+    every float column, the hpr_mc.* file metadata, and the row count = sweep points x
+    variants per point (from that metadata);
+  * Polars: no nulls in the flight metrics of landed rows (the shift_* metrics may be null:
+    a shift whose trigger never fired), and the per-point mean of every metric recomputed
+    from the landed rows equal to summary.parquet's to 1e-9 relative;
+  * DuckDB: every shard part read as one table with a glob: each variant id once, the count
+    right, and (when there is an unsharded file too) the same rows.
+
+Exits 0 when every check passes, 1 with a message naming the failed check otherwise.
+"""
+
+import glob
+import math
+import os
+import sys
+
+import duckdb
+import polars as pl
+import pyarrow.parquet as pq
+
+FIXED_METRICS = [
+    "apogee_m", "apogee_time_s", "max_speed_m_s", "max_mach", "max_accel_m_s2",
+    "rail_exit_speed_m_s", "static_margin_liftoff_cal", "static_margin_rail_exit_cal",
+    "static_margin_burnout_cal", "static_margin_min_cal", "flight_margin_min_cal",
+    "landing_time_s", "landing_x_m", "landing_y_m", "landing_distance_m", "landing_speed_m_s",
+]
+
+
+def fail(msg):
+    print(f"analyst check FAILED: {msg}", file=sys.stderr)
+    sys.exit(1)
+
+
+def check_file(path):
+    """pyarrow: schema, units, metadata, row count. Returns the file's hpr_mc metadata."""
+    pf = pq.ParquetFile(path)
+    schema = pf.schema_arrow
+    kv = {k.decode(): v.decode() for k, v in (pf.metadata.metadata or {}).items()}
+    for key in ("hpr_mc.version", "hpr_mc.scenario", "hpr_mc.scenario_hash", "hpr_mc.seed",
+                "hpr_mc.points", "hpr_mc.variants_per_point", "hpr_mc.shard"):
+        if key not in kv:
+            fail(f"{path}: no {key} in the file metadata")
+    names = schema.names
+    for col in ["variant_id", "point", "replicate", "status", "error"] + FIXED_METRICS:
+        if col not in names:
+            fail(f"{path}: no column {col}")
+    for field in schema:
+        if str(field.type) == "double":
+            unit = (field.metadata or {}).get(b"unit")
+            if not unit:
+                fail(f"{path}: column {field.name} has no unit in its metadata")
+    if (schema.field("apogee_m").metadata or {}).get(b"unit") != b"m":
+        fail(f"{path}: apogee_m's unit is not m")
+    total = int(kv["hpr_mc.points"]) * int(kv["hpr_mc.variants_per_point"])
+    k, n = (int(x) for x in kv["hpr_mc.shard"].split("/"))
+    expected = len(range(k, total, n))
+    if pf.metadata.num_rows != expected:
+        fail(f"{path}: {pf.metadata.num_rows} rows, expected {expected} (shard {k}/{n} of {total})")
+    return kv, total
+
+
+def check_means(variants_path, summary_path):
+    """Polars: landed rows have every flight metric; the summary's means are theirs."""
+    v = pl.read_parquet(variants_path)
+    s = pl.read_parquet(summary_path)
+    landed = v.filter(pl.col("status") == "landed")
+    for col in FIXED_METRICS:
+        nulls = landed[col].null_count()
+        if nulls:
+            fail(f"{variants_path}: {nulls} landed rows have no {col}")
+    metrics = s["metric"].unique().to_list()
+    means = landed.group_by("point").agg([pl.col(m).mean().alias(m) for m in metrics])
+    checked = 0
+    for row in s.iter_rows(named=True):
+        if row["mean"] is None:
+            continue
+        mine = means.filter(pl.col("point") == row["point"])[row["metric"]]
+        if len(mine) != 1 or mine[0] is None:
+            fail(f"{summary_path}: point {row['point']} {row['metric']} has a mean but no landed value")
+        a, b = mine[0], row["mean"]
+        if not math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12):
+            fail(f"point {row['point']} {row['metric']}: mean {a} from the rows, {b} in the summary")
+        checked += 1
+    counts = landed.group_by("point").len()
+    for row in s.filter(pl.col("metric") == "apogee_m").iter_rows(named=True):
+        n = counts.filter(pl.col("point") == row["point"])["len"]
+        landed_n = n[0] if len(n) else 0
+        if row["variants"] - row["failures"] != landed_n:
+            fail(f"point {row['point']}: summary says {row['variants']} variants, {row['failures']} failures; the rows say {landed_n} landed")
+    return checked
+
+
+def main():
+    if len(sys.argv) != 2:
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
+    d = sys.argv[1]
+    whole = os.path.join(d, "variants.parquet")
+    shards = sorted(glob.glob(os.path.join(d, "variants-shard-*-of-*.parquet")))
+    if not os.path.exists(whole) and not shards:
+        fail(f"{d}: no variants.parquet and no variants-shard-K-of-N.parquet")
+    total = None
+    if os.path.exists(whole):
+        kv, total = check_file(whole)
+        checked = check_means(whole, os.path.join(d, "summary.parquet"))
+        print(f"{whole}: {total} rows, schema and units ok, {checked} summary means match")
+    if shards:
+        ns = {os.path.basename(p).rsplit("-of-", 1)[1] for p in shards}
+        if len(ns) != 1:
+            fail(f"{d}: shard files of different N: {ns}")
+        n = int(ns.pop().split(".")[0])
+        if len(shards) != n:
+            fail(f"{d}: {len(shards)} shard files for N = {n}")
+        for p in shards:
+            kv_s, total_s = check_file(p)
+            check_means(p, p.replace("variants-shard", "summary-shard"))
+            total = total_s if total is None else total
+            if total_s != total:
+                fail(f"{p}: {total_s} variants in its run, {total} in the others")
+        con = duckdb.connect()
+        parts = os.path.join(d, "variants-shard-*-of-*.parquet")
+        count, distinct, lo, hi = con.execute(
+            f"SELECT count(*), count(DISTINCT variant_id), min(variant_id), max(variant_id) FROM read_parquet('{parts}')"
+        ).fetchone()
+        if (count, distinct, lo, hi) != (total, total, 0, total - 1):
+            fail(f"the shards hold {count} rows, {distinct} distinct ids from {lo} to {hi}; expected each of 0..{total - 1} once")
+        if os.path.exists(whole):
+            diff = con.execute(
+                f"SELECT count(*) FROM ((SELECT * FROM read_parquet('{parts}') EXCEPT SELECT * FROM read_parquet('{whole}')) "
+                f"UNION ALL (SELECT * FROM read_parquet('{whole}') EXCEPT SELECT * FROM read_parquet('{parts}')))"
+            ).fetchone()[0]
+            if diff:
+                fail(f"the shards and {whole} differ in {diff} rows")
+            print(f"{len(shards)} shards read as one table by DuckDB: {count} rows, the same as {whole}")
+        else:
+            print(f"{len(shards)} shards read as one table by DuckDB: {count} rows, each id once")
+    print("analyst check ok")
+
+
+if __name__ == "__main__":
+    main()

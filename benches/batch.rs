@@ -1,0 +1,224 @@
+//! Whole flights by the thousand: the batch engine against `Simulation` set up from scratch
+//! and flown in a rayon loop over the same variants, on 1 and 2 threads, and the peak memory.
+//!
+//! `cargo bench --bench batch` runs 1k and 10k variants; `cargo bench --bench batch -- 100000`
+//! runs that many (each size in its own process, so that its peak resident memory, read from
+//! /proc/self/status, is its own). It prints medians of 3 runs and the ratios the batch must
+//! reach: ≥ 2,000 flights/s on 2 threads, ≥ 3× the rayon loop per flight, 2 threads ≥ 1.8× 1.
+//! The variants are the batch tests': the reference design with its ballast moving, drogue and
+//! main, wind, rail, motor and mass dispersions.
+
+use hpr_design::motor::{self, MotorOptions};
+use hpr_design::Design;
+use hpr_sim::batch::{Batch, Columns};
+use hpr_sim::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
+use hpr_sim::wind::Wind;
+use hpr_sim::{MassShift, Trigger};
+use rayon::prelude::*;
+use std::time::Instant;
+
+const REFERENCE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/validation/designs/synthetic-54mm-three-fin.json"
+);
+
+struct Rng(u64);
+impl Rng {
+    fn uniform(&mut self, a: f64, b: f64) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        a + (b - a) * (((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+fn chutes() -> Vec<Parachute> {
+    vec![
+        Parachute::new("drogue", 0.1, Trigger::Apogee, 1.0),
+        Parachute::new(
+            "main",
+            0.9,
+            Trigger::HeightDescending { height_m: 300.0 },
+            1.0,
+        ),
+    ]
+}
+
+fn columns(n: usize) -> Columns {
+    let mut r = Rng(2026);
+    let mut c = Columns {
+        len: n,
+        ..Columns::default()
+    };
+    let mut col = |a: f64, b: f64| (0..n).map(|_| r.uniform(a, b)).collect::<Vec<_>>();
+    c.structure_delta_mass_kg = col(-0.02, 0.02);
+    c.part_mass_kg = col(0.18, 0.22);
+    c.impulse_scale = col(0.97, 1.03);
+    c.drag_scale = col(0.95, 1.05);
+    c.wind_speed_m_s = col(0.0, 6.0);
+    c.wind_from_deg = col(0.0, 360.0);
+    c.rail_inclination_deg = col(85.0, 89.0);
+    c.chute_cds_m2 = vec![col(0.09, 0.11), col(0.85, 0.95)];
+    c.shift_travel_m = vec![col(0.0, 0.3)];
+    c.shift_trigger = vec![col(4.0, 7.0)];
+    c
+}
+
+fn base(design: &Design) -> Simulation {
+    Simulation::new(
+        design.clone(),
+        motor::find("Cesaroni_I175").unwrap(),
+        Environment::default(),
+        Rail::default(),
+    )
+    .unwrap()
+    .with_parachutes(chutes())
+    .unwrap()
+    .with_shifts(vec![MassShift::new(
+        Trigger::Time { time_s: 5.0 },
+        "ballast",
+        0.3,
+        1.0,
+    )])
+    .unwrap()
+}
+
+/// What a user without the batch engine writes: a Simulation per variant, flown in a rayon loop.
+fn from_scratch(design: &Design, c: &Columns, i: usize) -> f64 {
+    let wind = Wind::constant(c.wind_speed_m_s[i], c.wind_from_deg[i]).unwrap();
+    let env = Environment {
+        wind,
+        ..Environment::default()
+    };
+    let rail = Rail {
+        inclination_deg: c.rail_inclination_deg[i],
+        ..Rail::default()
+    };
+    let mut ch = chutes();
+    ch[0].cds_m2 = c.chute_cds_m2[0][i];
+    ch[1].cds_m2 = c.chute_cds_m2[1][i];
+    let sim = Simulation::with_motor_options(
+        design.clone(),
+        motor::find("Cesaroni_I175").unwrap(),
+        MotorOptions::default().with_impulse_scale(c.impulse_scale[i]),
+        env,
+        rail,
+    )
+    .and_then(|s| s.with_drag_scale(c.drag_scale[i]))
+    .and_then(|s| s.with_part_mass("ballast", c.part_mass_kg[i]))
+    .and_then(|s| s.with_mass_adjustment(c.structure_delta_mass_kg[i], 0.0))
+    .and_then(|s| s.with_parachutes(ch))
+    .and_then(|s| {
+        s.with_shifts(vec![MassShift::new(
+            Trigger::Time {
+                time_s: c.shift_trigger[0][i],
+            },
+            "ballast",
+            c.shift_travel_m[0][i],
+            1.0,
+        )])
+    })
+    .and_then(|s| {
+        s.with_options(SimOptions {
+            keep_samples: false,
+            ..SimOptions::default()
+        })
+    });
+    match sim.and_then(|s| s.run(&mut ())) {
+        Ok(f) => f.metrics.apogee_m.unwrap_or(0.0),
+        Err(_) => 0.0,
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn peak_rss_kib() -> u64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse().ok())
+        })
+        .unwrap_or(0)
+}
+
+fn measure(n: usize, compare: bool) {
+    let design = Design::load(REFERENCE).unwrap();
+    let c = columns(n);
+    let batch = Batch::new(base(&design), Some("ballast"), c.clone()).unwrap();
+    let time_batch = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        median(
+            (0..3)
+                .map(|_| {
+                    let t = Instant::now();
+                    let mut sum = 0.0;
+                    pool.install(|| batch.run(64, 8, |r| sum += r.metrics.apogee_m.unwrap_or(0.0)));
+                    std::hint::black_box(sum);
+                    t.elapsed().as_secs_f64()
+                })
+                .collect(),
+        )
+    };
+    let b1 = time_batch(1);
+    let b2 = time_batch(2);
+    println!("{n:>7} variants  batch: 1 thread {:>8.0} flights/s, 2 threads {:>8.0} flights/s (2 threads / 1 = {:.2}x)", n as f64 / b1, n as f64 / b2, b1 / b2);
+    if compare {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let l2 = median(
+            (0..3)
+                .map(|_| {
+                    let t = Instant::now();
+                    let s: f64 = pool.install(|| {
+                        (0..n)
+                            .into_par_iter()
+                            .map(|i| from_scratch(&design, &c, i))
+                            .sum()
+                    });
+                    std::hint::black_box(s);
+                    t.elapsed().as_secs_f64()
+                })
+                .collect(),
+        );
+        println!("{n:>7} variants  Simulation in a rayon loop, 2 threads: {:>8.0} flights/s; batch / loop = {:.2}x per flight", n as f64 / l2, l2 / b2);
+    }
+    println!(
+        "{n:>7} variants  peak resident memory {:.1} MiB",
+        peak_rss_kib() as f64 / 1024.0
+    );
+}
+
+fn main() {
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    if sizes.len() == 1 {
+        measure(sizes[0], sizes[0] <= 10_000);
+        return;
+    }
+    // Each size in its own process so that its peak memory is its own.
+    let me = std::env::current_exe().unwrap();
+    for n in if sizes.is_empty() {
+        vec![1_000, 10_000]
+    } else {
+        sizes
+    } {
+        let out = std::process::Command::new(&me)
+            .arg(n.to_string())
+            .output()
+            .unwrap();
+        print!("{}", String::from_utf8_lossy(&out.stdout));
+    }
+}

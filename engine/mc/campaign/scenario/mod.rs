@@ -1,0 +1,476 @@
+//! Scenario files: the TOML a user writes (raw serde structs that refuse unknown keys) and
+//! the validated [`Scenario`] the campaign runs.
+//!
+//! This module owns every rule a scenario file can break that can be checked without loading
+//! the design or the motor; each error names the file, the key path (for instance
+//! `dispersions.wind_speed_m_s.sigma`) and the rule. The rules that need the design or the
+//! motor (the ballast component exists, a relative dispersion of a nominal that is zero...)
+//! are checked by `fly::Prepared::new`, in the same words. The format is documented, with a
+//! complete example, in `docs/scenarios.md`.
+
+mod raw;
+mod rules;
+#[cfg(test)]
+mod tests;
+
+use super::params::{trigger_unit, Param};
+use super::sample::{fingerprint, Dispersion};
+use hpr_sim::{Integrator, Trigger};
+use raw::RawScenario;
+use rules::{check_name, check_param, finite, inputs, integrator, one_line};
+use std::path::{Path, PathBuf};
+
+/// A scenario file that can't be read or breaks a rule.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    #[error("{file}: can't read it: {source}")]
+    Io {
+        file: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{file}: {key}: {rule}")]
+    Invalid {
+        file: String,
+        key: String,
+        rule: String,
+    },
+}
+
+impl ScenarioError {
+    /// The key path the error names (empty for a file that can't be read).
+    pub fn key(&self) -> &str {
+        match self {
+            ScenarioError::Io { .. } => "",
+            ScenarioError::Invalid { key, .. } => key,
+        }
+    }
+}
+
+/// The launch site and the wind.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnvironmentSpec {
+    pub elevation_m: f64,
+    pub wind_speed_m_s: f64,
+    pub wind_from_deg: f64,
+    /// Inverse-square gravity (true) or the constant standard gravity (false).
+    pub inverse_square_gravity: bool,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct RailSpec {
+    pub length_m: f64,
+    pub inclination_deg: f64,
+    pub heading_deg: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParachuteSpec {
+    pub name: String,
+    pub cds_m2: f64,
+    pub lag_s: f64,
+    pub trigger: Trigger,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShiftSpec {
+    pub name: String,
+    pub component: String,
+    pub travel_m: f64,
+    pub duration_s: f64,
+    pub trigger: Trigger,
+}
+
+/// An input the scenario sweeps, disperses, or both.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InputSpec {
+    pub param: Param,
+    /// Key path in the file (`parachutes.main.cds_m2`).
+    pub key: String,
+    /// Column name in the output (`parachute_main_cds_m2`).
+    pub column: String,
+    pub unit: &'static str,
+    /// The sweep's values, if the input is swept.
+    pub sweep: Option<Vec<f64>>,
+    pub dispersion: Option<Dispersion>,
+}
+
+/// A validated scenario.
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    /// The file (for messages and metadata), its directory (relative paths start there).
+    pub file: PathBuf,
+    pub dir: PathBuf,
+    /// The file's text and its FNV-1a 64 fingerprint.
+    pub text: String,
+    pub hash: String,
+    pub name: String,
+    pub description: Option<String>,
+    pub seed: u64,
+    pub variants_per_point: u64,
+    /// Replicate r of every sweep point sees the same draws (common random numbers).
+    pub common_random_numbers: bool,
+    pub design_file: PathBuf,
+    /// Id of the design's ballast component.
+    pub ballast: Option<String>,
+    /// A motor file (resolved against the scenario's directory) or a bundled motor's name.
+    pub motor: String,
+    pub environment: EnvironmentSpec,
+    pub rail: RailSpec,
+    pub parachutes: Vec<ParachuteSpec>,
+    pub shifts: Vec<ShiftSpec>,
+    pub integrator: Integrator,
+    pub max_time_s: f64,
+    /// Swept or dispersed inputs, in canonical order ([`Param`]'s: the globals, then every
+    /// parachute's CdS, every parachute's lag, every parachute's trigger number, then every
+    /// shift's travel, duration and trigger number, parachutes and shifts in file order).
+    pub inputs: Vec<InputSpec>,
+    /// Variants per chunk (the unit of work, of resumption and of the part files).
+    pub chunk_size: usize,
+    /// Rows per row group of the output files.
+    pub row_group_rows: usize,
+}
+
+/// The field of a trigger's number (`time_s`, `height_m`, `delay_s`), if it has one.
+pub fn trigger_field(t: &Trigger) -> Option<&'static str> {
+    match t {
+        Trigger::Time { .. } => Some("time_s"),
+        Trigger::HeightDescending { .. } => Some("height_m"),
+        Trigger::BurnoutPlusDelay { .. } => Some("delay_s"),
+        Trigger::Apogee | Trigger::Burnout => None,
+    }
+}
+
+/// The number of a trigger (`None` for apogee, burnout, and the motor's own delay).
+pub fn trigger_value(t: &Trigger) -> Option<f64> {
+    match *t {
+        Trigger::Time { time_s } => Some(time_s),
+        Trigger::HeightDescending { height_m } => Some(height_m),
+        Trigger::BurnoutPlusDelay { delay_s } => delay_s,
+        Trigger::Apogee | Trigger::Burnout => None,
+    }
+}
+
+/// The trigger with its number replaced by `v`.
+pub fn with_trigger_value(t: &Trigger, v: f64) -> Trigger {
+    match t {
+        Trigger::Time { .. } => Trigger::Time { time_s: v },
+        Trigger::HeightDescending { .. } => Trigger::HeightDescending { height_m: v },
+        Trigger::BurnoutPlusDelay { .. } => Trigger::BurnoutPlusDelay { delay_s: Some(v) },
+        other => *other,
+    }
+}
+
+impl Scenario {
+    /// Read and validate the scenario file at `path`.
+    pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+            file: path.display().to_string(),
+            source,
+        })?;
+        Scenario::parse(&text, path)
+    }
+
+    /// Validate `text`, read from `path` (relative paths in it start at `path`'s directory).
+    pub fn parse(text: &str, path: &Path) -> Result<Scenario, ScenarioError> {
+        let file = path.display().to_string();
+        let bad = |key: &str, rule: String| ScenarioError::Invalid {
+            file: file.clone(),
+            key: key.to_string(),
+            rule,
+        };
+        let de = toml::Deserializer::parse(text)
+            .map_err(|e| bad("(syntax)", one_line(&e.to_string())))?;
+        let mut raw: RawScenario = serde_path_to_error::deserialize(de).map_err(|e| {
+            let key = e.path().to_string();
+            let key = if key == "." {
+                "(top level)".to_string()
+            } else {
+                key
+            };
+            bad(&key, one_line(&e.into_inner().to_string()))
+        })?;
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+
+        let name = match raw.name.take() {
+            Some(n) => n,
+            None => path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("scenario")
+                .to_string(),
+        };
+        if name.is_empty()
+            || !name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+        {
+            return Err(bad("name", format!("must be letters, digits, '_' or '-' (it names the output directory; got \"{name}\")")));
+        }
+        if raw.variants_per_point == 0 {
+            return Err(bad("variants_per_point", "must be at least 1".into()));
+        }
+
+        let design_file = dir.join(&raw.design.file);
+        if !design_file.is_file() {
+            return Err(bad(
+                "design.file",
+                format!("no such file: {}", design_file.display()),
+            ));
+        }
+        if let Some(b) = &raw.design.ballast {
+            if b.is_empty() {
+                return Err(bad(
+                    "design.ballast",
+                    "must be the id of a component of the design".into(),
+                ));
+            }
+        }
+        let motor_path = dir.join(&raw.motor.name);
+        let motor = if raw.motor.name.trim().is_empty() {
+            return Err(bad(
+                "motor.name",
+                "must name a motor: a bundled motor (Cesaroni_I175, I175...) or an .eng/.rse file"
+                    .into(),
+            ));
+        } else if motor_path.is_file() {
+            motor_path.display().to_string()
+        } else {
+            raw.motor.name.clone()
+        };
+
+        let env = raw.environment.take().unwrap_or_default();
+        let environment = EnvironmentSpec {
+            elevation_m: finite(
+                &bad,
+                "environment.elevation_m",
+                env.elevation_m.unwrap_or(0.0),
+            )?,
+            wind_speed_m_s: check_param(
+                &bad,
+                "environment.wind_speed_m_s",
+                Param::WindSpeedMS,
+                env.wind_speed_m_s.unwrap_or(0.0),
+            )?,
+            wind_from_deg: finite(
+                &bad,
+                "environment.wind_from_deg",
+                env.wind_from_deg.unwrap_or(0.0),
+            )?,
+            inverse_square_gravity: match env.gravity.as_deref() {
+                None | Some("standard") => false,
+                Some("inverse_square") => true,
+                Some(other) => {
+                    return Err(bad(
+                        "environment.gravity",
+                        format!("must be \"standard\" or \"inverse_square\" (got \"{other}\")"),
+                    ))
+                }
+            },
+        };
+        let r = raw.rail.take().unwrap_or_default();
+        let rail = RailSpec {
+            length_m: check_param(
+                &bad,
+                "rail.length_m",
+                Param::RailLengthM,
+                r.length_m.unwrap_or(2.0),
+            )?,
+            inclination_deg: check_param(
+                &bad,
+                "rail.inclination_deg",
+                Param::RailInclinationDeg,
+                r.inclination_deg.unwrap_or(90.0),
+            )?,
+            heading_deg: finite(&bad, "rail.heading_deg", r.heading_deg.unwrap_or(0.0))?,
+        };
+
+        let mut parachutes = Vec::new();
+        for (i, p) in raw.parachutes.iter().enumerate() {
+            let key = |f: &str| format!("parachutes[{i}].{f}");
+            check_name(&bad, &key("name"), &p.name)?;
+            if parachutes.iter().any(|q: &ParachuteSpec| q.name == p.name) {
+                return Err(bad(
+                    &key("name"),
+                    format!(
+                        "two parachutes are named \"{}\"; give each its own name",
+                        p.name
+                    ),
+                ));
+            }
+            parachutes.push(ParachuteSpec {
+                name: p.name.clone(),
+                cds_m2: check_param(&bad, &key("cds_m2"), Param::ParachuteCdsM2(i), p.cds_m2)?,
+                lag_s: check_param(&bad, &key("lag_s"), Param::ParachuteLagS(i), p.lag_s)?,
+                trigger: p.trigger.0,
+            });
+        }
+        let mut shifts = Vec::new();
+        for (i, s) in raw.shifts.iter().enumerate() {
+            let key = |f: &str| format!("shifts[{i}].{f}");
+            let name = s.name.clone().unwrap_or_else(|| s.component.clone());
+            check_name(&bad, &key("name"), &name)?;
+            if shifts.iter().any(|q: &ShiftSpec| q.name == name) {
+                return Err(bad(&key("name"), format!("two shifts are named \"{name}\" (a shift is named after its component unless it has a name); give each its own name")));
+            }
+            shifts.push(ShiftSpec {
+                name,
+                component: s.component.clone(),
+                travel_m: check_param(&bad, &key("travel_m"), Param::ShiftTravelM(i), s.travel_m)?,
+                duration_s: check_param(
+                    &bad,
+                    &key("duration_s"),
+                    Param::ShiftDurationS(i),
+                    s.duration_s,
+                )?,
+                trigger: s.trigger.0,
+            });
+        }
+
+        let (integrator, max_time_s) = integrator(&bad, raw.integrator.take().unwrap_or_default())?;
+        let run = raw.run.take().unwrap_or_default();
+        let chunk_size = run.chunk_size.unwrap_or(32);
+        if !(1..=1_000_000).contains(&chunk_size) {
+            return Err(bad(
+                "run.chunk_size",
+                format!("must be from 1 to 1000000 variants (got {chunk_size})"),
+            ));
+        }
+        let row_group_rows = run.row_group_rows.unwrap_or(8192);
+        if !(1..=10_000_000).contains(&row_group_rows) {
+            return Err(bad(
+                "run.row_group_rows",
+                format!("must be from 1 to 10000000 rows (got {row_group_rows})"),
+            ));
+        }
+
+        let mut scenario = Scenario {
+            file: path.to_path_buf(),
+            dir,
+            text: text.to_string(),
+            hash: fingerprint(text.as_bytes()),
+            name,
+            description: raw.description.take(),
+            seed: raw.seed,
+            variants_per_point: raw.variants_per_point,
+            common_random_numbers: raw.common_random_numbers.unwrap_or(true),
+            design_file,
+            ballast: raw.design.ballast.take(),
+            motor,
+            environment,
+            rail,
+            parachutes,
+            shifts,
+            integrator,
+            max_time_s,
+            inputs: vec![],
+            chunk_size: chunk_size as usize,
+            row_group_rows: row_group_rows as usize,
+        };
+        scenario.inputs = inputs(&scenario, &bad, raw.sweep.take(), raw.dispersions.take())?;
+        if scenario.total_variants().is_none() {
+            return Err(bad(
+                "variants_per_point",
+                "sweep points × variants per point is too many to count".into(),
+            ));
+        }
+        Ok(scenario)
+    }
+
+    /// The scenario with the command line's seed and variants per point.
+    pub fn with_overrides(
+        mut self,
+        seed: Option<u64>,
+        variants_per_point: Option<u64>,
+    ) -> Result<Scenario, ScenarioError> {
+        if let Some(s) = seed {
+            self.seed = s;
+        }
+        if let Some(n) = variants_per_point {
+            if n == 0 {
+                return Err(ScenarioError::Invalid {
+                    file: self.file.display().to_string(),
+                    key: "--variants".into(),
+                    rule: "must be at least 1".into(),
+                });
+            }
+            self.variants_per_point = n;
+        }
+        if self.total_variants().is_none() {
+            return Err(ScenarioError::Invalid {
+                file: self.file.display().to_string(),
+                key: "--variants".into(),
+                rule: "sweep points × variants per point is too many to count".into(),
+            });
+        }
+        Ok(self)
+    }
+
+    /// Number of sweep points (1 without a sweep).
+    pub fn points(&self) -> usize {
+        self.inputs
+            .iter()
+            .filter_map(|i| i.sweep.as_ref())
+            .map(Vec::len)
+            .product()
+    }
+
+    /// Sweep points × variants per point, if it fits in 64 bits.
+    pub fn total_variants(&self) -> Option<u64> {
+        (self.points() as u64).checked_mul(self.variants_per_point)
+    }
+
+    /// The swept inputs, in canonical order (the sweep's axes, the last one varying fastest).
+    pub fn swept(&self) -> impl Iterator<Item = &InputSpec> {
+        self.inputs.iter().filter(|i| i.sweep.is_some())
+    }
+
+    /// The key path of an input (`wind_speed_m_s`, `parachutes.main.cds_m2`).
+    pub fn key(&self, p: Param) -> String {
+        if let Some(k) = p.global_key() {
+            return k.to_string();
+        }
+        match p {
+            Param::ParachuteCdsM2(i) => format!("parachutes.{}.cds_m2", self.parachutes[i].name),
+            Param::ParachuteLagS(i) => format!("parachutes.{}.lag_s", self.parachutes[i].name),
+            Param::ParachuteTrigger(i) => format!(
+                "parachutes.{}.{}",
+                self.parachutes[i].name,
+                trigger_field(&self.parachutes[i].trigger).unwrap_or("trigger")
+            ),
+            Param::ShiftTravelM(i) => format!("shifts.{}.travel_m", self.shifts[i].name),
+            Param::ShiftDurationS(i) => format!("shifts.{}.duration_s", self.shifts[i].name),
+            Param::ShiftTrigger(i) => format!(
+                "shifts.{}.{}",
+                self.shifts[i].name,
+                trigger_field(&self.shifts[i].trigger).unwrap_or("trigger")
+            ),
+            _ => unreachable!("global inputs have a global key"),
+        }
+    }
+
+    /// The output column of an input (`wind_speed_m_s`, `parachute_main_cds_m2`).
+    pub fn column(&self, p: Param) -> String {
+        let key = self.key(p);
+        if let Some(rest) = key.strip_prefix("parachutes.") {
+            format!("parachute_{}", rest.replace('.', "_"))
+        } else if let Some(rest) = key.strip_prefix("shifts.") {
+            format!("shift_{}", rest.replace('.', "_"))
+        } else {
+            key
+        }
+    }
+
+    /// The unit of an input.
+    pub fn unit(&self, p: Param) -> &'static str {
+        match p {
+            Param::ParachuteTrigger(i) => {
+                trigger_unit(trigger_field(&self.parachutes[i].trigger).unwrap_or(""))
+            }
+            Param::ShiftTrigger(i) => {
+                trigger_unit(trigger_field(&self.shifts[i].trigger).unwrap_or(""))
+            }
+            _ => p.unit(),
+        }
+    }
+}

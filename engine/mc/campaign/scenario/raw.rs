@@ -1,0 +1,218 @@
+//! The scenario file as TOML says it: serde structs that refuse unknown keys. Only
+//! [`super`] reads them, turning them into the validated [`super::Scenario`].
+
+use hpr_sim::Trigger;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawScenario {
+    pub(super) name: Option<String>,
+    pub(super) description: Option<String>,
+    pub(super) seed: u64,
+    pub(super) variants_per_point: u64,
+    pub(super) common_random_numbers: Option<bool>,
+    pub(super) design: RawDesign,
+    pub(super) motor: RawMotor,
+    pub(super) environment: Option<RawEnvironment>,
+    pub(super) rail: Option<RawRail>,
+    #[serde(default)]
+    pub(super) parachutes: Vec<RawParachute>,
+    #[serde(default)]
+    pub(super) shifts: Vec<RawShift>,
+    pub(super) integrator: Option<RawIntegrator>,
+    pub(super) sweep: Option<RawParams<Vec<f64>>>,
+    pub(super) dispersions: Option<RawParams<RawDist>>,
+    pub(super) run: Option<RawRun>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawDesign {
+    pub(super) file: PathBuf,
+    pub(super) ballast: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawMotor {
+    pub(super) name: String,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawEnvironment {
+    pub(super) elevation_m: Option<f64>,
+    pub(super) wind_speed_m_s: Option<f64>,
+    pub(super) wind_from_deg: Option<f64>,
+    pub(super) gravity: Option<String>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawRail {
+    pub(super) length_m: Option<f64>,
+    pub(super) inclination_deg: Option<f64>,
+    pub(super) heading_deg: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawParachute {
+    pub(super) name: String,
+    pub(super) cds_m2: f64,
+    #[serde(default)]
+    pub(super) lag_s: f64,
+    pub(super) trigger: RawTrigger,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawShift {
+    pub(super) name: Option<String>,
+    pub(super) component: String,
+    pub(super) travel_m: f64,
+    pub(super) duration_s: f64,
+    pub(super) trigger: RawTrigger,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawIntegrator {
+    pub(super) method: Option<String>,
+    pub(super) rtol: Option<f64>,
+    pub(super) atol_position_m: Option<f64>,
+    pub(super) atol_velocity_m_s: Option<f64>,
+    pub(super) atol_quaternion: Option<f64>,
+    pub(super) atol_rate_rad_s: Option<f64>,
+    pub(super) step_s: Option<f64>,
+    pub(super) max_time_s: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawRun {
+    pub(super) chunk_size: Option<u64>,
+    pub(super) row_group_rows: Option<u64>,
+}
+
+/// A trigger as the file writes it: `"apogee"`, `"burnout"`, `"motor_delay"`, or a table with
+/// one number: `{ time_s = 5.0 }`, `{ height_m = 300.0 }` (on the way down), `{ delay_s = 2.0 }`
+/// (after burnout).
+#[derive(Deserialize)]
+#[serde(try_from = "toml::Value")]
+pub(super) struct RawTrigger(pub(super) Trigger);
+
+impl TryFrom<toml::Value> for RawTrigger {
+    type Error = String;
+    fn try_from(v: toml::Value) -> Result<Self, String> {
+        const FORMS: &str = "a trigger is \"apogee\", \"burnout\", \"motor_delay\" (burnout plus the motor's delay), or a table with one number: { time_s = .. } (after launch), { height_m = .. } (on the way down) or { delay_s = .. } (after burnout)";
+        match v {
+            toml::Value::String(s) => match s.as_str() {
+                "apogee" => Ok(RawTrigger(Trigger::Apogee)),
+                "burnout" => Ok(RawTrigger(Trigger::Burnout)),
+                "motor_delay" => Ok(RawTrigger(Trigger::BurnoutPlusDelay { delay_s: None })),
+                other => Err(format!("unknown trigger \"{other}\": {FORMS}")),
+            },
+            toml::Value::Table(t) if t.len() == 1 => {
+                let (k, v) = t.into_iter().next().expect("one entry");
+                let x = match v {
+                    toml::Value::Float(x) => x,
+                    toml::Value::Integer(i) => i as f64,
+                    other => return Err(format!("trigger {k}: must be a number (got {other})")),
+                };
+                if !(x.is_finite() && x >= 0.0) {
+                    return Err(format!(
+                        "trigger {k}: must be finite and not negative (got {x})"
+                    ));
+                }
+                match k.as_str() {
+                    "time_s" => Ok(RawTrigger(Trigger::Time { time_s: x })),
+                    "height_m" => Ok(RawTrigger(Trigger::HeightDescending { height_m: x })),
+                    "delay_s" => Ok(RawTrigger(Trigger::BurnoutPlusDelay { delay_s: Some(x) })),
+                    other => Err(format!("unknown trigger field \"{other}\": {FORMS}")),
+                }
+            }
+            _ => Err(FORMS.to_string()),
+        }
+    }
+}
+
+/// The inputs under `[sweep]` (T = a list of values) or `[dispersions]` (T = a distribution).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawParams<T> {
+    pub(super) structure_mass_kg: Option<T>,
+    pub(super) structure_cg_m: Option<T>,
+    pub(super) ballast_kg: Option<T>,
+    pub(super) motor_impulse_ns: Option<T>,
+    pub(super) motor_burn_time_s: Option<T>,
+    pub(super) drag_scale: Option<T>,
+    pub(super) elevation_m: Option<T>,
+    pub(super) wind_speed_m_s: Option<T>,
+    pub(super) wind_from_deg: Option<T>,
+    pub(super) rail_length_m: Option<T>,
+    pub(super) rail_inclination_deg: Option<T>,
+    pub(super) rail_heading_deg: Option<T>,
+    #[serde(default = "BTreeMap::new")]
+    pub(super) parachutes: BTreeMap<String, RawParachuteParams<T>>,
+    #[serde(default = "BTreeMap::new")]
+    pub(super) shifts: BTreeMap<String, RawShiftParams<T>>,
+}
+
+impl<T> RawParams<T> {
+    /// The global entries in [`GLOBAL`] order.
+    pub(super) fn globals(&mut self) -> [Option<T>; 12] {
+        [
+            self.structure_mass_kg.take(),
+            self.structure_cg_m.take(),
+            self.ballast_kg.take(),
+            self.motor_impulse_ns.take(),
+            self.motor_burn_time_s.take(),
+            self.drag_scale.take(),
+            self.elevation_m.take(),
+            self.wind_speed_m_s.take(),
+            self.wind_from_deg.take(),
+            self.rail_length_m.take(),
+            self.rail_inclination_deg.take(),
+            self.rail_heading_deg.take(),
+        ]
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawParachuteParams<T> {
+    pub(super) cds_m2: Option<T>,
+    pub(super) lag_s: Option<T>,
+    pub(super) time_s: Option<T>,
+    pub(super) height_m: Option<T>,
+    pub(super) delay_s: Option<T>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawShiftParams<T> {
+    pub(super) travel_m: Option<T>,
+    pub(super) duration_s: Option<T>,
+    pub(super) time_s: Option<T>,
+    pub(super) height_m: Option<T>,
+    pub(super) delay_s: Option<T>,
+}
+
+/// A distribution as the file writes it (see `docs/scenarios.md`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawDist {
+    pub(super) dist: String,
+    pub(super) sigma: Option<f64>,
+    pub(super) bias: Option<f64>,
+    pub(super) mean: Option<f64>,
+    pub(super) min: Option<f64>,
+    pub(super) max: Option<f64>,
+    pub(super) mode: Option<f64>,
+    pub(super) mu: Option<f64>,
+    pub(super) relative: Option<bool>,
+}

@@ -1,0 +1,508 @@
+//! The rules of a scenario's values, sweeps and dispersions, each broken rule an error that
+//! names the key path.
+
+use super::raw::{RawDist, RawIntegrator, RawParachuteParams, RawParams, RawShiftParams};
+use super::{trigger_field, InputSpec, Scenario, ScenarioError};
+use crate::campaign::params::{Param, GLOBAL};
+use crate::campaign::sample::{Dispersion, Shape};
+use hpr_sim::{Integrator, Trigger};
+use std::collections::BTreeMap;
+
+/// A TOML error on one line (the crate's messages show the offending line in a box).
+pub(super) fn one_line(s: &str) -> String {
+    s.lines()
+        .map(str::trim)
+        .filter(|l| {
+            // Drop the quoted source line ("8 | key = ...", "|") and its "^^^" marker.
+            let quoted = l
+                .trim_start_matches(|c: char| c.is_ascii_digit())
+                .trim_start()
+                .starts_with('|');
+            !l.is_empty() && !quoted && !l.chars().all(|c| c == '^' || c == ' ')
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+pub(super) type Bad<'a> = dyn Fn(&str, String) -> ScenarioError + 'a;
+
+pub(super) fn finite(bad: &Bad, key: &str, v: f64) -> Result<f64, ScenarioError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(bad(key, format!("must be finite (got {v})")))
+    }
+}
+
+pub(super) fn check_param(bad: &Bad, key: &str, p: Param, v: f64) -> Result<f64, ScenarioError> {
+    p.domain().check(v).map_err(|r| bad(key, r))?;
+    Ok(v)
+}
+
+pub(super) fn check_name(bad: &Bad, key: &str, name: &str) -> Result<(), ScenarioError> {
+    if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return Err(bad(
+            key,
+            format!("must be letters, digits and '_' (it names output columns; got \"{name}\")"),
+        ));
+    }
+    Ok(())
+}
+
+pub(super) fn integrator(bad: &Bad, r: RawIntegrator) -> Result<(Integrator, f64), ScenarioError> {
+    let max_time_s = r.max_time_s.unwrap_or(600.0);
+    if !(max_time_s.is_finite() && max_time_s > 0.0) {
+        return Err(bad(
+            "integrator.max_time_s",
+            format!("must be positive and finite (got {max_time_s})"),
+        ));
+    }
+    let pos = |key: &str, v: Option<f64>, default: f64| -> Result<f64, ScenarioError> {
+        let v = v.unwrap_or(default);
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(bad(key, format!("must be positive and finite (got {v})")))
+        }
+    };
+    match r.method.as_deref().unwrap_or("adaptive") {
+        "adaptive" => {
+            if r.step_s.is_some() {
+                return Err(bad(
+                    "integrator.step_s",
+                    "only the \"rk4\" method has a fixed step; the adaptive one takes tolerances"
+                        .into(),
+                ));
+            }
+            let Integrator::Adaptive {
+                rtol,
+                atol_position_m,
+                atol_velocity_m_s,
+                atol_quaternion,
+                atol_rate_rad_s,
+            } = Integrator::DEFAULT
+            else {
+                unreachable!("the default integrator is adaptive")
+            };
+            Ok((
+                Integrator::Adaptive {
+                    rtol: pos("integrator.rtol", r.rtol, rtol)?,
+                    atol_position_m: pos(
+                        "integrator.atol_position_m",
+                        r.atol_position_m,
+                        atol_position_m,
+                    )?,
+                    atol_velocity_m_s: pos(
+                        "integrator.atol_velocity_m_s",
+                        r.atol_velocity_m_s,
+                        atol_velocity_m_s,
+                    )?,
+                    atol_quaternion: pos(
+                        "integrator.atol_quaternion",
+                        r.atol_quaternion,
+                        atol_quaternion,
+                    )?,
+                    atol_rate_rad_s: pos(
+                        "integrator.atol_rate_rad_s",
+                        r.atol_rate_rad_s,
+                        atol_rate_rad_s,
+                    )?,
+                },
+                max_time_s,
+            ))
+        }
+        "rk4" => {
+            for (k, v) in [
+                ("rtol", r.rtol),
+                ("atol_position_m", r.atol_position_m),
+                ("atol_velocity_m_s", r.atol_velocity_m_s),
+                ("atol_quaternion", r.atol_quaternion),
+                ("atol_rate_rad_s", r.atol_rate_rad_s),
+            ] {
+                if v.is_some() {
+                    return Err(bad(
+                        &format!("integrator.{k}"),
+                        "the \"rk4\" method takes a fixed step_s, not tolerances".into(),
+                    ));
+                }
+            }
+            let step = r.step_s.ok_or_else(|| {
+                bad(
+                    "integrator.step_s",
+                    "the \"rk4\" method needs a step_s".into(),
+                )
+            })?;
+            Ok((
+                Integrator::Rk4 {
+                    step_s: pos("integrator.step_s", Some(step), 0.0)?,
+                },
+                max_time_s,
+            ))
+        }
+        other => Err(bad(
+            "integrator.method",
+            format!("must be \"adaptive\" or \"rk4\" (got \"{other}\")"),
+        )),
+    }
+}
+
+/// The entries of one parachute's or shift's table under `[sweep]` or `[dispersions]`:
+/// (field, value), with the trigger fields separate.
+struct PartEntries<T> {
+    fixed: Vec<(&'static str, Param, Option<T>)>,
+    trigger: Vec<(&'static str, Option<T>)>,
+}
+
+fn parachute_entries<T>(i: usize, p: RawParachuteParams<T>) -> PartEntries<T> {
+    PartEntries {
+        fixed: vec![
+            ("cds_m2", Param::ParachuteCdsM2(i), p.cds_m2),
+            ("lag_s", Param::ParachuteLagS(i), p.lag_s),
+        ],
+        trigger: vec![
+            ("time_s", p.time_s),
+            ("height_m", p.height_m),
+            ("delay_s", p.delay_s),
+        ],
+    }
+}
+
+fn shift_entries<T>(i: usize, s: RawShiftParams<T>) -> PartEntries<T> {
+    PartEntries {
+        fixed: vec![
+            ("travel_m", Param::ShiftTravelM(i), s.travel_m),
+            ("duration_s", Param::ShiftDurationS(i), s.duration_s),
+        ],
+        trigger: vec![
+            ("time_s", s.time_s),
+            ("height_m", s.height_m),
+            ("delay_s", s.delay_s),
+        ],
+    }
+}
+
+/// Collect the swept and dispersed inputs, keyed by input, checking names and triggers.
+fn collect<T>(
+    scenario: &Scenario,
+    bad: &Bad,
+    section: &str,
+    raw: Option<RawParams<T>>,
+) -> Result<BTreeMap<Param, T>, ScenarioError> {
+    let mut out = BTreeMap::new();
+    let Some(mut raw) = raw else { return Ok(out) };
+    for ((p, _, _), v) in GLOBAL.iter().zip(raw.globals()) {
+        if let Some(v) = v {
+            out.insert(*p, v);
+        }
+    }
+    let parts: [PartNames; 2] = [
+        (
+            "parachutes",
+            "parachute",
+            scenario
+                .parachutes
+                .iter()
+                .map(|p| (p.name.clone(), p.trigger))
+                .collect(),
+        ),
+        (
+            "shifts",
+            "shift",
+            scenario
+                .shifts
+                .iter()
+                .map(|s| (s.name.clone(), s.trigger))
+                .collect(),
+        ),
+    ];
+    let mut tables: [Vec<(String, PartEntries<T>)>; 2] = [vec![], vec![]];
+    for (name, p) in std::mem::take(&mut raw.parachutes) {
+        let i = index_of(bad, section, &parts[0], &name)?;
+        tables[0].push((name, parachute_entries(i, p)));
+    }
+    for (name, s) in std::mem::take(&mut raw.shifts) {
+        let i = index_of(bad, section, &parts[1], &name)?;
+        tables[1].push((name, shift_entries(i, s)));
+    }
+    for (k, entries) in tables.into_iter().enumerate() {
+        let (plural, singular, names) = &parts[k];
+        for (name, e) in entries {
+            let i = names
+                .iter()
+                .position(|n| n.0 == name)
+                .expect("checked by index_of");
+            for (_, p, v) in e.fixed {
+                if let Some(v) = v {
+                    out.insert(p, v);
+                }
+            }
+            for (field, v) in e.trigger {
+                let Some(v) = v else { continue };
+                let trigger = names[i].1;
+                let key = format!("{section}.{plural}.{name}.{field}");
+                match trigger_field(&trigger) {
+                    Some(f) if f == field => {}
+                    Some(f) => return Err(bad(&key, format!("the {singular}'s trigger is {trigger}: its number is {f}, not {field}"))),
+                    None => return Err(bad(&key, format!("the {singular}'s trigger is {trigger}, which has no number to sweep or disperse"))),
+                }
+                out.insert(
+                    if k == 0 {
+                        Param::ParachuteTrigger(i)
+                    } else {
+                        Param::ShiftTrigger(i)
+                    },
+                    v,
+                );
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// A kind of part (plural and singular) and the names and triggers of the scenario's parts.
+type PartNames<'a> = (&'a str, &'a str, Vec<(String, Trigger)>);
+
+fn index_of(
+    bad: &Bad,
+    section: &str,
+    part: &PartNames,
+    name: &str,
+) -> Result<usize, ScenarioError> {
+    let (plural, _, names) = part;
+    names.iter().position(|n| n.0 == name).ok_or_else(|| {
+        let list: Vec<&str> = names.iter().map(|n| n.0.as_str()).collect();
+        let known = if list.is_empty() {
+            format!("the scenario has no {plural}")
+        } else {
+            format!("the scenario's {plural}: {}", list.join(", "))
+        };
+        bad(
+            &format!("{section}.{plural}.{name}"),
+            format!(
+                "no {} is named \"{name}\" ({known})",
+                &plural[..plural.len() - 1]
+            ),
+        )
+    })
+}
+
+pub(super) fn inputs(
+    scenario: &Scenario,
+    bad: &Bad,
+    sweep: Option<RawParams<Vec<f64>>>,
+    disp: Option<RawParams<RawDist>>,
+) -> Result<Vec<InputSpec>, ScenarioError> {
+    let sweep = collect(scenario, bad, "sweep", sweep)?;
+    let disp = collect(scenario, bad, "dispersions", disp)?;
+    let mut params: Vec<Param> = sweep.keys().chain(disp.keys()).copied().collect();
+    params.sort();
+    params.dedup();
+    let mut out = Vec::new();
+    for p in params {
+        let key = scenario.key(p);
+        let sweep_values = match sweep.get(&p) {
+            None => None,
+            Some(values) => {
+                let k = format!("sweep.{key}");
+                if values.is_empty() {
+                    return Err(bad(&k, "empty sweep: give at least one value".into()));
+                }
+                for (j, &v) in values.iter().enumerate() {
+                    p.domain()
+                        .check(v)
+                        .map_err(|r| bad(&format!("{k}[{j}]"), r))?;
+                    if values[..j].contains(&v) {
+                        return Err(bad(
+                            &format!("{k}[{j}]"),
+                            format!("the value {v} appears twice in the sweep"),
+                        ));
+                    }
+                }
+                Some(values.clone())
+            }
+        };
+        let dispersion = match disp.get(&p) {
+            None => None,
+            Some(d) => Some(dispersion(
+                bad,
+                &format!("dispersions.{key}"),
+                d,
+                sweep_values.is_some(),
+            )?),
+        };
+        out.push(InputSpec {
+            param: p,
+            column: scenario.column(p),
+            unit: scenario.unit(p),
+            key,
+            sweep: sweep_values,
+            dispersion,
+        });
+    }
+    // Two keys landing on one block slot would share draws; FNV-1a 32 makes this very
+    // unlikely, but it is checked.
+    for (a, ia) in out.iter().enumerate() {
+        for ib in &out[..a] {
+            if ia.dispersion.is_some()
+                && ib.dispersion.is_some()
+                && crate::campaign::sample::slot(&ia.key) == crate::campaign::sample::slot(&ib.key)
+            {
+                return Err(bad(
+                    &format!("dispersions.{}", ia.key),
+                    format!(
+                        "its random stream collides with that of {}; rename a parachute or a shift",
+                        ib.key
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersion, ScenarioError> {
+    let fields = [
+        ("sigma", d.sigma),
+        ("bias", d.bias),
+        ("mean", d.mean),
+        ("min", d.min),
+        ("max", d.max),
+        ("mode", d.mode),
+        ("mu", d.mu),
+    ];
+    for (f, v) in fields {
+        if let Some(v) = v {
+            if v.is_nan() || (v.is_infinite() && f != "min" && f != "max") {
+                return Err(bad(
+                    &format!("{key}.{f}"),
+                    format!("must be finite (got {v})"),
+                ));
+            }
+        }
+    }
+    let allowed: &[&str] = match d.dist.as_str() {
+        "normal" => &["sigma", "bias", "mean"],
+        "truncated_normal" => &["sigma", "bias", "min", "max"],
+        "uniform" => &["min", "max"],
+        "triangular" => &["min", "mode", "max"],
+        "lognormal" => &["sigma", "mu"],
+        other => {
+            return Err(bad(&format!("{key}.dist"), format!("unknown distribution \"{other}\" (normal, truncated_normal, uniform, triangular or lognormal)")));
+        }
+    };
+    for (f, v) in fields {
+        if v.is_some() && !allowed.contains(&f) {
+            return Err(bad(
+                &format!("{key}.{f}"),
+                format!(
+                    "a {} distribution has no {f} (it takes {})",
+                    d.dist,
+                    allowed.join(", ")
+                ),
+            ));
+        }
+    }
+    let relative = d.relative.unwrap_or(false);
+    let need = |f: &str, v: Option<f64>| {
+        v.ok_or_else(|| {
+            bad(
+                &format!("{key}.{f}"),
+                format!("a {} distribution needs {f}", d.dist),
+            )
+        })
+    };
+    let sigma = |v: Option<f64>| -> Result<f64, ScenarioError> {
+        let s = need("sigma", v)?;
+        if s > 0.0 {
+            Ok(s)
+        } else {
+            Err(bad(
+                &format!("{key}.sigma"),
+                format!("must be positive (got {s})"),
+            ))
+        }
+    };
+    let ordered = |min: f64, max: f64| -> Result<(), ScenarioError> {
+        if min < max {
+            Ok(())
+        } else {
+            Err(bad(
+                &format!("{key}.max"),
+                format!("must be greater than min (min {min}, max {max})"),
+            ))
+        }
+    };
+    let shape = match d.dist.as_str() {
+        "normal" => {
+            let s = sigma(d.sigma)?;
+            match (d.mean, d.bias) {
+                (Some(_), Some(_)) => return Err(bad(&format!("{key}.mean"), "give a mean (the value's) or a bias (the deviation's from the nominal), not both".into())),
+                (Some(_), None) if relative => return Err(bad(&format!("{key}.mean"), "a mean is a value, so it can't be relative; give a bias instead".into())),
+                (Some(_), None) if swept => return Err(bad(&format!("{key}.mean"), "the input is also swept, and a mean would ignore the sweep; give a bias (around each sweep value) instead".into())),
+                (Some(mean), None) => Shape::NormalAbout { mean, sigma: s },
+                (None, bias) => Shape::Normal { bias: bias.unwrap_or(0.0), sigma: s },
+            }
+        }
+        "truncated_normal" => {
+            let s = sigma(d.sigma)?;
+            if d.min.is_none() && d.max.is_none() {
+                return Err(bad(
+                    &format!("{key}.min"),
+                    "a truncated_normal distribution needs min, max or both (a normal has neither)"
+                        .into(),
+                ));
+            }
+            let (min, max) = (
+                d.min.unwrap_or(f64::NEG_INFINITY),
+                d.max.unwrap_or(f64::INFINITY),
+            );
+            ordered(min, max)?;
+            Shape::TruncatedNormal {
+                bias: d.bias.unwrap_or(0.0),
+                sigma: s,
+                min,
+                max,
+            }
+        }
+        "uniform" => {
+            let (min, max) = (need("min", d.min)?, need("max", d.max)?);
+            for (f, v) in [("min", min), ("max", max)] {
+                if !v.is_finite() {
+                    return Err(bad(
+                        &format!("{key}.{f}"),
+                        format!("must be finite (got {v})"),
+                    ));
+                }
+            }
+            ordered(min, max)?;
+            Shape::Uniform { min, max }
+        }
+        "triangular" => {
+            let (min, max) = (need("min", d.min)?, need("max", d.max)?);
+            for (f, v) in [("min", min), ("max", max)] {
+                if !v.is_finite() {
+                    return Err(bad(
+                        &format!("{key}.{f}"),
+                        format!("must be finite (got {v})"),
+                    ));
+                }
+            }
+            ordered(min, max)?;
+            let mode = d.mode.unwrap_or(0.0);
+            if !(min <= mode && mode <= max) {
+                return Err(bad(&format!("{key}.mode"), format!("must be from min to max ({min} to {max}; got {mode}, and it is 0 when not given)")));
+            }
+            Shape::Triangular { min, mode, max }
+        }
+        _ => {
+            if d.relative.is_some() {
+                return Err(bad(&format!("{key}.relative"), "a lognormal dispersion is always relative (value = nominal × exp(mu + sigma Z)); remove relative".into()));
+            }
+            Shape::LogNormal {
+                mu: d.mu.unwrap_or(0.0),
+                sigma: sigma(d.sigma)?,
+            }
+        }
+    };
+    Ok(Dispersion { shape, relative })
+}

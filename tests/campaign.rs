@@ -1,0 +1,474 @@
+//! Campaigns end to end on a tiny scenario (10 flights with loose tolerances): the Parquet
+//! files read back with the parquet crate's Arrow reader, determinism whatever the threads and
+//! shards, resumption of an interrupted run, and the exit codes of `hpr-mc`.
+
+use arrow::array::{Array, Float64Array, StringArray, UInt32Array, UInt64Array};
+use arrow::compute::{concat_batches, sort_to_indices, take_record_batch};
+use arrow::record_batch::RecordBatch;
+use hpr_mc::campaign::sample::fingerprint;
+use hpr_mc::campaign::{run_campaign, RunConfig, Shard};
+use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+use std::fs::File;
+use std::path::{Path, PathBuf};
+
+/// Two sweep points (ballast travel 0 and 0.25 m) × 5 variants, chunks of 4, row groups of
+/// 7 rows, seed 2 (which gives 4 refused variants of 10). The main chute's lag is 1 s + U(−2.5, 0.5) s, negative (refused) 60 % of the time.
+fn tiny(variants_per_point: u64) -> String {
+    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    format!(
+        r#"
+name = "tiny"
+seed = 2
+variants_per_point = {variants_per_point}
+[design]
+file = "{}"
+ballast = "ballast"
+[motor]
+name = "Cesaroni_I175"
+[environment]
+wind_speed_m_s = 3.0
+[[parachutes]]
+name = "main"
+cds_m2 = 0.9
+lag_s = 1.0
+trigger = "apogee"
+[[shifts]]
+component = "ballast"
+travel_m = 0.2
+duration_s = 1.0
+trigger = {{ time_s = 5.0 }}
+[integrator]
+rtol = 1e-5
+atol_position_m = 1e-2
+atol_velocity_m_s = 1e-2
+atol_quaternion = 1e-6
+atol_rate_rad_s = 1e-3
+max_time_s = 900.0
+[run]
+chunk_size = 4
+row_group_rows = 7
+[sweep]
+shifts.ballast.travel_m = [0.0, 0.25]
+[dispersions]
+wind_speed_m_s = {{ dist = "truncated_normal", sigma = 1.0, min = -3.0 }}
+drag_scale = {{ dist = "normal", sigma = 0.05, relative = true }}
+parachutes.main.lag_s = {{ dist = "uniform", min = -2.5, max = 0.5 }}
+"#,
+        design.display()
+    )
+}
+
+/// A temporary directory holding `tiny.toml`.
+fn setup(text: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("tiny.toml");
+    std::fs::write(&file, text).unwrap();
+    (dir, file)
+}
+
+fn config(out: &Path) -> RunConfig {
+    RunConfig {
+        out: Some(out.to_path_buf()),
+        quiet: true,
+        threads: Some(1),
+        ..RunConfig::default()
+    }
+}
+
+fn read(path: &Path) -> RecordBatch {
+    let builder = ParquetRecordBatchReaderBuilder::try_new(File::open(path).unwrap()).unwrap();
+    let schema = builder.schema().clone();
+    let batches: Vec<RecordBatch> = builder.build().unwrap().map(|b| b.unwrap()).collect();
+    concat_batches(&schema, &batches).unwrap()
+}
+
+fn f64s<'a>(b: &'a RecordBatch, name: &str) -> &'a Float64Array {
+    b.column_by_name(name)
+        .unwrap()
+        .as_any()
+        .downcast_ref::<Float64Array>()
+        .unwrap()
+}
+
+fn strings<'a>(b: &'a RecordBatch, name: &str) -> &'a StringArray {
+    b.column_by_name(name)
+        .unwrap()
+        .as_any()
+        .downcast_ref::<StringArray>()
+        .unwrap()
+}
+
+#[test]
+fn the_variants_file_reads_back_with_its_schema_units_nulls_metadata_and_values() {
+    let text = tiny(5);
+    let (dir, file) = setup(&text);
+    let out = dir.path().join("out");
+    let report = run_campaign(&file, &config(&out)).unwrap();
+    assert!(report.complete);
+    assert_eq!(report.variants, 10);
+    assert!(
+        report.refused > 0 && report.landed > 0,
+        "the tiny scenario has refused and landed rows ({} refused)",
+        report.refused
+    );
+    assert_eq!(report.landed + report.failures(), 10);
+
+    let builder =
+        ParquetRecordBatchReaderBuilder::try_new(File::open(&report.outputs.variants).unwrap())
+            .unwrap();
+    let meta = builder.metadata().clone();
+    assert_eq!(meta.file_metadata().num_rows(), 10);
+    assert_eq!(meta.num_row_groups(), 2, "row groups of 7 rows: 7 + 3");
+    let kv: std::collections::HashMap<String, String> = meta
+        .file_metadata()
+        .key_value_metadata()
+        .unwrap()
+        .iter()
+        .map(|k| (k.key.clone(), k.value.clone().unwrap_or_default()))
+        .collect();
+    assert_eq!(kv["hpr_mc.seed"], "2");
+    assert_eq!(kv["hpr_mc.scenario"], text);
+    assert_eq!(kv["hpr_mc.scenario_hash"], fingerprint(text.as_bytes()));
+    assert_eq!(kv["hpr_mc.version"], env!("CARGO_PKG_VERSION"));
+
+    let schema = builder.schema().clone();
+    let names: Vec<&str> = schema.fields().iter().map(|f| f.name().as_str()).collect();
+    let mut expected = vec![
+        "variant_id",
+        "point",
+        "replicate",
+        "sweep_shift_ballast_travel_m",
+        "drag_scale",
+        "wind_speed_m_s",
+        "parachute_main_lag_s",
+        "shift_ballast_travel_m",
+        "status",
+        "error",
+    ];
+    expected.extend(hpr_mc::campaign::fly::FIXED_METRICS.iter().map(|m| m.0));
+    expected.extend([
+        "shift_ballast_start_time_s",
+        "shift_ballast_margin_before_cal",
+        "shift_ballast_margin_after_cal",
+    ]);
+    assert_eq!(names, expected);
+    let unit = |n: &str| {
+        schema
+            .field_with_name(n)
+            .unwrap()
+            .metadata()
+            .get("unit")
+            .cloned()
+    };
+    assert_eq!(unit("apogee_m").as_deref(), Some("m"));
+    assert_eq!(unit("wind_speed_m_s").as_deref(), Some("m/s"));
+    assert_eq!(unit("sweep_shift_ballast_travel_m").as_deref(), Some("m"));
+    assert_eq!(unit("max_mach").as_deref(), Some("1"));
+    assert_eq!(unit("static_margin_min_cal").as_deref(), Some("cal"));
+    assert_eq!(unit("status"), None);
+
+    let b = read(&report.outputs.variants);
+    let ids = b
+        .column_by_name("variant_id")
+        .unwrap()
+        .as_any()
+        .downcast_ref::<UInt64Array>()
+        .unwrap();
+    assert_eq!(ids.values().to_vec(), (0..10).collect::<Vec<u64>>());
+    let status = strings(&b, "status");
+    let error = strings(&b, "error");
+    let apogee = f64s(&b, "apogee_m");
+    let lag = f64s(&b, "parachute_main_lag_s");
+    for r in 0..10 {
+        let landed = status.value(r) == "landed";
+        assert_eq!(
+            landed,
+            lag.value(r) >= 0.0,
+            "row {r}: refused exactly when the lag is negative"
+        );
+        assert_eq!(error.is_null(r), landed);
+        for m in hpr_mc::campaign::fly::FIXED_METRICS {
+            assert_eq!(f64s(&b, m.0).is_null(r), !landed, "row {r} column {}", m.0);
+        }
+        if !landed {
+            assert!(
+                error.value(r).contains("parachutes.main.lag_s"),
+                "{}",
+                error.value(r)
+            );
+        } else {
+            assert!(apogee.value(r) > 1000.0);
+        }
+        // Every input's value is the plan's draw for this variant.
+        let v = report.prepared.plan.variant(r as u64);
+        for (j, input) in report.prepared.scenario.inputs.iter().enumerate() {
+            assert_eq!(f64s(&b, &input.column).value(r), v.values[j]);
+        }
+        assert_eq!(
+            f64s(&b, "sweep_shift_ballast_travel_m").value(r),
+            if r < 5 { 0.0 } else { 0.25 }
+        );
+    }
+    // The shift's margin falls by m Δ / (M d) when the ballast moves 0.25 m: at least 1 cal
+    // for 200 g in a 0.8 kg, 56.3 mm rocket (spec: 1.302 cal for 0.3 m).
+    let (before, after) = (
+        f64s(&b, "shift_ballast_margin_before_cal"),
+        f64s(&b, "shift_ballast_margin_after_cal"),
+    );
+    for r in 5..10 {
+        if status.value(r) == "landed" {
+            assert!(
+                before.value(r) - after.value(r) > 1.0,
+                "row {r}: {} → {}",
+                before.value(r),
+                after.value(r)
+            );
+        }
+    }
+}
+
+#[test]
+fn the_summary_s_means_are_the_means_of_the_landed_rows() {
+    let (dir, file) = setup(&tiny(5));
+    let out = dir.path().join("out");
+    let report = run_campaign(&file, &config(&out)).unwrap();
+    let v = read(&report.outputs.variants);
+    let s = read(&report.outputs.summary);
+    let point = v
+        .column_by_name("point")
+        .unwrap()
+        .as_any()
+        .downcast_ref::<UInt32Array>()
+        .unwrap();
+    let status = strings(&v, "status");
+    let apogee = f64s(&v, "apogee_m");
+    let spoint = s
+        .column_by_name("point")
+        .unwrap()
+        .as_any()
+        .downcast_ref::<UInt32Array>()
+        .unwrap();
+    let metric = strings(&s, "metric");
+    let mean = f64s(&s, "mean");
+    for p in 0..2u32 {
+        let landed: Vec<f64> = (0..v.num_rows())
+            .filter(|&r| point.value(r) == p && status.value(r) == "landed")
+            .map(|r| apogee.value(r))
+            .collect();
+        let expected = landed.iter().sum::<f64>() / landed.len() as f64;
+        let row = (0..s.num_rows())
+            .find(|&r| spoint.value(r) == p && metric.value(r) == "apogee_m")
+            .unwrap();
+        assert!(
+            (mean.value(row) - expected).abs() <= 1e-12 * expected.abs(),
+            "point {p}: {} vs {expected}",
+            mean.value(row)
+        );
+    }
+    // Ellipses at 1, 2 and 3 sigma for each point.
+    let e = read(&report.outputs.ellipses);
+    assert_eq!(e.num_rows(), 6);
+    let major = f64s(&e, "semi_major_m");
+    assert!((major.value(1) - 2.0 * major.value(0)).abs() < 1e-9 * major.value(0));
+}
+
+/// The rows of a variants file (all columns), whatever the schema's metadata.
+fn columns(b: &RecordBatch) -> Vec<std::sync::Arc<dyn Array>> {
+    b.columns().to_vec()
+}
+
+#[test]
+fn one_thread_or_two_give_the_same_rows_and_the_shards_together_are_the_whole_run() {
+    let (dir, file) = setup(&tiny(5));
+    let whole = run_campaign(&file, &config(&dir.path().join("one"))).unwrap();
+    let two = run_campaign(
+        &file,
+        &RunConfig {
+            threads: Some(2),
+            ..config(&dir.path().join("two"))
+        },
+    )
+    .unwrap();
+    let a = read(&whole.outputs.variants);
+    assert_eq!(columns(&a), columns(&read(&two.outputs.variants)));
+
+    let shards: Vec<RecordBatch> = (0..3)
+        .map(|k| {
+            let r = run_campaign(
+                &file,
+                &RunConfig {
+                    shard: Some(Shard { k, n: 3 }),
+                    ..config(&dir.path().join("sharded"))
+                },
+            )
+            .unwrap();
+            assert!(r
+                .outputs
+                .variants
+                .ends_with(format!("variants-shard-{k}-of-3.parquet")));
+            read(&r.outputs.variants)
+        })
+        .collect();
+    assert_eq!(
+        shards.iter().map(|b| b.num_rows()).collect::<Vec<_>>(),
+        vec![4, 3, 3]
+    );
+    let union = concat_batches(&shards[0].schema(), &shards).unwrap();
+    let order = sort_to_indices(union.column_by_name("variant_id").unwrap(), None, None).unwrap();
+    let union = take_record_batch(&union, &order).unwrap();
+    assert_eq!(columns(&union), columns(&a));
+}
+
+#[test]
+fn an_interrupted_run_resumes_flying_only_the_missing_chunks() {
+    let (dir, file) = setup(&tiny(5));
+    let reference = run_campaign(&file, &config(&dir.path().join("reference"))).unwrap();
+    let out = dir.path().join("out");
+    // Fly one chunk of three, then stop as Ctrl-C would; leave a half-written part too.
+    let first = run_campaign(
+        &file,
+        &RunConfig {
+            max_chunks: Some(1),
+            ..config(&out)
+        },
+    )
+    .unwrap();
+    assert!(!first.complete);
+    assert_eq!(first.chunks_flown, 1);
+    assert!(
+        !first.outputs.variants.exists(),
+        "no variants file before every chunk is done"
+    );
+    let parts = out.join("parts/variants");
+    std::fs::write(parts.join("chunk-00000002.parquet.tmp"), b"half a file").unwrap();
+    let done: Vec<String> = std::fs::read_dir(&parts)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert!(
+        done.contains(&"chunk-00000000.parquet".to_string()),
+        "{done:?}"
+    );
+
+    // A resume with another seed refuses the parts.
+    let e = run_campaign(
+        &file,
+        &RunConfig {
+            resume: true,
+            seed: Some(3),
+            ..config(&out)
+        },
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("hpr_mc.seed"), "{e}");
+
+    let second = run_campaign(
+        &file,
+        &RunConfig {
+            resume: true,
+            ..config(&out)
+        },
+    )
+    .unwrap();
+    assert!(second.complete);
+    assert_eq!((second.chunks_kept, second.chunks_flown), (1, 2));
+    assert_eq!(
+        columns(&read(&second.outputs.variants)),
+        columns(&read(&reference.outputs.variants))
+    );
+    assert!(
+        !out.join("parts").exists(),
+        "the parts are removed once merged"
+    );
+
+    // Resuming a finished run flies nothing and writes the same summary.
+    let third = run_campaign(
+        &file,
+        &RunConfig {
+            resume: true,
+            ..config(&out)
+        },
+    )
+    .unwrap();
+    assert_eq!((third.chunks_kept, third.chunks_flown), (0, 0));
+    assert_eq!(
+        columns(&read(&third.outputs.summary)),
+        columns(&read(&reference.outputs.summary))
+    );
+}
+
+fn hpr_mc(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap(),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+#[test]
+fn the_exit_code_says_whether_every_variant_landed_or_the_input_was_bad() {
+    let text = tiny(5);
+    let (dir, file) = setup(&text);
+    let out = dir.path().join("out");
+    let (code, stdout, stderr) = hpr_mc(&[
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("did not land"), "{stderr}");
+    assert!(
+        stdout.contains("point 1: shifts.ballast.travel_m = 0.25 m"),
+        "{stdout}"
+    );
+
+    let calm = text.replace(
+        "parachutes.main.lag_s = { dist = \"uniform\", min = -2.5, max = 0.5 }",
+        "",
+    );
+    std::fs::write(&file, calm).unwrap();
+    let (code, _, stderr) = hpr_mc(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--variants",
+        "2",
+        "--threads",
+        "2",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+
+    std::fs::write(&file, text.replace("sigma = 1.0, min", "sigma = -1.0, min")).unwrap();
+    let (code, _, stderr) = hpr_mc(&[file.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("dispersions.wind_speed_m_s.sigma: must be positive"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = hpr_mc(&[file.to_str().unwrap(), "--shard", "3/3"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("0 <= K < N"), "{stderr}");
+}
+
+#[test]
+fn every_bundled_scenario_reads_and_sets_up_at_every_sweep_point() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    let mut names = vec![];
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().and_then(|e| e.to_str()) == Some("toml") {
+            let p = hpr_mc::campaign::run::prepare(&path, &RunConfig::default())
+                .unwrap_or_else(|e| panic!("{}: {e:#}", path.display()));
+            names.push(p.scenario.name.clone());
+        }
+    }
+    names.sort();
+    assert_eq!(names, vec!["ballast_sweep", "calisto", "wind_study"]);
+}
