@@ -107,6 +107,18 @@ impl Gravity {
         })
     }
 
+    /// The same gravity over a launch site `launch_elevation_m` above mean sea level: an
+    /// inverse-square law keeps its g0 and radius and moves its site; a constant one is the
+    /// same everywhere. For a dispersion or sweep of the site's elevation.
+    pub fn at_launch_elevation(&self, launch_elevation_m: f64) -> Result<Self, GravityError> {
+        match self.model {
+            Model::Constant => Ok(*self),
+            Model::InverseSquare { radius_m, .. } => {
+                Self::inverse_square_with(self.g0_m_s2, radius_m, launch_elevation_m)
+            }
+        }
+    }
+
     /// Magnitude of gravity at `height_agl_m` above the launch site, m/s² (pointing down).
     #[inline]
     pub fn at(&self, height_agl_m: f64) -> f64 {
@@ -173,6 +185,28 @@ mod tests {
         assert_eq!(site.at(500.0), msl.at(2_000.0));
         let custom = Gravity::inverse_square_with(10.0, 1000.0, 0.0).unwrap();
         assert!((custom.at(1000.0) - 2.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn moving_the_launch_site_moves_inverse_square_gravity_and_leaves_constant_gravity_alone() {
+        let moved = Gravity::inverse_square(0.0)
+            .unwrap()
+            .at_launch_elevation(1_500.0)
+            .unwrap();
+        assert_eq!(moved, Gravity::inverse_square(1_500.0).unwrap());
+        let custom = Gravity::inverse_square_with(10.0, 1000.0, 0.0)
+            .unwrap()
+            .at_launch_elevation(1000.0)
+            .unwrap();
+        // 10 (1000 / 2000)² = 2.5 at the new site.
+        assert!((custom.at(0.0) - 2.5).abs() < 1e-15);
+        let g = Gravity::constant(9.81).unwrap();
+        assert_eq!(g.at_launch_elevation(3_000.0).unwrap(), g);
+        let e = Gravity::inverse_square(0.0)
+            .unwrap()
+            .at_launch_elevation(f64::NAN)
+            .unwrap_err();
+        assert!(e.to_string().contains("launch_elevation_m"));
     }
 
     #[test]

@@ -1,16 +1,20 @@
 //! The single-flight simulator: [`Simulation`] sets a flight up (design, motor, launch site,
 //! rail, parachutes, shifts, options), checks every input, builds the [`FlightModel`]'s tables
-//! once, and flies it with [`Simulation::run`].
+//! once, and flies it with [`Simulation::run`]. Changes to a flight set up (the `with_*`
+//! builders, or many at once with [`Simulation::with_changes`]) are checked in [`changes`]
+//! and rebuild only the light per-flight model; the design's tables are shared by `Arc`.
 //!
 //! The flight's physics lives in the kernels ([`crate::eom`], [`crate::massprops`],
 //! [`crate::aero_loads`], [`crate::cycloid`], the atmosphere); this module only assembles
 //! them and drives the integrator (see [`driver`]). The batch engine drives the same model.
 
+pub mod changes;
 pub mod config;
 pub mod driver;
 pub mod model;
 pub mod output;
 
+pub use changes::Changes;
 pub use config::{Environment, Integrator, Parachute, Rail, SimOptions};
 pub use model::FlightModel;
 pub use output::{Flight, Metrics, Observer, Phase, Sample};
@@ -20,7 +24,7 @@ use crate::atmosphere::{AirTable, Atmosphere};
 use crate::eom::Nozzle;
 use crate::integrate::IntegratorError;
 use crate::massprops::MassModel;
-use crate::shifts::{self, MassShift, ShiftPlan, ShiftRefusal};
+use crate::shifts::{MassShift, ShiftPlan, ShiftRefusal};
 use hpr_design::aero::{AeroModel, MachTable};
 use hpr_design::design::model::Design;
 use hpr_design::mass::{self, MassProps};
@@ -177,144 +181,50 @@ impl Simulation {
 
     /// Parachutes, opened in the order their triggers fire. Canopies add up: once a second
     /// canopy opens, both drag (their CdS add), as a drogue left attached above a main does.
-    pub fn with_parachutes(mut self, parachutes: Vec<Parachute>) -> Result<Simulation, SimError> {
-        let delay = self.motor.delays_s.first().copied();
-        for (i, p) in parachutes.iter().enumerate() {
-            let what = format!("parachute {i} (\"{}\")", p.name);
-            if !(p.cds_m2.is_finite() && p.cds_m2 > 0.0) {
-                return Err(SimError::Setup(format!(
-                    "{what}: field \"cds_m2\" must be positive and finite (got {})",
-                    p.cds_m2
-                )));
-            }
-            if !(p.lag_s.is_finite() && p.lag_s >= 0.0) {
-                return Err(SimError::Setup(format!(
-                    "{what}: field \"lag_s\" must be finite and not negative (got {})",
-                    p.lag_s
-                )));
-            }
-            p.trigger
-                .validate()
-                .map_err(|e| SimError::Setup(format!("{what}: {e}")))?;
-            match p.trigger {
-                crate::trigger::Trigger::HeightDescending { height_m } if height_m <= 0.0 => {
-                    return Err(SimError::Setup(format!("{what}: trigger {}: the height must be above the ground, or the canopy never opens", p.trigger)));
-                }
-                crate::trigger::Trigger::BurnoutPlusDelay { delay_s: None } if delay.is_none() => {
-                    return Err(SimError::Setup(format!("{what}: trigger {}: the motor is plugged (no ejection delay), so this trigger never fires", p.trigger)));
-                }
-                _ => {}
-            }
-        }
-        self.parachutes = parachutes;
-        self.rebuild()
+    pub fn with_parachutes(self, parachutes: Vec<Parachute>) -> Result<Simulation, SimError> {
+        self.with_changes(|c| c.parachutes(parachutes))
     }
 
     /// Mass shifts (the spec's `MassShift`). Every rule that can be checked before the flight
     /// is checked here, and a refusal names the rule it broke.
-    pub fn with_shifts(mut self, shifts: Vec<MassShift>) -> Result<Simulation, SimError> {
-        if shifts.len() > model::MAX_SHIFTS {
-            return Err(SimError::Setup(format!(
-                "at most {} shifts in one flight (got {})",
-                model::MAX_SHIFTS,
-                shifts.len()
-            )));
-        }
-        let plan = shifts::plan(&self.design, &shifts, self.motor.delays_s.first().copied())?;
-        if plan.parts.len() > model::MAX_MOVING_PARTS {
-            return Err(SimError::Setup(format!(
-                "at most {} parts may move in one flight (got {})",
-                model::MAX_MOVING_PARTS,
-                plan.parts.len()
-            )));
-        }
-        self.shifts = shifts;
-        self.plan = plan;
-        self.rebuild()
+    pub fn with_shifts(self, shifts: Vec<MassShift>) -> Result<Simulation, SimError> {
+        self.with_changes(|c| c.shifts(shifts))
     }
 
     /// Integrator and limits.
-    pub fn with_options(mut self, options: SimOptions) -> Result<Simulation, SimError> {
-        options.validate().map_err(SimError::Setup)?;
-        self.options = options;
-        self.rebuild()
+    pub fn with_options(self, options: SimOptions) -> Result<Simulation, SimError> {
+        self.with_changes(|c| c.options(options))
     }
 
     /// Give the part `component` (and what it holds, scaled alike) a mass of `mass_kg`, as a
     /// dispersion of a ballast or payload does, without rebuilding the design. Refused for a
     /// part whose mass an override hides, a body component or an external part.
-    pub fn with_part_mass(mut self, component: &str, mass_kg: f64) -> Result<Simulation, SimError> {
-        let bad = |rule: String| SimError::Setup(format!("part mass of \"{component}\": {rule}"));
-        let idx = self
-            .design
-            .component_index(component)
-            .ok_or_else(|| bad("the design has no such component".into()))?;
-        if !(mass_kg.is_finite() && mass_kg > 0.0) {
-            return Err(bad(format!(
-                "mass_kg must be positive and finite (got {mass_kg})"
-            )));
-        }
-        let c = &self.design.components[idx];
-        if c.is_body() || c.is_external() {
-            return Err(bad(
-                "only an internal part's mass can change this way".into()
-            ));
-        }
-        let hidden = c.overrides.mass_kg.is_some()
-            || self.design.stages[c.stage].overrides.mass_kg.is_some()
-            || std::iter::successors(c.parent, |&p| self.design.components[p].parent).any(|p| {
-                let o = &self.design.components[p].overrides;
-                o.mass_kg.is_some() && o.covers_children
-            });
-        if hidden {
-            return Err(bad(
-                "a mass override (its own, its stage's or a holder's) hides its mass".into(),
-            ));
-        }
-        self.part_masses.retain(|(i, _)| *i != idx);
-        self.part_masses.push((idx, mass_kg));
-        self.rebuild()
+    pub fn with_part_mass(self, component: &str, mass_kg: f64) -> Result<Simulation, SimError> {
+        self.with_changes(|c| c.part_mass(component, mass_kg))
     }
 
     /// Multiply the drag coefficient by `scale` (a dispersion).
-    pub fn with_drag_scale(mut self, scale: f64) -> Result<Simulation, SimError> {
-        if !(scale.is_finite() && scale > 0.0) {
-            return Err(SimError::Setup(format!(
-                "drag scale must be positive and finite (got {scale})"
-            )));
-        }
-        self.drag_scale = scale;
-        self.rebuild()
+    pub fn with_drag_scale(self, scale: f64) -> Result<Simulation, SimError> {
+        self.with_changes(|c| c.drag_scale(scale))
     }
 
     /// Change the structure's mass and center of mass (a dispersion, see [`MassAdjustment`]).
     pub fn with_mass_adjustment(
-        mut self,
+        self,
         delta_mass_kg: f64,
         delta_cg_m: f64,
     ) -> Result<Simulation, SimError> {
-        let dry = mass::dry(&self.design).mass_kg;
-        if !(delta_mass_kg.is_finite() && delta_cg_m.is_finite()) || dry + delta_mass_kg <= 0.0 {
-            return Err(SimError::Setup(format!("mass adjustment: delta_mass_kg {delta_mass_kg} and delta_cg_m {delta_cg_m} must be finite and leave a positive mass (structure {dry} kg)")));
-        }
-        self.mass_adjustment = MassAdjustment {
-            delta_mass_kg,
-            delta_cg_m,
-        };
-        self.rebuild()
+        self.with_changes(|c| c.mass_adjustment(delta_mass_kg, delta_cg_m))
     }
 
     /// Change the launch site and the rail (a dispersion of the wind, elevation or rail).
-    pub fn with_site(mut self, env: Environment, rail: Rail) -> Result<Simulation, SimError> {
-        self.env = env;
-        self.rail = rail;
-        self.rebuild()
+    pub fn with_site(self, env: Environment, rail: Rail) -> Result<Simulation, SimError> {
+        self.with_changes(|c| c.site(env, rail))
     }
 
     /// Change the motor's options (its impulse and time scales, its masses).
-    pub fn with_motor_scales(mut self, options: MotorOptions) -> Result<Simulation, SimError> {
-        self.motor_options = options;
-        self.rebuild()
+    pub fn with_motor_scales(self, options: MotorOptions) -> Result<Simulation, SimError> {
+        self.with_changes(|c| c.motor_scales(options))
     }
 
     pub fn environment(&self) -> &Environment {

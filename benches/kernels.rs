@@ -1,0 +1,94 @@
+//! The kernels every flight and every batch lane calls, timed alone: the cycloid, the
+//! mass-property kernel and the 6-DOF derivative, over 1,024 lanes of different instants
+//! (reported by criterion as elements per second: lanes or evaluations per second).
+//!
+//! `cargo bench --bench kernels`
+
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
+use hpr_design::{motor, Design};
+use hpr_sim::cycloid;
+use hpr_sim::flight::model::MAX_SHIFTS;
+use hpr_sim::flight::{Environment, Rail, Simulation};
+use hpr_sim::{MassShift, Trigger};
+use std::hint::black_box;
+
+const REFERENCE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/validation/designs/synthetic-54mm-three-fin.json"
+);
+const LANES: usize = 1024;
+
+fn simulation() -> Simulation {
+    Simulation::new(
+        Design::load(REFERENCE).unwrap(),
+        motor::find("Cesaroni_I175").unwrap(),
+        Environment::default(),
+        Rail::default(),
+    )
+    .unwrap()
+    .with_shifts(vec![MassShift::new(
+        Trigger::Time { time_s: 1.0 },
+        "ballast",
+        0.3,
+        1.0,
+    )])
+    .unwrap()
+}
+
+fn kernels(c: &mut Criterion) {
+    let sim = simulation();
+    let model = sim.model();
+    let times: Vec<f64> = (0..LANES)
+        .map(|i| 0.5 + 3.0 * i as f64 / LANES as f64)
+        .collect();
+    let mut starts = [f64::INFINITY; MAX_SHIFTS];
+    starts[0] = 1.0;
+
+    let mut g = c.benchmark_group("kernels");
+    g.throughput(Throughput::Elements(LANES as u64));
+    g.bench_function("cycloid (lanes)", |b| {
+        b.iter(|| {
+            times
+                .iter()
+                .map(|&t| cycloid::evaluate(black_box(t), 1.0, 1.0, 0.3).accel_m_s2)
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("mass properties at an instant (lanes)", |b| {
+        b.iter(|| {
+            times
+                .iter()
+                .map(|&t| model.instant(&starts, black_box(t)).mass.r_cm_accel.z)
+                .sum::<f64>()
+        })
+    });
+    // A climbing, slightly tilted, slowly turning state at each lane's instant.
+    let q = nalgebra::UnitQuaternion::from_euler_angles(0.02, -0.01, 0.0);
+    let q = q.quaternion();
+    let states: Vec<[f64; 13]> = (0..LANES)
+        .map(|i| {
+            let v = 50.0 + 250.0 * i as f64 / LANES as f64;
+            [
+                3.0, 1.0, 300.0, 2.0, 1.0, v, q.w, q.i, q.j, q.k, 0.01, -0.02, 0.5,
+            ]
+        })
+        .collect();
+    g.bench_function("6-DOF derivative (evaluations)", |b| {
+        b.iter_batched_ref(
+            || [0.0; 13],
+            |dy| {
+                let mut s = 0.0;
+                for (t, y) in times.iter().zip(&states) {
+                    model.derivative_6dof(&starts, *t, y, dy);
+                    s += dy[5];
+                }
+                s
+            },
+            BatchSize::SmallInput,
+        )
+    });
+    g.finish();
+}
+
+criterion_group!(benches, kernels);
+criterion_main!(benches);

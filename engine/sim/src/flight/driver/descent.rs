@@ -1,0 +1,139 @@
+//! The descent under canopy: the center of mass as a point with the canopies' drag.
+
+use super::*;
+
+/// Under canopy until landing or the time limit.
+pub(super) fn descent_phase<O: Observer>(
+    run: &mut Run<'_, O>,
+    stepper: &mut Stepper<N3>,
+    t0: f64,
+    y0: &[f64; N3],
+) -> Result<PhaseEnd, SimError> {
+    let model = run.model;
+    let name = Phase::Descent.name();
+    let mut cds = run.cds();
+    {
+        let starts = run.starts;
+        let mut evals = 0u64;
+        each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t0, y0)).map_err(|e| integ_at(t0, y0, e, name))?;
+        run.evaluations += evals;
+        let mut dy = [0.0; N3];
+        let aux = model.derivative_descent(&starts, cds, t0, y0, &mut dy);
+        run.record(
+            Phase::Descent,
+            t0,
+            Vector3::new(y0[0], y0[1], y0[2]),
+            Vector3::new(y0[3], y0[4], y0[5]),
+            [f64::NAN; 4],
+            [0.0; 3],
+            &aux,
+            model.motor.eval(t0).thrust_n,
+        );
+    }
+    loop {
+        let t_now = each!(stepper, s => s.t());
+        let t_stop = run.next_stop(t_now);
+        let starts = run.starts;
+        let mut evals = 0u64;
+        let mut bad: Option<(f64, [f64; N3])> = None;
+        let outcome = each!(stepper, s => s.step(|t, y, dy| {
+            evals += 1;
+            model.derivative_descent(&starts, cds, t, y, dy);
+            if bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
+                bad = Some((t, *y));
+            }
+        }, t_stop))
+        .map_err(|e| match bad {
+            Some((tb, yb)) => non_finite(tb, &yb),
+            None => integ_at(t_now, each!(stepper, s => s.y()), e, name),
+        })?;
+        if !each!(stepper, s => s.y()).iter().all(|v| v.is_finite()) {
+            let (tb, yb) = bad.unwrap_or((each!(stepper, s => s.t()), *each!(stepper, s => s.y())));
+            return Err(non_finite(tb, &yb));
+        }
+        run.evaluations += evals;
+        run.steps += 1;
+        let mut found: Option<(f64, EventKind)> = None;
+        let mut consider = |t: Option<f64>, k: EventKind| {
+            if let Some(t) = t {
+                if found.is_none_or(|(tf, _)| t < tf) {
+                    found = Some((t, k));
+                }
+            }
+        };
+        let root_err = |e| SimError::Setup(format!("event location failed: {e}"));
+        each!(stepper, s => {
+            if !run.apogee_done {
+                consider(locate_event(&**s, |_t, y: &[f64; N3]| y[5], Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::Apogee);
+            }
+            consider(locate_event(&**s, |_t, y: &[f64; N3]| y[2], Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::Landing);
+            if run.apogee_done {
+                for (i, p) in model.parachutes.iter().enumerate() {
+                    if let (Trigger::HeightDescending { height_m }, None) = (p.trigger, run.chute_triggered[i]) {
+                        consider(locate_event(&**s, |_t, y: &[f64; N3]| y[2] - height_m, Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::ParachuteTrigger(i));
+                    }
+                }
+                for (k, sh) in model.shifts.iter().enumerate() {
+                    if let (Trigger::HeightDescending { height_m }, true) = (sh.trigger, starts[k].is_infinite()) {
+                        consider(locate_event(&**s, |_t, y: &[f64; N3]| y[2] - height_m, Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::Shift(k));
+                    }
+                }
+            }
+        });
+        let (t_end, y_end) = match found {
+            Some((te, _)) => (te, each!(stepper, s => s.dense(te))),
+            None => (each!(stepper, s => s.t()), *each!(stepper, s => s.y())),
+        };
+        let mut dy = [0.0; N3];
+        let aux = model.derivative_descent(&run.starts, cds, t_end, &y_end, &mut dy);
+        let pos = Vector3::new(y_end[0], y_end[1], y_end[2]);
+        let vel = Vector3::new(y_end[3], y_end[4], y_end[5]);
+        run.record(
+            Phase::Descent,
+            t_end,
+            pos,
+            vel,
+            [f64::NAN; 4],
+            [0.0; 3],
+            &aux,
+            model.motor.eval(t_end).thrust_n,
+        );
+        let (alt, speed) = (pos.z, vel.norm());
+        if let Some((te, kind)) = found {
+            match kind {
+                EventKind::Apogee => {
+                    run.apogee_done = true;
+                    run.metrics.apogee_m = Some(alt);
+                    run.metrics.apogee_time_s = Some(te);
+                    run.push_event(EventKind::Apogee, te, alt, speed);
+                    run.fire(te, alt, speed, |tr| matches!(tr, Trigger::Apogee))?;
+                }
+                EventKind::Landing => {
+                    land(run, te, pos, vel);
+                    return Ok(PhaseEnd::Landed);
+                }
+                EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
+                EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
+                _ => {}
+            }
+        }
+        if found.is_some() || matches!(outcome, crate::integrate::StepOutcome::ReachedStop) {
+            run.at_stop(t_end, alt, speed)?;
+        }
+        if t_end >= model.options.max_time_s {
+            run.push_event(EventKind::TimeLimit, t_end, alt, speed);
+            return Ok(PhaseEnd::TimeLimit);
+        }
+        let new_cds = run.cds();
+        if found.is_some()
+            || new_cds != cds
+            || matches!(outcome, crate::integrate::StepOutcome::ReachedStop)
+        {
+            cds = new_cds;
+            let starts = run.starts;
+            let mut evals = 0u64;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
+            run.evaluations += evals;
+        }
+    }
+}

@@ -1,0 +1,231 @@
+//! The rail and free-flight phases: one step at a time, with the event functions found from
+//! one mass-state evaluation per step end and located by Brent's method on the dense output.
+
+use super::*;
+
+/// An event function of the rail and free-flight phases.
+#[derive(Debug, Clone, Copy)]
+enum G {
+    /// O's travel along the rail minus the travel to the exit.
+    RailTravel,
+    /// The center of mass's vertical speed.
+    VerticalSpeed,
+    /// The center of mass's height minus this, m.
+    Height(f64),
+}
+
+/// What the driver knows at the end of a step: the center's position and velocity and the
+/// figures a sample needs, from one mass-state evaluation.
+#[derive(Debug, Clone, Copy)]
+struct EndPoint {
+    pos: Vector3<f64>,
+    vel: Vector3<f64>,
+    aux: FlightAux,
+}
+
+impl G {
+    /// The function's value from an end point (no further evaluation).
+    #[inline]
+    fn at_end(self, model: &FlightModel, y: &[f64; N6], ep: &EndPoint) -> f64 {
+        match self {
+            G::RailTravel => {
+                (Vector3::new(y[0], y[1], y[2]) - model.rail.o_start_n).dot(&model.rail.direction_n)
+                    - model.rail.travel_to_exit_m
+            }
+            G::VerticalSpeed => ep.vel.z,
+            G::Height(h) => ep.pos.z - h,
+        }
+    }
+
+    /// The function's value at any `(t, y)` (for root-finding on the dense output).
+    #[inline]
+    fn at(self, model: &FlightModel, starts: &ShiftStarts, t: f64, y: &[f64; N6]) -> f64 {
+        match self {
+            G::RailTravel => {
+                (Vector3::new(y[0], y[1], y[2]) - model.rail.o_start_n).dot(&model.rail.direction_n)
+                    - model.rail.travel_to_exit_m
+            }
+            G::VerticalSpeed => cm_of(model, starts, t, y).1.z,
+            G::Height(h) => cm_of(model, starts, t, y).0.z - h,
+        }
+    }
+}
+
+/// Rail or free flight until the rail exit (rail), a canopy opens, landing or the time limit.
+pub(super) fn six_dof_phase<O: Observer>(
+    run: &mut Run<'_, O>,
+    stepper: &mut Stepper<N6>,
+    phase: Phase,
+    t0: f64,
+    y0: &[f64; N6],
+) -> Result<(f64, [f64; N6], PhaseEnd), SimError> {
+    let model = run.model;
+    let rail = phase == Phase::Rail;
+    let deriv = |starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]| -> FlightAux {
+        if rail {
+            model.derivative_rail(starts, t, y, dy)
+        } else {
+            model.derivative_6dof(starts, t, y, dy)
+        }
+    };
+    // The end point of `(t, y)` whose derivative `dy` is known.
+    let end_point = |starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &[f64; N6]| -> EndPoint {
+        let (pos, vel, aux) = model.end_point(starts, t, y, dy, rail);
+        EndPoint { pos, vel, aux }
+    };
+    let name = phase.name();
+    let mut events: Vec<(EventKind, G)> =
+        Vec::with_capacity(2 + model.parachutes.len() + model.shifts.len());
+    let (mut prev_y, mut prev) = {
+        let starts = run.starts;
+        let mut evals = 0u64;
+        each!(stepper, s => s.init(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t0, y0))
+            .map_err(|e| integ_at(t0, y0, e, name))?;
+        run.evaluations += evals;
+        let ep = end_point(&starts, t0, y0, each!(stepper, s => s.dy()));
+        run.record(
+            phase,
+            t0,
+            ep.pos,
+            ep.vel,
+            [y0[6], y0[7], y0[8], y0[9]],
+            [y0[10], y0[11], y0[12]],
+            &ep.aux,
+            model.motor.eval(t0).thrust_n,
+        );
+        (*y0, ep)
+    };
+    loop {
+        let t_now = each!(stepper, s => s.t());
+        let t_stop = run.next_stop(t_now);
+        let starts = run.starts;
+        let mut evals = 0u64;
+        // The first evaluation whose derivative was not finite (a NaN makes the adaptive
+        // stepper reject until its step underflows; RK4 would carry it into the state).
+        let mut bad: Option<(f64, [f64; N6])> = None;
+        let outcome = each!(stepper, s => s.step(|t, y, dy| {
+            evals += 1;
+            deriv(&starts, t, y, dy);
+            if bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
+                bad = Some((t, *y));
+            }
+        }, t_stop))
+        .map_err(|e| match bad {
+            Some((tb, yb)) => non_finite(tb, &yb),
+            None => integ_at(t_now, each!(stepper, s => s.y()), e, name),
+        })?;
+        if !each!(stepper, s => s.y()).iter().all(|v| v.is_finite()) {
+            let (tb, yb) = bad.unwrap_or((each!(stepper, s => s.t()), *each!(stepper, s => s.y())));
+            return Err(non_finite(tb, &yb));
+        }
+        run.evaluations += evals;
+        run.steps += 1;
+        let (t1, y1) = (each!(stepper, s => s.t()), *each!(stepper, s => s.y()));
+        let ep1 = end_point(&starts, t1, &y1, each!(stepper, s => s.dy()));
+        // The event functions that can fire now.
+        events.clear();
+        if rail {
+            events.push((EventKind::RailExit, G::RailTravel));
+        } else if !run.apogee_done {
+            events.push((EventKind::Apogee, G::VerticalSpeed));
+        } else {
+            events.push((EventKind::Landing, G::Height(0.0)));
+            for (i, p) in model.parachutes.iter().enumerate() {
+                if let (Trigger::HeightDescending { height_m }, None) =
+                    (p.trigger, run.chute_triggered[i])
+                {
+                    events.push((EventKind::ParachuteTrigger(i), G::Height(height_m)));
+                }
+            }
+            for (k, sh) in model.shifts.iter().enumerate() {
+                if let (Trigger::HeightDescending { height_m }, true) =
+                    (sh.trigger, starts[k].is_infinite())
+                {
+                    events.push((EventKind::Shift(k), G::Height(height_m)));
+                }
+            }
+        }
+        // Earliest crossing in the step: rail travel rises through zero, the rest fall.
+        let mut found: Option<(f64, EventKind)> = None;
+        for &(kind, g) in &events {
+            let (g0, g1) = (g.at_end(model, &prev_y, &prev), g.at_end(model, &y1, &ep1));
+            let crossing = if rail {
+                Crossing::Rising
+            } else {
+                Crossing::Falling
+            };
+            if t1 > t_now && crossing.matches(g0, g1) {
+                let te = each!(stepper, s => brent_root_bracketed(|t| g.at(model, &starts, t, &s.dense(t)), t_now, g0, t1, g1, EVENT_TOL_S))
+                    .map_err(|e| SimError::Setup(format!("event location failed: {e}")))?;
+                if found.is_none_or(|(tf, _)| te < tf) {
+                    found = Some((te, kind));
+                }
+            }
+        }
+        let (t_end, y_end, ep) = match found {
+            Some((te, _)) => {
+                let ye = each!(stepper, s => s.dense(te));
+                let mut dy = [0.0; N6];
+                deriv(&run.starts, te, &ye, &mut dy);
+                (te, ye, end_point(&run.starts, te, &ye, &dy))
+            }
+            None => (t1, y1, ep1),
+        };
+        run.record(
+            phase,
+            t_end,
+            ep.pos,
+            ep.vel,
+            [y_end[6], y_end[7], y_end[8], y_end[9]],
+            [y_end[10], y_end[11], y_end[12]],
+            &ep.aux,
+            model.motor.eval(t_end).thrust_n,
+        );
+        let (pos, vel) = (ep.pos, ep.vel);
+        let (alt, speed) = (pos.z, vel.norm());
+        prev_y = y_end;
+        prev = ep;
+        if let Some((te, kind)) = found {
+            match kind {
+                EventKind::RailExit => {
+                    run.rail_exit_done = true;
+                    run.push_event(EventKind::RailExit, te, alt, speed);
+                    run.metrics.rail_exit_time_s = Some(te);
+                    run.metrics.rail_exit_speed_m_s = Some(speed);
+                    run.metrics.static_margin_rail_exit_cal =
+                        Some(model.static_margin(&ep.aux.mass));
+                    return Ok((te, y_end, PhaseEnd::RailExit));
+                }
+                EventKind::Apogee => {
+                    run.apogee_done = true;
+                    run.metrics.apogee_m = Some(alt);
+                    run.metrics.apogee_time_s = Some(te);
+                    run.push_event(EventKind::Apogee, te, alt, speed);
+                    run.fire(te, alt, speed, |tr| matches!(tr, Trigger::Apogee))?;
+                }
+                EventKind::Landing => {
+                    land(run, te, pos, vel);
+                    return Ok((te, y_end, PhaseEnd::Landed));
+                }
+                EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
+                EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
+                _ => {}
+            }
+        }
+        if (found.is_some() || matches!(outcome, crate::integrate::StepOutcome::ReachedStop))
+            && run.at_stop(t_end, alt, speed)?
+        {
+            return Ok((t_end, y_end, PhaseEnd::Deploy));
+        }
+        if t_end >= model.options.max_time_s {
+            run.push_event(EventKind::TimeLimit, t_end, alt, speed);
+            return Ok((t_end, y_end, PhaseEnd::TimeLimit));
+        }
+        if found.is_some() {
+            let starts = run.starts;
+            let mut evals = 0u64;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
+            run.evaluations += evals;
+        }
+    }
+}
