@@ -1,0 +1,113 @@
+//! The reference design against the moving-mass specification's worked example, digit for
+//! digit as the specification prints it (issue 2 §6 and issue 4), and `hpr-mc inspect` on it.
+
+use hpr_design::{motor, Design};
+use hpr_sim::flight::{Environment, Rail, Simulation};
+use hpr_sim::{MassShift, Trigger};
+
+const REFERENCE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/validation/designs/synthetic-54mm-three-fin.json"
+);
+
+fn simulation() -> Simulation {
+    Simulation::new(
+        Design::load(REFERENCE).unwrap(),
+        motor::find("Cesaroni_I175").unwrap(),
+        Environment::default(),
+        Rail::default(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn the_moving_ballast_example_prints_the_specification_s_table_to_every_digit() {
+    let still = simulation();
+    let sim = still
+        .clone()
+        .with_shifts(vec![MassShift::new(
+            Trigger::Time { time_s: 5.0 },
+            "ballast",
+            0.3,
+            1.0,
+        )])
+        .unwrap();
+    let flight = sim.run(&mut ()).unwrap();
+    let table: Vec<String> = [4.0, 5.25, 5.5, 5.75, 7.0]
+        .iter()
+        .map(|&t| {
+            let p = sim.mass_properties(&flight, t);
+            format!(
+                "{t:.2} {:.4} {:.4} {:.5}",
+                p.mass_kg,
+                p.cg_m.x,
+                p.transverse_inertia()
+            )
+        })
+        .collect();
+    let spec = [
+        "4.00 0.8188 0.6681 0.09556",
+        "5.25 0.8188 0.6748 0.09248",
+        "5.50 0.8188 0.7048 0.08138",
+        "5.75 0.8188 0.7347 0.07483",
+        "7.00 0.8188 0.7414 0.07399",
+    ];
+    assert_eq!(table, spec);
+    let before = sim.static_margin_for(sim.mass_properties(&flight, 4.0).cg_m.x);
+    let after = sim.static_margin_for(sim.mass_properties(&flight, 7.0).cg_m.x);
+    assert_eq!(
+        format!("{before:.3} {after:.3} {:.3}", after - before),
+        "4.297 2.996 -1.302"
+    );
+    let moving = flight.metrics.apogee_m.unwrap();
+    let held = still.run(&mut ()).unwrap().metrics.apogee_m.unwrap();
+    eprintln!("apogee {moving:.3} m with the ballast moving, {held:.3} m held still");
+    assert!(
+        (moving - held).abs() < 1.0,
+        "the apogees differ by {} m (bound 1 m)",
+        moving - held
+    );
+    for a in [moving, held] {
+        assert!((a - 1750.0).abs() <= 17.5, "apogee {a} m (1750 m ± 1 %)");
+    }
+}
+
+#[test]
+fn inspect_prints_the_reference_design_s_mass_properties_and_margin() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
+        .args(["inspect", REFERENCE, "--json"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let b = &v["after_burnout"];
+    let f = |k: &str| b[k].as_f64().unwrap();
+    assert_eq!(
+        format!(
+            "{:.4} {:.4} {:.5} {:.3}",
+            f("mass_kg"),
+            f("cg_m"),
+            f("inertia_transverse_kg_m2"),
+            f("static_margin_cal")
+        ),
+        "0.8188 0.6681 0.09556 4.297"
+    );
+    assert_eq!(v["motor"]["designation"], "411-I175-WH-14A");
+    // The text form says the same.
+    let text = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
+        .args(["inspect", REFERENCE])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&text.stdout);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("after burnout"))
+        .unwrap();
+    for figure in ["0.8188", "0.6681", "0.09556", "4.297"] {
+        assert!(line.contains(figure), "{line}");
+    }
+}
