@@ -1,25 +1,31 @@
 //! Flying variants: the base setup of a scenario ([`Prepared`]: design, motor, nominals,
-//! checked once), a variant's values applied to it, and the flight with `hpr_sim`'s
-//! single-flight [`Simulation`].
+//! checked once, and one base [`Simulation`] for the whole run), a chunk of variants turned
+//! into the batch engine's columns, and flown as lanes of [`hpr_sim::batch`].
 //!
 //! [`fly_chunk`] is the one step that flies: it takes a chunk of variants and returns one
-//! [`VariantResult`] per variant, in order. The batch engine replaces it without touching the
-//! rest of the run. A variant that can't fly is a result too, never an error of the run:
-//! `refused` (a sampled value outside its range, or a setup the simulator refuses, such as a
-//! shift taking its part out of its holder), `failed` (the flight stopped with an error, went
-//! non-finite, or ended without landing) or `time_limit` (cut by `integrator.max_time_s`
-//! before landing). Only `landed` variants enter the statistics.
+//! [`VariantResult`] per variant, in order. Every swept or dispersed input of a variant is a
+//! column of the chunk (structure mass and center → the structure's deltas, ballast → the
+//! part mass, motor impulse and burn time → scales of the nominal curve, drag scale, site,
+//! wind, rail, and per parachute or shift its numbers), so one base flight, built once from
+//! the first sweep point, serves every sweep point: a lane is that base with its row applied
+//! in one rebuild of the light per-flight model, and the design's tables are never rebuilt.
+//! A variant that can't fly is a result too, never an error of the run: `refused` (a sampled
+//! value outside its range, or a setup the simulator refuses, such as a shift taking its part
+//! out of its holder), `failed` (the flight stopped with an error, went non-finite, panicked
+//! or ended without landing) or `time_limit` (cut by `integrator.max_time_s` before landing).
+//! Only `landed` variants enter the statistics.
+
+mod setup;
 
 use super::params::Param;
-use super::scenario::{trigger_value, with_trigger_value, Scenario, ScenarioError};
+use super::scenario::{trigger_value, Scenario, ScenarioError};
 use super::variants::{Plan, PlanInput, Variant};
-use hpr_design::design::model::{Design, MassSpec};
+use hpr_design::design::model::Design;
 use hpr_design::mass;
-use hpr_design::motor::{self, Motor, MotorOptions};
-use hpr_sim::gravity::Gravity;
-use hpr_sim::wind::Wind;
-use hpr_sim::{Environment, EventKind, Flight, Parachute, Rail, SimOptions, Simulation};
-use hpr_sim::{MassShift, Trigger};
+use hpr_design::motor::{self, Motor};
+use hpr_sim::batch::{self, Batch, LaneResult};
+use hpr_sim::{Simulation, Trigger};
+use setup::{Fixed, Setup};
 
 /// How a variant ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -81,74 +87,6 @@ pub const FIXED_METRICS: [(&str, &str); 16] = [
 /// Indices of the landing point's east (x) and north (y) in the metrics.
 pub const LANDING_XY: (usize, usize) = (12, 13);
 
-/// Every flight's values, nominal or a variant's.
-#[derive(Debug, Clone, PartialEq)]
-struct Setup {
-    structure_mass_kg: f64,
-    structure_cg_m: f64,
-    ballast_kg: f64,
-    impulse_ns: f64,
-    burn_time_s: f64,
-    drag_scale: f64,
-    elevation_m: f64,
-    wind_speed_m_s: f64,
-    wind_from_deg: f64,
-    rail: [f64; 3],
-    /// Per parachute: CdS, lag, trigger number (NaN if none).
-    parachutes: Vec<[f64; 3]>,
-    /// Per shift: travel, duration, trigger number (NaN if none).
-    shifts: Vec<[f64; 3]>,
-}
-
-impl Setup {
-    fn get(&self, p: Param) -> f64 {
-        match p {
-            Param::StructureMassKg => self.structure_mass_kg,
-            Param::StructureCgM => self.structure_cg_m,
-            Param::BallastKg => self.ballast_kg,
-            Param::MotorImpulseNs => self.impulse_ns,
-            Param::MotorBurnTimeS => self.burn_time_s,
-            Param::DragScale => self.drag_scale,
-            Param::ElevationM => self.elevation_m,
-            Param::WindSpeedMS => self.wind_speed_m_s,
-            Param::WindFromDeg => self.wind_from_deg,
-            Param::RailLengthM => self.rail[0],
-            Param::RailInclinationDeg => self.rail[1],
-            Param::RailHeadingDeg => self.rail[2],
-            Param::ParachuteCdsM2(i) => self.parachutes[i][0],
-            Param::ParachuteLagS(i) => self.parachutes[i][1],
-            Param::ParachuteTrigger(i) => self.parachutes[i][2],
-            Param::ShiftTravelM(i) => self.shifts[i][0],
-            Param::ShiftDurationS(i) => self.shifts[i][1],
-            Param::ShiftTrigger(i) => self.shifts[i][2],
-        }
-    }
-
-    fn set(&mut self, p: Param, v: f64) {
-        let slot = match p {
-            Param::StructureMassKg => &mut self.structure_mass_kg,
-            Param::StructureCgM => &mut self.structure_cg_m,
-            Param::BallastKg => &mut self.ballast_kg,
-            Param::MotorImpulseNs => &mut self.impulse_ns,
-            Param::MotorBurnTimeS => &mut self.burn_time_s,
-            Param::DragScale => &mut self.drag_scale,
-            Param::ElevationM => &mut self.elevation_m,
-            Param::WindSpeedMS => &mut self.wind_speed_m_s,
-            Param::WindFromDeg => &mut self.wind_from_deg,
-            Param::RailLengthM => &mut self.rail[0],
-            Param::RailInclinationDeg => &mut self.rail[1],
-            Param::RailHeadingDeg => &mut self.rail[2],
-            Param::ParachuteCdsM2(i) => &mut self.parachutes[i][0],
-            Param::ParachuteLagS(i) => &mut self.parachutes[i][1],
-            Param::ParachuteTrigger(i) => &mut self.parachutes[i][2],
-            Param::ShiftTravelM(i) => &mut self.shifts[i][0],
-            Param::ShiftDurationS(i) => &mut self.shifts[i][1],
-            Param::ShiftTrigger(i) => &mut self.shifts[i][2],
-        };
-        *slot = v;
-    }
-}
-
 /// A scenario ready to fly: the design and motor loaded, the nominals resolved, the plan of
 /// the variants built, and every sweep point's nominal flight checked.
 #[derive(Debug, Clone)]
@@ -160,8 +98,9 @@ pub struct Prepared {
     pub metrics: Vec<Column>,
     design: Design,
     motor: Motor,
-    ballast: Option<usize>,
     nominal: Setup,
+    /// The flight at the first sweep point's centers; every lane is it with its row applied.
+    batch: Batch,
 }
 
 impl Prepared {
@@ -205,6 +144,22 @@ impl Prepared {
                     )
                 })?;
                 check_ballast(&design, idx).map_err(|r| bad("design.ballast", r))?;
+                // A variant's ballast is the part's mass, scaled from the design's with what
+                // it holds (the simulator's part mass): only an internal part that holds
+                // nothing keeps its meaning, its own mass.
+                let c = &design.components[idx];
+                if uses_ballast.is_some() && (c.is_body() || c.is_external()) {
+                    return Err(bad(
+                        "design.ballast",
+                        format!("the component \"{id}\" is not an internal part (a body component or an external one); ballast_kg is the mass of an internal part"),
+                    ));
+                }
+                if uses_ballast.is_some() && !c.children.is_empty() {
+                    return Err(bad(
+                        "design.ballast",
+                        format!("the component \"{id}\" holds other parts; ballast_kg is the mass of a part that holds nothing"),
+                    ));
+                }
                 Some(idx)
             }
         };
@@ -290,63 +245,64 @@ impl Prepared {
                 unit: "cal",
             });
         }
-        let prepared = Prepared {
+        let fixed = Fixed {
+            scenario: &scenario,
+            design: &design,
+            motor: &motor,
+            nominal: &nominal,
+        };
+        let swept = scenario.swept().next().is_some();
+        let point_key = if swept { "sweep" } else { "(nominal flight)" };
+        // Every sweep point's nominal flight must set up, and a dispersion relative to its
+        // center needs a center that is not zero. The first point's flight is the base of
+        // every lane; the others are checked as lanes of it.
+        let mut batch: Option<Batch> = None;
+        for point in 0..plan.points() {
+            let centers = plan.centers(point);
+            let at = at_point(&scenario, &plan, point);
+            for (input, c) in scenario.inputs.iter().zip(&centers) {
+                if let Some(d) = &input.dispersion {
+                    if d.needs_nonzero_center() && *c == 0.0 {
+                        return Err(bad(&format!("dispersions.{}", input.key), format!("a relative or lognormal dispersion scales the nominal, which is 0{at}; give an absolute dispersion")));
+                    }
+                }
+            }
+            let setup = fixed.setup(&centers).map_err(|r| bad(point_key, r))?;
+            let refused = |r: String| {
+                bad(
+                    point_key,
+                    format!("the nominal flight{at} can't be set up: {r}"),
+                )
+            };
+            match &batch {
+                None => {
+                    let base = fixed.simulation(&setup).map_err(refused)?;
+                    let part = ballast.map(|i| design.components[i].id.as_str());
+                    batch = Some(Batch::new(base, part).map_err(refused)?);
+                }
+                Some(b) => {
+                    b.variant(&fixed.columns(&[&setup]), 0).map_err(refused)?;
+                }
+            }
+        }
+        let batch = batch.ok_or_else(|| bad("sweep", "the sweep has no points".into()))?;
+        Ok(Prepared {
             scenario,
             plan,
             metrics,
             design,
             motor,
-            ballast,
             nominal,
-        };
-
-        // Every sweep point's nominal flight must set up, and a dispersion relative to its
-        // center needs a center that is not zero.
-        for point in 0..prepared.plan.points() {
-            let centers = prepared.plan.centers(point);
-            for (input, c) in prepared.scenario.inputs.iter().zip(&centers) {
-                if let Some(d) = &input.dispersion {
-                    if d.needs_nonzero_center() && *c == 0.0 {
-                        return Err(bad(&format!("dispersions.{}", input.key), format!("a relative or lognormal dispersion scales the nominal, which is 0{}; give an absolute dispersion", prepared.at_point(point))));
-                    }
-                }
-            }
-            let setup = prepared
-                .setup(&centers)
-                .map_err(|r| bad(&prepared.point_key(point), r))?;
-            prepared.simulation(&setup).map_err(|r| {
-                bad(
-                    &prepared.point_key(point),
-                    format!(
-                        "the nominal flight{} can't be set up: {r}",
-                        prepared.at_point(point)
-                    ),
-                )
-            })?;
-        }
-        Ok(prepared)
+            batch,
+        })
     }
 
-    /// " at sweep point k (key = v, ...)", or "" without a sweep.
-    fn at_point(&self, point: usize) -> String {
-        let swept: Vec<String> = self
-            .scenario
-            .swept()
-            .zip(self.plan.sweep_values(point))
-            .map(|(i, v)| format!("{} = {v}", i.key))
-            .collect();
-        if swept.is_empty() {
-            String::new()
-        } else {
-            format!(" at sweep point {point} ({})", swept.join(", "))
-        }
-    }
-
-    fn point_key(&self, _point: usize) -> String {
-        if self.scenario.swept().next().is_some() {
-            "sweep".into()
-        } else {
-            "(nominal flight)".into()
+    fn fixed(&self) -> Fixed<'_> {
+        Fixed {
+            scenario: &self.scenario,
+            design: &self.design,
+            motor: &self.motor,
+            nominal: &self.nominal,
         }
     }
 
@@ -365,171 +321,35 @@ impl Prepared {
         &self.motor
     }
 
-    /// The nominal setup with the plan's inputs set to `values`, each checked against its
-    /// range (the error names the input and the rule).
-    fn setup(&self, values: &[f64]) -> Result<Setup, String> {
-        let mut s = self.nominal.clone();
-        for (input, &v) in self.scenario.inputs.iter().zip(values) {
-            input
-                .param
-                .domain()
-                .check(v)
-                .map_err(|r| format!("{} = {v}: {r}", input.key))?;
-            s.set(input.param, v);
-        }
-        Ok(s)
+    /// The base flight of every lane (the first sweep point's nominal flight, no samples).
+    pub fn base(&self) -> &Simulation {
+        self.batch.base()
     }
 
-    /// The simulation of a setup.
-    fn simulation(&self, s: &Setup) -> Result<Simulation, String> {
-        let err = |e: &dyn std::fmt::Display| e.to_string();
-        let mut design = self.design.clone();
-        if let Some(idx) = self.ballast {
-            if s.ballast_kg != self.nominal.ballast_kg {
-                design.components[idx].mass_spec = MassSpec::Mass(s.ballast_kg);
-            }
+    /// A variant's result from its lane.
+    fn result(&self, id: u64, lane: LaneResult) -> VariantResult {
+        let status = match lane.status {
+            batch::Status::Landed => Status::Landed,
+            batch::Status::TimeLimit => Status::TimeLimit,
+            batch::Status::Refused => Status::Refused,
+            batch::Status::Failed => Status::Failed,
+        };
+        let error = match status {
+            Status::TimeLimit => Some(format!(
+                "the flight reached its time limit (integrator.max_time_s = {} s) before landing",
+                lane.end_s
+            )),
+            _ => lane.error,
+        };
+        if !lane.flown {
+            return VariantResult {
+                id,
+                status,
+                error,
+                metrics: vec![None; self.metrics.len()],
+            };
         }
-        let options = MotorOptions::default()
-            .with_impulse_scale(s.impulse_ns / self.nominal.impulse_ns)
-            .with_time_scale(s.burn_time_s / self.nominal.burn_time_s);
-        let gravity = if self.scenario.environment.inverse_square_gravity {
-            Gravity::inverse_square(s.elevation_m).map_err(|e| err(&e))?
-        } else {
-            Gravity::default()
-        };
-        let env = Environment {
-            elevation_m: s.elevation_m,
-            wind: Wind::constant(s.wind_speed_m_s, s.wind_from_deg).map_err(|e| err(&e))?,
-            gravity,
-            vacuum: false,
-        };
-        let rail = Rail {
-            length_m: s.rail[0],
-            inclination_deg: s.rail[1],
-            heading_deg: s.rail[2],
-        };
-        // A change of ballast is in the design; the structure's own dispersion comes on top
-        // of it (structure_mass_kg and structure_cg_m are at the nominal ballast).
-        let delta_mass = s.structure_mass_kg - self.nominal.structure_mass_kg;
-        let delta_cg = s.structure_cg_m - self.nominal.structure_cg_m;
-        let mut sim =
-            Simulation::with_motor_options(design, self.motor.clone(), options, env, rail)
-                .map_err(|e| err(&e))?;
-        if !self.scenario.parachutes.is_empty() {
-            let chutes = self
-                .scenario
-                .parachutes
-                .iter()
-                .zip(&s.parachutes)
-                .map(|(p, v)| {
-                    Parachute::new(
-                        p.name.clone(),
-                        v[0],
-                        with_trigger_value(&p.trigger, v[2]),
-                        v[1],
-                    )
-                })
-                .collect();
-            sim = sim.with_parachutes(chutes).map_err(|e| err(&e))?;
-        }
-        if !self.scenario.shifts.is_empty() {
-            let shifts = self
-                .scenario
-                .shifts
-                .iter()
-                .zip(&s.shifts)
-                .map(|(sh, v)| {
-                    MassShift::new(
-                        with_trigger_value(&sh.trigger, v[2]),
-                        sh.component.clone(),
-                        v[0],
-                        v[1],
-                    )
-                })
-                .collect();
-            sim = sim.with_shifts(shifts).map_err(|e| err(&e))?;
-        }
-        sim = sim
-            .with_options(SimOptions {
-                integrator: self.scenario.integrator,
-                max_time_s: self.scenario.max_time_s,
-                keep_samples: false,
-            })
-            .map_err(|e| err(&e))?;
-        if s.drag_scale != 1.0 {
-            sim = sim.with_drag_scale(s.drag_scale).map_err(|e| err(&e))?;
-        }
-        if delta_mass != 0.0 || delta_cg != 0.0 {
-            sim = sim
-                .with_mass_adjustment(delta_mass, delta_cg)
-                .map_err(|e| err(&e))?;
-        }
-        Ok(sim)
-    }
-
-    /// Fly one variant.
-    pub fn fly(&self, v: &Variant) -> VariantResult {
-        let none = vec![None; self.metrics.len()];
-        let refused = |e: String| VariantResult {
-            id: v.id,
-            status: Status::Refused,
-            error: Some(e),
-            metrics: none.clone(),
-        };
-        let setup = match self.setup(&v.values) {
-            Ok(s) => s,
-            Err(e) => return refused(format!("sampled {e}")),
-        };
-        let sim = match self.simulation(&setup) {
-            Ok(s) => s,
-            Err(e) => return refused(e),
-        };
-        let flown = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| sim.run(&mut ())));
-        let flight = match flown {
-            Ok(Ok(f)) => f,
-            Ok(Err(e)) => {
-                return VariantResult {
-                    id: v.id,
-                    status: Status::Failed,
-                    error: Some(e.to_string()),
-                    metrics: none,
-                }
-            }
-            Err(panic) => {
-                let msg = panic
-                    .downcast_ref::<String>()
-                    .cloned()
-                    .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
-                    .unwrap_or_default();
-                return VariantResult {
-                    id: v.id,
-                    status: Status::Failed,
-                    error: Some(format!("the simulator panicked: {msg}")),
-                    metrics: none,
-                };
-            }
-        };
-        let metrics = self.metrics_of(&sim, &flight, &setup);
-        let (status, error) = if flight.metrics.landing_time_s.is_some() {
-            (Status::Landed, None)
-        } else if let Some(e) = flight.event(EventKind::TimeLimit) {
-            (Status::TimeLimit, Some(format!("the flight reached its time limit (integrator.max_time_s = {} s) before landing", e.time_s)))
-        } else {
-            (
-                Status::Failed,
-                Some("the flight ended without landing".to_string()),
-            )
-        };
-        VariantResult {
-            id: v.id,
-            status,
-            error,
-            metrics,
-        }
-    }
-
-    fn metrics_of(&self, sim: &Simulation, f: &Flight, setup: &Setup) -> Vec<Option<f64>> {
-        let m = &f.metrics;
+        let m = &lane.metrics;
         let landing = m.landing_position_m;
         let mut out = vec![
             m.apogee_m,
@@ -549,26 +369,37 @@ impl Prepared {
             landing.map(|p| p[0].hypot(p[1])),
             m.landing_speed_m_s,
         ];
-        let model = sim.model();
-        let end_s = f
-            .events
-            .iter()
-            .map(|e| e.time_s)
-            .fold(f64::NEG_INFINITY, f64::max);
-        let margin = |t: f64| {
-            (t <= end_s).then(|| {
-                (model.cp_mach0_m - sim.mass_properties(f, t).cg_m.x) / model.ref_diameter_m
-            })
-        };
-        for (k, _) in self.scenario.shifts.iter().enumerate() {
-            let start = f.shift_starts_s.get(k).copied().flatten();
-            out.push(start);
-            out.push(start.and_then(margin));
-            out.push(start.and_then(|t| margin(t + setup.shifts[k][1])));
+        for k in 0..self.scenario.shifts.len() {
+            let shift = lane.shifts.get(k).copied().unwrap_or_default();
+            out.extend([
+                shift.start_s,
+                shift.margin_before_cal,
+                shift.margin_after_cal,
+            ]);
         }
-        out.into_iter()
-            .map(|x| x.filter(|v| v.is_finite()))
-            .collect()
+        VariantResult {
+            id,
+            status,
+            error,
+            metrics: out
+                .into_iter()
+                .map(|x| x.filter(|v| v.is_finite()))
+                .collect(),
+        }
+    }
+}
+
+/// " at sweep point k (key = v, ...)", or "" without a sweep.
+fn at_point(scenario: &Scenario, plan: &Plan, point: usize) -> String {
+    let swept: Vec<String> = scenario
+        .swept()
+        .zip(plan.sweep_values(point))
+        .map(|(i, v)| format!("{} = {v}", i.key))
+        .collect();
+    if swept.is_empty() {
+        String::new()
+    } else {
+        format!(" at sweep point {point} ({})", swept.join(", "))
     }
 }
 
@@ -595,8 +426,44 @@ fn check_ballast(design: &Design, idx: usize) -> Result<(), String> {
     Ok(())
 }
 
-/// Fly a chunk of variants, one result per variant in order. This is the step the batch
-/// engine replaces.
+/// Fly a chunk of variants, one result per variant in order: the variants whose sampled
+/// values are in range become the rows of one set of columns, flown in order on this thread
+/// as lanes of the prepared base flight (the run loop spreads the chunks over the threads).
 pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult> {
-    variants.iter().map(|v| prepared.fly(v)).collect()
+    let fixed = prepared.fixed();
+    let setups: Vec<Result<Setup, String>> =
+        variants.iter().map(|v| fixed.setup(&v.values)).collect();
+    let rows: Vec<&Setup> = setups.iter().filter_map(|s| s.as_ref().ok()).collect();
+    let lanes = prepared.batch.fly_chunk(&fixed.columns(&rows), 0);
+    let mut lanes = match lanes {
+        Ok(l) => l.into_iter(),
+        // The columns are built here from checked setups: a shape error is a bug of this
+        // module, reported on every row rather than stopping the run.
+        Err(e) => {
+            let failed = |v: &Variant| VariantResult {
+                id: v.id,
+                status: Status::Failed,
+                error: Some(format!("internal error: {e}")),
+                metrics: vec![None; prepared.metrics.len()],
+            };
+            return variants.iter().map(failed).collect();
+        }
+    };
+    variants
+        .iter()
+        .zip(setups)
+        .map(|(v, setup)| {
+            let (status, error) = match setup.map(|_| lanes.next()) {
+                Ok(Some(lane)) => return prepared.result(v.id, lane),
+                Err(e) => (Status::Refused, format!("sampled {e}")),
+                Ok(None) => (Status::Failed, "internal error: a lane is missing".into()),
+            };
+            VariantResult {
+                id: v.id,
+                status,
+                error: Some(error),
+                metrics: vec![None; prepared.metrics.len()],
+            }
+        })
+        .collect()
 }

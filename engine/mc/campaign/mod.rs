@@ -8,8 +8,8 @@
 //! - [`sample`]: the distributions and the counter-based random streams (a variant's draws
 //!   depend only on the seed and its id).
 //! - [`variants`]: the sweep grid × variants per point, shards and chunks.
-//! - [`fly`]: a variant applied to the base setup and flown ([`fly::fly_chunk`] is the step
-//!   the batch engine replaces).
+//! - [`fly`]: a chunk of variants turned into the batch engine's columns and flown as lanes
+//!   of one base flight ([`fly::fly_chunk`]).
 //! - [`stats`]: percentiles, landing ellipses, sensitivity (faer).
 //! - [`parquet`]: the output files, written atomically and streamed by row groups.
 //! - [`run`]: the loop (rayon, shards, resume, progress) and [`cli`]: arguments, printed

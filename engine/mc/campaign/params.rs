@@ -110,7 +110,9 @@ impl Param {
             | Param::MotorBurnTimeS
             | Param::DragScale
             | Param::RailLengthM => Domain::Positive,
-            Param::BallastKg | Param::WindSpeedMS | Param::ParachuteLagS(_) => Domain::NonNegative,
+            // A ballast's mass scales its mass distribution, which needs a mass to scale.
+            Param::BallastKg => Domain::Positive,
+            Param::WindSpeedMS | Param::ParachuteLagS(_) => Domain::NonNegative,
             Param::ParachuteCdsM2(_) => Domain::Positive,
             Param::StructureCgM
             | Param::ElevationM
@@ -179,5 +181,9 @@ mod tests {
             Err("must be at least 0.01 (got 0.005)".into())
         );
         assert!(Param::WindSpeedMS.domain().check(f64::NAN).is_err());
+        assert_eq!(
+            Param::BallastKg.domain().check(0.0),
+            Err("must be positive and finite (got 0)".into())
+        );
     }
 }

@@ -1,32 +1,37 @@
-//! The batch engine: thousands of variants of one flight, their inputs held as columns
-//! (structure of arrays), flown in fixed-size chunks across threads with rayon, their results
-//! streamed out in variant order.
+//! The batch engine: thousands of variants of one flight, their inputs given as columns
+//! (structure of arrays) one chunk at a time, flown in fixed-size chunks across threads with
+//! rayon, their results streamed out in variant order.
 //!
 //! **One physics.** A lane is the base [`Simulation`] with one variant's inputs applied:
 //! everything that depends on the design alone (shape integrals, aerodynamic tables, the air
 //! table) is shared by `Arc` and never rebuilt; the lane's own light model (motor tables, mass
-//! split, rail, wind, parachutes, shifts) is built from the columns, and the flight is the
-//! same driver over the same kernels as a single flight. So a lane's metrics are *the*
+//! split, rail, wind, parachutes, shifts) is built once from its row of the columns (all of
+//! the row's changes, one rebuild: [`Simulation::with_changes`]), and the flight is the same
+//! driver over the same kernels as a single flight. So a lane's metrics are *the*
 //! single-flight simulator's for the same inputs ([`Batch::variant`] gives that simulation).
 //!
 //! **Determinism.** A lane depends only on its row of the columns, never on its chunk, its
 //! thread or the order lanes are scheduled in; results are handed to the sink in variant
-//! order. **Memory** is a window of chunks in flight at once, whatever the number of
-//! variants. **Failures** are rows: a refused input or a flight that fails is recorded with
-//! its reason and the run goes on.
+//! order. **Memory** does not grow with the number of variants: [`Batch::run`] asks a closure
+//! for the columns of one chunk at a time, inside the task that flies it, and keeps a window
+//! of chunks (their columns and results) in flight at once. **Failures** are rows: a refused
+//! input, a flight that fails or a lane that panics is recorded with its reason and the run
+//! goes on.
 //!
 //! What it does not do yet: lanes are advanced one whole flight at a time; the stages of
 //! different lanes are not evaluated together in SIMD registers.
 
 use crate::events::EventKind;
-use crate::flight::{Metrics, Simulation};
+use crate::flight::{Metrics, SimError, Simulation};
 use crate::trigger::Trigger;
 use crate::wind::Wind;
 use rayon::prelude::*;
+use std::ops::Range;
 
-/// Inputs of each variant, one column per input. An empty column means every variant has the
-/// base simulation's value; a full column has one value per variant. Nested columns are per
-/// parachute or per shift (in the base simulation's order), each empty or full.
+/// Inputs of some variants (a chunk of them, or all), one column per input: row `r` is the
+/// `r`-th of those variants. An empty column means every variant has the base simulation's
+/// value; a full column has one value per variant. Nested columns are per parachute or per
+/// shift (in the base simulation's order), each empty or full.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Columns {
     pub len: usize,
@@ -86,8 +91,14 @@ pub struct LaneResult {
     pub variant: usize,
     pub status: Status,
     pub error: Option<String>,
+    /// Whether the flight happened (it may still have failed to land): its metrics, end and
+    /// shifts are its own. False for a refused lane, a flight stopped by an error or a panic.
+    pub flown: bool,
     /// The flight's metrics (default where the flight did not happen).
     pub metrics: Metrics,
+    /// Time of the flight's last event (its landing, its time limit...), s; 0 where the
+    /// flight did not happen.
+    pub end_s: f64,
     /// Per shift: its start time, and the static margin just before and just after its move.
     pub shifts: Vec<ShiftOutcome>,
     pub derivative_evaluations: u64,
@@ -101,12 +112,45 @@ pub struct ShiftOutcome {
     pub margin_after_cal: Option<f64>,
 }
 
-/// A batch: the base flight, its columns, and the part the `part_mass_kg` column names.
+impl Columns {
+    /// The rows `rows` of these columns (empty columns stay empty). A column too short for
+    /// `rows` gives the values it has, which [`Batch::check`] then refuses (never a panic).
+    pub fn slice(&self, rows: Range<usize>) -> Columns {
+        let flat = |c: &Vec<f64>| {
+            let end = rows.end.min(c.len());
+            c[rows.start.min(end)..end].to_vec()
+        };
+        let nested = |c: &Vec<Vec<f64>>| c.iter().map(flat).collect();
+        Columns {
+            len: rows.len(),
+            structure_delta_mass_kg: flat(&self.structure_delta_mass_kg),
+            structure_delta_cg_m: flat(&self.structure_delta_cg_m),
+            part_mass_kg: flat(&self.part_mass_kg),
+            impulse_scale: flat(&self.impulse_scale),
+            time_scale: flat(&self.time_scale),
+            drag_scale: flat(&self.drag_scale),
+            elevation_m: flat(&self.elevation_m),
+            wind_speed_m_s: flat(&self.wind_speed_m_s),
+            wind_from_deg: flat(&self.wind_from_deg),
+            rail_length_m: flat(&self.rail_length_m),
+            rail_inclination_deg: flat(&self.rail_inclination_deg),
+            rail_heading_deg: flat(&self.rail_heading_deg),
+            chute_cds_m2: nested(&self.chute_cds_m2),
+            chute_lag_s: nested(&self.chute_lag_s),
+            chute_trigger: nested(&self.chute_trigger),
+            shift_travel_m: nested(&self.shift_travel_m),
+            shift_duration_s: nested(&self.shift_duration_s),
+            shift_trigger: nested(&self.shift_trigger),
+        }
+    }
+}
+
+/// A batch: the base flight and the part the `part_mass_kg` column names. The variants'
+/// inputs come as [`Columns`], a chunk at a time.
 #[derive(Debug, Clone)]
 pub struct Batch {
     base: Simulation,
     part: Option<String>,
-    columns: Columns,
 }
 
 fn with_number(t: Trigger, v: f64) -> Result<Trigger, String> {
@@ -120,10 +164,38 @@ fn with_number(t: Trigger, v: f64) -> Result<Trigger, String> {
     })
 }
 
+/// The message of a panic's payload.
+fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
+    panic
+        .downcast_ref::<String>()
+        .cloned()
+        .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+        .unwrap_or_default()
+}
+
 impl Batch {
-    /// A batch of `columns.len` variants of `base`. `part` names the component whose mass the
-    /// `part_mass_kg` column gives. Checks the columns' shapes.
-    pub fn new(base: Simulation, part: Option<&str>, columns: Columns) -> Result<Batch, String> {
+    /// A batch of variants of `base`. `part` names the component whose mass the
+    /// `part_mass_kg` column gives. Lanes keep no samples.
+    pub fn new(base: Simulation, part: Option<&str>) -> Result<Batch, String> {
+        let options = crate::flight::SimOptions {
+            keep_samples: false,
+            ..*base.options()
+        };
+        let base = base.with_options(options).map_err(|e| e.to_string())?;
+        Ok(Batch {
+            base,
+            part: part.map(str::to_string),
+        })
+    }
+
+    /// The base flight (samples off).
+    pub fn base(&self) -> &Simulation {
+        &self.base
+    }
+
+    /// Check the shapes of `columns`: every flat column empty or `columns.len` long, every
+    /// nested one empty or one column per parachute (shift) of the base, each empty or full.
+    pub fn check(&self, columns: &Columns) -> Result<(), String> {
         let n = columns.len;
         let flat: [(&str, &Vec<f64>); 12] = [
             ("structure_delta_mass_kg", &columns.structure_delta_mass_kg),
@@ -147,29 +219,14 @@ impl Batch {
                 ));
             }
         }
+        let (chutes, shifts) = (self.base.parachutes().len(), self.base.shifts().len());
         let nested = [
-            (
-                "chute_cds_m2",
-                &columns.chute_cds_m2,
-                base.parachutes().len(),
-            ),
-            ("chute_lag_s", &columns.chute_lag_s, base.parachutes().len()),
-            (
-                "chute_trigger",
-                &columns.chute_trigger,
-                base.parachutes().len(),
-            ),
-            (
-                "shift_travel_m",
-                &columns.shift_travel_m,
-                base.shifts().len(),
-            ),
-            (
-                "shift_duration_s",
-                &columns.shift_duration_s,
-                base.shifts().len(),
-            ),
-            ("shift_trigger", &columns.shift_trigger, base.shifts().len()),
+            ("chute_cds_m2", &columns.chute_cds_m2, chutes),
+            ("chute_lag_s", &columns.chute_lag_s, chutes),
+            ("chute_trigger", &columns.chute_trigger, chutes),
+            ("shift_travel_m", &columns.shift_travel_m, shifts),
+            ("shift_duration_s", &columns.shift_duration_s, shifts),
+            ("shift_trigger", &columns.shift_trigger, shifts),
         ];
         for (name, c, count) in nested {
             if !c.is_empty() && c.len() != count {
@@ -187,156 +244,161 @@ impl Batch {
                 }
             }
         }
-        if !columns.part_mass_kg.is_empty() && part.is_none() {
+        if !columns.part_mass_kg.is_empty() && self.part.is_none() {
             return Err("column part_mass_kg needs the part it gives the mass of".into());
         }
-        // Lanes keep no samples: only metrics, events and shift start times.
-        let options = crate::flight::SimOptions {
-            keep_samples: false,
-            ..*base.options()
-        };
-        let base = base.with_options(options).map_err(|e| e.to_string())?;
-        Ok(Batch {
-            base,
-            part: part.map(str::to_string),
-            columns,
+        Ok(())
+    }
+
+    /// The single-flight simulation of row `row` of `columns` (checked by [`Batch::check`]):
+    /// the base with the row applied, all of it with one rebuild. The lane flies exactly
+    /// this. A site's elevation moves an inverse-square gravity's site with it.
+    pub fn variant(&self, columns: &Columns, row: usize) -> Result<Simulation, String> {
+        let c = columns;
+        let get = |col: &Vec<f64>| col.get(row).copied();
+        let nested =
+            |cols: &Vec<Vec<f64>>, k: usize| cols.get(k).and_then(|col| col.get(row).copied());
+        let base = &self.base;
+        let setup = SimError::Setup;
+        let changed = base.clone().with_changes(|ch| {
+            if get(&c.elevation_m).is_some()
+                || get(&c.wind_speed_m_s).is_some()
+                || get(&c.wind_from_deg).is_some()
+                || get(&c.rail_length_m).is_some()
+                || get(&c.rail_inclination_deg).is_some()
+                || get(&c.rail_heading_deg).is_some()
+            {
+                let mut env = base.environment().clone();
+                if let Some(v) = get(&c.elevation_m) {
+                    env.elevation_m = v;
+                    env.gravity = env
+                        .gravity
+                        .at_launch_elevation(v)
+                        .map_err(|e| setup(format!("environment: {e}")))?;
+                }
+                if get(&c.wind_speed_m_s).is_some() || get(&c.wind_from_deg).is_some() {
+                    let (speed, from) = env.wind.constant_parts().ok_or_else(|| {
+                        setup("the base wind is a table, which the wind columns can't vary".into())
+                    })?;
+                    env.wind = Wind::constant(
+                        get(&c.wind_speed_m_s).unwrap_or(speed),
+                        get(&c.wind_from_deg).unwrap_or(from),
+                    )
+                    .map_err(|e| setup(format!("wind: {e}")))?;
+                }
+                let mut rail = *base.rail();
+                rail.length_m = get(&c.rail_length_m).unwrap_or(rail.length_m);
+                rail.inclination_deg = get(&c.rail_inclination_deg).unwrap_or(rail.inclination_deg);
+                rail.heading_deg = get(&c.rail_heading_deg).unwrap_or(rail.heading_deg);
+                ch.site(env, rail)?;
+            }
+            if get(&c.impulse_scale).is_some() || get(&c.time_scale).is_some() {
+                let o = *base.motor_options();
+                ch.motor_scales(
+                    o.with_impulse_scale(get(&c.impulse_scale).unwrap_or(o.impulse_scale))
+                        .with_time_scale(get(&c.time_scale).unwrap_or(o.time_scale)),
+                )?;
+            }
+            if let Some(v) = get(&c.drag_scale) {
+                ch.drag_scale(v)?;
+            }
+            if let Some(m) = get(&c.part_mass_kg) {
+                ch.part_mass(self.part.as_deref().unwrap_or_default(), m)?;
+            }
+            if get(&c.structure_delta_mass_kg).is_some() || get(&c.structure_delta_cg_m).is_some() {
+                ch.mass_adjustment(
+                    get(&c.structure_delta_mass_kg).unwrap_or(0.0),
+                    get(&c.structure_delta_cg_m).unwrap_or(0.0),
+                )?;
+            }
+            let mut chutes = base.parachutes().to_vec();
+            let mut changed = false;
+            for (k, p) in chutes.iter_mut().enumerate() {
+                if let Some(v) = nested(&c.chute_cds_m2, k) {
+                    p.cds_m2 = v;
+                    changed = true;
+                }
+                if let Some(v) = nested(&c.chute_lag_s, k) {
+                    p.lag_s = v;
+                    changed = true;
+                }
+                if let Some(v) = nested(&c.chute_trigger, k) {
+                    p.trigger = with_number(p.trigger, v)
+                        .map_err(|r| setup(format!("parachute {k}: {r}")))?;
+                    changed = true;
+                }
+            }
+            if changed {
+                ch.parachutes(chutes)?;
+            }
+            let mut shifts = base.shifts().to_vec();
+            let mut changed = false;
+            for (k, s) in shifts.iter_mut().enumerate() {
+                if let Some(v) = nested(&c.shift_travel_m, k) {
+                    s.travel_m = v;
+                    changed = true;
+                }
+                if let Some(v) = nested(&c.shift_duration_s, k) {
+                    s.duration_s = v;
+                    changed = true;
+                }
+                if let Some(v) = nested(&c.shift_trigger, k) {
+                    s.trigger =
+                        with_number(s.trigger, v).map_err(|r| setup(format!("shift {k}: {r}")))?;
+                    changed = true;
+                }
+            }
+            if changed {
+                ch.shifts(shifts)?;
+            }
+            Ok(())
+        });
+        changed.map_err(|e| e.to_string())
+    }
+
+    /// Fly row `row` of `columns` (checked by [`Batch::check`]) as variant `variant` (no
+    /// samples kept). A panic in the simulator is caught and the lane `Failed`.
+    pub fn fly(&self, columns: &Columns, row: usize, variant: usize) -> LaneResult {
+        let flown = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            self.fly_unguarded(columns, row, variant)
+        }));
+        flown.unwrap_or_else(|panic| {
+            self.empty(
+                variant,
+                Status::Failed,
+                format!("the simulator panicked: {}", panic_message(&*panic)),
+            )
         })
     }
 
-    pub fn len(&self) -> usize {
-        self.columns.len
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.columns.len == 0
-    }
-
-    /// The single-flight simulation of variant `i`: the base with row `i` applied. The lane
-    /// flies exactly this.
-    pub fn variant(&self, i: usize) -> Result<Simulation, String> {
-        let c = &self.columns;
-        let get = |col: &Vec<f64>| col.get(i).copied();
-        let nested =
-            |cols: &Vec<Vec<f64>>, k: usize| cols.get(k).and_then(|col| col.get(i).copied());
-        let e = |e: crate::flight::SimError| e.to_string();
-        let mut sim = self.base.clone();
-        if get(&c.elevation_m).is_some()
-            || get(&c.wind_speed_m_s).is_some()
-            || get(&c.wind_from_deg).is_some()
-            || get(&c.rail_length_m).is_some()
-            || get(&c.rail_inclination_deg).is_some()
-            || get(&c.rail_heading_deg).is_some()
-        {
-            let mut env = sim.environment().clone();
-            if let Some(v) = get(&c.elevation_m) {
-                env.elevation_m = v;
-            }
-            if get(&c.wind_speed_m_s).is_some() || get(&c.wind_from_deg).is_some() {
-                let (speed, from) = env
-                    .wind
-                    .constant_parts()
-                    .ok_or("the base wind is a table, which the wind columns can't vary")?;
-                env.wind = Wind::constant(
-                    get(&c.wind_speed_m_s).unwrap_or(speed),
-                    get(&c.wind_from_deg).unwrap_or(from),
-                )
-                .map_err(|e| format!("wind: {e}"))?;
-            }
-            let mut rail = *sim.rail();
-            rail.length_m = get(&c.rail_length_m).unwrap_or(rail.length_m);
-            rail.inclination_deg = get(&c.rail_inclination_deg).unwrap_or(rail.inclination_deg);
-            rail.heading_deg = get(&c.rail_heading_deg).unwrap_or(rail.heading_deg);
-            sim = sim.with_site(env, rail).map_err(e)?;
-        }
-        if get(&c.impulse_scale).is_some() || get(&c.time_scale).is_some() {
-            let mut o = *sim.motor_options();
-            o = o
-                .with_impulse_scale(get(&c.impulse_scale).unwrap_or(o.impulse_scale))
-                .with_time_scale(get(&c.time_scale).unwrap_or(o.time_scale));
-            sim = sim.with_motor_scales(o).map_err(e)?;
-        }
-        if let Some(v) = get(&c.drag_scale) {
-            sim = sim.with_drag_scale(v).map_err(e)?;
-        }
-        if let Some(m) = get(&c.part_mass_kg) {
-            sim = sim
-                .with_part_mass(self.part.as_deref().unwrap_or_default(), m)
-                .map_err(e)?;
-        }
-        if get(&c.structure_delta_mass_kg).is_some() || get(&c.structure_delta_cg_m).is_some() {
-            sim = sim
-                .with_mass_adjustment(
-                    get(&c.structure_delta_mass_kg).unwrap_or(0.0),
-                    get(&c.structure_delta_cg_m).unwrap_or(0.0),
-                )
-                .map_err(e)?;
-        }
-        let mut chutes = sim.parachutes().to_vec();
-        let mut changed = false;
-        for (k, p) in chutes.iter_mut().enumerate() {
-            if let Some(v) = nested(&c.chute_cds_m2, k) {
-                p.cds_m2 = v;
-                changed = true;
-            }
-            if let Some(v) = nested(&c.chute_lag_s, k) {
-                p.lag_s = v;
-                changed = true;
-            }
-            if let Some(v) = nested(&c.chute_trigger, k) {
-                p.trigger = with_number(p.trigger, v).map_err(|r| format!("parachute {k}: {r}"))?;
-                changed = true;
-            }
-        }
-        if changed {
-            sim = sim.with_parachutes(chutes).map_err(e)?;
-        }
-        let mut shifts = sim.shifts().to_vec();
-        let mut changed = false;
-        for (k, s) in shifts.iter_mut().enumerate() {
-            if let Some(v) = nested(&c.shift_travel_m, k) {
-                s.travel_m = v;
-                changed = true;
-            }
-            if let Some(v) = nested(&c.shift_duration_s, k) {
-                s.duration_s = v;
-                changed = true;
-            }
-            if let Some(v) = nested(&c.shift_trigger, k) {
-                s.trigger = with_number(s.trigger, v).map_err(|r| format!("shift {k}: {r}"))?;
-                changed = true;
-            }
-        }
-        if changed {
-            sim = sim.with_shifts(shifts).map_err(e)?;
-        }
-        Ok(sim)
-    }
-
-    /// Fly lane `i` (no samples kept).
-    pub fn fly(&self, i: usize) -> LaneResult {
-        let n_shifts = self.base.shifts().len();
-        let empty = |status, error: String| LaneResult {
-            variant: i,
+    fn empty(&self, variant: usize, status: Status, error: String) -> LaneResult {
+        LaneResult {
+            variant,
             status,
             error: Some(error),
+            flown: false,
             metrics: Metrics::default(),
-            shifts: vec![ShiftOutcome::default(); n_shifts],
+            end_s: 0.0,
+            shifts: vec![ShiftOutcome::default(); self.base.shifts().len()],
             derivative_evaluations: 0,
-        };
-        let sim = match self.variant(i) {
+        }
+    }
+
+    fn fly_unguarded(&self, columns: &Columns, row: usize, variant: usize) -> LaneResult {
+        let sim = match self.variant(columns, row) {
             Ok(s) => s,
-            Err(e) => return empty(Status::Refused, e),
+            Err(e) => return self.empty(variant, Status::Refused, e),
         };
         let flight = match sim.run(&mut ()) {
             Ok(f) => f,
-            Err(e) => return empty(Status::Failed, e.to_string()),
+            Err(e) => return self.empty(variant, Status::Failed, e.to_string()),
         };
         let model = sim.model();
         let end = flight.events.last().map_or(0.0, |e| e.time_s);
         let margin = |t: f64| {
             (t <= end).then(|| sim.static_margin_for(sim.mass_properties(&flight, t).cg_m.x))
         };
-        let shifts = (0..n_shifts)
+        let shifts = (0..self.base.shifts().len())
             .map(|k| {
                 let start = flight.shift_starts_s.get(k).copied().flatten();
                 ShiftOutcome {
@@ -363,35 +425,86 @@ impl Batch {
             )
         };
         LaneResult {
-            variant: i,
+            variant,
             status,
             error,
+            flown: true,
             metrics: flight.metrics,
+            end_s: end,
             shifts,
             derivative_evaluations: flight.derivative_evaluations,
         }
     }
 
-    /// Fly every variant on the current rayon pool, `chunk` variants per task, keeping at most
-    /// `window` chunks in flight, and hand each result to `sink` in variant order.
-    pub fn run(&self, chunk: usize, window: usize, mut sink: impl FnMut(LaneResult)) {
+    /// Fly every row of `columns` in order on this thread, row `r` as variant `first + r`.
+    /// Errs (flying nothing) if the columns' shapes are wrong.
+    pub fn fly_chunk(&self, columns: &Columns, first: usize) -> Result<Vec<LaneResult>, String> {
+        self.check(columns)?;
+        Ok((0..columns.len)
+            .map(|r| self.fly(columns, r, first + r))
+            .collect())
+    }
+
+    /// Fly variants `0..n` on the current rayon pool, `chunk` variants per task, keeping at
+    /// most `window` chunks in flight, and hand each result to `sink` in variant order.
+    ///
+    /// `columns_of(range)` gives the columns of the variants `range` (row `r` is variant
+    /// `range.start + r`); it is called once per chunk, inside the task that flies it, so only
+    /// the chunks in flight hold their inputs. It must give a variant the same row whatever
+    /// the range it comes in (then the results do not depend on `chunk`, `window` or the
+    /// threads). Errs at the first chunk whose columns have the wrong shape or length, after
+    /// handing on the results of every variant before that chunk.
+    pub fn run(
+        &self,
+        n: usize,
+        chunk: usize,
+        window: usize,
+        columns_of: impl Fn(Range<usize>) -> Columns + Sync,
+        mut sink: impl FnMut(LaneResult),
+    ) -> Result<(), String> {
         let chunk = chunk.max(1);
         let window = window.max(1);
-        let n = self.len();
         let mut start = 0;
         while start < n {
             let end = (start + chunk * window).min(n);
-            let chunks: Vec<Vec<LaneResult>> = (start..end)
+            let chunks: Vec<Result<Vec<LaneResult>, String>> = (start..end)
                 .step_by(chunk)
                 .collect::<Vec<_>>()
                 .into_par_iter()
-                .map(|c0| (c0..(c0 + chunk).min(end)).map(|i| self.fly(i)).collect())
+                .map(|c0| {
+                    let rows = c0..(c0 + chunk).min(end);
+                    let columns = columns_of(rows.clone());
+                    if columns.len != rows.len() {
+                        return Err(format!(
+                            "the columns of variants {rows:?} have {} rows, not {}",
+                            columns.len,
+                            rows.len()
+                        ));
+                    }
+                    self.fly_chunk(&columns, c0)
+                        .map_err(|e| format!("variants {rows:?}: {e}"))
+                })
                 .collect();
-            for r in chunks.into_iter().flatten() {
-                sink(r);
+            for results in chunks {
+                for r in results? {
+                    sink(r);
+                }
             }
             start = end;
         }
+        Ok(())
+    }
+
+    /// [`Batch::run`] over columns held whole (`columns.len` variants), sliced chunk by chunk.
+    pub fn run_columns(
+        &self,
+        columns: &Columns,
+        chunk: usize,
+        window: usize,
+        sink: impl FnMut(LaneResult),
+    ) -> Result<(), String> {
+        self.check(columns)?;
+        self.run(columns.len, chunk, window, |r| columns.slice(r), sink)
     }
 }
 

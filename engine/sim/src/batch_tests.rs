@@ -63,48 +63,55 @@ fn base() -> Simulation {
     .unwrap()
 }
 
-/// `n` random variants; about one in twenty has a shift too long for its holder (refused) and
-/// one in fifty a non-finite drag scale.
-fn columns(n: usize, seed: u64) -> Columns {
-    let mut r = Rng(seed);
+impl Rng {
+    /// The generator of variant `i` of the stream `seed`: a variant's row depends only on
+    /// (seed, i), never on the rows generated with it.
+    fn of_variant(seed: u64, i: usize) -> Rng {
+        let mut r = Rng(seed ^ (i as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+        r.next();
+        r
+    }
+}
+
+/// The rows `rows` of random variants from stream `seed`; about one in twenty has a shift too
+/// long for its holder (refused) and one in fifty a non-finite drag scale.
+fn columns_of(rows: std::ops::Range<usize>, seed: u64) -> Columns {
     let mut c = Columns {
-        len: n,
+        len: rows.len(),
+        chute_cds_m2: vec![vec![], vec![]],
+        chute_lag_s: vec![vec![], vec![]],
+        shift_travel_m: vec![vec![]],
+        shift_duration_s: vec![vec![]],
+        shift_trigger: vec![vec![]],
         ..Columns::default()
     };
-    for i in 0..n {
+    for i in rows {
+        let mut r = Rng::of_variant(seed, i);
         c.structure_delta_mass_kg.push(r.uniform(-0.02, 0.02));
         c.structure_delta_cg_m.push(r.uniform(-0.01, 0.01));
         c.part_mass_kg.push(r.uniform(0.15, 0.25));
         c.impulse_scale.push(r.uniform(0.95, 1.05));
         c.time_scale.push(r.uniform(0.97, 1.03));
-        c.drag_scale.push(if i % 50 == 7 {
-            f64::NAN
-        } else {
-            r.uniform(0.9, 1.1)
-        });
+        let drag = r.uniform(0.9, 1.1);
+        c.drag_scale.push(if i % 50 == 7 { f64::NAN } else { drag });
         c.wind_speed_m_s.push(r.uniform(0.0, 8.0));
         c.wind_from_deg.push(r.uniform(0.0, 360.0));
         c.rail_inclination_deg.push(r.uniform(84.0, 90.0));
         c.rail_heading_deg.push(r.uniform(0.0, 360.0));
         c.elevation_m.push(r.uniform(0.0, 1500.0));
+        c.chute_cds_m2[0].push(r.uniform(0.08, 0.12));
+        c.chute_cds_m2[1].push(r.uniform(0.8, 1.0));
+        c.chute_lag_s[0].push(r.uniform(0.5, 1.5));
+        let travel = r.uniform(0.0, 0.3);
+        c.shift_travel_m[0].push(if i % 20 == 3 { 0.9 } else { travel });
+        c.shift_duration_s[0].push(r.uniform(0.2, 1.5));
+        c.shift_trigger[0].push(r.uniform(3.0, 8.0));
     }
-    c.chute_cds_m2 = vec![
-        (0..n).map(|_| r.uniform(0.08, 0.12)).collect(),
-        (0..n).map(|_| r.uniform(0.8, 1.0)).collect(),
-    ];
-    c.chute_lag_s = vec![(0..n).map(|_| r.uniform(0.5, 1.5)).collect(), vec![]];
-    c.shift_travel_m = vec![(0..n)
-        .map(|i| {
-            if i % 20 == 3 {
-                0.9
-            } else {
-                r.uniform(0.0, 0.3)
-            }
-        })
-        .collect()];
-    c.shift_duration_s = vec![(0..n).map(|_| r.uniform(0.2, 1.5)).collect()];
-    c.shift_trigger = vec![(0..n).map(|_| r.uniform(3.0, 8.0)).collect()];
     c
+}
+
+fn columns(n: usize, seed: u64) -> Columns {
+    columns_of(0..n, seed)
 }
 
 /// The single-flight simulator set up from scratch with row `i`'s inputs.
@@ -187,10 +194,12 @@ fn metric_list(m: &Metrics) -> Vec<Option<f64>> {
 fn every_lane_equals_the_single_flight_with_the_same_inputs() {
     let n = 1000;
     let c = columns(n, 42);
-    let batch = Batch::new(base(), Some("ballast"), c.clone()).unwrap();
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
     let (mut worst, mut landed, mut refused) = (0.0f64, 0, 0);
     let mut results = Vec::with_capacity(n);
-    batch.run(16, 4, |r| results.push(r));
+    batch
+        .run(n, 16, 4, |rows| columns_of(rows, 42), |r| results.push(r))
+        .unwrap();
     assert_eq!(results.len(), n);
     for (i, lane) in results.iter().enumerate() {
         assert_eq!(lane.variant, i, "results come in variant order");
@@ -202,6 +211,7 @@ fn every_lane_equals_the_single_flight_with_the_same_inputs() {
                     "variant {i}: the single flight refused ({e}) but the lane {:?}",
                     lane.status
                 );
+                assert!(!lane.flown);
                 refused += 1;
             }
             Ok(sim) => {
@@ -227,6 +237,8 @@ fn every_lane_equals_the_single_flight_with_the_same_inputs() {
                     }
                 }
                 assert_eq!(lane.shifts[0].start_s, f.shift_starts_s[0]);
+                assert_eq!(lane.end_s, f.events.last().unwrap().time_s);
+                assert!(lane.flown);
                 landed += 1;
             }
         }
@@ -237,25 +249,240 @@ fn every_lane_equals_the_single_flight_with_the_same_inputs() {
 }
 
 #[test]
-fn results_do_not_depend_on_threads_or_chunks() {
+fn results_do_not_depend_on_threads_chunks_or_window() {
     let n = 96;
-    let batch = Batch::new(base(), Some("ballast"), columns(n, 7)).unwrap();
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
     let run_with = |threads: usize, chunk: usize, window: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .unwrap();
         let mut out = Vec::new();
-        pool.install(|| batch.run(chunk, window, |r| out.push(r)));
+        pool.install(|| {
+            batch.run(
+                n,
+                chunk,
+                window,
+                |rows| columns_of(rows, 7),
+                |r| out.push(r),
+            )
+        })
+        .unwrap();
         out
     };
     let a = run_with(1, 8, 2);
     let b = run_with(2, 8, 4);
     let c = run_with(2, 5, 3);
+    let d = run_with(2, 96, 1);
     assert_eq!(a.len(), n);
     // PartialEq on f64: bit-for-bit equal values (NaNs would differ, and there are none).
     assert!(
-        a == b && a == c,
-        "results differ with the thread count or chunk size"
+        a == b && a == c && a == d,
+        "results differ with the thread count, chunk size or window"
     );
+    // Columns held whole give the same lanes.
+    let mut whole = Vec::new();
+    batch
+        .run_columns(&columns(n, 7), 7, 2, |r| whole.push(r))
+        .unwrap();
+    assert!(
+        a == whole,
+        "held columns give other results than streamed ones"
+    );
+}
+
+#[test]
+fn each_chunk_s_columns_are_asked_for_once_in_chunk_sized_ranges_covering_every_variant() {
+    let (n, chunk, window) = (23, 4, 2);
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let asked = std::sync::Mutex::new(Vec::new());
+    let mut seen = 0;
+    batch
+        .run(
+            n,
+            chunk,
+            window,
+            |rows| {
+                asked.lock().unwrap().push(rows.clone());
+                // Cheap lanes: every one refused by its drag scale, flown no further.
+                Columns {
+                    len: rows.len(),
+                    drag_scale: vec![-1.0; rows.len()],
+                    ..Columns::default()
+                }
+            },
+            |r| {
+                assert_eq!(r.variant, seen);
+                assert_eq!(r.status, Status::Refused);
+                assert_eq!(
+                    r.error.as_deref(),
+                    Some("drag scale must be positive and finite (got -1)")
+                );
+                seen += 1;
+            },
+        )
+        .unwrap();
+    assert_eq!(seen, n);
+    let mut asked = asked.into_inner().unwrap();
+    asked.sort_by_key(|r| r.start);
+    let expected: Vec<_> = (0..n)
+        .step_by(chunk)
+        .map(|s| s..(s + chunk).min(n))
+        .collect();
+    assert_eq!(asked, expected);
+}
+
+#[test]
+fn columns_of_the_wrong_length_or_shape_are_an_error_naming_the_variants() {
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let short = batch
+        .run(10, 4, 1, |rows| columns_of(0..rows.len() - 1, 1), |_| {})
+        .unwrap_err();
+    assert_eq!(short, "the columns of variants 0..4 have 3 rows, not 4");
+    let mut flown = 0;
+    let bad = batch
+        .run(
+            10,
+            4,
+            1,
+            |rows| Columns {
+                drag_scale: vec![1.0; if rows.start == 8 { 1 } else { rows.len() }],
+                ..columns_of(rows, 1)
+            },
+            |_| flown += 1,
+        )
+        .unwrap_err();
+    assert_eq!(
+        bad,
+        "variants 8..10: column drag_scale has 1 values for 2 variants"
+    );
+    assert_eq!(flown, 8, "the chunks before the bad one are handed on");
+    let no_part = Batch::new(base(), None)
+        .unwrap()
+        .run_columns(&columns(3, 1), 4, 1, |_| {})
+        .unwrap_err();
+    assert_eq!(
+        no_part,
+        "column part_mass_kg needs the part it gives the mass of"
+    );
+    // A held column too short for its variants: refused before any flight, and a slice of it
+    // past its end is refused by the chunk's check rather than panicking.
+    let mut short = columns(6, 1);
+    short.wind_speed_m_s.truncate(5);
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let e = batch.run_columns(&short, 4, 1, |_| {}).unwrap_err();
+    assert_eq!(e, "column wind_speed_m_s has 5 values for 6 variants");
+    let e = batch.fly_chunk(&short.slice(4..6), 4).unwrap_err();
+    assert_eq!(e, "column wind_speed_m_s has 1 values for 2 variants");
+}
+
+#[test]
+fn many_changes_with_one_rebuild_fly_exactly_as_the_same_changes_made_one_by_one() {
+    let env = Environment {
+        elevation_m: 800.0,
+        wind: Wind::constant(5.0, 200.0).unwrap(),
+        ..Environment::default()
+    };
+    let rail = Rail {
+        length_m: 3.0,
+        inclination_deg: 86.0,
+        heading_deg: 10.0,
+    };
+    let scales = MotorOptions::default()
+        .with_impulse_scale(1.02)
+        .with_time_scale(0.98);
+    let mut ch = chutes();
+    ch[1].cds_m2 = 0.85;
+    let shift = vec![MassShift::new(
+        Trigger::Time { time_s: 6.0 },
+        "ballast",
+        0.2,
+        0.7,
+    )];
+    let one_by_one = base()
+        .with_site(env.clone(), rail)
+        .and_then(|s| s.with_motor_scales(scales))
+        .and_then(|s| s.with_drag_scale(1.07))
+        .and_then(|s| s.with_part_mass("ballast", 0.23))
+        .and_then(|s| s.with_mass_adjustment(0.01, -0.004))
+        .and_then(|s| s.with_parachutes(ch.clone()))
+        .and_then(|s| s.with_shifts(shift.clone()))
+        .unwrap();
+    let at_once = base()
+        .with_changes(|c| {
+            c.shifts(shift)?;
+            c.parachutes(ch)?;
+            c.mass_adjustment(0.01, -0.004)?;
+            c.part_mass("ballast", 0.23)?;
+            c.drag_scale(1.07)?;
+            c.motor_scales(scales)?;
+            c.site(env, rail)
+        })
+        .unwrap();
+    let (a, b) = (
+        one_by_one.run(&mut ()).unwrap(),
+        at_once.run(&mut ()).unwrap(),
+    );
+    assert_eq!(a.metrics, b.metrics, "bit-for-bit the same metrics");
+    assert_eq!(a.events, b.events);
+    assert!(a.metrics.apogee_m.unwrap() > 100.0);
+
+    // A refused change gives the builder's words, whatever else changes with it.
+    let alone = base().with_drag_scale(0.0).unwrap_err().to_string();
+    let among = base()
+        .with_changes(|c| {
+            c.part_mass("ballast", 0.3)?;
+            c.drag_scale(0.0)?;
+            c.mass_adjustment(0.0, 0.0)
+        })
+        .unwrap_err()
+        .to_string();
+    assert_eq!(alone, "drag scale must be positive and finite (got 0)");
+    assert_eq!(among, alone);
+}
+
+#[test]
+fn an_elevation_column_moves_an_inverse_square_gravity_with_the_site() {
+    use crate::gravity::Gravity;
+    let site = |elevation_m: f64| Environment {
+        elevation_m,
+        gravity: Gravity::inverse_square(elevation_m).unwrap(),
+        ..Environment::default()
+    };
+    let batch = Batch::new(base().with_site(site(0.0), *base().rail()).unwrap(), None).unwrap();
+    let c = Columns {
+        len: 1,
+        elevation_m: vec![2500.0],
+        ..Columns::default()
+    };
+    let lane = batch.variant(&c, 0).unwrap();
+    assert_eq!(
+        lane.environment().gravity,
+        Gravity::inverse_square(2500.0).unwrap()
+    );
+    let single = batch
+        .base()
+        .clone()
+        .with_site(site(2500.0), *base().rail())
+        .unwrap();
+    assert_eq!(
+        lane.run(&mut ()).unwrap().metrics,
+        single.run(&mut ()).unwrap().metrics
+    );
+}
+
+#[test]
+fn a_part_that_weighs_nothing_in_the_design_has_no_mass_to_scale() {
+    let mut d = Design::load(REFERENCE).unwrap();
+    let idx = d.component_index("ballast").unwrap();
+    d.components[idx].mass_spec = hpr_design::design::model::MassSpec::Mass(0.0);
+    let sim = Simulation::new(
+        d,
+        motor::find("Cesaroni_I175").unwrap(),
+        Environment::default(),
+        Rail::default(),
+    )
+    .unwrap();
+    let e = sim.with_part_mass("ballast", 0.2).unwrap_err().to_string();
+    assert_eq!(e, "part mass of \"ballast\": it weighs 0 kg in the design, so it has no mass to scale; give it a mass in the design");
 }

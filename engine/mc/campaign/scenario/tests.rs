@@ -277,3 +277,65 @@ fn rules_that_need_the_design_and_motor_name_their_key() {
         "{e}"
     );
 }
+
+#[test]
+fn a_swept_or_dispersed_ballast_must_be_an_internal_part_that_holds_nothing() {
+    let dispersed = "[dispersions]\nballast_kg = { dist = \"normal\", sigma = 0.002 }\n";
+    let with = |id: &str, extra: &str| {
+        let text = format!("{BASE}{extra}")
+            .replace("ballast = \"ballast\"", &format!("ballast = \"{id}\""));
+        Prepared::new(Scenario::parse(&text, &path()).unwrap())
+    };
+    let e = with("fins", dispersed).unwrap_err();
+    assert_eq!(e.key(), "design.ballast");
+    assert!(
+        e.to_string().contains("\"fins\" is not an internal part"),
+        "{e}"
+    );
+    // An inner tube holding a slug: a holder, not a part that holds nothing.
+    let dir = tempfile::tempdir().unwrap();
+    let reference = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    let mut json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(reference).unwrap()).unwrap();
+    let body = json["stages"][0]["components"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|c| c["id"] == "body")
+        .unwrap();
+    body["children"]
+        .as_array_mut()
+        .unwrap()
+        .push(serde_json::json!({
+            "id": "bay", "type": "inner_tube", "length_m": 0.1, "outer_diameter_m": 0.04,
+            "wall_thickness_m": 0.001, "material": { "density_kg_m3": 700.0 },
+            "position": { "from": "nose_tip", "offset_m": 0.45 },
+            "children": [{
+                "id": "slug", "type": "mass_component", "mass_kg": 0.05, "length_m": 0.02,
+                "radius_m": 0.015, "position": { "from": "nose_tip", "offset_m": 0.47 }
+            }]
+        }));
+    let design = dir.path().join("bay.json");
+    std::fs::write(&design, json.to_string()).unwrap();
+    let text = format!("{BASE}{dispersed}")
+        .replace("ballast = \"ballast\"", "ballast = \"bay\"")
+        .replace(
+            "../validation/designs/synthetic-54mm-three-fin.json",
+            design.to_str().unwrap(),
+        );
+    let bay = |text: &str| Prepared::new(Scenario::parse(text, &path()).unwrap());
+    let e = bay(&text).unwrap_err();
+    assert_eq!(e.key(), "design.ballast");
+    assert!(e.to_string().contains("\"bay\" holds other parts"), "{e}");
+    // Not swept or dispersed, the same ballast is only a name.
+    assert!(bay(&text.replace(dispersed, "")).is_ok());
+    // A ballast of 0 kg is no mass to scale: refused as a sampled value.
+    assert_eq!(
+        super::super::params::Param::BallastKg.domain().check(0.0),
+        Err("must be positive and finite (got 0)".into())
+    );
+    let (k, r) = refused("[sweep]\nballast_kg = [0.0, 0.2]\n");
+    assert_eq!(k, "sweep.ballast_kg[0]");
+    assert_eq!(r, "must be positive and finite (got 0)");
+}

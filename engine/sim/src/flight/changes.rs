@@ -12,6 +12,7 @@ use super::{MassAdjustment, Parachute, Rail, SimError, SimOptions, Simulation};
 use crate::flight::{model, Environment};
 use crate::shifts::{self, MassShift};
 use crate::trigger::Trigger;
+use hpr_design::mass;
 use hpr_design::motor::MotorOptions;
 
 /// A flight being changed: every setter checks its input as the matching `with_*` builder
@@ -134,6 +135,14 @@ impl Changes<'_> {
             return Err(bad(
                 "a mass override (its own, its stage's or a holder's) hides its mass".into(),
             ));
+        }
+        // The new mass scales the part's own (with what it holds): a part that weighs nothing
+        // has no mass distribution to scale (0/0 would poison the flight with NaN).
+        let own = mass::subtree(design, idx).mass_kg;
+        if !(own.is_finite() && own > 0.0) {
+            return Err(bad(format!(
+                "it weighs {own} kg in the design, so it has no mass to scale; give it a mass in the design"
+            )));
         }
         self.sim.part_masses.retain(|(i, _)| *i != idx);
         self.sim.part_masses.push((idx, mass_kg));

@@ -462,12 +462,7 @@ fn pad<O: Observer>(run: &mut Run<'_, O>) -> Result<(f64, [f64; N6]), SimError> 
     Ok((t_lift, y))
 }
 
-fn land<O: Observer>(
-    run: &mut Run<'_, O>,
-    t: f64,
-    pos: Vector3<f64>,
-    vel: Vector3<f64>,
-) {
+fn land<O: Observer>(run: &mut Run<'_, O>, t: f64, pos: Vector3<f64>, vel: Vector3<f64>) {
     run.push_event(EventKind::Landing, t, pos.z, vel.norm());
     run.metrics.landing_time_s = Some(t);
     run.metrics.landing_position_m = Some([pos.x, pos.y]);

@@ -1,0 +1,252 @@
+//! A flight's values ([`Setup`]: the nominals, or a variant's with its sampled inputs checked
+//! against their ranges) and what turns them into flights ([`Fixed`]): the base simulation,
+//! built once from scratch, and the batch engine's columns for the lanes.
+
+use super::super::params::Param;
+use super::super::scenario::{with_trigger_value, Scenario};
+use hpr_design::design::model::Design;
+use hpr_design::motor::{Motor, MotorOptions};
+use hpr_sim::batch::Columns;
+use hpr_sim::gravity::Gravity;
+use hpr_sim::wind::Wind;
+use hpr_sim::{Environment, MassShift, Parachute, Rail, SimOptions, Simulation};
+
+/// Every flight's values, nominal or a variant's.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Setup {
+    pub(super) structure_mass_kg: f64,
+    pub(super) structure_cg_m: f64,
+    pub(super) ballast_kg: f64,
+    pub(super) impulse_ns: f64,
+    pub(super) burn_time_s: f64,
+    pub(super) drag_scale: f64,
+    pub(super) elevation_m: f64,
+    pub(super) wind_speed_m_s: f64,
+    pub(super) wind_from_deg: f64,
+    pub(super) rail: [f64; 3],
+    /// Per parachute: CdS, lag, trigger number (NaN if none).
+    pub(super) parachutes: Vec<[f64; 3]>,
+    /// Per shift: travel, duration, trigger number (NaN if none).
+    pub(super) shifts: Vec<[f64; 3]>,
+}
+
+impl Setup {
+    pub(super) fn get(&self, p: Param) -> f64 {
+        match p {
+            Param::StructureMassKg => self.structure_mass_kg,
+            Param::StructureCgM => self.structure_cg_m,
+            Param::BallastKg => self.ballast_kg,
+            Param::MotorImpulseNs => self.impulse_ns,
+            Param::MotorBurnTimeS => self.burn_time_s,
+            Param::DragScale => self.drag_scale,
+            Param::ElevationM => self.elevation_m,
+            Param::WindSpeedMS => self.wind_speed_m_s,
+            Param::WindFromDeg => self.wind_from_deg,
+            Param::RailLengthM => self.rail[0],
+            Param::RailInclinationDeg => self.rail[1],
+            Param::RailHeadingDeg => self.rail[2],
+            Param::ParachuteCdsM2(i) => self.parachutes[i][0],
+            Param::ParachuteLagS(i) => self.parachutes[i][1],
+            Param::ParachuteTrigger(i) => self.parachutes[i][2],
+            Param::ShiftTravelM(i) => self.shifts[i][0],
+            Param::ShiftDurationS(i) => self.shifts[i][1],
+            Param::ShiftTrigger(i) => self.shifts[i][2],
+        }
+    }
+
+    pub(super) fn set(&mut self, p: Param, v: f64) {
+        let slot = match p {
+            Param::StructureMassKg => &mut self.structure_mass_kg,
+            Param::StructureCgM => &mut self.structure_cg_m,
+            Param::BallastKg => &mut self.ballast_kg,
+            Param::MotorImpulseNs => &mut self.impulse_ns,
+            Param::MotorBurnTimeS => &mut self.burn_time_s,
+            Param::DragScale => &mut self.drag_scale,
+            Param::ElevationM => &mut self.elevation_m,
+            Param::WindSpeedMS => &mut self.wind_speed_m_s,
+            Param::WindFromDeg => &mut self.wind_from_deg,
+            Param::RailLengthM => &mut self.rail[0],
+            Param::RailInclinationDeg => &mut self.rail[1],
+            Param::RailHeadingDeg => &mut self.rail[2],
+            Param::ParachuteCdsM2(i) => &mut self.parachutes[i][0],
+            Param::ParachuteLagS(i) => &mut self.parachutes[i][1],
+            Param::ParachuteTrigger(i) => &mut self.parachutes[i][2],
+            Param::ShiftTravelM(i) => &mut self.shifts[i][0],
+            Param::ShiftDurationS(i) => &mut self.shifts[i][1],
+            Param::ShiftTrigger(i) => &mut self.shifts[i][2],
+        };
+        *slot = v;
+    }
+}
+
+/// What a flight needs besides its setup: the scenario's fixed parts, the design, the motor
+/// and the nominals.
+pub(super) struct Fixed<'a> {
+    pub(super) scenario: &'a Scenario,
+    pub(super) design: &'a Design,
+    pub(super) motor: &'a Motor,
+    pub(super) nominal: &'a Setup,
+}
+
+impl Fixed<'_> {
+    /// The nominal setup with the plan's inputs set to `values`, each checked against its
+    /// range (the error names the input and the rule).
+    pub(super) fn setup(&self, values: &[f64]) -> Result<Setup, String> {
+        let mut s = self.nominal.clone();
+        for (input, &v) in self.scenario.inputs.iter().zip(values) {
+            input
+                .param
+                .domain()
+                .check(v)
+                .map_err(|r| format!("{} = {v}: {r}", input.key))?;
+            s.set(input.param, v);
+        }
+        Ok(s)
+    }
+
+    /// The simulation of a setup, built from scratch (the base of the lanes).
+    pub(super) fn simulation(&self, s: &Setup) -> Result<Simulation, String> {
+        let err = |e: &dyn std::fmt::Display| e.to_string();
+        let gravity = if self.scenario.environment.inverse_square_gravity {
+            Gravity::inverse_square(s.elevation_m).map_err(|e| err(&e))?
+        } else {
+            Gravity::default()
+        };
+        let env = Environment {
+            elevation_m: s.elevation_m,
+            wind: Wind::constant(s.wind_speed_m_s, s.wind_from_deg).map_err(|e| err(&e))?,
+            gravity,
+            vacuum: false,
+        };
+        let rail = Rail {
+            length_m: s.rail[0],
+            inclination_deg: s.rail[1],
+            heading_deg: s.rail[2],
+        };
+        let sim = Simulation::new(self.design.clone(), self.motor.clone(), env, rail)
+            .map_err(|e| err(&e))?;
+        let (delta_mass, delta_cg) = self.structure_deltas(s);
+        let ballast = self
+            .scenario
+            .ballast
+            .as_deref()
+            .filter(|_| s.ballast_kg != self.nominal.ballast_kg);
+        sim.with_changes(|c| {
+            c.motor_scales(self.motor_scales(s))?;
+            if !self.scenario.parachutes.is_empty() {
+                let chutes = self
+                    .scenario
+                    .parachutes
+                    .iter()
+                    .zip(&s.parachutes)
+                    .map(|(p, v)| {
+                        Parachute::new(
+                            p.name.clone(),
+                            v[0],
+                            with_trigger_value(&p.trigger, v[2]),
+                            v[1],
+                        )
+                    })
+                    .collect();
+                c.parachutes(chutes)?;
+            }
+            if !self.scenario.shifts.is_empty() {
+                let shifts = self
+                    .scenario
+                    .shifts
+                    .iter()
+                    .zip(&s.shifts)
+                    .map(|(sh, v)| {
+                        MassShift::new(
+                            with_trigger_value(&sh.trigger, v[2]),
+                            sh.component.clone(),
+                            v[0],
+                            v[1],
+                        )
+                    })
+                    .collect();
+                c.shifts(shifts)?;
+            }
+            c.options(SimOptions {
+                integrator: self.scenario.integrator,
+                max_time_s: self.scenario.max_time_s,
+                keep_samples: false,
+            })?;
+            if s.drag_scale != 1.0 {
+                c.drag_scale(s.drag_scale)?;
+            }
+            if let Some(id) = ballast {
+                c.part_mass(id, s.ballast_kg)?;
+            }
+            if delta_mass != 0.0 || delta_cg != 0.0 {
+                c.mass_adjustment(delta_mass, delta_cg)?;
+            }
+            Ok(())
+        })
+        .map_err(|e| err(&e))
+    }
+
+    /// The structure's change from its nominal (which is at the nominal ballast: a ballast
+    /// change is the part's mass, the structure's dispersion comes on top of it).
+    pub(super) fn structure_deltas(&self, s: &Setup) -> (f64, f64) {
+        (
+            s.structure_mass_kg - self.nominal.structure_mass_kg,
+            s.structure_cg_m - self.nominal.structure_cg_m,
+        )
+    }
+
+    /// The motor's impulse and time scales: the setup's impulse and burn time over the
+    /// nominal thrust curve's.
+    pub(super) fn motor_scales(&self, s: &Setup) -> MotorOptions {
+        MotorOptions::default()
+            .with_impulse_scale(s.impulse_ns / self.nominal.impulse_ns)
+            .with_time_scale(s.burn_time_s / self.nominal.burn_time_s)
+    }
+
+    /// The batch engine's columns of `rows`: one column per swept or dispersed input (the
+    /// wind's speed and direction together, the rail's three numbers together, so that each
+    /// is the setup's own value), empty for every other.
+    pub(super) fn columns(&self, rows: &[&Setup]) -> Columns {
+        let has = |p: Param| self.scenario.inputs.iter().any(|i| i.param == p);
+        let any = |ps: &[Param]| ps.iter().any(|&p| has(p));
+        let col = |on: bool, f: &dyn Fn(&Setup) -> f64| -> Vec<f64> {
+            if on {
+                rows.iter().map(|s| f(s)).collect()
+            } else {
+                vec![]
+            }
+        };
+        use Param::*;
+        let structure = any(&[StructureMassKg, StructureCgM]);
+        let motor = any(&[MotorImpulseNs, MotorBurnTimeS]);
+        let wind = any(&[WindSpeedMS, WindFromDeg]);
+        let rail = any(&[RailLengthM, RailInclinationDeg, RailHeadingDeg]);
+        let per = |count: usize, p: fn(usize) -> Param, f: fn(&Setup, usize) -> f64| {
+            (0..count)
+                .map(|k| col(has(p(k)), &|s| f(s, k)))
+                .collect::<Vec<_>>()
+        };
+        let (chutes, shifts) = (self.scenario.parachutes.len(), self.scenario.shifts.len());
+        Columns {
+            len: rows.len(),
+            structure_delta_mass_kg: col(structure, &|s| self.structure_deltas(s).0),
+            structure_delta_cg_m: col(structure, &|s| self.structure_deltas(s).1),
+            part_mass_kg: col(has(BallastKg), &|s| s.ballast_kg),
+            impulse_scale: col(motor, &|s| self.motor_scales(s).impulse_scale),
+            time_scale: col(motor, &|s| self.motor_scales(s).time_scale),
+            drag_scale: col(has(DragScale), &|s| s.drag_scale),
+            elevation_m: col(has(ElevationM), &|s| s.elevation_m),
+            wind_speed_m_s: col(wind, &|s| s.wind_speed_m_s),
+            wind_from_deg: col(wind, &|s| s.wind_from_deg),
+            rail_length_m: col(rail, &|s| s.rail[0]),
+            rail_inclination_deg: col(rail, &|s| s.rail[1]),
+            rail_heading_deg: col(rail, &|s| s.rail[2]),
+            chute_cds_m2: per(chutes, ParachuteCdsM2, |s, k| s.parachutes[k][0]),
+            chute_lag_s: per(chutes, ParachuteLagS, |s, k| s.parachutes[k][1]),
+            chute_trigger: per(chutes, ParachuteTrigger, |s, k| s.parachutes[k][2]),
+            shift_travel_m: per(shifts, ShiftTravelM, |s, k| s.shifts[k][0]),
+            shift_duration_s: per(shifts, ShiftDurationS, |s, k| s.shifts[k][1]),
+            shift_trigger: per(shifts, ShiftTrigger, |s, k| s.shifts[k][2]),
+        }
+    }
+}
