@@ -178,7 +178,7 @@ fn measure(n: usize, compare: bool) {
                     let t = Instant::now();
                     let mut sum = 0.0;
                     pool.install(|| {
-                        batch.run(n, 64, 8, columns_of, |r| {
+                        batch.run(n, 16, 64, columns_of, |r| {
                             sum += r.metrics.apogee_m.unwrap_or(0.0)
                         })
                     })
