@@ -23,29 +23,12 @@ use super::variants::{Plan, PlanInput, Variant};
 use hpr_design::design::model::Design;
 use hpr_design::mass;
 use hpr_design::motor::{self, Motor};
-use hpr_sim::batch::{self, Batch, LaneResult};
+use hpr_sim::batch::{Batch, LaneResult};
 use hpr_sim::{Simulation, Trigger};
 use setup::{Fixed, Setup};
 
-/// How a variant ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Status {
-    Landed,
-    TimeLimit,
-    Refused,
-    Failed,
-}
-
-impl Status {
-    pub fn name(&self) -> &'static str {
-        match self {
-            Status::Landed => "landed",
-            Status::TimeLimit => "time_limit",
-            Status::Refused => "refused",
-            Status::Failed => "failed",
-        }
-    }
-}
+/// How a variant ended: the batch lane's status.
+pub use hpr_sim::batch::Status;
 
 /// A flown (or refused) variant: its status, the error text, and the value of every metric
 /// (in [`Prepared::metrics`] order; `None` where a value does not exist).
@@ -328,12 +311,7 @@ impl Prepared {
 
     /// A variant's result from its lane.
     fn result(&self, id: u64, lane: LaneResult) -> VariantResult {
-        let status = match lane.status {
-            batch::Status::Landed => Status::Landed,
-            batch::Status::TimeLimit => Status::TimeLimit,
-            batch::Status::Refused => Status::Refused,
-            batch::Status::Failed => Status::Failed,
-        };
+        let status = lane.status;
         let error = match status {
             Status::TimeLimit => Some(format!(
                 "the flight reached its time limit (integrator.max_time_s = {} s) before landing",
