@@ -273,19 +273,7 @@ impl FlightModel {
         dy: &mut [f64; N3],
     ) -> FlightAux {
         let inst = self.instant(starts, t);
-        let h = y[2];
-        let air = self.air.at_msl(h + self.env.elevation_m);
-        let g = self.env.gravity.at(h);
-        let wind = self.wind_n(h);
-        eom::descent_derivative(
-            y,
-            inst.mass.mass_kg,
-            cds_m2,
-            self.air_at(&air).density_kg_m3,
-            g,
-            &wind,
-            dy,
-        );
+        let (air, wind, g) = self.descent_rates(cds_m2, t, y, dy);
         let rel = Vector3::new(y[3], y[4], y[5]) - wind;
         let a = Vector3::new(dy[3], dy[4], dy[5] + g);
         FlightAux {
@@ -299,6 +287,34 @@ impl FlightModel {
 }
 
 impl FlightModel {
+    /// The descent's derivative alone, as the integrator calls it: the mass is the structure's
+    /// plus the propellant left (exactly the mass state's mass; its center and inertia do not
+    /// enter the point-mass descent). Returns the air, the wind and gravity it used.
+    #[inline]
+    pub fn descent_rates(
+        &self,
+        cds_m2: f64,
+        t: f64,
+        y: &[f64; N3],
+        dy: &mut [f64; N3],
+    ) -> (Air, Vector3<f64>, f64) {
+        let mass_kg = self.mass.fixed_mass_kg + self.motor.eval(t).propellant_kg;
+        let h = y[2];
+        let air = self.air.at_msl(h + self.env.elevation_m);
+        let g = self.env.gravity.at(h);
+        let wind = self.wind_n(h);
+        eom::descent_derivative(
+            y,
+            mass_kg,
+            cds_m2,
+            self.air_at(&air).density_kg_m3,
+            g,
+            &wind,
+            dy,
+        );
+        (air, wind, g)
+    }
+
     /// The center of mass's position and velocity (inertial) and a sample's figures at the end
     /// of a step whose derivative `dy` is known (the integrator's FSAL stage): one mass-state
     /// evaluation, no aerodynamics. Agrees with [`FlightModel::derivative_6dof`]'s figures.

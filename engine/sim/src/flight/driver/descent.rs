@@ -15,7 +15,7 @@ pub(super) fn descent_phase<O: Observer>(
     {
         let starts = run.starts;
         let mut evals = 0u64;
-        each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t0, y0)).map_err(|e| integ_at(t0, y0, e, name))?;
+        each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.descent_rates(cds, t, y, dy); }, t0, y0)).map_err(|e| integ_at(t0, y0, e, name))?;
         run.evaluations += evals;
         let mut dy = [0.0; N3];
         let aux = model.derivative_descent(&starts, cds, t0, y0, &mut dy);
@@ -38,7 +38,7 @@ pub(super) fn descent_phase<O: Observer>(
         let mut bad: Option<(f64, [f64; N3])> = None;
         let outcome = each!(stepper, s => s.step(|t, y, dy| {
             evals += 1;
-            model.derivative_descent(&starts, cds, t, y, dy);
+            model.descent_rates(cds, t, y, dy);
             if bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
                 bad = Some((t, *y));
             }
@@ -130,9 +130,8 @@ pub(super) fn descent_phase<O: Observer>(
             || matches!(outcome, crate::integrate::StepOutcome::ReachedStop)
         {
             cds = new_cds;
-            let starts = run.starts;
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.derivative_descent(&starts, cds, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.descent_rates(cds, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
         }
     }
