@@ -35,22 +35,14 @@ pub(super) fn descent_phase<O: Observer>(
         let t_stop = run.next_stop(t_now);
         let starts = run.starts;
         let mut evals = 0u64;
-        let mut bad: Option<(f64, [f64; N3])> = None;
-        let outcome = each!(stepper, s => s.step(|t, y, dy| {
-            evals += 1;
-            model.descent_rates(cds, t, y, dy);
-            if bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
-                bad = Some((t, *y));
-            }
-        }, t_stop))
-        .map_err(|e| match bad {
-            Some((tb, yb)) => non_finite(tb, &yb),
-            None => integ_at(t_now, each!(stepper, s => s.y()), e, name),
-        })?;
-        if !each!(stepper, s => s.y()).iter().all(|v| v.is_finite()) {
-            let (tb, yb) = bad.unwrap_or((each!(stepper, s => s.t()), *each!(stepper, s => s.y())));
-            return Err(non_finite(tb, &yb));
-        }
+        let outcome = stepper.checked_step(
+            |t, y, dy| {
+                model.descent_rates(cds, t, y, dy);
+            },
+            t_stop,
+            name,
+            &mut evals,
+        )?;
         run.evaluations += evals;
         run.steps += 1;
         let mut found: Option<(f64, EventKind)> = None;

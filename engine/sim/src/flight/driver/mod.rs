@@ -44,6 +44,38 @@ use descent::descent_phase;
 use six_dof::six_dof_phase;
 
 impl<const N: usize> Stepper<N> {
+    /// One step, never past `t_stop`, counting derivative evaluations in `evals`. A
+    /// derivative or state that is not finite becomes the flight's [`SimError::NonFinite`] at
+    /// the first place it appeared (a NaN makes the adaptive stepper reject until its step
+    /// underflows; RK4 would carry it into the state); any other failure is the integration's
+    /// error in the phase `what`.
+    fn checked_step(
+        &mut self,
+        mut f: impl FnMut(f64, &[f64; N], &mut [f64; N]),
+        t_stop: f64,
+        what: &str,
+        evals: &mut u64,
+    ) -> Result<crate::integrate::StepOutcome, SimError> {
+        let t_now = each!(self, s => s.t());
+        let mut bad: Option<(f64, [f64; N])> = None;
+        let outcome = each!(self, s => s.step(|t, y, dy| {
+            *evals += 1;
+            f(t, y, dy);
+            if bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
+                bad = Some((t, *y));
+            }
+        }, t_stop))
+        .map_err(|e| match bad {
+            Some((tb, yb)) => non_finite(tb, &yb),
+            None => integ_at(t_now, each!(self, s => s.y()), e, what),
+        })?;
+        if !each!(self, s => s.y()).iter().all(|v| v.is_finite()) {
+            let (tb, yb) = bad.unwrap_or((each!(self, s => s.t()), *each!(self, s => s.y())));
+            return Err(non_finite(tb, &yb));
+        }
+        Ok(outcome)
+    }
+
     fn new(integrator: &Integrator, atol: [f64; N], rtol: f64) -> Result<Self, IntegratorError> {
         Ok(match *integrator {
             Integrator::Adaptive { .. } => Stepper::Adaptive(Box::new(Dopri54::with_tolerances(

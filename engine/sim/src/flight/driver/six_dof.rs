@@ -100,24 +100,14 @@ pub(super) fn six_dof_phase<O: Observer>(
         let t_stop = run.next_stop(t_now);
         let starts = run.starts;
         let mut evals = 0u64;
-        // The first evaluation whose derivative was not finite (a NaN makes the adaptive
-        // stepper reject until its step underflows; RK4 would carry it into the state).
-        let mut bad: Option<(f64, [f64; N6])> = None;
-        let outcome = each!(stepper, s => s.step(|t, y, dy| {
-            evals += 1;
-            deriv(&starts, t, y, dy);
-            if bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
-                bad = Some((t, *y));
-            }
-        }, t_stop))
-        .map_err(|e| match bad {
-            Some((tb, yb)) => non_finite(tb, &yb),
-            None => integ_at(t_now, each!(stepper, s => s.y()), e, name),
-        })?;
-        if !each!(stepper, s => s.y()).iter().all(|v| v.is_finite()) {
-            let (tb, yb) = bad.unwrap_or((each!(stepper, s => s.t()), *each!(stepper, s => s.y())));
-            return Err(non_finite(tb, &yb));
-        }
+        let outcome = stepper.checked_step(
+            |t, y, dy| {
+                deriv(&starts, t, y, dy);
+            },
+            t_stop,
+            name,
+            &mut evals,
+        )?;
         run.evaluations += evals;
         run.steps += 1;
         let (t1, y1) = (each!(stepper, s => s.t()), *each!(stepper, s => s.y()));
