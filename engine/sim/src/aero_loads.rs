@@ -9,6 +9,7 @@
 //! speed through the air. Tables are built once ([`AeroTables`]); a call allocates nothing.
 
 use crate::eom::Loads;
+use crate::lanes::{Real, V3};
 use hpr_design::aero::table::MachTable;
 use nalgebra::Vector3;
 
@@ -85,42 +86,73 @@ pub fn aero_loads(
     powered: bool,
     drag_scale: f64,
 ) -> Loads {
-    let rho = air.density_kg_m3;
-    let mut force = Vector3::zeros();
-    let mut moment = Vector3::zeros();
+    let (f, m) = loads(
+        t,
+        &V3::from_na(v_o_air_b),
+        &V3::from_na(v_cm_air_b),
+        &V3::from_na(omega),
+        air.density_kg_m3,
+        air.speed_of_sound_m_s,
+        powered,
+        drag_scale,
+    );
+    Loads {
+        force_b: f.to_na(),
+        moment_o_b: m.to_na(),
+    }
+}
+
+/// [`aero_loads`] on lanes (the one copy of these equations): force and moment about O, body
+/// axes. The tables are shared by every lane; look-ups and `atan2` run lane by lane.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn loads<S: Real>(
+    t: &AeroTables,
+    v_o_air_b: &V3<S>,
+    v_cm_air_b: &V3<S>,
+    omega: &V3<S>,
+    rho: S,
+    speed_of_sound: S,
+    powered: S::Mask,
+    drag_scale: S,
+) -> (V3<S>, V3<S>) {
+    let zero = S::splat(0.0);
+    let one = S::splat(1.0);
+    let half = S::splat(0.5);
+    let area = S::splat(t.ref_area_m2);
+    let mut force = V3::<S>::zero();
+    let mut moment = V3::<S>::zero();
     for s in &t.surfaces {
-        let p = Vector3::new(0.0, 0.0, -s.x_cp_m);
-        let u = -(v_o_air_b + omega.cross(&p));
+        let p = V3::new(zero, zero, S::splat(-s.x_cp_m));
+        let u = -(*v_o_air_b + omega.cross(&p));
         let speed2 = u.norm_squared();
         let cross2 = u.x * u.x + u.y * u.y;
-        if cross2 == 0.0 || speed2 == 0.0 {
-            continue;
-        }
+        // No flow across the axis (or none at all): no normal force from this surface.
+        let none = S::or(cross2.eq(zero), speed2.eq(zero));
         let speed = speed2.sqrt();
-        let cross = cross2.sqrt();
+        let cross = S::select(none, one, cross2.sqrt());
         // The angle between u and −b3: atan2 is exact near zero, where acos(−u_z/|u|) loses
         // half its digits (and it is cheaper).
-        let alpha = cross.atan2(-u.z);
-        let mach = speed / air.speed_of_sound_m_s;
-        let n = 0.5 * rho * speed2 * t.ref_area_m2 * s.cn_alpha.at(mach) * alpha;
-        let f = Vector3::new(n * u.x / cross, n * u.y / cross, 0.0);
-        force += f;
-        moment += p.cross(&f);
+        let nz = -u.z;
+        let alpha = cross.map(|i, c| c.atan2(nz.lane(i)));
+        let mach = speed / speed_of_sound;
+        let cn = mach.map(|_, m| s.cn_alpha.at(m));
+        let n = S::select(none, zero, half * rho * speed2 * area * cn * alpha);
+        let f = V3::new(n * u.x / cross, n * u.y / cross, zero);
+        force = force + f;
+        moment = moment + p.cross(&f);
     }
     let v2 = v_cm_air_b.norm_squared();
-    if v2 > 0.0 {
-        let v = v2.sqrt();
-        let mach = v / air.speed_of_sound_m_s;
-        let q = 0.5 * rho * v2;
-        force.z -= q * t.ref_area_m2 * drag_scale * t.cd(mach, powered);
-        let d = t.ref_diameter_m;
-        let forcing = q * t.ref_area_m2 * d * t.roll_forcing.at(mach);
-        let damping =
-            0.5 * rho * v * t.ref_area_m2 * d * d * t.roll_damping.at(mach) * omega.z / 2.0;
-        moment.z += forcing - damping;
-    }
-    Loads {
-        force_b: force,
-        moment_o_b: moment,
-    }
+    let moving = v2.gt(zero);
+    let v = v2.sqrt();
+    let mach = v / speed_of_sound;
+    let q = half * rho * v2;
+    let cd = mach.map(|i, m| t.cd(m, S::mask_lane(powered, i)));
+    let d = S::splat(t.ref_diameter_m);
+    let forcing = q * area * d * mach.map(|_, m| t.roll_forcing.at(m));
+    let damping = half * rho * v * area * d * d * mach.map(|_, m| t.roll_damping.at(m)) * omega.z
+        / S::splat(2.0);
+    force.z = S::select(moving, force.z - q * area * drag_scale * cd, force.z);
+    moment.z = S::select(moving, moment.z + (forcing - damping), moment.z);
+    (force, moment)
 }

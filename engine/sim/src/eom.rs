@@ -20,6 +20,7 @@
 //! `S_noz`. All of it is a pure function of plain data: no allocation, no tables built.
 
 use crate::frames;
+use crate::lanes::{pack_m3, pack_v3, F64x4, Real, M3, V3};
 use hpr_design::mass::point_inertia;
 use nalgebra::{Matrix3, Vector3};
 
@@ -91,8 +92,134 @@ pub struct Loads {
     pub moment_o_b: Vector3<f64>,
 }
 
-/// Accelerations of the rigid body: O's inertial acceleration (body axes) and ω̇.
-/// Returns `None` when the inertia about the center of mass cannot be inverted.
+/// The fields of a [`MassState`] the equations read, on lanes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassLanes<S> {
+    pub m: S,
+    pub m_rate: S,
+    pub m_accel: S,
+    pub r: V3<S>,
+    pub r_rate: V3<S>,
+    pub r_accel: V3<S>,
+    pub i_o: M3<S>,
+    pub i_o_rate: M3<S>,
+    pub h: V3<S>,
+    pub h_rate: V3<S>,
+}
+
+impl MassLanes<f64> {
+    #[inline(always)]
+    pub fn of(ms: &MassState) -> MassLanes<f64> {
+        MassLanes {
+            m: ms.mass_kg,
+            m_rate: ms.mass_rate,
+            m_accel: ms.mass_accel,
+            r: V3::from_na(&ms.r_cm),
+            r_rate: V3::from_na(&ms.r_cm_rate),
+            r_accel: V3::from_na(&ms.r_cm_accel),
+            i_o: M3::from_na(&ms.inertia_o),
+            i_o_rate: M3::from_na(&ms.inertia_o_rate),
+            h: V3::from_na(&ms.h_rel),
+            h_rate: V3::from_na(&ms.h_rel_rate),
+        }
+    }
+}
+
+/// Four lanes' mass states side by side.
+#[inline(always)]
+pub fn pack_mass(ms: [&MassLanes<f64>; 4]) -> MassLanes<F64x4> {
+    MassLanes {
+        m: F64x4::from_fn(|i| ms[i].m),
+        m_rate: F64x4::from_fn(|i| ms[i].m_rate),
+        m_accel: F64x4::from_fn(|i| ms[i].m_accel),
+        r: pack_v3(ms.map(|m| &m.r)),
+        r_rate: pack_v3(ms.map(|m| &m.r_rate)),
+        r_accel: pack_v3(ms.map(|m| &m.r_accel)),
+        i_o: pack_m3(ms.map(|m| &m.i_o)),
+        i_o_rate: pack_m3(ms.map(|m| &m.i_o_rate)),
+        h: pack_v3(ms.map(|m| &m.h)),
+        h_rate: pack_v3(ms.map(|m| &m.h_rate)),
+    }
+}
+
+/// The nozzle on lanes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NozzleLanes<S> {
+    pub r_noz: V3<S>,
+    pub s_noz: M3<S>,
+}
+
+impl Nozzle {
+    #[inline(always)]
+    pub fn lanes(&self) -> NozzleLanes<f64> {
+        NozzleLanes {
+            r_noz: V3::from_na(&self.r_noz),
+            s_noz: M3::from_na(&self.s_noz),
+        }
+    }
+}
+
+/// Four lanes' nozzles side by side.
+#[inline(always)]
+pub fn pack_nozzle(n: [&NozzleLanes<f64>; 4]) -> NozzleLanes<F64x4> {
+    NozzleLanes {
+        r_noz: pack_v3(n.map(|n| &n.r_noz)),
+        s_noz: pack_m3(n.map(|n| &n.s_noz)),
+    }
+}
+
+/// Accelerations of the rigid body: O's inertial acceleration (body axes) and ω̇, the
+/// equations of the module's header. `force_b` and `moment_o_b` are the external loads but
+/// gravity. One copy for every driver: the single flight calls it on `f64`, the batch engine
+/// on four lanes at once. A singular inertia gives non-finite results.
+#[inline(always)]
+pub fn accelerations<S: Real>(
+    ms: &MassLanes<S>,
+    force_b: &V3<S>,
+    moment_o_b: &V3<S>,
+    gravity_b: &V3<S>,
+    omega: &V3<S>,
+    nozzle: &NozzleLanes<S>,
+) -> (V3<S>, V3<S>) {
+    let m = ms.m;
+    let r = &ms.r;
+    let rp = &ms.r_rate;
+    let two = S::splat(2.0);
+    let weight = gravity_b.scale(m);
+    let noz_arm = nozzle.r_noz - *r;
+    let t20 = *force_b + weight
+        - omega.cross(&omega.cross(r)).scale(m)
+        - ms.r_accel.scale(m)
+        - omega.cross(rp).scale(two * m)
+        - rp.scale(two * ms.m_rate)
+        + omega.cross(&noz_arm).scale(two * ms.m_rate)
+        + noz_arm.scale(ms.m_accel);
+    let t21 = *moment_o_b + r.cross(&weight)
+        - omega.cross(&ms.i_o.mul_v(omega))
+        - ms.i_o_rate.mul_v(omega)
+        - (omega.cross(&ms.h) + ms.h_rate)
+        + nozzle.s_noz.mul_v(omega).scale(ms.m_rate);
+    // I_cm = I_O − m J(r), J(r) = |r|² E − r rᵀ.
+    let rr = r.norm_squared();
+    let rv = [r.x, r.y, r.z];
+    let mut i_cm = ms.i_o;
+    for (a, row) in i_cm.m.iter_mut().enumerate() {
+        for (b, v) in row.iter_mut().enumerate() {
+            let j = if a == b {
+                rr - rv[a] * rv[b]
+            } else {
+                -(rv[a] * rv[b])
+            };
+            *v = *v - j * m;
+        }
+    }
+    let omega_dot = i_cm.inverse().mul_v(&(t21 - r.cross(&t20)));
+    let a_o = V3::new(t20.x / m, t20.y / m, t20.z / m) - omega_dot.cross(r);
+    (a_o, omega_dot)
+}
+
+/// [`accelerations`] for one flight in nalgebra's types. Returns `None` when the inertia
+/// about the center of mass cannot be inverted (the results are not finite).
 #[inline]
 pub fn rigid_body_accelerations(
     ms: &MassState,
@@ -101,42 +228,31 @@ pub fn rigid_body_accelerations(
     omega: &Vector3<f64>,
     nozzle: &Nozzle,
 ) -> Option<(Vector3<f64>, Vector3<f64>)> {
-    let m = ms.mass_kg;
-    let r = &ms.r_cm;
-    let rp = &ms.r_cm_rate;
-    let weight = gravity_b * m;
-    let noz_arm = nozzle.r_noz - r;
-    let t20 = loads.force_b + weight
-        - omega.cross(&omega.cross(r)) * m
-        - ms.r_cm_accel * m
-        - omega.cross(rp) * (2.0 * m)
-        - rp * (2.0 * ms.mass_rate)
-        + omega.cross(&noz_arm) * (2.0 * ms.mass_rate)
-        + noz_arm * ms.mass_accel;
-    let t21 = loads.moment_o_b + r.cross(&weight)
-        - omega.cross(&(ms.inertia_o * omega))
-        - ms.inertia_o_rate * omega
-        - (omega.cross(&ms.h_rel) + ms.h_rel_rate)
-        + nozzle.s_noz * omega * ms.mass_rate;
-    let i_cm = ms.inertia_cm();
-    let omega_dot = i_cm.try_inverse()? * (t21 - r.cross(&t20));
-    let a_o = t20 / m - omega_dot.cross(r);
-    Some((a_o, omega_dot))
+    let (a, w) = accelerations(
+        &MassLanes::of(ms),
+        &V3::from_na(&loads.force_b),
+        &V3::from_na(&loads.moment_o_b),
+        &V3::from_na(gravity_b),
+        &V3::from_na(omega),
+        &nozzle.lanes(),
+    );
+    let ok = [a.x, a.y, a.z, w.x, w.y, w.z].iter().all(|v| v.is_finite());
+    ok.then(|| (a.to_na(), w.to_na()))
 }
 
-/// The 6-DOF state derivative from the accelerations.
-#[inline]
-pub fn rigid_body_derivative(
-    y: &[f64; N6],
-    a_o_b: &Vector3<f64>,
-    omega_dot: &Vector3<f64>,
-    body_to_inertial: &Matrix3<f64>,
-    dy: &mut [f64; N6],
+/// The 6-DOF state derivative from the accelerations, on lanes: `y` and `dy` hold the 13
+/// states of [`N6`].
+#[inline(always)]
+pub fn rigid_body_derivative_lanes<S: Real>(
+    y: &[S; N6],
+    a_o_b: &V3<S>,
+    omega_dot: &V3<S>,
+    body_to_inertial: &M3<S>,
+    dy: &mut [S; N6],
 ) {
-    let a_n = body_to_inertial * a_o_b;
-    let q = [y[6], y[7], y[8], y[9]];
-    let w = Vector3::new(y[10], y[11], y[12]);
-    let qd = frames::quaternion_rate(&q, &w);
+    let a_n = body_to_inertial.mul_v(a_o_b);
+    let w = V3::new(y[10], y[11], y[12]);
+    let qd = frames::quaternion_rate_lanes([y[6], y[7], y[8], y[9]], &w);
     dy[0] = y[3];
     dy[1] = y[4];
     dy[2] = y[5];

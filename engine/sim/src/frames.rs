@@ -9,7 +9,8 @@
 //! * **Inertial frame**: origin at the launch point on the ground, `x` east, `y` north, `z` up.
 //!   The attitude quaternion `q = (w, x, y, z)` takes body components to inertial ones.
 
-use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use crate::lanes::{Real, M3, V3};
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// The rotation taking station components to body components.
 #[inline]
@@ -46,8 +47,48 @@ pub fn axial_point(x_m: f64) -> Vector3<f64> {
 /// normalised first.
 #[inline]
 pub fn body_to_inertial(q: &[f64; 4]) -> Matrix3<f64> {
-    let uq = UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3]));
-    *uq.to_rotation_matrix().matrix()
+    rotation(*q).to_na()
+}
+
+/// [`body_to_inertial`] on lanes: the one formula both drivers use.
+#[inline(always)]
+pub fn rotation<S: Real>(q: [S; 4]) -> M3<S> {
+    let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt();
+    let (w, i, j, k) = (q[0] / n, q[1] / n, q[2] / n, q[3] / n);
+    let (ww, ii, jj, kk) = (w * w, i * i, j * j, k * k);
+    let two = S::splat(2.0);
+    M3 {
+        m: [
+            [
+                ww + ii - jj - kk,
+                two * (i * j - w * k),
+                two * (w * j + i * k),
+            ],
+            [
+                two * (w * k + i * j),
+                ww - ii + jj - kk,
+                two * (j * k - w * i),
+            ],
+            [
+                two * (i * k - w * j),
+                two * (w * i + j * k),
+                ww - ii - jj + kk,
+            ],
+        ],
+    }
+}
+
+/// Quaternion rate on lanes, `q̇ = ½ q ⊗ (0, ω)` (see [`quaternion_rate`]).
+#[inline(always)]
+pub fn quaternion_rate_lanes<S: Real>(q: [S; 4], w: &V3<S>) -> [S; 4] {
+    let [q0, q1, q2, q3] = q;
+    let h = S::splat(0.5);
+    [
+        h * (-q1 * w.x - q2 * w.y - q3 * w.z),
+        h * (q0 * w.x + q2 * w.z - q3 * w.y),
+        h * (q0 * w.y - q1 * w.z + q3 * w.x),
+        h * (q0 * w.z + q1 * w.y - q2 * w.x),
+    ]
 }
 
 /// Attitude of a rocket pointing along a rail with inclination `inclination_deg` above the
@@ -69,13 +110,7 @@ pub fn rail_attitude(inclination_deg: f64, heading_deg: f64) -> [f64; 4] {
 /// Quaternion rate `q̇ = ½ q ⊗ (0, ω)` with ω in body components.
 #[inline]
 pub fn quaternion_rate(q: &[f64; 4], w: &Vector3<f64>) -> [f64; 4] {
-    let [q0, q1, q2, q3] = *q;
-    [
-        0.5 * (-q1 * w.x - q2 * w.y - q3 * w.z),
-        0.5 * (q0 * w.x + q2 * w.z - q3 * w.y),
-        0.5 * (q0 * w.y - q1 * w.z + q3 * w.x),
-        0.5 * (q0 * w.z + q1 * w.y - q2 * w.x),
-    ]
+    quaternion_rate_lanes(*q, &V3::from_na(w))
 }
 
 #[cfg(test)]

@@ -13,6 +13,7 @@ pub mod flight;
 pub mod frames;
 pub mod gravity;
 pub mod integrate;
+pub mod lanes;
 pub mod massprops;
 pub mod shifts;
 pub mod trigger;

@@ -4,16 +4,17 @@
 
 use super::config::{Environment, Parachute, Rail, SimOptions};
 use super::SimError;
-use crate::aero_loads::{aero_loads, AeroTables, AirAt};
+use crate::aero_loads::{self, aero_loads, AeroTables, AirAt};
 use crate::atmosphere::{Air, AirTable};
 use crate::cycloid::{self, CycloidState};
-use crate::eom::{self, MassState, Nozzle, N3, N6};
+use crate::eom::{self, MassLanes, MassState, Nozzle, NozzleLanes, N3, N6};
 use crate::frames;
+use crate::lanes::{F64x4, Real, V3};
 use crate::massprops::{mass_state, MassModel, PropellantState};
 use crate::shifts::{MassShift, ShiftPlan};
 use crate::trigger::Trigger;
 use hpr_design::motor::{MotorState, MotorTables};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 
 /// Most parts that shifts may move in one flight (the kernel keeps their motions in a fixed
 /// array so that it allocates nothing).
@@ -140,84 +141,22 @@ impl FlightModel {
         (self.aero.cp_m(mach) - (-ms.r_cm.z)) / self.ref_diameter_m
     }
 
-    /// Gravity vector in body axes for attitude matrix `r` (body → inertial) at height `h`.
-    #[inline]
-    fn gravity_b(&self, r: &Matrix3<f64>, h: f64) -> Vector3<f64> {
-        r.transpose() * Vector3::new(0.0, 0.0, -self.env.gravity.at(h))
-    }
-
     #[inline]
     fn wind_n(&self, h: f64) -> Vector3<f64> {
         let [e, n] = self.env.wind.velocity_en(h);
         Vector3::new(e, n, 0.0)
     }
 
-    /// The 6-DOF derivative (free flight), also returning what the samples and events read.
+    /// The 6-DOF derivative (free flight) at `(t, y)`.
     #[inline]
-    pub fn derivative_6dof(
-        &self,
-        starts: &ShiftStarts,
-        t: f64,
-        y: &[f64; N6],
-        dy: &mut [f64; N6],
-    ) -> FlightAux {
+    pub fn derivative_6dof(&self, starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]) {
         let inst = self.instant(starts, t);
-        let ms = &inst.mass;
-        let r = frames::body_to_inertial(&[y[6], y[7], y[8], y[9]]);
-        let omega = Vector3::new(y[10], y[11], y[12]);
-        let cm_n = eom::center_of_mass_position(y, ms, &r);
-        let h = cm_n.z;
-        let air = self.air.at_msl(h + self.env.elevation_m);
-        let wind_b = r.transpose() * self.wind_n(h);
-        let v_o_air_b = r.transpose() * Vector3::new(y[3], y[4], y[5]) - wind_b;
-        let v_cm_air_b = v_o_air_b + omega.cross(&ms.r_cm) + ms.r_cm_rate;
-        let air_at = self.air_at(&air);
-        let powered = inst.motor.thrust_n > 0.0;
-        let mut loads = aero_loads(
-            &self.aero,
-            &v_o_air_b,
-            &v_cm_air_b,
-            &omega,
-            &air_at,
-            powered,
-            self.drag_scale,
-        );
-        loads.force_b.z += inst.motor.thrust_n;
-        let g_b = self.gravity_b(&r, h);
-        match eom::rigid_body_accelerations(ms, &loads, &g_b, &omega, &self.nozzle) {
-            Some((a_o, w_dot)) => {
-                eom::rigid_body_derivative(y, &a_o, &w_dot, &r, dy);
-                // Inertial acceleration of the center of mass (as RocketPy and OpenRocket
-                // report it): a_O + ω̇×r + ω×(ω×r) + 2ω×r′ + r″.
-                let a_cm_b = a_o
-                    + w_dot.cross(&ms.r_cm)
-                    + omega.cross(&omega.cross(&ms.r_cm))
-                    + omega.cross(&ms.r_cm_rate) * 2.0
-                    + ms.r_cm_accel;
-                FlightAux {
-                    mass: *ms,
-                    air_speed_m_s: v_cm_air_b.norm(),
-                    speed_of_sound_m_s: air.speed_of_sound_m_s,
-                    accel_cm_m_s2: a_cm_b.norm(),
-                    alpha_rad: angle_of_attack(&v_cm_air_b),
-                }
-            }
-            None => {
-                dy.iter_mut().for_each(|d| *d = f64::NAN);
-                FlightAux::nan(*ms)
-            }
-        }
+        derivative_6dof_lanes(self, &MassLanes::of(&inst.mass), inst.motor.thrust_n, y, dy);
     }
 
     /// The rail's derivative: O slides along the rail; attitude fixed, no rotation.
     #[inline]
-    pub fn derivative_rail(
-        &self,
-        starts: &ShiftStarts,
-        t: f64,
-        y: &[f64; N6],
-        dy: &mut [f64; N6],
-    ) -> FlightAux {
+    pub fn derivative_rail(&self, starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]) {
         let inst = self.instant(starts, t);
         let ms = &inst.mass;
         let u = self.rail.direction_n;
@@ -253,13 +192,6 @@ impl FlightModel {
         dy[4] = a * u.y;
         dy[5] = a * u.z;
         dy[6..].iter_mut().for_each(|d| *d = 0.0);
-        FlightAux {
-            mass: *ms,
-            air_speed_m_s: v_air_b.norm(),
-            speed_of_sound_m_s: air.speed_of_sound_m_s,
-            accel_cm_m_s2: a.abs(),
-            alpha_rad: 0.0,
-        }
     }
 
     /// Descent under the open canopies (total `cds_m2`): the center of mass as a point.
@@ -372,18 +304,6 @@ pub struct FlightAux {
     pub alpha_rad: f64,
 }
 
-impl FlightAux {
-    fn nan(mass: MassState) -> FlightAux {
-        FlightAux {
-            mass,
-            air_speed_m_s: f64::NAN,
-            speed_of_sound_m_s: f64::NAN,
-            accel_cm_m_s2: f64::NAN,
-            alpha_rad: f64::NAN,
-        }
-    }
-}
-
 /// Angle between the rocket's axis and its velocity through the air, rad.
 #[inline]
 fn angle_of_attack(v_air_b: &Vector3<f64>) -> f64 {
@@ -454,4 +374,127 @@ pub fn shift_specs(shifts: &[MassShift], plan: &ShiftPlan) -> Vec<ShiftSpec> {
             duration_s: s.duration_s,
         })
         .collect()
+}
+
+/// What the 6-DOF derivative reads of a flight's model, on lanes: one model per lane, the
+/// aerodynamic tables shared by all of them.
+pub trait ModelLanes<S: Real> {
+    /// The aerodynamic tables (the same for every lane).
+    fn aero(&self) -> &AeroTables;
+    /// Air density (0 in a vacuum) and speed of sound at a height above the site.
+    fn air(&self, h_agl_m: S) -> (S, S);
+    /// Wind, inertial, at a height above the site.
+    fn wind(&self, h_agl_m: S) -> V3<S>;
+    /// Gravity's magnitude at a height above the site.
+    fn gravity(&self, h_agl_m: S) -> S;
+    fn drag_scale(&self) -> S;
+    fn nozzle(&self) -> NozzleLanes<S>;
+}
+
+impl ModelLanes<f64> for FlightModel {
+    #[inline(always)]
+    fn aero(&self) -> &AeroTables {
+        &self.aero
+    }
+    #[inline(always)]
+    fn air(&self, h: f64) -> (f64, f64) {
+        let a = self.air_at(&self.air.at_msl(h + self.env.elevation_m));
+        (a.density_kg_m3, a.speed_of_sound_m_s)
+    }
+    #[inline(always)]
+    fn wind(&self, h: f64) -> V3<f64> {
+        let [e, n] = self.env.wind.velocity_en(h);
+        V3::new(e, n, 0.0)
+    }
+    #[inline(always)]
+    fn gravity(&self, h: f64) -> f64 {
+        self.env.gravity.at(h)
+    }
+    #[inline(always)]
+    fn drag_scale(&self) -> f64 {
+        self.drag_scale
+    }
+    #[inline(always)]
+    fn nozzle(&self) -> NozzleLanes<f64> {
+        self.nozzle.lanes()
+    }
+}
+
+/// Four flights' models side by side (their aerodynamic tables must be one and the same:
+/// [`FourModels::new`] checks).
+#[derive(Clone, Copy)]
+pub struct FourModels<'a>(pub [&'a FlightModel; 4]);
+
+impl<'a> FourModels<'a> {
+    /// `None` unless the four share their aerodynamic tables.
+    pub fn new(models: [&'a FlightModel; 4]) -> Option<FourModels<'a>> {
+        let same = models
+            .iter()
+            .all(|m| std::sync::Arc::ptr_eq(&m.aero, &models[0].aero));
+        same.then_some(FourModels(models))
+    }
+}
+
+impl ModelLanes<F64x4> for FourModels<'_> {
+    #[inline(always)]
+    fn aero(&self) -> &AeroTables {
+        &self.0[0].aero
+    }
+    #[inline(always)]
+    fn air(&self, h: F64x4) -> (F64x4, F64x4) {
+        let a: [(f64, f64); 4] = std::array::from_fn(|i| self.0[i].air(h.0[i]));
+        (F64x4::from_fn(|i| a[i].0), F64x4::from_fn(|i| a[i].1))
+    }
+    #[inline(always)]
+    fn wind(&self, h: F64x4) -> V3<F64x4> {
+        let w: [V3<f64>; 4] = std::array::from_fn(|i| self.0[i].wind(h.0[i]));
+        crate::lanes::pack_v3([&w[0], &w[1], &w[2], &w[3]])
+    }
+    #[inline(always)]
+    fn gravity(&self, h: F64x4) -> F64x4 {
+        F64x4::from_fn(|i| self.0[i].gravity(h.0[i]))
+    }
+    #[inline(always)]
+    fn drag_scale(&self) -> F64x4 {
+        F64x4::from_fn(|i| self.0[i].drag_scale)
+    }
+    #[inline(always)]
+    fn nozzle(&self) -> NozzleLanes<F64x4> {
+        let n = self.0.map(|m| m.nozzle.lanes());
+        crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]])
+    }
+}
+
+/// The 6-DOF derivative on lanes, given each lane's mass state and thrust: the one copy of
+/// the free-flight equations (frames, air, wind, loads, gravity, EoM v1).
+#[inline(always)]
+pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
+    lanes: &L,
+    ms: &MassLanes<S>,
+    thrust_n: S,
+    y: &[S; N6],
+    dy: &mut [S; N6],
+) {
+    let zero = S::splat(0.0);
+    let r = frames::rotation([y[6], y[7], y[8], y[9]]);
+    let omega = V3::new(y[10], y[11], y[12]);
+    let h = y[2] + r.mul_v(&ms.r).z;
+    let (rho, speed_of_sound) = lanes.air(h);
+    let wind_b = r.tr_mul_v(&lanes.wind(h));
+    let v_o_air_b = r.tr_mul_v(&V3::new(y[3], y[4], y[5])) - wind_b;
+    let v_cm_air_b = v_o_air_b + omega.cross(&ms.r) + ms.r_rate;
+    let (mut force, moment) = aero_loads::loads(
+        lanes.aero(),
+        &v_o_air_b,
+        &v_cm_air_b,
+        &omega,
+        rho,
+        speed_of_sound,
+        thrust_n.gt(zero),
+        lanes.drag_scale(),
+    );
+    force.z = force.z + thrust_n;
+    let g_b = r.tr_mul_v(&V3::new(zero, zero, -lanes.gravity(h)));
+    let (a_o, w_dot) = eom::accelerations(ms, &force, &moment, &g_b, &omega, &lanes.nozzle());
+    eom::rigid_body_derivative_lanes(y, &a_o, &w_dot, &r, dy);
 }

@@ -61,7 +61,7 @@ pub(super) fn six_dof_phase<O: Observer>(
 ) -> Result<(f64, [f64; N6], PhaseEnd), SimError> {
     let model = run.model;
     let rail = phase == Phase::Rail;
-    let deriv = |starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]| -> FlightAux {
+    let deriv = |starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]| {
         if rail {
             model.derivative_rail(starts, t, y, dy)
         } else {

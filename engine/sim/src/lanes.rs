@@ -1,0 +1,391 @@
+//! Lanes: the number type the shared kernels are written over, so that one copy of each
+//! equation serves the single flight (`f64`, one lane) and the batch engine ([`F64x4`], four
+//! variants side by side in one register's worth of data).
+//!
+//! Every operation of [`Real`] is element-wise and exactly the IEEE operation of `f64` on each
+//! lane (add, subtract, multiply, divide, square root, comparisons, select; functions the
+//! hardware has no vector form of, such as `atan2` or a table look-up, are called lane by lane
+//! through [`Real::map`]). Rust never fuses a multiply and an add on its own, so lane `i` of a
+//! kernel evaluated on `F64x4` is bit for bit the kernel evaluated on that lane's `f64`
+//! inputs: the batch engine's lanes equal single flights by construction, not by tolerance.
+//!
+//! [`V3`] and [`M3`] are the small vector and matrix types of the generic kernels (nalgebra's
+//! types need a full `RealField`, which a lane bundle is not).
+
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// A number, or a bundle of numbers (lanes) operated on together.
+pub trait Real:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// A truth value per lane.
+    type Mask: Copy;
+    /// Number of lanes.
+    const LANES: usize;
+    /// Every lane `v`.
+    fn splat(v: f64) -> Self;
+    /// Lane `i`.
+    fn lane(self, i: usize) -> f64;
+    /// `f(i, lane i)` on every lane.
+    fn map(self, f: impl FnMut(usize, f64) -> f64) -> Self;
+    fn sqrt(self) -> Self;
+    /// Lane-wise `self > other`.
+    fn gt(self, other: Self) -> Self::Mask;
+    /// Lane-wise `self == other`.
+    fn eq(self, other: Self) -> Self::Mask;
+    fn or(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Lane-wise `if m { a } else { b }`.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+    /// Lane `i` of a mask.
+    fn mask_lane(m: Self::Mask, i: usize) -> bool;
+}
+
+impl Real for f64 {
+    type Mask = bool;
+    const LANES: usize = 1;
+    #[inline(always)]
+    fn splat(v: f64) -> f64 {
+        v
+    }
+    #[inline(always)]
+    fn lane(self, _: usize) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn map(self, mut f: impl FnMut(usize, f64) -> f64) -> f64 {
+        f(0, self)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn gt(self, other: f64) -> bool {
+        self > other
+    }
+    #[inline(always)]
+    fn eq(self, other: f64) -> bool {
+        self == other
+    }
+    #[inline(always)]
+    fn or(a: bool, b: bool) -> bool {
+        a || b
+    }
+    #[inline(always)]
+    fn select(m: bool, a: f64, b: f64) -> f64 {
+        if m {
+            a
+        } else {
+            b
+        }
+    }
+    #[inline(always)]
+    fn mask_lane(m: bool, _: usize) -> bool {
+        m
+    }
+}
+
+/// Four `f64` lanes.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[repr(C, align(32))]
+pub struct F64x4(pub [f64; 4]);
+
+macro_rules! lanewise {
+    ($tr:ident, $f:ident, $op:tt) => {
+        impl $tr for F64x4 {
+            type Output = F64x4;
+            #[inline(always)]
+            fn $f(self, o: F64x4) -> F64x4 {
+                let (a, b) = (self.0, o.0);
+                F64x4([a[0] $op b[0], a[1] $op b[1], a[2] $op b[2], a[3] $op b[3]])
+            }
+        }
+    };
+}
+lanewise!(Add, add, +);
+lanewise!(Sub, sub, -);
+lanewise!(Mul, mul, *);
+lanewise!(Div, div, /);
+
+impl Neg for F64x4 {
+    type Output = F64x4;
+    #[inline(always)]
+    fn neg(self) -> F64x4 {
+        let a = self.0;
+        F64x4([-a[0], -a[1], -a[2], -a[3]])
+    }
+}
+
+impl Real for F64x4 {
+    type Mask = [bool; 4];
+    const LANES: usize = 4;
+    #[inline(always)]
+    fn splat(v: f64) -> F64x4 {
+        F64x4([v; 4])
+    }
+    #[inline(always)]
+    fn lane(self, i: usize) -> f64 {
+        self.0[i]
+    }
+    #[inline(always)]
+    fn map(self, mut f: impl FnMut(usize, f64) -> f64) -> F64x4 {
+        let a = self.0;
+        F64x4([f(0, a[0]), f(1, a[1]), f(2, a[2]), f(3, a[3])])
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F64x4 {
+        let a = self.0;
+        F64x4([a[0].sqrt(), a[1].sqrt(), a[2].sqrt(), a[3].sqrt()])
+    }
+    #[inline(always)]
+    fn gt(self, o: F64x4) -> [bool; 4] {
+        let (a, b) = (self.0, o.0);
+        [a[0] > b[0], a[1] > b[1], a[2] > b[2], a[3] > b[3]]
+    }
+    #[inline(always)]
+    fn eq(self, o: F64x4) -> [bool; 4] {
+        let (a, b) = (self.0, o.0);
+        [a[0] == b[0], a[1] == b[1], a[2] == b[2], a[3] == b[3]]
+    }
+    #[inline(always)]
+    fn or(a: [bool; 4], b: [bool; 4]) -> [bool; 4] {
+        [a[0] || b[0], a[1] || b[1], a[2] || b[2], a[3] || b[3]]
+    }
+    #[inline(always)]
+    fn select(m: [bool; 4], a: F64x4, b: F64x4) -> F64x4 {
+        let (x, y) = (a.0, b.0);
+        F64x4([
+            if m[0] { x[0] } else { y[0] },
+            if m[1] { x[1] } else { y[1] },
+            if m[2] { x[2] } else { y[2] },
+            if m[3] { x[3] } else { y[3] },
+        ])
+    }
+    #[inline(always)]
+    fn mask_lane(m: [bool; 4], i: usize) -> bool {
+        m[i]
+    }
+}
+
+impl F64x4 {
+    /// Lanes from a function of the lane index.
+    #[inline(always)]
+    pub fn from_fn(f: impl FnMut(usize) -> f64) -> F64x4 {
+        F64x4(std::array::from_fn(f))
+    }
+}
+
+/// A 3-vector of lanes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct V3<S> {
+    pub x: S,
+    pub y: S,
+    pub z: S,
+}
+
+impl<S: Real> V3<S> {
+    #[inline(always)]
+    pub fn new(x: S, y: S, z: S) -> V3<S> {
+        V3 { x, y, z }
+    }
+    #[inline(always)]
+    pub fn zero() -> V3<S> {
+        let z = S::splat(0.0);
+        V3 { x: z, y: z, z }
+    }
+    /// The same `f64` vector in every lane.
+    #[inline(always)]
+    pub fn splat(v: &nalgebra::Vector3<f64>) -> V3<S> {
+        V3::new(S::splat(v.x), S::splat(v.y), S::splat(v.z))
+    }
+    #[inline(always)]
+    pub fn dot(&self, o: &V3<S>) -> S {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+    #[inline(always)]
+    pub fn cross(&self, o: &V3<S>) -> V3<S> {
+        V3::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+    #[inline(always)]
+    pub fn scale(&self, s: S) -> V3<S> {
+        V3::new(self.x * s, self.y * s, self.z * s)
+    }
+    #[inline(always)]
+    pub fn norm_squared(&self) -> S {
+        self.dot(self)
+    }
+}
+
+impl V3<f64> {
+    #[inline(always)]
+    pub fn from_na(v: &nalgebra::Vector3<f64>) -> V3<f64> {
+        V3::new(v.x, v.y, v.z)
+    }
+    #[inline(always)]
+    pub fn to_na(self) -> nalgebra::Vector3<f64> {
+        nalgebra::Vector3::new(self.x, self.y, self.z)
+    }
+}
+
+impl<S: Real> Add for V3<S> {
+    type Output = V3<S>;
+    #[inline(always)]
+    fn add(self, o: V3<S>) -> V3<S> {
+        V3::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl<S: Real> Sub for V3<S> {
+    type Output = V3<S>;
+    #[inline(always)]
+    fn sub(self, o: V3<S>) -> V3<S> {
+        V3::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl<S: Real> Neg for V3<S> {
+    type Output = V3<S>;
+    #[inline(always)]
+    fn neg(self) -> V3<S> {
+        V3::new(-self.x, -self.y, -self.z)
+    }
+}
+
+/// A 3×3 matrix of lanes, rows first.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct M3<S> {
+    pub m: [[S; 3]; 3],
+}
+
+impl<S: Real> M3<S> {
+    #[inline(always)]
+    pub fn mul_v(&self, v: &V3<S>) -> V3<S> {
+        let m = &self.m;
+        V3::new(
+            m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+            m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+            m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z,
+        )
+    }
+    /// `selfᵀ v`.
+    #[inline(always)]
+    pub fn tr_mul_v(&self, v: &V3<S>) -> V3<S> {
+        let m = &self.m;
+        V3::new(
+            m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z,
+            m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
+            m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z,
+        )
+    }
+    /// The inverse by the adjugate over the determinant (infinite or NaN entries when the
+    /// matrix is singular, which the drivers report as a non-finite derivative).
+    #[inline(always)]
+    pub fn inverse(&self) -> M3<S> {
+        let m = &self.m;
+        let c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+        let c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+        let c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+        let det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
+        let inv = S::splat(1.0) / det;
+        M3 {
+            m: [
+                [
+                    c00 * inv,
+                    (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * inv,
+                    (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * inv,
+                ],
+                [
+                    c01 * inv,
+                    (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * inv,
+                    (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * inv,
+                ],
+                [
+                    c02 * inv,
+                    (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * inv,
+                    (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * inv,
+                ],
+            ],
+        }
+    }
+}
+
+impl M3<f64> {
+    #[inline(always)]
+    pub fn from_na(a: &nalgebra::Matrix3<f64>) -> M3<f64> {
+        M3 {
+            m: [
+                [a[(0, 0)], a[(0, 1)], a[(0, 2)]],
+                [a[(1, 0)], a[(1, 1)], a[(1, 2)]],
+                [a[(2, 0)], a[(2, 1)], a[(2, 2)]],
+            ],
+        }
+    }
+    pub fn to_na(&self) -> nalgebra::Matrix3<f64> {
+        let m = &self.m;
+        nalgebra::Matrix3::new(
+            m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2],
+        )
+    }
+}
+
+/// Gather lanes: `[V3<f64>; 4]` → `V3<F64x4>`.
+#[inline(always)]
+pub fn pack_v3(v: [&V3<f64>; 4]) -> V3<F64x4> {
+    V3::new(
+        F64x4::from_fn(|i| v[i].x),
+        F64x4::from_fn(|i| v[i].y),
+        F64x4::from_fn(|i| v[i].z),
+    )
+}
+
+/// Gather lanes: `[M3<f64>; 4]` → `M3<F64x4>`.
+#[inline(always)]
+pub fn pack_m3(a: [&M3<f64>; 4]) -> M3<F64x4> {
+    M3 {
+        m: std::array::from_fn(|r| std::array::from_fn(|c| F64x4::from_fn(|i| a[i].m[r][c]))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_inverse_times_the_matrix_is_the_identity() {
+        let a = M3 {
+            m: [[2.0, 0.3, -0.1], [0.3, 1.5, 0.2], [-0.1, 0.2, 0.9]],
+        };
+        let inv = a.inverse().to_na();
+        let err = (inv * a.to_na() - nalgebra::Matrix3::identity())
+            .abs()
+            .max();
+        assert!(err < 1e-15, "{err}");
+        let na = a.to_na().try_inverse().unwrap();
+        assert!((inv - na).abs().max() < 1e-15);
+    }
+
+    #[test]
+    fn four_lanes_compute_what_four_numbers_do_bit_for_bit() {
+        let xs = [0.3, -1.7, 1e-300, 7.25];
+        let ys = [2.0, 0.1, 3.0, -0.0];
+        let (x, y) = (F64x4(xs), F64x4(ys));
+        let r = ((x * y + x / y - y).sqrt() - x).map(|_, v| v.atan2(0.5));
+        for i in 0..4 {
+            let s = ((xs[i] * ys[i] + xs[i] / ys[i] - ys[i]).sqrt() - xs[i]).atan2(0.5);
+            assert_eq!(r.0[i].to_bits(), s.to_bits(), "lane {i}");
+        }
+        let m = F64x4::gt(x, y);
+        assert_eq!(m, [false, false, false, true]);
+        let s = F64x4::select(m, x, y);
+        assert_eq!(s.0, [2.0, 0.1, 3.0, 7.25]);
+    }
+}
