@@ -149,6 +149,30 @@ pub struct Dopri54<const N: usize> {
     n_accepted: u64,
     n_rejected: u64,
     initialized: bool,
+    /// The step in progress (see [`Dopri54::begin_step`]).
+    cur: Attempt<N>,
+}
+
+/// A step in progress: its stages are evaluated one at a time, so that a driver may evaluate
+/// the same stage of many trajectories together.
+#[derive(Debug, Clone)]
+struct Attempt<const N: usize> {
+    t_stop: f64,
+    /// Step size of this attempt, the proposal it was clipped from, and whether it ends on
+    /// the stop time.
+    h: f64,
+    h_proposal: f64,
+    last: bool,
+    t_end: f64,
+    /// Whether an attempt of this step was rejected already.
+    rejected: bool,
+    /// Stages k2..k7 (k1 is the derivative at the start).
+    k: [[f64; N]; 6],
+    /// Next stage to evaluate, 0..6 for k2..k7.
+    stage: usize,
+    /// Its time and state.
+    t_stage: f64,
+    y_stage: [f64; N],
 }
 
 impl<const N: usize> Dopri54<N> {
@@ -170,6 +194,18 @@ impl<const N: usize> Dopri54<N> {
             n_accepted: 0,
             n_rejected: 0,
             initialized: false,
+            cur: Attempt {
+                t_stop: 0.0,
+                h: 0.0,
+                h_proposal: 0.0,
+                last: false,
+                t_end: 0.0,
+                rejected: false,
+                k: [[0.0; N]; 6],
+                stage: 0,
+                t_stage: 0.0,
+                y_stage: [0.0; N],
+            },
         })
     }
 
@@ -274,6 +310,193 @@ impl<const N: usize> Dopri54<N> {
     }
 }
 
+impl<const N: usize> Dopri54<N> {
+    /// Start a step that will not pass `t_stop` (`f` is called only for the starting-step
+    /// estimate of a first step). Then evaluate the derivative at [`Dopri54::stage_input`]
+    /// and hand it to [`Dopri54::feed_stage`] until that reports the step done: this is
+    /// [`DenseStepper::step`] one stage at a time, the same arithmetic in the same order.
+    pub fn begin_step<F>(&mut self, f: &mut F, t_stop: f64) -> Result<(), IntegratorError>
+    where
+        F: FnMut(f64, &[f64; N], &mut [f64; N]),
+    {
+        if !self.initialized {
+            return Err(IntegratorError::NotInitialized);
+        }
+        if t_stop.is_nan() || t_stop <= self.t {
+            return Err(IntegratorError::StopTimeNotAhead { t: self.t, t_stop });
+        }
+        let h = if self.h_next > 0.0 {
+            self.h_next
+        } else {
+            self.initial_step(f, t_stop)
+        };
+        self.cur.t_stop = t_stop;
+        self.cur.h = h;
+        self.cur.rejected = false;
+        self.begin_attempt()
+    }
+
+    /// Clip the attempt's step to the stop time and prepare its first stage.
+    fn begin_attempt(&mut self) -> Result<(), IntegratorError> {
+        let c = self.control;
+        let t = self.t;
+        let a = &mut self.cur;
+        a.h_proposal = a.h.min(c.h_max);
+        let (h, last) = clip_to_stop(t, a.h_proposal, a.t_stop);
+        a.h = h;
+        a.last = last;
+        let h_floor = c.h_min.max(10.0 * f64::EPSILON * t.abs());
+        if !last && (h.is_nan() || h < h_floor || h <= 0.0) {
+            return Err(IntegratorError::StepSizeUnderflow {
+                t,
+                h,
+                h_min: h_floor,
+            });
+        }
+        a.t_end = if last { a.t_stop } else { t + h };
+        a.stage = 0;
+        self.prepare_stage();
+        Ok(())
+    }
+
+    /// The time and state of the stage `cur.stage` from the stages before it.
+    #[inline]
+    fn prepare_stage(&mut self) {
+        let (t, y, k1) = (self.t, &self.y, &self.dy);
+        let a = &mut self.cur;
+        let h = a.h;
+        let k = &a.k;
+        let ys = &mut a.y_stage;
+        match a.stage {
+            0 => {
+                for i in 0..N {
+                    ys[i] = y[i] + h * A21 * k1[i];
+                }
+                a.t_stage = t + C2 * h;
+            }
+            1 => {
+                for i in 0..N {
+                    ys[i] = y[i] + h * (A31 * k1[i] + A32 * k[0][i]);
+                }
+                a.t_stage = t + C3 * h;
+            }
+            2 => {
+                for i in 0..N {
+                    ys[i] = y[i] + h * (A41 * k1[i] + A42 * k[0][i] + A43 * k[1][i]);
+                }
+                a.t_stage = t + C4 * h;
+            }
+            3 => {
+                for i in 0..N {
+                    ys[i] =
+                        y[i] + h * (A51 * k1[i] + A52 * k[0][i] + A53 * k[1][i] + A54 * k[2][i]);
+                }
+                a.t_stage = t + C5 * h;
+            }
+            4 => {
+                for i in 0..N {
+                    ys[i] = y[i]
+                        + h * (A61 * k1[i]
+                            + A62 * k[0][i]
+                            + A63 * k[1][i]
+                            + A64 * k[2][i]
+                            + A65 * k[3][i]);
+                }
+                a.t_stage = a.t_end;
+            }
+            _ => {
+                for i in 0..N {
+                    ys[i] = y[i]
+                        + h * (A71 * k1[i]
+                            + A73 * k[1][i]
+                            + A74 * k[2][i]
+                            + A75 * k[3][i]
+                            + A76 * k[4][i]);
+                }
+                a.t_stage = a.t_end;
+            }
+        }
+    }
+
+    /// Where the step in progress needs the derivative next.
+    #[inline]
+    pub fn stage_input(&self) -> (f64, &[f64; N]) {
+        (self.cur.t_stage, &self.cur.y_stage)
+    }
+
+    /// Hand over the derivative at [`Dopri54::stage_input`]. Returns the step's outcome once
+    /// its last stage is in and the step is accepted; `None` while it needs more stages
+    /// (including a new attempt after a rejection).
+    pub fn feed_stage(&mut self, dy: &[f64; N]) -> Result<Option<StepOutcome>, IntegratorError> {
+        self.n_eval += 1;
+        let st = self.cur.stage;
+        self.cur.k[st] = *dy;
+        if st < 5 {
+            self.cur.stage = st + 1;
+            self.prepare_stage();
+            return Ok(None);
+        }
+        let c = self.control;
+        let rtol = self.tol.rtol;
+        let alpha = 0.2 - 0.75 * c.beta;
+        let (t, y, k1) = (self.t, self.y, self.dy);
+        let a = &self.cur;
+        let (h, h_proposal, last, t_end) = (a.h, a.h_proposal, a.last, a.t_end);
+        let [_, k3, k4, k5, k6, k7] = &a.k;
+        let y_new = a.y_stage;
+        let mut sum = 0.0;
+        for i in 0..N {
+            let e =
+                h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
+            let sk = self.tol.atol[i] + rtol * y[i].abs().max(y_new[i].abs());
+            let q = e / sk;
+            sum += q * q;
+        }
+        let err = (sum / N as f64).sqrt();
+        let fac_err = err.powf(alpha);
+
+        if err <= 1.0 {
+            let fac =
+                (c.safety * self.err_prev.powf(c.beta) / fac_err).clamp(c.min_factor, c.max_factor);
+            let mut h_new = h * fac;
+            if a.rejected {
+                h_new = h_new.min(h);
+            }
+            if last && h < h_proposal {
+                h_new = h_new.max(h_proposal);
+            }
+            self.err_prev = err.max(1e-4);
+            for i in 0..N {
+                let ydiff = y_new[i] - y[i];
+                let bspl = h * k1[i] - ydiff;
+                self.cont[0][i] = ydiff;
+                self.cont[1][i] = bspl;
+                self.cont[2][i] = ydiff - h * k7[i] - bspl;
+                self.cont[3][i] = h
+                    * (D1 * k1[i] + D3 * k3[i] + D4 * k4[i] + D5 * k5[i] + D6 * k6[i] + D7 * k7[i]);
+            }
+            self.dy = *k7;
+            self.t_prev = t;
+            self.y_prev = y;
+            self.t = t_end;
+            self.y = y_new;
+            self.h_next = h_new;
+            self.n_accepted += 1;
+            return Ok(Some(if last {
+                StepOutcome::ReachedStop
+            } else {
+                StepOutcome::Internal
+            }));
+        }
+        // Rejected (a NaN error lands here too, and `min` then picks 1/min_factor).
+        self.n_rejected += 1;
+        self.cur.rejected = true;
+        self.cur.h = h / (1.0 / c.min_factor).min(fac_err / c.safety);
+        self.begin_attempt()?;
+        Ok(None)
+    }
+}
+
 impl<const N: usize> DenseStepper<N> for Dopri54<N> {
     fn init<F>(&mut self, mut f: F, t0: f64, y0: &[f64; N]) -> Result<(), IntegratorError>
     where
@@ -296,123 +519,14 @@ impl<const N: usize> DenseStepper<N> for Dopri54<N> {
     where
         F: FnMut(f64, &[f64; N], &mut [f64; N]),
     {
-        if !self.initialized {
-            return Err(IntegratorError::NotInitialized);
-        }
-        if t_stop.is_nan() || t_stop <= self.t {
-            return Err(IntegratorError::StopTimeNotAhead { t: self.t, t_stop });
-        }
-        let c = self.control;
-        let rtol = self.tol.rtol;
-        let alpha = 0.2 - 0.75 * c.beta;
-        let t = self.t;
-        let y = self.y;
-        let k1 = self.dy;
-        let mut h = if self.h_next > 0.0 {
-            self.h_next
-        } else {
-            self.initial_step(&mut f, t_stop)
-        };
-        let mut rejected = false;
-        let (mut k2, mut k3, mut k4) = ([0.0; N], [0.0; N], [0.0; N]);
-        let (mut k5, mut k6, mut k7) = ([0.0; N], [0.0; N], [0.0; N]);
-        let mut ys = [0.0; N];
-        let mut y_new = [0.0; N];
+        self.begin_step(&mut f, t_stop)?;
+        let mut dy = [0.0; N];
         loop {
-            let h_proposal = h.min(c.h_max);
-            let (h_try, last) = clip_to_stop(t, h_proposal, t_stop);
-            h = h_try;
-            let h_floor = c.h_min.max(10.0 * f64::EPSILON * t.abs());
-            if !last && (h.is_nan() || h < h_floor || h <= 0.0) {
-                return Err(IntegratorError::StepSizeUnderflow {
-                    t,
-                    h,
-                    h_min: h_floor,
-                });
+            let (t, y) = self.stage_input();
+            f(t, y, &mut dy);
+            if let Some(outcome) = self.feed_stage(&dy)? {
+                return Ok(outcome);
             }
-            let t_end = if last { t_stop } else { t + h };
-
-            for i in 0..N {
-                ys[i] = y[i] + h * A21 * k1[i];
-            }
-            f(t + C2 * h, &ys, &mut k2);
-            for i in 0..N {
-                ys[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i]);
-            }
-            f(t + C3 * h, &ys, &mut k3);
-            for i in 0..N {
-                ys[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
-            }
-            f(t + C4 * h, &ys, &mut k4);
-            for i in 0..N {
-                ys[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
-            }
-            f(t + C5 * h, &ys, &mut k5);
-            for i in 0..N {
-                ys[i] = y[i]
-                    + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
-            }
-            f(t_end, &ys, &mut k6);
-            for i in 0..N {
-                y_new[i] = y[i]
-                    + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i]);
-            }
-            f(t_end, &y_new, &mut k7);
-            self.n_eval += 6;
-
-            let mut sum = 0.0;
-            for i in 0..N {
-                let e = h
-                    * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
-                let sk = self.tol.atol[i] + rtol * y[i].abs().max(y_new[i].abs());
-                let q = e / sk;
-                sum += q * q;
-            }
-            let err = (sum / N as f64).sqrt();
-            let fac_err = err.powf(alpha);
-
-            if err <= 1.0 {
-                let fac = (c.safety * self.err_prev.powf(c.beta) / fac_err)
-                    .clamp(c.min_factor, c.max_factor);
-                let mut h_new = h * fac;
-                if rejected {
-                    h_new = h_new.min(h);
-                }
-                if last && h < h_proposal {
-                    h_new = h_new.max(h_proposal);
-                }
-                self.err_prev = err.max(1e-4);
-                for i in 0..N {
-                    let ydiff = y_new[i] - y[i];
-                    let bspl = h * k1[i] - ydiff;
-                    self.cont[0][i] = ydiff;
-                    self.cont[1][i] = bspl;
-                    self.cont[2][i] = ydiff - h * k7[i] - bspl;
-                    self.cont[3][i] = h
-                        * (D1 * k1[i]
-                            + D3 * k3[i]
-                            + D4 * k4[i]
-                            + D5 * k5[i]
-                            + D6 * k6[i]
-                            + D7 * k7[i]);
-                }
-                self.t_prev = t;
-                self.y_prev = y;
-                self.t = t_end;
-                self.y = y_new;
-                self.dy = k7;
-                self.h_next = h_new;
-                self.n_accepted += 1;
-                return Ok(if last {
-                    StepOutcome::ReachedStop
-                } else {
-                    StepOutcome::Internal
-                });
-            }
-            // Rejected (a NaN error lands here too, and `min` then picks 1/min_factor).
-            self.n_rejected += 1;
-            rejected = true;
-            h /= (1.0 / c.min_factor).min(fac_err / c.safety);
         }
     }
 
