@@ -7,12 +7,12 @@ use super::config::Integrator;
 use super::model::{FlightAux, FlightModel, ShiftStarts, MAX_SHIFTS};
 use super::output::{Flight, Metrics, Observer, Phase, Sample};
 use super::SimError;
-use crate::eom::{self, N3, N6};
+use crate::eom::{self, MassLanes, N3, N6};
 use crate::events::{Event, EventKind};
 use crate::frames;
 use crate::integrate::{
     brent_root, brent_root_bracketed, locate_event, Crossing, DenseStepper, Dopri54,
-    IntegratorError, Rk4, Tolerances,
+    IntegratorError, Rk4, StepOutcome, Tolerances,
 };
 use crate::shifts::STOPS_PER_SHIFT;
 use crate::trigger::Trigger;
@@ -41,14 +41,49 @@ mod descent;
 mod six_dof;
 
 use descent::descent_phase;
-use six_dof::six_dof_phase;
+use six_dof::{six_dof_phase, SixDof};
+
+/// What a step watches for: the first derivative that is not finite (where it appeared), so
+/// that a flight that goes non-finite stops with [`SimError::NonFinite`] at that place (a NaN
+/// makes the adaptive stepper reject until its step underflows; RK4 would carry it into the
+/// state), and any other failure is the integration's error in its phase.
+struct Watch<const N: usize> {
+    t_now: f64,
+    bad: Option<(f64, [f64; N])>,
+}
+
+impl<const N: usize> Watch<N> {
+    fn new(t_now: f64) -> Watch<N> {
+        Watch { t_now, bad: None }
+    }
+
+    #[inline]
+    fn observe(&mut self, t: f64, y: &[f64; N], dy: &[f64; N]) {
+        if self.bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
+            self.bad = Some((t, *y));
+        }
+    }
+
+    fn error(&self, e: IntegratorError, y_now: &[f64; N], what: &str) -> SimError {
+        match self.bad {
+            Some((tb, yb)) => non_finite(tb, &yb),
+            None => integ_at(self.t_now, y_now, e, what),
+        }
+    }
+
+    /// The state at the end of an accepted step must be finite.
+    fn check_end(&self, t: f64, y: &[f64; N]) -> Result<(), SimError> {
+        if y.iter().all(|v| v.is_finite()) {
+            return Ok(());
+        }
+        let (tb, yb) = self.bad.unwrap_or((t, *y));
+        Err(non_finite(tb, &yb))
+    }
+}
 
 impl<const N: usize> Stepper<N> {
-    /// One step, never past `t_stop`, counting derivative evaluations in `evals`. A
-    /// derivative or state that is not finite becomes the flight's [`SimError::NonFinite`] at
-    /// the first place it appeared (a NaN makes the adaptive stepper reject until its step
-    /// underflows; RK4 would carry it into the state); any other failure is the integration's
-    /// error in the phase `what`.
+    /// One step, never past `t_stop`, counting derivative evaluations in `evals`, watched
+    /// by a [`Watch`].
     fn checked_step(
         &mut self,
         mut f: impl FnMut(f64, &[f64; N], &mut [f64; N]),
@@ -56,23 +91,14 @@ impl<const N: usize> Stepper<N> {
         what: &str,
         evals: &mut u64,
     ) -> Result<crate::integrate::StepOutcome, SimError> {
-        let t_now = each!(self, s => s.t());
-        let mut bad: Option<(f64, [f64; N])> = None;
+        let mut watch = Watch::new(each!(self, s => s.t()));
         let outcome = each!(self, s => s.step(|t, y, dy| {
             *evals += 1;
             f(t, y, dy);
-            if bad.is_none() && !dy.iter().all(|v| v.is_finite()) {
-                bad = Some((t, *y));
-            }
+            watch.observe(t, y, dy);
         }, t_stop))
-        .map_err(|e| match bad {
-            Some((tb, yb)) => non_finite(tb, &yb),
-            None => integ_at(t_now, each!(self, s => s.y()), e, what),
-        })?;
-        if !each!(self, s => s.y()).iter().all(|v| v.is_finite()) {
-            let (tb, yb) = bad.unwrap_or((each!(self, s => s.t()), *each!(self, s => s.y())));
-            return Err(non_finite(tb, &yb));
-        }
+        .map_err(|e| watch.error(e, each!(self, s => s.y()), what))?;
+        watch.check_end(each!(self, s => s.t()), each!(self, s => s.y()))?;
         Ok(outcome)
     }
 
@@ -126,7 +152,7 @@ struct Run<'a, O: Observer> {
 }
 
 /// What ended a phase.
-enum PhaseEnd {
+pub(crate) enum PhaseEnd {
     RailExit,
     Deploy,
     Landed,
@@ -358,6 +384,44 @@ fn fly<O: Observer>(
     observer: &mut O,
     from: Option<(f64, [f64; N6])>,
 ) -> Result<Flight, SimError> {
+    match fly_to_free(model, observer, from)? {
+        Progress::Done(flight) => Ok(flight),
+        Progress::Free(mut paused) => loop {
+            if let Some(end) = paused.step()? {
+                return paused.finish(end);
+            }
+        },
+    }
+}
+
+/// A flight paused in its free flight, between two steps. The single flight steps it with
+/// [`Paused::step`]; the batch engine steps four lanes' free flights together, a stage at a
+/// time ([`Paused::begin_step`], [`Paused::stage_input`], [`Paused::feed_stage`]), and hands
+/// every finished step to the same [`Paused::end_step`].
+pub(crate) struct Paused<'a, O: Observer> {
+    run: Run<'a, O>,
+    s6: Stepper<N6>,
+    free: SixDof,
+    watch: Watch<N6>,
+    rtol: f64,
+    atol3: [f64; N3],
+}
+
+/// Where a flight is after [`fly_to_free`].
+pub(crate) enum Progress<'a, O: Observer> {
+    /// In free flight, between steps.
+    Free(Box<Paused<'a, O>>),
+    /// Over before any free flight (it ended on the rail).
+    Done(Flight),
+}
+
+/// Set the flight up and fly it to the start of its free flight: the pad and the rail (or
+/// straight into free flight from `from`).
+pub(crate) fn fly_to_free<'a, O: Observer>(
+    model: &'a FlightModel,
+    observer: &'a mut O,
+    from: Option<(f64, [f64; N6])>,
+) -> Result<Progress<'a, O>, SimError> {
     let n_chutes = model.parachutes.len();
     let mut stops = Vec::with_capacity(64 + STOPS_PER_SHIFT * model.shifts.len() + 2 * n_chutes);
     stops.extend(model.thrust_knots_s.iter().copied());
@@ -390,7 +454,7 @@ fn fly<O: Observer>(
     };
 
     let (rtol, atol6, atol3) = tolerances(&model.options.integrator);
-    let (mut t, mut y, mut phase) = match from {
+    let (t, y, on_rail) = match from {
         Some((t0, y0)) => {
             run.rail_exit_done = true;
             run.burnout_done = t0 >= model.burnout_s;
@@ -398,28 +462,43 @@ fn fly<O: Observer>(
             // and the height triggers are armed at once.
             run.apogee_done = cm_of(model, &run.starts, t0, &y0).1.z <= 0.0;
             run.stops.retain(|&s| s > t0);
-            (t0, y0, Phase::Free)
+            (t0, y0, false)
         }
         None => {
             let (t, y) = pad(&mut run)?;
-            (t, y, Phase::Rail)
+            (t, y, true)
         }
     };
     let mut s6: Stepper<N6> =
         Stepper::new(&model.options.integrator, atol6, rtol).map_err(|e| integ(t, e, "setup"))?;
-    // Rail, then free flight, in the same 13 states.
-    let end = loop {
-        let res = six_dof_phase(&mut run, &mut s6, phase, t, &y)?;
-        t = res.0;
-        y = res.1;
-        match res.2 {
-            PhaseEnd::RailExit => {
-                phase = Phase::Free;
-                continue;
-            }
-            other => break other,
+    let (t, y) = if on_rail {
+        match six_dof_phase(&mut run, &mut s6, Phase::Rail, t, &y)? {
+            (t, y, PhaseEnd::RailExit) => (t, y),
+            end => return finish(run, rtol, atol3, end).map(Progress::Done),
         }
+    } else {
+        (t, y)
     };
+    let free = SixDof::start(&mut run, &mut s6, Phase::Free, t, &y)?;
+    Ok(Progress::Free(Box::new(Paused {
+        run,
+        s6,
+        free,
+        watch: Watch::new(t),
+        rtol,
+        atol3,
+    })))
+}
+
+/// The flight after its rail or free flight ended with `end`: the descent if a canopy
+/// opened, then the flight's record.
+fn finish<O: Observer>(
+    mut run: Run<'_, O>,
+    rtol: f64,
+    atol3: [f64; N3],
+    (t, y, end): (f64, [f64; N6], PhaseEnd),
+) -> Result<Flight, SimError> {
+    let model = run.model;
     if let PhaseEnd::Deploy = end {
         // Descent: the center of mass as a point, with its velocity (including r′) kept.
         let (pos, vel) = cm_of(model, &run.starts, t, &y);
@@ -439,6 +518,96 @@ fn fly<O: Observer>(
         derivative_evaluations: run.evaluations,
         steps: run.steps,
     })
+}
+
+/// A free-flight step's end: time, state and why the phase ended.
+pub(crate) type StepEnd = (f64, [f64; N6], PhaseEnd);
+
+impl<'a, O: Observer> Paused<'a, O> {
+    /// The flight's model.
+    pub(crate) fn model(&self) -> &'a FlightModel {
+        self.run.model
+    }
+
+    /// One free-flight step with the flight's own derivative; the phase's end if it ended.
+    pub(crate) fn step(&mut self) -> Result<Option<StepEnd>, SimError> {
+        self.free.step(&mut self.run, &mut self.s6)
+    }
+
+    /// The flight from the end of its free flight (descent, record).
+    pub(crate) fn finish(self, end: StepEnd) -> Result<Flight, SimError> {
+        finish(self.run, self.rtol, self.atol3, end)
+    }
+
+    /// Start a step to be taken a stage at a time. False when the integrator does not step
+    /// that way (fixed-step RK4): then take the step with [`Paused::step`].
+    pub(crate) fn begin_step(&mut self) -> Result<bool, SimError> {
+        if !matches!(self.s6, Stepper::Adaptive(_)) {
+            return Ok(false);
+        }
+        let t_stop = self.free.next_stop(&self.run, &self.s6);
+        let Stepper::Adaptive(d) = &mut self.s6 else {
+            return Ok(false);
+        };
+        let model = self.run.model;
+        let starts = self.run.starts;
+        self.watch = Watch::new(d.t());
+        let watch = &mut self.watch;
+        let mut evals = 0u64;
+        let begun = d.begin_step(
+            &mut |t, y: &[f64; N6], dy: &mut [f64; N6]| {
+                evals += 1;
+                model.derivative_6dof(&starts, t, y, dy);
+                watch.observe(t, y, dy);
+            },
+            t_stop,
+        );
+        self.run.evaluations += evals;
+        begun.map_err(|e| self.watch.error(e, d.y(), Phase::Free.name()))?;
+        Ok(true)
+    }
+
+    /// Where the step begun by [`Paused::begin_step`] needs the derivative next.
+    #[inline]
+    pub(crate) fn stage_input(&self) -> (f64, &[f64; N6]) {
+        match &self.s6 {
+            Stepper::Adaptive(d) => d.stage_input(),
+            Stepper::Fixed(r) => (r.t(), r.y()),
+        }
+    }
+
+    /// The mass state (as the equations read it) and the thrust at `t`.
+    #[inline]
+    pub(crate) fn mass_at(&self, t: f64) -> (MassLanes<f64>, f64) {
+        let i = self.run.model.instant(&self.run.starts, t);
+        (MassLanes::of(&i.mass), i.motor.thrust_n)
+    }
+
+    /// Hand over the derivative at [`Paused::stage_input`]; the step's outcome once it is
+    /// done.
+    pub(crate) fn feed_stage(&mut self, dy: &[f64; N6]) -> Result<Option<StepOutcome>, SimError> {
+        let Stepper::Adaptive(d) = &mut self.s6 else {
+            return Err(SimError::Setup(
+                "a fixed-step flight was stepped a stage at a time".into(),
+            ));
+        };
+        self.run.evaluations += 1;
+        let (t, y) = d.stage_input();
+        self.watch.observe(t, y, dy);
+        match d.feed_stage(dy) {
+            Err(e) => Err(self.watch.error(e, d.y(), Phase::Free.name())),
+            Ok(None) => Ok(None),
+            Ok(Some(outcome)) => {
+                self.watch.check_end(d.t(), d.y())?;
+                Ok(Some(outcome))
+            }
+        }
+    }
+
+    /// After a step taken a stage at a time: the same as the end of [`Paused::step`].
+    pub(crate) fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<StepEnd>, SimError> {
+        self.free.after_step(&mut self.run, &mut self.s6, outcome)
+    }
 }
 
 /// The pad: the rocket waits until thrust beats its weight along the rail. Returns the

@@ -51,38 +51,54 @@ impl G {
     }
 }
 
-/// Rail or free flight until the rail exit (rail), a canopy opens, landing or the time limit.
-pub(super) fn six_dof_phase<O: Observer>(
-    run: &mut Run<'_, O>,
-    stepper: &mut Stepper<N6>,
-    phase: Phase,
-    t0: f64,
-    y0: &[f64; N6],
-) -> Result<(f64, [f64; N6], PhaseEnd), SimError> {
-    let model = run.model;
-    let rail = phase == Phase::Rail;
-    let deriv = |starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]| {
-        if rail {
-            model.derivative_rail(starts, t, y, dy)
-        } else {
-            model.derivative_6dof(starts, t, y, dy)
-        }
-    };
-    // The end point of `(t, y)` whose derivative `dy` is known.
-    let end_point = |starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &[f64; N6]| -> EndPoint {
-        let (pos, vel, aux) = model.end_point(starts, t, y, dy, rail);
-        EndPoint { pos, vel, aux }
-    };
-    let name = phase.name();
-    let mut events: Vec<(EventKind, G)> =
-        Vec::with_capacity(2 + model.parachutes.len() + model.shifts.len());
-    let (mut prev_y, mut prev) = {
+/// The derivative of the rail or the free flight.
+#[inline]
+pub(super) fn derivative(
+    model: &FlightModel,
+    rail: bool,
+    starts: &ShiftStarts,
+    t: f64,
+    y: &[f64; N6],
+    dy: &mut [f64; N6],
+) {
+    if rail {
+        model.derivative_rail(starts, t, y, dy)
+    } else {
+        model.derivative_6dof(starts, t, y, dy)
+    }
+}
+
+/// A rail or free-flight phase between its steps: what the step that comes next needs, and
+/// what the driver does after it ([`SixDof::after_step`]). The single flight steps it with
+/// its own derivative ([`six_dof_phase`]); the batch engine steps the free flight of four
+/// lanes at a time and hands each lane's step to the same `after_step`.
+pub(super) struct SixDof {
+    pub(super) phase: Phase,
+    prev_y: [f64; N6],
+    prev: EndPoint,
+    events: Vec<(EventKind, G)>,
+    /// Time at the start of the step in progress.
+    t_now: f64,
+}
+
+impl SixDof {
+    /// Start the phase at `(t0, y0)`: the stepper's first derivative and the first sample.
+    pub(super) fn start<O: Observer>(
+        run: &mut Run<'_, O>,
+        stepper: &mut Stepper<N6>,
+        phase: Phase,
+        t0: f64,
+        y0: &[f64; N6],
+    ) -> Result<SixDof, SimError> {
+        let model = run.model;
+        let rail = phase == Phase::Rail;
         let starts = run.starts;
         let mut evals = 0u64;
-        each!(stepper, s => s.init(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t0, y0))
-            .map_err(|e| integ_at(t0, y0, e, name))?;
+        each!(stepper, s => s.init(|t, y, dy| { evals += 1; derivative(model, rail, &starts, t, y, dy); }, t0, y0))
+            .map_err(|e| integ_at(t0, y0, e, phase.name()))?;
         run.evaluations += evals;
-        let ep = end_point(&starts, t0, y0, each!(stepper, s => s.dy()));
+        let (pos, vel, aux) = model.end_point(&starts, t0, y0, each!(stepper, s => s.dy()), rail);
+        let ep = EndPoint { pos, vel, aux };
         run.record(
             phase,
             t0,
@@ -93,26 +109,51 @@ pub(super) fn six_dof_phase<O: Observer>(
             &ep.aux,
             model.motor.eval(t0).thrust_n,
         );
-        (*y0, ep)
-    };
-    loop {
-        let t_now = each!(stepper, s => s.t());
-        let t_stop = run.next_stop(t_now);
+        Ok(SixDof {
+            phase,
+            prev_y: *y0,
+            prev: ep,
+            events: Vec::with_capacity(2 + model.parachutes.len() + model.shifts.len()),
+            t_now: t0,
+        })
+    }
+
+    /// The stop time of the next step (which starts where the stepper is).
+    pub(super) fn next_stop<O: Observer>(
+        &mut self,
+        run: &Run<'_, O>,
+        stepper: &Stepper<N6>,
+    ) -> f64 {
+        self.t_now = each!(stepper, s => s.t());
+        run.next_stop(self.t_now)
+    }
+
+    /// After a step that ended with `outcome`: events in the step (located on the dense
+    /// output), the sample, triggers and stops. Returns the phase's end, if this was its last
+    /// step.
+    pub(super) fn after_step<O: Observer>(
+        &mut self,
+        run: &mut Run<'_, O>,
+        stepper: &mut Stepper<N6>,
+        outcome: crate::integrate::StepOutcome,
+    ) -> Result<Option<(f64, [f64; N6], PhaseEnd)>, SimError> {
+        let model = run.model;
+        let phase = self.phase;
+        let rail = phase == Phase::Rail;
+        let name = phase.name();
+        let t_now = self.t_now;
         let starts = run.starts;
-        let mut evals = 0u64;
-        let outcome = stepper.checked_step(
-            |t, y, dy| {
-                deriv(&starts, t, y, dy);
-            },
-            t_stop,
-            name,
-            &mut evals,
-        )?;
-        run.evaluations += evals;
         run.steps += 1;
         let (t1, y1) = (each!(stepper, s => s.t()), *each!(stepper, s => s.y()));
-        let ep1 = end_point(&starts, t1, &y1, each!(stepper, s => s.dy()));
+        let (pos1, vel1, aux1) =
+            model.end_point(&starts, t1, &y1, each!(stepper, s => s.dy()), rail);
+        let ep1 = EndPoint {
+            pos: pos1,
+            vel: vel1,
+            aux: aux1,
+        };
         // The event functions that can fire now.
+        let events = &mut self.events;
         events.clear();
         if rail {
             events.push((EventKind::RailExit, G::RailTravel));
@@ -137,8 +178,11 @@ pub(super) fn six_dof_phase<O: Observer>(
         }
         // Earliest crossing in the step: rail travel rises through zero, the rest fall.
         let mut found: Option<(f64, EventKind)> = None;
-        for &(kind, g) in &events {
-            let (g0, g1) = (g.at_end(model, &prev_y, &prev), g.at_end(model, &y1, &ep1));
+        for &(kind, g) in events.iter() {
+            let (g0, g1) = (
+                g.at_end(model, &self.prev_y, &self.prev),
+                g.at_end(model, &y1, &ep1),
+            );
             let crossing = if rail {
                 Crossing::Rising
             } else {
@@ -156,8 +200,9 @@ pub(super) fn six_dof_phase<O: Observer>(
             Some((te, _)) => {
                 let ye = each!(stepper, s => s.dense(te));
                 let mut dy = [0.0; N6];
-                deriv(&run.starts, te, &ye, &mut dy);
-                (te, ye, end_point(&run.starts, te, &ye, &dy))
+                derivative(model, rail, &run.starts, te, &ye, &mut dy);
+                let (pos, vel, aux) = model.end_point(&run.starts, te, &ye, &dy, rail);
+                (te, ye, EndPoint { pos, vel, aux })
             }
             None => (t1, y1, ep1),
         };
@@ -173,8 +218,8 @@ pub(super) fn six_dof_phase<O: Observer>(
         );
         let (pos, vel) = (ep.pos, ep.vel);
         let (alt, speed) = (pos.z, vel.norm());
-        prev_y = y_end;
-        prev = ep;
+        self.prev_y = y_end;
+        self.prev = ep;
         if let Some((te, kind)) = found {
             match kind {
                 EventKind::RailExit => {
@@ -184,7 +229,7 @@ pub(super) fn six_dof_phase<O: Observer>(
                     run.metrics.rail_exit_speed_m_s = Some(speed);
                     run.metrics.static_margin_rail_exit_cal =
                         Some(model.static_margin(&ep.aux.mass));
-                    return Ok((te, y_end, PhaseEnd::RailExit));
+                    return Ok(Some((te, y_end, PhaseEnd::RailExit)));
                 }
                 EventKind::Apogee => {
                     run.apogee_done = true;
@@ -195,7 +240,7 @@ pub(super) fn six_dof_phase<O: Observer>(
                 }
                 EventKind::Landing => {
                     land(run, te, pos, vel);
-                    return Ok((te, y_end, PhaseEnd::Landed));
+                    return Ok(Some((te, y_end, PhaseEnd::Landed)));
                 }
                 EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
                 EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
@@ -205,17 +250,55 @@ pub(super) fn six_dof_phase<O: Observer>(
         if (found.is_some() || matches!(outcome, crate::integrate::StepOutcome::ReachedStop))
             && run.at_stop(t_end, alt, speed)?
         {
-            return Ok((t_end, y_end, PhaseEnd::Deploy));
+            return Ok(Some((t_end, y_end, PhaseEnd::Deploy)));
         }
         if t_end >= model.options.max_time_s {
             run.push_event(EventKind::TimeLimit, t_end, alt, speed);
-            return Ok((t_end, y_end, PhaseEnd::TimeLimit));
+            return Ok(Some((t_end, y_end, PhaseEnd::TimeLimit)));
         }
         if found.is_some() {
             let starts = run.starts;
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; deriv(&starts, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; derivative(model, rail, &starts, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
+        }
+        Ok(None)
+    }
+
+    /// One step with the phase's own derivative.
+    pub(super) fn step<O: Observer>(
+        &mut self,
+        run: &mut Run<'_, O>,
+        stepper: &mut Stepper<N6>,
+    ) -> Result<Option<(f64, [f64; N6], PhaseEnd)>, SimError> {
+        let model = run.model;
+        let rail = self.phase == Phase::Rail;
+        let t_stop = self.next_stop(run, stepper);
+        let starts = run.starts;
+        let mut evals = 0u64;
+        let outcome = stepper.checked_step(
+            |t, y, dy| derivative(model, rail, &starts, t, y, dy),
+            t_stop,
+            self.phase.name(),
+            &mut evals,
+        )?;
+        run.evaluations += evals;
+        self.after_step(run, stepper, outcome)
+    }
+}
+
+/// Rail or free flight until the rail exit (rail), a canopy opens, landing or the time limit.
+pub(super) fn six_dof_phase<O: Observer>(
+    run: &mut Run<'_, O>,
+    stepper: &mut Stepper<N6>,
+    phase: Phase,
+    t0: f64,
+    y0: &[f64; N6],
+) -> Result<(f64, [f64; N6], PhaseEnd), SimError> {
+    let mut sd = SixDof::start(run, stepper, phase, t0, y0)?;
+    loop {
+        if let Some(end) = sd.step(run, stepper)? {
+            return Ok(end);
         }
     }
 }
