@@ -21,11 +21,17 @@
 //! What it does not do yet: lanes are advanced one whole flight at a time; the stages of
 //! different lanes are not evaluated together in SIMD registers.
 
+use crate::eom::{pack_mass, N6};
 use crate::events::EventKind;
-use crate::flight::{Metrics, SimError, Simulation};
+use crate::flight::driver::{fly_to_free, Paused, Progress, StepEnd};
+use crate::flight::model::{derivative_6dof_lanes, FourModels};
+use crate::flight::{Flight, Metrics, SimError, Simulation};
+use crate::integrate::StepOutcome;
+use crate::lanes::{F64x4, Real};
 use crate::trigger::Trigger;
 use crate::wind::Wind;
 use rayon::prelude::*;
+use std::cell::OnceCell;
 use std::ops::Range;
 
 /// Inputs of some variants (a chunk of them, or all), one column per input: row `r` is the
@@ -389,7 +395,18 @@ impl Batch {
             Ok(s) => s,
             Err(e) => return self.empty(variant, Status::Refused, e),
         };
-        let flight = match sim.run(&mut ()) {
+        let flight = sim.run(&mut ());
+        self.result_of(&sim, flight, variant)
+    }
+
+    /// A lane's result from its simulation and its flight.
+    fn result_of(
+        &self,
+        sim: &Simulation,
+        flight: Result<Flight, SimError>,
+        variant: usize,
+    ) -> LaneResult {
+        let flight = match flight {
             Ok(f) => f,
             Err(e) => return self.empty(variant, Status::Failed, e.to_string()),
         };
@@ -436,13 +453,102 @@ impl Batch {
         }
     }
 
-    /// Fly every row of `columns` in order on this thread, row `r` as variant `first + r`.
-    /// Errs (flying nothing) if the columns' shapes are wrong.
+    /// Fly every row of `columns` on this thread, row `r` as variant `first + r`, and return
+    /// their results in row order. Errs (flying nothing) if the columns' shapes are wrong.
+    ///
+    /// Up to [`LANES_IN_FLIGHT`] rows fly at once; each lane's pad, rail, descent and events
+    /// run as in a single flight, and the free-flight steps of four lanes at a time are taken
+    /// together: every stage of their Dormand–Prince steps is one evaluation of the 6-DOF
+    /// kernel on four lanes ([`derivative_6dof_lanes`] on [`F64x4`]). A lane that lands is
+    /// replaced by the next row.
     pub fn fly_chunk(&self, columns: &Columns, first: usize) -> Result<Vec<LaneResult>, String> {
         self.check(columns)?;
-        Ok((0..columns.len)
-            .map(|r| self.fly(columns, r, first + r))
+        let n = columns.len;
+        // Each row's simulation, built when its lane starts; lanes borrow their model from it.
+        let sims: Vec<OnceCell<Result<Simulation, String>>> =
+            (0..n).map(|_| OnceCell::new()).collect();
+        let mut results: Vec<Option<LaneResult>> = (0..n).map(|_| None).collect();
+        let mut lanes: Vec<Lane<'_>> = Vec::with_capacity(LANES_IN_FLIGHT);
+        let mut next_row = 0;
+        loop {
+            while lanes.len() < LANES_IN_FLIGHT && next_row < n {
+                let row = next_row;
+                next_row += 1;
+                let variant = first + row;
+                let sim = sims[row].get_or_init(|| {
+                    guarded(|| self.variant(columns, row))
+                        .unwrap_or_else(|p| Err(format!("the simulator panicked: {p}")))
+                });
+                let sim = match sim {
+                    Ok(s) => s,
+                    Err(e) => {
+                        let status = if e.starts_with("the simulator panicked") {
+                            Status::Failed
+                        } else {
+                            Status::Refused
+                        };
+                        results[row] = Some(self.empty(variant, status, e.clone()));
+                        continue;
+                    }
+                };
+                // Lanes observe nothing: a zero-sized observer, leaked without allocating.
+                let observer: &mut () = Box::leak(Box::new(()));
+                match guarded(|| fly_to_free(sim.model(), observer, None)) {
+                    Ok(Ok(Progress::Free(paused))) => lanes.push(Lane {
+                        row,
+                        sim,
+                        paused: Some(paused),
+                        end: None,
+                    }),
+                    Ok(Ok(Progress::Done(flight))) => {
+                        results[row] = Some(self.result_of(sim, Ok(flight), variant))
+                    }
+                    Ok(Err(e)) => results[row] = Some(self.result_of(sim, Err(e), variant)),
+                    Err(p) => results[row] = Some(self.panicked(variant, &p)),
+                }
+            }
+            if lanes.is_empty() {
+                break;
+            }
+            for group in lanes.chunks_mut(4) {
+                step_group(group);
+            }
+            // Lanes whose free flight ended: their descent and their result.
+            let mut k = 0;
+            while k < lanes.len() {
+                let Some(end) = lanes[k].end.take() else {
+                    k += 1;
+                    continue;
+                };
+                let lane = lanes.swap_remove(k);
+                let variant = first + lane.row;
+                let result = match end {
+                    LaneEnd::Phase(end) => match lane.paused {
+                        Some(p) => match guarded(move || p.finish(end)) {
+                            Ok(flight) => self.result_of(lane.sim, flight, variant),
+                            Err(p) => self.panicked(variant, &p),
+                        },
+                        None => self.panicked(variant, "lost its flight"),
+                    },
+                    LaneEnd::Error(e) => self.result_of(lane.sim, Err(e), variant),
+                    LaneEnd::Panic(p) => self.panicked(variant, &p),
+                };
+                results[lane.row] = Some(result);
+            }
+        }
+        Ok(results
+            .into_iter()
+            .enumerate()
+            .map(|(row, r)| r.unwrap_or_else(|| self.panicked(first + row, "was never flown")))
             .collect())
+    }
+
+    fn panicked(&self, variant: usize, message: &str) -> LaneResult {
+        self.empty(
+            variant,
+            Status::Failed,
+            format!("the simulator panicked: {message}"),
+        )
     }
 
     /// Fly variants `0..n` on the current rayon pool, `chunk` variants per task, keeping at
@@ -511,3 +617,127 @@ impl Batch {
 #[cfg(test)]
 #[path = "batch_tests.rs"]
 mod tests;
+
+/// Most lanes of one chunk in flight at once (four groups of four).
+pub const LANES_IN_FLIGHT: usize = 16;
+
+/// One lane: a row of the chunk in its free flight.
+struct Lane<'a> {
+    row: usize,
+    sim: &'a Simulation,
+    paused: Option<Box<Paused<'a, ()>>>,
+    /// Set when the lane's free flight is over.
+    end: Option<LaneEnd>,
+}
+
+enum LaneEnd {
+    Phase(StepEnd),
+    Error(SimError),
+    Panic(String),
+}
+
+/// Run `f`, turning a panic into its message.
+fn guarded<R>(f: impl FnOnce() -> R) -> Result<R, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|p| panic_message(&*p))
+}
+
+/// One free-flight step of every lane of `group` (at most four): a stage at a time, the
+/// 6-DOF kernel evaluated on the four lanes together; each lane's step then ends as a single
+/// flight's does. Lanes whose integrator steps whole (RK4) take their step alone.
+fn step_group(group: &mut [Lane<'_>]) {
+    let outcome = guarded(|| {
+        // Which lanes step a stage at a time (and which are done with this step).
+        let mut staged = [false; 4];
+        let mut outcomes: [Option<StepOutcome>; 4] = [None; 4];
+        for (i, lane) in group.iter_mut().enumerate() {
+            let Some(p) = lane.paused.as_mut() else {
+                continue;
+            };
+            match p.begin_step() {
+                Ok(true) => staged[i] = true,
+                Ok(false) => match p.step() {
+                    Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
+                    Ok(None) => {}
+                    Err(e) => lane.end = Some(LaneEnd::Error(e)),
+                },
+                Err(e) => lane.end = Some(LaneEnd::Error(e)),
+            }
+        }
+        let mut dy = [0.0; N6];
+        while let Some(first) = (0..group.len()).find(|&i| staged[i] && outcomes[i].is_none()) {
+            // Four lanes' inputs; a slot without a lane repeats the first (and is ignored).
+            let slot = |i: usize| {
+                if i < group.len() && staged[i] && outcomes[i].is_none() {
+                    i
+                } else {
+                    first
+                }
+            };
+            let slots: [usize; 4] = std::array::from_fn(slot);
+            let paused: [&Paused<'_, ()>; 4] =
+                slots.map(|i| group[i].paused.as_deref().expect("a staged lane flies"));
+            let inputs = paused.map(|p| p.stage_input());
+            let masses = paused.map(|p| p.mass_at(p.stage_input().0));
+            let models = paused.map(|p| p.model());
+            let y: [F64x4; N6] = std::array::from_fn(|k| F64x4::from_fn(|l| inputs[l].1[k]));
+            let mut dy4 = [F64x4::splat(0.0); N6];
+            match FourModels::new(models) {
+                Some(four) => {
+                    let ms = pack_mass([&masses[0].0, &masses[1].0, &masses[2].0, &masses[3].0]);
+                    let thrust = F64x4::from_fn(|l| masses[l].1);
+                    derivative_6dof_lanes(&four, &ms, thrust, &y, &mut dy4);
+                }
+                None => {
+                    // Lanes that do not share their aerodynamic tables: one at a time.
+                    for l in 0..4 {
+                        let mut d = [0.0; N6];
+                        derivative_6dof_lanes(
+                            models[l],
+                            &masses[l].0,
+                            masses[l].1,
+                            inputs[l].1,
+                            &mut d,
+                        );
+                        for k in 0..N6 {
+                            dy4[k].0[l] = d[k];
+                        }
+                    }
+                }
+            }
+            for l in 0..group.len() {
+                // Only a lane's own slot feeds it (the padding slots repeat the first lane).
+                if slots[l] != l || !staged[l] || outcomes[l].is_some() {
+                    continue;
+                }
+                let i = l;
+                for k in 0..N6 {
+                    dy[k] = dy4[k].0[l];
+                }
+                let lane = &mut group[i];
+                let p = lane.paused.as_mut().expect("a staged lane flies");
+                match p.feed_stage(&dy) {
+                    Ok(None) => {}
+                    Ok(Some(o)) => outcomes[i] = Some(o),
+                    Err(e) => {
+                        lane.end = Some(LaneEnd::Error(e));
+                        staged[i] = false;
+                    }
+                }
+            }
+        }
+        for (i, lane) in group.iter_mut().enumerate() {
+            if let (Some(o), Some(p)) = (outcomes[i], lane.paused.as_mut()) {
+                match p.end_step(o) {
+                    Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
+                    Ok(None) => {}
+                    Err(e) => lane.end = Some(LaneEnd::Error(e)),
+                }
+            }
+        }
+    });
+    if let Err(message) = outcome {
+        for lane in group.iter_mut() {
+            lane.end = Some(LaneEnd::Panic(message.clone()));
+        }
+    }
+}
