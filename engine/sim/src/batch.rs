@@ -21,13 +21,13 @@
 //! What it does not do yet: lanes are advanced one whole flight at a time; the stages of
 //! different lanes are not evaluated together in SIMD registers.
 
-use crate::eom::{pack_mass, N6};
+use crate::eom::{pack_mass, MassLanes, N6};
 use crate::events::EventKind;
 use crate::flight::driver::{fly_to_free, Paused, Progress, StepEnd};
-use crate::flight::model::{derivative_6dof_lanes, FourModels};
+use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
 use crate::flight::{Flight, Metrics, SimError, Simulation};
 use crate::integrate::StepOutcome;
-use crate::lanes::{F64x4, Real};
+use crate::lanes::{F64x4, Real, M3, V3};
 use crate::trigger::Trigger;
 use crate::wind::Wind;
 use rayon::prelude::*;
@@ -674,30 +674,39 @@ fn step_group(group: &mut [Lane<'_>]) {
                 }
             };
             let slots: [usize; 4] = std::array::from_fn(slot);
-            let paused: [&Paused<'_, ()>; 4] =
-                slots.map(|i| group[i].paused.as_deref().expect("a staged lane flies"));
-            let inputs = paused.map(|p| p.stage_input());
-            let masses = paused.map(|p| p.mass_at(p.stage_input().0));
-            let models = paused.map(|p| p.model());
-            let y: [F64x4; N6] = std::array::from_fn(|k| F64x4::from_fn(|l| inputs[l].1[k]));
+            // Gather the four lanes: state, mass state and thrust at the stage's time.
+            let mut y = [F64x4::splat(0.0); N6];
+            let mut ms = pack_mass([&MASS0; 4]);
+            let mut thrust = F64x4::splat(0.0);
+            for (l, &i) in slots.iter().enumerate() {
+                let p = group[i].paused.as_mut().expect("a staged lane flies");
+                let (t, yi) = p.stage_input();
+                for k in 0..N6 {
+                    y[k].0[l] = yi[k];
+                }
+                let (m, th) = p.mass_at(t);
+                set_mass_lane(&mut ms, l, m);
+                thrust.0[l] = th;
+            }
+            let models: [&FlightModel; 4] = slots.map(|i| {
+                group[i]
+                    .paused
+                    .as_deref()
+                    .expect("a staged lane flies")
+                    .model()
+            });
             let mut dy4 = [F64x4::splat(0.0); N6];
             match FourModels::new(models) {
-                Some(four) => {
-                    let ms = pack_mass([&masses[0].0, &masses[1].0, &masses[2].0, &masses[3].0]);
-                    let thrust = F64x4::from_fn(|l| masses[l].1);
-                    derivative_6dof_lanes(&four, &ms, thrust, &y, &mut dy4);
-                }
+                Some(four) => eval_four(&four, &ms, thrust, &y, &mut dy4),
                 None => {
                     // Lanes that do not share their aerodynamic tables: one at a time.
-                    for l in 0..4 {
+                    for (l, &i) in slots.iter().enumerate() {
+                        let p = group[i].paused.as_mut().expect("a staged lane flies");
+                        let (t, yi) = p.stage_input();
+                        let yi = *yi;
+                        let (m, th) = p.mass_at(t);
                         let mut d = [0.0; N6];
-                        derivative_6dof_lanes(
-                            models[l],
-                            &masses[l].0,
-                            masses[l].1,
-                            inputs[l].1,
-                            &mut d,
-                        );
+                        derivative_6dof_lanes(models[l], m, th, &yi, &mut d);
                         for k in 0..N6 {
                             dy4[k].0[l] = d[k];
                         }
@@ -740,4 +749,98 @@ fn step_group(group: &mut [Lane<'_>]) {
             lane.end = Some(LaneEnd::Panic(message.clone()));
         }
     }
+}
+
+/// A mass state to start packing from (every lane is overwritten).
+const MASS0: MassLanes<f64> = MassLanes {
+    m: 0.0,
+    m_rate: 0.0,
+    m_accel: 0.0,
+    r: V3 {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    },
+    r_rate: V3 {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    },
+    r_accel: V3 {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    },
+    i_o: M3 { m: [[0.0; 3]; 3] },
+    i_o_rate: M3 { m: [[0.0; 3]; 3] },
+    h: V3 {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    },
+    h_rate: V3 {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    },
+};
+
+/// Write one lane's mass state into lane `l` of a four-lane one.
+#[inline(always)]
+fn set_mass_lane(ms: &mut MassLanes<F64x4>, l: usize, m: &MassLanes<f64>) {
+    let v = |d: &mut V3<F64x4>, s: &V3<f64>| {
+        d.x.0[l] = s.x;
+        d.y.0[l] = s.y;
+        d.z.0[l] = s.z;
+    };
+    let mat = |d: &mut M3<F64x4>, s: &M3<f64>| {
+        for r in 0..3 {
+            for c in 0..3 {
+                d.m[r][c].0[l] = s.m[r][c];
+            }
+        }
+    };
+    ms.m.0[l] = m.m;
+    ms.m_rate.0[l] = m.m_rate;
+    ms.m_accel.0[l] = m.m_accel;
+    v(&mut ms.r, &m.r);
+    v(&mut ms.r_rate, &m.r_rate);
+    v(&mut ms.r_accel, &m.r_accel);
+    mat(&mut ms.i_o, &m.i_o);
+    mat(&mut ms.i_o_rate, &m.i_o_rate);
+    v(&mut ms.h, &m.h);
+    v(&mut ms.h_rate, &m.h_rate);
+}
+
+/// The 6-DOF kernel on four lanes, in AVX2 registers where the processor has them (the same
+/// IEEE operations lane by lane either way: AVX2 without FMA changes no result).
+#[inline]
+fn eval_four(
+    four: &FourModels<'_>,
+    ms: &MassLanes<F64x4>,
+    thrust: F64x4,
+    y: &[F64x4; N6],
+    dy: &mut [F64x4; N6],
+) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (checked just above).
+            unsafe { eval_four_avx2(four, ms, thrust, y, dy) };
+            return;
+        }
+    }
+    derivative_6dof_lanes(four, ms, thrust, y, dy);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn eval_four_avx2(
+    four: &FourModels<'_>,
+    ms: &MassLanes<F64x4>,
+    thrust: F64x4,
+    y: &[F64x4; N6],
+    dy: &mut [F64x4; N6],
+) {
+    derivative_6dof_lanes(four, ms, thrust, y, dy);
 }

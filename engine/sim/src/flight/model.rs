@@ -129,6 +129,18 @@ impl FlightModel {
         }
     }
 
+    /// Whether nothing changes the mass at `t`: the motor is out and every shift that has
+    /// started has ended, judged exactly as [`FlightModel::instant`] evaluates them (so the
+    /// mass state is the same at every such instant, given the same starts).
+    #[inline]
+    pub fn mass_settled(&self, starts: &ShiftStarts, t: f64) -> bool {
+        t >= self.motor.burn_time_s()
+            && self.shifts.iter().enumerate().all(|(k, s)| {
+                let start = starts[k];
+                t <= start || (t - start) / s.duration_s >= 1.0
+            })
+    }
+
     /// Static margin (center of pressure at Mach 0 minus center of mass, in calibres).
     #[inline]
     pub fn static_margin(&self, ms: &MassState) -> f64 {

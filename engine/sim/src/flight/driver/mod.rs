@@ -405,6 +405,10 @@ pub(crate) struct Paused<'a, O: Observer> {
     watch: Watch<N6>,
     rtol: f64,
     atol3: [f64; N3],
+    /// The mass state while nothing changes the mass, and the shift starts it holds for.
+    settled: Option<(ShiftStarts, MassLanes<f64>)>,
+    /// The mass state of the last stage that was not settled.
+    moving: MassLanes<f64>,
 }
 
 /// Where a flight is after [`fly_to_free`].
@@ -487,6 +491,8 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         watch: Watch::new(t),
         rtol,
         atol3,
+        settled: None,
+        moving: MassLanes::of(&model.instant(&[f64::INFINITY; MAX_SHIFTS], t).mass),
     })))
 }
 
@@ -576,11 +582,24 @@ impl<'a, O: Observer> Paused<'a, O> {
         }
     }
 
-    /// The mass state (as the equations read it) and the thrust at `t`.
+    /// The mass state (as the equations read it) and the thrust at `t`. While the motor is
+    /// out and no part moves it is computed once and kept (the same numbers `instant` gives).
     #[inline]
-    pub(crate) fn mass_at(&self, t: f64) -> (MassLanes<f64>, f64) {
-        let i = self.run.model.instant(&self.run.starts, t);
-        (MassLanes::of(&i.mass), i.motor.thrust_n)
+    pub(crate) fn mass_at(&mut self, t: f64) -> (&MassLanes<f64>, f64) {
+        let model = self.run.model;
+        let starts = &self.run.starts;
+        if model.mass_settled(starts, t) {
+            if !matches!(&self.settled, Some((s, _)) if s == starts) {
+                let ms = MassLanes::of(&model.instant(starts, t).mass);
+                self.settled = Some((*starts, ms));
+            }
+            if let Some((_, ms)) = &self.settled {
+                return (ms, 0.0);
+            }
+        }
+        let i = model.instant(starts, t);
+        self.moving = MassLanes::of(&i.mass);
+        (&self.moving, i.motor.thrust_n)
     }
 
     /// Hand over the derivative at [`Paused::stage_input`]; the step's outcome once it is
