@@ -269,6 +269,7 @@ impl<'a, O: Observer> Run<'a, O> {
             .sum()
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn record(
         &mut self,
         phase: Phase,
@@ -412,6 +413,7 @@ pub(crate) struct Paused<'a, O: Observer> {
 }
 
 /// Where a flight is after [`fly_to_free`].
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum Progress<'a, O: Observer> {
     /// In free flight, between steps.
     Free(Box<Paused<'a, O>>),
