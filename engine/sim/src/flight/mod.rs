@@ -432,7 +432,9 @@ pub fn build_model(
         ref_diameter_m: tables.aero.ref_diameter_m,
         cp_mach0_m: tables.aero.cp_mach0_m,
         motor: motor_tables,
-    })
+        settled: Vec::new(),
+    }
+    .with_settled_states())
 }
 
 /// The nozzle exit's radius as a fraction of the motor's radius, for the jet-damping terms

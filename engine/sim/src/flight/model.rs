@@ -67,7 +67,15 @@ pub struct FlightModel {
     /// Reference diameter, m, and the whole rocket's Mach-0 center of pressure, m aft of the tip.
     pub ref_diameter_m: f64,
     pub cp_mach0_m: f64,
+    /// The mass state while nothing changes the mass (motor out, no part moving), one per
+    /// set of started shifts (bit `k` of the index: shift `k` has started, and so has
+    /// ended), for flights with at most [`SETTLED_MAX_SHIFTS`] shifts; built once by
+    /// [`FlightModel::with_settled_states`]. Empty: always compute.
+    pub settled: Vec<MassState>,
 }
+
+/// Most shifts for which [`FlightModel::settled`] is tabulated (2⁴ = 16 states).
+pub const SETTLED_MAX_SHIFTS: usize = 4;
 
 /// Start times of each shift (infinite until its trigger fires).
 pub type ShiftStarts = [f64; MAX_SHIFTS];
@@ -112,9 +120,28 @@ impl FlightModel {
         m
     }
 
-    /// Motor and mass state at `t`.
+    /// Motor and mass state at `t`. While nothing changes the mass it is read from
+    /// [`FlightModel::settled`] (the same numbers, computed once).
     #[inline]
     pub fn instant(&self, starts: &ShiftStarts, t: f64) -> Instant {
+        if !self.settled.is_empty() && self.mass_settled(starts, t) {
+            let mut set = 0;
+            for (k, &start) in starts.iter().enumerate().take(self.shifts.len()) {
+                if t > start {
+                    set |= 1 << k;
+                }
+            }
+            return Instant {
+                motor: MotorState::default(),
+                mass: self.settled[set],
+            };
+        }
+        self.instant_computed(starts, t)
+    }
+
+    /// [`FlightModel::instant`] computed from the motor and the shifts' motions.
+    #[inline]
+    pub fn instant_computed(&self, starts: &ShiftStarts, t: f64) -> Instant {
         let motor = self.motor.eval(t);
         let prop = PropellantState {
             mass_kg: motor.propellant_kg,
@@ -127,6 +154,35 @@ impl FlightModel {
             motor,
             mass: mass_state(&self.mass, &prop, &motions[..n]),
         }
+    }
+
+    /// Tabulate [`FlightModel::settled`]: for every set of started shifts, the mass state
+    /// once the motor is out and those shifts have ended (the same at every such instant:
+    /// the motor's state is then all zeros and each part rests at the end of its travel).
+    pub fn with_settled_states(mut self) -> FlightModel {
+        let n = self.shifts.len();
+        self.settled = Vec::new();
+        if n > SETTLED_MAX_SHIFTS {
+            return self;
+        }
+        let longest = self.shifts.iter().map(|s| s.duration_s).fold(0.0, f64::max);
+        let t = self.motor.burn_time_s().max(0.0) + longest + 1.0;
+        let table: Vec<MassState> = (0..1usize << n)
+            .map(|set| {
+                let mut starts = [f64::INFINITY; MAX_SHIFTS];
+                for (k, s) in starts.iter_mut().enumerate().take(n) {
+                    if set & (1 << k) != 0 {
+                        *s = 0.0;
+                    }
+                }
+                debug_assert!(self.mass_settled(&starts, t));
+                self.instant_computed(&starts, t).mass
+            })
+            .collect();
+        if table.iter().all(|m| m.mass_kg.is_finite()) {
+            self.settled = table;
+        }
+        self
     }
 
     /// Whether nothing changes the mass at `t`: the motor is out and every shift that has
