@@ -228,7 +228,38 @@ fn measure(n: usize, compare: bool) {
     );
 }
 
+/// `batch --once batch|loop N`: fly N variants once on one thread, the batch engine's way or
+/// the rayon loop's, and print nothing else: for instruction counts under
+/// `valgrind --tool=callgrind`, which the noisy timings of a shared 2-core machine cannot
+/// replace.
+fn once(how: &str, n: usize) {
+    let design = Design::load(REFERENCE).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let sum: f64 = pool.install(|| match how {
+        "batch" => {
+            let batch = Batch::new(base(&design), Some("ballast")).unwrap();
+            let mut sum = 0.0;
+            batch
+                .run(n, 16, 64, columns_of, |r| {
+                    sum += r.metrics.apogee_m.unwrap_or(0.0)
+                })
+                .unwrap();
+            sum
+        }
+        _ => (0..n).map(|i| from_scratch(&design, i)).sum(),
+    });
+    println!("{how}: {n} variants, apogees sum to {sum:.6} m");
+}
+
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args.len() == 4 && args[1] == "--once" {
+        once(&args[2], args[3].parse().unwrap());
+        return;
+    }
     let sizes: Vec<usize> = std::env::args()
         .skip(1)
         .filter_map(|a| a.parse().ok())

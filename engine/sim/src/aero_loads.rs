@@ -9,7 +9,7 @@
 //! speed through the air. Tables are built once ([`AeroTables`]); a call allocates nothing.
 
 use crate::eom::Loads;
-use crate::lanes::{Real, V3};
+use crate::lanes::{atan2_upper, Real, V3};
 use hpr_design::aero::table::MachTable;
 use nalgebra::Vector3;
 
@@ -132,9 +132,8 @@ pub fn loads<S: Real>(
         let speed = speed2.sqrt();
         let cross = S::select(none, one, cross2.sqrt());
         // The angle between u and −b3: atan2 is exact near zero, where acos(−u_z/|u|) loses
-        // half its digits (and it is cheaper).
-        let nz = -u.z;
-        let alpha = cross.map(|i, c| c.atan2(nz.lane(i)));
+        // half its digits (and it is cheaper); this one runs in vector registers.
+        let alpha = atan2_upper(cross, -u.z);
         let mach = speed / speed_of_sound;
         let cn = mach.map(|_, m| s.cn_alpha.at(m));
         let n = S::select(none, zero, half * rho * speed2 * area * cn * alpha);

@@ -379,7 +379,10 @@ fn angle_of_attack(v_air_b: &Vector3<f64>) -> f64 {
     if n == 0.0 {
         0.0
     } else {
-        (v_air_b.x.hypot(v_air_b.y)).atan2(v_air_b.z)
+        crate::lanes::atan2_upper(
+            (v_air_b.x * v_air_b.x + v_air_b.y * v_air_b.y).sqrt(),
+            v_air_b.z,
+        )
     }
 }
 
