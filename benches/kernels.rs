@@ -1,14 +1,19 @@
 //! The kernels every flight and every batch lane calls, timed alone: the cycloid, the
-//! mass-property kernel and the 6-DOF derivative, over 1,024 lanes of different instants
+//! mass-property kernel and the 6-DOF derivative (one lane at a time, as a single flight calls
+//! it, and four at a time, as the batch engine does), over 1,024 lanes of different instants
 //! (reported by criterion as elements per second: lanes or evaluations per second).
 //!
 //! `cargo bench --bench kernels`
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use hpr_design::{motor, Design};
+use hpr_sim::batch::eval_four;
 use hpr_sim::cycloid;
+use hpr_sim::eom::{pack_mass, MassLanes};
+use hpr_sim::flight::model::FourModels;
 use hpr_sim::flight::model::MAX_SHIFTS;
 use hpr_sim::flight::{Environment, Rail, Simulation};
+use hpr_sim::lanes::{F64x4, Real};
 use hpr_sim::{MassShift, Trigger};
 use std::hint::black_box;
 
@@ -87,6 +92,36 @@ fn kernels(c: &mut Criterion) {
             BatchSize::SmallInput,
         )
     });
+    // The same evaluations four lanes at a time, as the batch engine makes them: each
+    // lane's mass state packed beside three others', one four-lane kernel call.
+    let four = FourModels::new([model; 4]).unwrap();
+    let packs: Vec<(MassLanes<F64x4>, F64x4, [F64x4; 13])> = (0..LANES / 4)
+        .map(|p| {
+            let lanes: [usize; 4] = std::array::from_fn(|l| 4 * p + l);
+            let inst = lanes.map(|i| model.instant(&starts, times[i]));
+            let ms = inst.map(|i| MassLanes::of(&i.mass));
+            let thrust = F64x4::from_fn(|l| inst[l].motor.thrust_n);
+            let y = std::array::from_fn(|k| F64x4::from_fn(|l| states[lanes[l]][k]));
+            (pack_mass([&ms[0], &ms[1], &ms[2], &ms[3]]), thrust, y)
+        })
+        .collect();
+    g.bench_function(
+        "6-DOF derivative, four lanes at a time (evaluations)",
+        |b| {
+            b.iter_batched_ref(
+                || [F64x4::splat(0.0); 13],
+                |dy| {
+                    let mut s = 0.0;
+                    for (ms, thrust, y) in &packs {
+                        eval_four(&four, ms, *thrust, y, dy);
+                        s += dy[5].0[0];
+                    }
+                    s
+                },
+                BatchSize::SmallInput,
+            )
+        },
+    );
     g.finish();
 }
 

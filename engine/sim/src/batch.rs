@@ -815,7 +815,7 @@ fn set_mass_lane(ms: &mut MassLanes<F64x4>, l: usize, m: &MassLanes<f64>) {
 /// The 6-DOF kernel on four lanes, in AVX2 registers where the processor has them (the same
 /// IEEE operations lane by lane either way: AVX2 without FMA changes no result).
 #[inline]
-fn eval_four(
+pub fn eval_four(
     four: &FourModels<'_>,
     ms: &MassLanes<F64x4>,
     thrust: F64x4,
