@@ -6,20 +6,31 @@
 //! everything that depends on the design alone (shape integrals, aerodynamic tables, the air
 //! table) is shared by `Arc` and never rebuilt; the lane's own light model (motor tables, mass
 //! split, rail, wind, parachutes, shifts) is built once from its row of the columns (all of
-//! the row's changes, one rebuild: [`Simulation::with_changes`]), and the flight is the same
-//! driver over the same kernels as a single flight. So a lane's metrics are *the*
-//! single-flight simulator's for the same inputs ([`Batch::variant`] gives that simulation).
+//! the row's changes, one rebuild: [`Simulation::with_changes`]). The lane then flies through
+//! the single flight's own driver: pad, rail, events, triggers, shifts, canopies and descent
+//! are the very same code, and so are the kernels.
+//!
+//! **Lanes side by side.** Up to [`LANES_IN_FLIGHT`] rows of a chunk fly at once, and a lane
+//! that lands is replaced by the next row. Their free flight (the bulk of the derivative
+//! evaluations) is stepped four lanes at a time: each lane keeps its own time, step size,
+//! stop times and error control (its own Dormand–Prince stepper, driven a stage at a time),
+//! and every stage of the four lanes' steps is *one* evaluation of the generic 6-DOF kernel
+//! on [`F64x4`] lanes (AVX2 registers where the processor has them, [`eval_four`]). A lane
+//! whose step is done, or a slot without a lane, repeats another lane's input and is ignored.
+//! The kernel does lane by lane exactly the IEEE operations the single flight does, so a
+//! lane's metrics are bit for bit the single-flight simulator's ([`Batch::variant`] gives that
+//! simulation; the tests compare them).
 //!
 //! **Determinism.** A lane depends only on its row of the columns, never on its chunk, its
-//! thread or the order lanes are scheduled in; results are handed to the sink in variant
-//! order. **Memory** does not grow with the number of variants: [`Batch::run`] asks a closure
-//! for the columns of one chunk at a time, inside the task that flies it, and keeps a window
-//! of chunks (their columns and results) in flight at once. **Failures** are rows: a refused
-//! input, a flight that fails or a lane that panics is recorded with its reason and the run
-//! goes on.
+//! neighbours, its thread or the order lanes are scheduled in; results are handed to the sink
+//! in variant order. **Memory** does not grow with the number of variants: [`Batch::run`] asks
+//! a closure for the columns of one chunk at a time, inside the task that flies it, and keeps a
+//! window of chunks (their columns and results) in flight at once. **Failures** are rows: a
+//! refused input, a flight that fails or a lane that panics is recorded with its reason and the
+//! run goes on.
 //!
-//! What it does not do yet: lanes are advanced one whole flight at a time; the stages of
-//! different lanes are not evaluated together in SIMD registers.
+//! What it does not do yet: each lane's stepper arithmetic, event location, samples and
+//! descent run one lane at a time; only the 6-DOF kernel is evaluated across lanes.
 
 use crate::eom::{pack_mass, MassLanes, N6};
 use crate::events::EventKind;
@@ -663,31 +674,12 @@ fn step_group(group: &mut [Lane<'_>]) {
                 Err(e) => lane.end = Some(LaneEnd::Error(e)),
             }
         }
-        let mut dy = [0.0; N6];
-        while let Some(first) = (0..group.len()).find(|&i| staged[i] && outcomes[i].is_none()) {
-            // Four lanes' inputs; a slot without a lane repeats the first (and is ignored).
-            let slot = |i: usize| {
-                if i < group.len() && staged[i] && outcomes[i].is_none() {
-                    i
-                } else {
-                    first
-                }
-            };
-            let slots: [usize; 4] = std::array::from_fn(slot);
-            // Gather the four lanes: state, mass state and thrust at the stage's time.
-            let mut y = [F64x4::splat(0.0); N6];
-            let mut ms = pack_mass([&MASS0; 4]);
-            let mut thrust = F64x4::splat(0.0);
-            for (l, &i) in slots.iter().enumerate() {
-                let p = group[i].paused.as_mut().expect("a staged lane flies");
-                let (t, yi) = p.stage_input();
-                for k in 0..N6 {
-                    y[k].0[l] = yi[k];
-                }
-                let (m, th) = p.mass_at(t);
-                set_mass_lane(&mut ms, l, m);
-                thrust.0[l] = th;
-            }
+        let n = group.len();
+        if let Some(first) = (0..n).find(|&i| staged[i]) {
+            // Slot l holds lane l; a slot without a staged lane repeats the first one's input
+            // (filled once, its results ignored). A lane done with its step idles in its slot.
+            let slots: [usize; 4] =
+                std::array::from_fn(|l| if l < n && staged[l] { l } else { first });
             let models: [&FlightModel; 4] = slots.map(|i| {
                 group[i]
                     .paused
@@ -695,41 +687,73 @@ fn step_group(group: &mut [Lane<'_>]) {
                     .expect("a staged lane flies")
                     .model()
             });
+            let four = FourModels::new(models);
+            let mut y = [F64x4::splat(0.0); N6];
+            let mut ms = pack_mass([&MASS0; 4]);
+            let mut thrust = F64x4::splat(0.0);
+            // Serial of the mass state each slot holds (refreshed only when it changes).
+            let mut serial = [u64::MAX; 4];
+            let mut dy = [0.0; N6];
             let mut dy4 = [F64x4::splat(0.0); N6];
-            match FourModels::new(models) {
-                Some(four) => eval_four(&four, &ms, thrust, &y, &mut dy4),
-                None => {
-                    // Lanes that do not share their aerodynamic tables: one at a time.
-                    for (l, &i) in slots.iter().enumerate() {
-                        let p = group[i].paused.as_mut().expect("a staged lane flies");
-                        let (t, yi) = p.stage_input();
-                        let yi = *yi;
-                        let (m, th) = p.mass_at(t);
-                        let mut d = [0.0; N6];
-                        derivative_6dof_lanes(models[l], m, th, &yi, &mut d);
-                        for k in 0..N6 {
-                            dy4[k].0[l] = d[k];
+            loop {
+                let active: [bool; 4] =
+                    std::array::from_fn(|l| l < n && staged[l] && outcomes[l].is_none());
+                if !active.iter().any(|&a| a) {
+                    break;
+                }
+                for (l, &i) in slots.iter().enumerate() {
+                    let own = l == i;
+                    if (own && !active[l]) || (!own && serial[l] != u64::MAX) {
+                        continue;
+                    }
+                    let p = group[i].paused.as_mut().expect("a staged lane flies");
+                    let (t, yi) = p.stage_input();
+                    for k in 0..N6 {
+                        y[k].0[l] = yi[k];
+                    }
+                    let (m, th, sn) = p.mass_at(t);
+                    if sn != serial[l] {
+                        set_mass_lane(&mut ms, l, m);
+                        serial[l] = sn;
+                    }
+                    thrust.0[l] = th;
+                }
+                match &four {
+                    Some(four) => eval_four(four, &ms, thrust, &y, &mut dy4),
+                    None => {
+                        // Lanes that do not share their aerodynamic tables: one at a time.
+                        for (l, &i) in slots.iter().enumerate() {
+                            if l != i || !active[l] {
+                                continue;
+                            }
+                            let p = group[i].paused.as_mut().expect("a staged lane flies");
+                            let (t, yi) = p.stage_input();
+                            let yi = *yi;
+                            let (m, th, _) = p.mass_at(t);
+                            let mut d = [0.0; N6];
+                            derivative_6dof_lanes(models[l], m, th, &yi, &mut d);
+                            for k in 0..N6 {
+                                dy4[k].0[l] = d[k];
+                            }
                         }
                     }
                 }
-            }
-            for l in 0..group.len() {
-                // Only a lane's own slot feeds it (the padding slots repeat the first lane).
-                if slots[l] != l || !staged[l] || outcomes[l].is_some() {
-                    continue;
-                }
-                let i = l;
-                for k in 0..N6 {
-                    dy[k] = dy4[k].0[l];
-                }
-                let lane = &mut group[i];
-                let p = lane.paused.as_mut().expect("a staged lane flies");
-                match p.feed_stage(&dy) {
-                    Ok(None) => {}
-                    Ok(Some(o)) => outcomes[i] = Some(o),
-                    Err(e) => {
-                        lane.end = Some(LaneEnd::Error(e));
-                        staged[i] = false;
+                for l in 0..n {
+                    if !active[l] {
+                        continue;
+                    }
+                    for k in 0..N6 {
+                        dy[k] = dy4[k].0[l];
+                    }
+                    let lane = &mut group[l];
+                    let p = lane.paused.as_mut().expect("a staged lane flies");
+                    match p.feed_stage(&dy) {
+                        Ok(None) => {}
+                        Ok(Some(o)) => outcomes[l] = Some(o),
+                        Err(e) => {
+                            lane.end = Some(LaneEnd::Error(e));
+                            staged[l] = false;
+                        }
                     }
                 }
             }

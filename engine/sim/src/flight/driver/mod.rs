@@ -407,7 +407,9 @@ pub(crate) struct Paused<'a, O: Observer> {
     rtol: f64,
     atol3: [f64; N3],
     /// The mass state while nothing changes the mass, and the shift starts it holds for.
-    settled: Option<(ShiftStarts, MassLanes<f64>)>,
+    settled: Option<(ShiftStarts, MassLanes<f64>, u64)>,
+    /// Serial number of the last mass state handed out by [`Paused::mass_at`].
+    serial: u64,
     /// The mass state of the last stage that was not settled.
     moving: MassLanes<f64>,
 }
@@ -494,6 +496,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         rtol,
         atol3,
         settled: None,
+        serial: 0,
         moving: MassLanes::of(&model.instant(&[f64::INFINITY; MAX_SHIFTS], t).mass),
     })))
 }
@@ -584,24 +587,28 @@ impl<'a, O: Observer> Paused<'a, O> {
         }
     }
 
-    /// The mass state (as the equations read it) and the thrust at `t`. While the motor is
-    /// out and no part moves it is computed once and kept (the same numbers `instant` gives).
+    /// The mass state (as the equations read it) and the thrust at `t`, and a serial number
+    /// that changes whenever the mass state handed out does (so that a caller holding a
+    /// copy knows when to refresh it). While the motor is out and no part moves it is
+    /// computed once and kept (the same numbers `instant` gives).
     #[inline]
-    pub(crate) fn mass_at(&mut self, t: f64) -> (&MassLanes<f64>, f64) {
+    pub(crate) fn mass_at(&mut self, t: f64) -> (&MassLanes<f64>, f64, u64) {
         let model = self.run.model;
         let starts = &self.run.starts;
         if model.mass_settled(starts, t) {
-            if !matches!(&self.settled, Some((s, _)) if s == starts) {
+            if !matches!(&self.settled, Some((s, _, _)) if s == starts) {
                 let ms = MassLanes::of(&model.instant(starts, t).mass);
-                self.settled = Some((*starts, ms));
+                self.serial += 1;
+                self.settled = Some((*starts, ms, self.serial));
             }
-            if let Some((_, ms)) = &self.settled {
-                return (ms, 0.0);
+            if let Some((_, ms, serial)) = &self.settled {
+                return (ms, 0.0, *serial);
             }
         }
         let i = model.instant(starts, t);
         self.moving = MassLanes::of(&i.mass);
-        (&self.moving, i.motor.thrust_n)
+        self.serial += 1;
+        (&self.moving, i.motor.thrust_n, self.serial)
     }
 
     /// Hand over the derivative at [`Paused::stage_input`]; the step's outcome once it is
