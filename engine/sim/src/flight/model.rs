@@ -492,9 +492,13 @@ impl ModelLanes<f64> for FlightModel {
 }
 
 /// Four flights' models side by side (their aerodynamic tables must be one and the same:
-/// [`FourModels::new`] checks).
+/// [`FourModels::new`] checks), with what the kernel reads of them packed once.
 #[derive(Clone, Copy)]
-pub struct FourModels<'a>(pub [&'a FlightModel; 4]);
+pub struct FourModels<'a> {
+    pub models: [&'a FlightModel; 4],
+    nozzle: NozzleLanes<F64x4>,
+    drag_scale: F64x4,
+}
 
 impl<'a> FourModels<'a> {
     /// `None` unless the four share their aerodynamic tables.
@@ -502,37 +506,41 @@ impl<'a> FourModels<'a> {
         let same = models
             .iter()
             .all(|m| std::sync::Arc::ptr_eq(&m.aero, &models[0].aero));
-        same.then_some(FourModels(models))
+        let n = models.map(|m| m.nozzle.lanes());
+        same.then(|| FourModels {
+            models,
+            nozzle: crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]]),
+            drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
+        })
     }
 }
 
 impl ModelLanes<F64x4> for FourModels<'_> {
     #[inline(always)]
     fn aero(&self) -> &AeroTables {
-        &self.0[0].aero
+        &self.models[0].aero
     }
     #[inline(always)]
     fn air(&self, h: F64x4) -> (F64x4, F64x4) {
-        let a: [(f64, f64); 4] = std::array::from_fn(|i| self.0[i].air(h.0[i]));
+        let a: [(f64, f64); 4] = std::array::from_fn(|i| self.models[i].air(h.0[i]));
         (F64x4::from_fn(|i| a[i].0), F64x4::from_fn(|i| a[i].1))
     }
     #[inline(always)]
     fn wind(&self, h: F64x4) -> V3<F64x4> {
-        let w: [V3<f64>; 4] = std::array::from_fn(|i| self.0[i].wind(h.0[i]));
+        let w: [V3<f64>; 4] = std::array::from_fn(|i| self.models[i].wind(h.0[i]));
         crate::lanes::pack_v3([&w[0], &w[1], &w[2], &w[3]])
     }
     #[inline(always)]
     fn gravity(&self, h: F64x4) -> F64x4 {
-        F64x4::from_fn(|i| self.0[i].gravity(h.0[i]))
+        F64x4::from_fn(|i| self.models[i].gravity(h.0[i]))
     }
     #[inline(always)]
     fn drag_scale(&self) -> F64x4 {
-        F64x4::from_fn(|i| self.0[i].drag_scale)
+        self.drag_scale
     }
     #[inline(always)]
     fn nozzle(&self) -> NozzleLanes<F64x4> {
-        let n = self.0.map(|m| m.nozzle.lanes());
-        crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]])
+        self.nozzle
     }
 }
 
