@@ -10,6 +10,9 @@
 //! main, wind, rail, motor and mass dispersions. Their inputs are never held whole: each
 //! chunk's columns are drawn from (seed, variant index) when the chunk is flown, so the peak
 //! memory must not grow with the number of variants.
+//!
+//! `batch --once batch|loop N` flies N variants once on one thread, one way or the other, for
+//! instruction counts under callgrind (see `ARCHITECTURE.md`).
 
 use hpr_design::motor::{self, MotorOptions};
 use hpr_design::Design;
