@@ -337,6 +337,7 @@ impl<const N: usize> Dopri54<N> {
     }
 
     /// Clip the attempt's step to the stop time and prepare its first stage.
+    #[inline(always)]
     fn begin_attempt(&mut self) -> Result<(), IntegratorError> {
         let c = self.control;
         let t = self.t;
@@ -360,7 +361,7 @@ impl<const N: usize> Dopri54<N> {
     }
 
     /// The time and state of the stage `cur.stage` from the stages before it.
-    #[inline]
+    #[inline(always)]
     fn prepare_stage(&mut self) {
         let (t, y, k1) = (self.t, &self.y, &self.dy);
         let a = &mut self.cur;
@@ -427,6 +428,7 @@ impl<const N: usize> Dopri54<N> {
     /// Hand over the derivative at [`Dopri54::stage_input`]. Returns the step's outcome once
     /// its last stage is in and the step is accepted; `None` while it needs more stages
     /// (including a new attempt after a rejection).
+    #[inline(always)]
     pub fn feed_stage(&mut self, dy: &[f64; N]) -> Result<Option<StepOutcome>, IntegratorError> {
         self.n_eval += 1;
         let st = self.cur.stage;

@@ -591,7 +591,7 @@ impl<'a, O: Observer> Paused<'a, O> {
     /// that changes whenever the mass state handed out does (so that a caller holding a
     /// copy knows when to refresh it). While the motor is out and no part moves it is
     /// computed once and kept (the same numbers `instant` gives).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn mass_at(&mut self, t: f64) -> (&MassLanes<f64>, f64, u64) {
         let model = self.run.model;
         let starts = &self.run.starts;
@@ -613,6 +613,7 @@ impl<'a, O: Observer> Paused<'a, O> {
 
     /// Hand over the derivative at [`Paused::stage_input`]; the step's outcome once it is
     /// done.
+    #[inline(always)]
     pub(crate) fn feed_stage(&mut self, dy: &[f64; N6]) -> Result<Option<StepOutcome>, SimError> {
         let Stepper::Adaptive(d) = &mut self.s6 else {
             return Err(SimError::Setup(
