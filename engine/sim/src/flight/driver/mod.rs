@@ -136,7 +136,7 @@ struct Run<'a, O: Observer> {
     observer: &'a mut O,
     starts: ShiftStarts,
     /// Pending stop times, unsorted; the next one is their minimum above the current time.
-    stops: Vec<f64>,
+    stops: Stops,
     samples: Vec<Sample>,
     events: Vec<Event>,
     metrics: Metrics,
@@ -151,6 +151,19 @@ struct Run<'a, O: Observer> {
     burnout_done: bool,
 }
 
+/// Pending stop times, latest first (the next one is at the end); NaN is never a stop.
+struct Stops(Vec<f64>);
+
+impl Stops {
+    fn push(&mut self, s: f64) {
+        if s.is_nan() {
+            return;
+        }
+        let i = self.0.partition_point(|&x| x > s);
+        self.0.insert(i, s);
+    }
+}
+
 /// What ended a phase.
 pub(crate) enum PhaseEnd {
     RailExit,
@@ -160,14 +173,17 @@ pub(crate) enum PhaseEnd {
 }
 
 impl<'a, O: Observer> Run<'a, O> {
-    fn next_stop(&self, t: f64) -> f64 {
-        let mut next = self.model.options.max_time_s;
-        for &s in &self.stops {
-            if s > t && s < next {
-                next = s;
+    /// The first stop time after `t` (or the time limit). Time only moves forward, so the
+    /// stops at or before `t` are dropped.
+    fn next_stop(&mut self, t: f64) -> f64 {
+        let max = self.model.options.max_time_s;
+        while let Some(&s) = self.stops.0.last() {
+            if s > t {
+                return s.min(max);
             }
+            self.stops.0.pop();
         }
-        next
+        max
     }
 
     fn push_event(&mut self, kind: EventKind, t: f64, altitude_m: f64, speed_m_s: f64) {
@@ -431,8 +447,12 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
     from: Option<(f64, [f64; N6])>,
 ) -> Result<Progress<'a, O>, SimError> {
     let n_chutes = model.parachutes.len();
-    let mut stops = Vec::with_capacity(64 + STOPS_PER_SHIFT * model.shifts.len() + 2 * n_chutes);
-    stops.extend(model.thrust_knots_s.iter().copied());
+    let mut stops = Stops(Vec::with_capacity(
+        64 + STOPS_PER_SHIFT * model.shifts.len() + 2 * n_chutes,
+    ));
+    for &k in &model.thrust_knots_s {
+        stops.push(k);
+    }
     stops.push(model.burnout_s);
     for tr in model
         .parachutes
@@ -469,7 +489,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
             // Started on the way down (or at the top), the apogee is behind it: the landing
             // and the height triggers are armed at once.
             run.apogee_done = cm_of(model, &run.starts, t0, &y0).1.z <= 0.0;
-            run.stops.retain(|&s| s > t0);
+            run.stops.0.retain(|&s| s > t0);
             (t0, y0, false)
         }
         None => {
@@ -556,7 +576,7 @@ impl<'a, O: Observer> Paused<'a, O> {
         if !matches!(self.s6, Stepper::Adaptive(_)) {
             return Ok(false);
         }
-        let t_stop = self.free.next_stop(&self.run, &self.s6);
+        let t_stop = self.free.next_stop(&mut self.run, &self.s6);
         let Stepper::Adaptive(d) = &mut self.s6 else {
             return Ok(false);
         };

@@ -121,7 +121,7 @@ impl SixDof {
     /// The stop time of the next step (which starts where the stepper is).
     pub(super) fn next_stop<O: Observer>(
         &mut self,
-        run: &Run<'_, O>,
+        run: &mut Run<'_, O>,
         stepper: &Stepper<N6>,
     ) -> f64 {
         self.t_now = each!(stepper, s => s.t());
