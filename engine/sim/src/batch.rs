@@ -666,115 +666,112 @@ fn step_group(group: &mut [Lane<'_>]) {
 /// The body of [`step_group`].
 #[inline(always)]
 fn step_lanes(group: &mut [Lane<'_>]) {
-    {
-        // Which lanes step a stage at a time (and which are done with this step).
-        let mut staged = [false; 4];
-        let mut outcomes: [Option<StepOutcome>; 4] = [None; 4];
-        for (i, lane) in group.iter_mut().enumerate() {
-            let Some(p) = lane.paused.as_mut() else {
-                continue;
-            };
-            match p.begin_step() {
-                Ok(true) => staged[i] = true,
-                Ok(false) => match p.step() {
-                    Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
-                    Ok(None) => {}
-                    Err(e) => lane.end = Some(LaneEnd::Error(e)),
-                },
+    // Which lanes step a stage at a time (and which are done with this step).
+    let mut staged = [false; 4];
+    let mut outcomes: [Option<StepOutcome>; 4] = [None; 4];
+    for (i, lane) in group.iter_mut().enumerate() {
+        let Some(p) = lane.paused.as_mut() else {
+            continue;
+        };
+        match p.begin_step() {
+            Ok(true) => staged[i] = true,
+            Ok(false) => match p.step() {
+                Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
+                Ok(None) => {}
                 Err(e) => lane.end = Some(LaneEnd::Error(e)),
-            }
+            },
+            Err(e) => lane.end = Some(LaneEnd::Error(e)),
         }
-        let n = group.len();
-        if let Some(first) = (0..n).find(|&i| staged[i]) {
-            // Slot l holds lane l; a slot without a staged lane repeats the first one's input
-            // (filled once, its results ignored). A lane done with its step idles in its slot.
-            let slots: [usize; 4] =
-                std::array::from_fn(|l| if l < n && staged[l] { l } else { first });
-            let models: [&FlightModel; 4] = slots.map(|i| {
-                group[i]
-                    .paused
-                    .as_deref()
-                    .expect("a staged lane flies")
-                    .model()
-            });
-            let four = FourModels::new(models);
-            let mut y = [F64x4::splat(0.0); N6];
-            let mut ms = pack_mass([&MASS0; 4]);
-            let mut thrust = F64x4::splat(0.0);
-            // Serial of the mass state each slot holds (refreshed only when it changes).
-            let mut serial = [u64::MAX; 4];
-            let mut dy = [0.0; N6];
-            let mut dy4 = [F64x4::splat(0.0); N6];
-            loop {
-                let active: [bool; 4] =
-                    std::array::from_fn(|l| l < n && staged[l] && outcomes[l].is_none());
-                if !active.iter().any(|&a| a) {
-                    break;
+    }
+    let n = group.len();
+    if let Some(first) = (0..n).find(|&i| staged[i]) {
+        // Slot l holds lane l; a slot without a staged lane repeats the first one's input
+        // (filled once, its results ignored). A lane done with its step idles in its slot.
+        let slots: [usize; 4] = std::array::from_fn(|l| if l < n && staged[l] { l } else { first });
+        let models: [&FlightModel; 4] = slots.map(|i| {
+            group[i]
+                .paused
+                .as_deref()
+                .expect("a staged lane flies")
+                .model()
+        });
+        let four = FourModels::new(models);
+        let mut y = [F64x4::splat(0.0); N6];
+        let mut ms = pack_mass([&MASS0; 4]);
+        let mut thrust = F64x4::splat(0.0);
+        // Serial of the mass state each slot holds (refreshed only when it changes).
+        let mut serial = [u64::MAX; 4];
+        let mut dy = [0.0; N6];
+        let mut dy4 = [F64x4::splat(0.0); N6];
+        loop {
+            let active: [bool; 4] =
+                std::array::from_fn(|l| l < n && staged[l] && outcomes[l].is_none());
+            if !active.iter().any(|&a| a) {
+                break;
+            }
+            for (l, &i) in slots.iter().enumerate() {
+                let own = l == i;
+                if (own && !active[l]) || (!own && serial[l] != u64::MAX) {
+                    continue;
                 }
-                for (l, &i) in slots.iter().enumerate() {
-                    let own = l == i;
-                    if (own && !active[l]) || (!own && serial[l] != u64::MAX) {
-                        continue;
-                    }
-                    let p = group[i].paused.as_mut().expect("a staged lane flies");
-                    let (t, yi) = p.stage_input();
-                    for k in 0..N6 {
-                        y[k].0[l] = yi[k];
-                    }
-                    let (m, th, sn) = p.mass_at(t);
-                    if sn != serial[l] {
-                        set_mass_lane(&mut ms, l, m);
-                        serial[l] = sn;
-                    }
-                    thrust.0[l] = th;
+                let p = group[i].paused.as_mut().expect("a staged lane flies");
+                let (t, yi) = p.stage_input();
+                for k in 0..N6 {
+                    y[k].0[l] = yi[k];
                 }
-                match &four {
-                    Some(four) => eval_four(four, &ms, thrust, &y, &mut dy4),
-                    None => {
-                        // Lanes that do not share their aerodynamic tables: one at a time.
-                        for (l, &i) in slots.iter().enumerate() {
-                            if l != i || !active[l] {
-                                continue;
-                            }
-                            let p = group[i].paused.as_mut().expect("a staged lane flies");
-                            let (t, yi) = p.stage_input();
-                            let yi = *yi;
-                            let (m, th, _) = p.mass_at(t);
-                            let mut d = [0.0; N6];
-                            derivative_6dof_lanes(models[l], m, th, &yi, &mut d);
-                            for k in 0..N6 {
-                                dy4[k].0[l] = d[k];
-                            }
+                let (m, th, sn) = p.mass_at(t);
+                if sn != serial[l] {
+                    set_mass_lane(&mut ms, l, m);
+                    serial[l] = sn;
+                }
+                thrust.0[l] = th;
+            }
+            match &four {
+                Some(four) => eval_four(four, &ms, thrust, &y, &mut dy4),
+                None => {
+                    // Lanes that do not share their aerodynamic tables: one at a time.
+                    for (l, &i) in slots.iter().enumerate() {
+                        if l != i || !active[l] {
+                            continue;
                         }
-                    }
-                }
-                for l in 0..n {
-                    if !active[l] {
-                        continue;
-                    }
-                    for k in 0..N6 {
-                        dy[k] = dy4[k].0[l];
-                    }
-                    let lane = &mut group[l];
-                    let p = lane.paused.as_mut().expect("a staged lane flies");
-                    match p.feed_stage(&dy) {
-                        Ok(None) => {}
-                        Ok(Some(o)) => outcomes[l] = Some(o),
-                        Err(e) => {
-                            lane.end = Some(LaneEnd::Error(e));
-                            staged[l] = false;
+                        let p = group[i].paused.as_mut().expect("a staged lane flies");
+                        let (t, yi) = p.stage_input();
+                        let yi = *yi;
+                        let (m, th, _) = p.mass_at(t);
+                        let mut d = [0.0; N6];
+                        derivative_6dof_lanes(models[l], m, th, &yi, &mut d);
+                        for k in 0..N6 {
+                            dy4[k].0[l] = d[k];
                         }
                     }
                 }
             }
-        }
-        for (i, lane) in group.iter_mut().enumerate() {
-            if let (Some(o), Some(p)) = (outcomes[i], lane.paused.as_mut()) {
-                match p.end_step(o) {
-                    Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
+            for l in 0..n {
+                if !active[l] {
+                    continue;
+                }
+                for k in 0..N6 {
+                    dy[k] = dy4[k].0[l];
+                }
+                let lane = &mut group[l];
+                let p = lane.paused.as_mut().expect("a staged lane flies");
+                match p.feed_stage(&dy) {
                     Ok(None) => {}
-                    Err(e) => lane.end = Some(LaneEnd::Error(e)),
+                    Ok(Some(o)) => outcomes[l] = Some(o),
+                    Err(e) => {
+                        lane.end = Some(LaneEnd::Error(e));
+                        staged[l] = false;
+                    }
                 }
+            }
+        }
+    }
+    for (i, lane) in group.iter_mut().enumerate() {
+        if let (Some(o), Some(p)) = (outcomes[i], lane.paused.as_mut()) {
+            match p.end_step(o) {
+                Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
+                Ok(None) => {}
+                Err(e) => lane.end = Some(LaneEnd::Error(e)),
             }
         }
     }

@@ -370,6 +370,8 @@ pub fn pack_m3(a: [&M3<f64>; 4]) -> M3<F64x4> {
 /// core, Moshier 1984–2000) on `y/|x|`, reflected for `x < 0`. Within 1 ulp of the
 /// correctly rounded value (the test measures it against the system's `atan2`). Both drivers
 /// call it, so the batch's lanes stay bit for bit the single flight.
+// The coefficients are Cephes' as published (more digits than a double holds, rounded once).
+#[allow(clippy::excessive_precision)]
 #[inline(always)]
 pub fn atan2_upper<S: Real>(y: S, x: S) -> S {
     const P: [f64; 5] = [
