@@ -198,7 +198,9 @@ fn every_lane_equals_the_single_flight_with_the_same_inputs() {
     let (mut worst, mut landed, mut refused) = (0.0f64, 0, 0);
     let mut results = Vec::with_capacity(n);
     batch
-        .run(n, 16, 4, |rows| columns_of(rows, 42), |r| results.push(r))
+        // Chunks of 40 rows, 16 in flight: lanes that land are replaced mid-chunk, and
+        // groups of four mix lanes at different times of their flights.
+        .run(n, 40, 4, |rows| columns_of(rows, 42), |r| results.push(r))
         .unwrap();
     assert_eq!(results.len(), n);
     for (i, lane) in results.iter().enumerate() {
