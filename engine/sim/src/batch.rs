@@ -38,7 +38,7 @@ use crate::flight::driver::{fly_to_free, Paused, Progress, StepEnd};
 use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
 use crate::flight::{Flight, Metrics, SimError, Simulation};
 use crate::integrate::StepOutcome;
-use crate::lanes::{F64x4, Real, M3, V3};
+use crate::lanes::{F64x4, Real};
 use crate::trigger::Trigger;
 use crate::wind::Wind;
 use rayon::prelude::*;
@@ -373,21 +373,6 @@ impl Batch {
         changed.map_err(|e| e.to_string())
     }
 
-    /// Fly row `row` of `columns` (checked by [`Batch::check`]) as variant `variant` (no
-    /// samples kept). A panic in the simulator is caught and the lane `Failed`.
-    pub fn fly(&self, columns: &Columns, row: usize, variant: usize) -> LaneResult {
-        let flown = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            self.fly_unguarded(columns, row, variant)
-        }));
-        flown.unwrap_or_else(|panic| {
-            self.empty(
-                variant,
-                Status::Failed,
-                format!("the simulator panicked: {}", panic_message(&*panic)),
-            )
-        })
-    }
-
     fn empty(&self, variant: usize, status: Status, error: String) -> LaneResult {
         LaneResult {
             variant,
@@ -399,15 +384,6 @@ impl Batch {
             shifts: vec![ShiftOutcome::default(); self.base.shifts().len()],
             derivative_evaluations: 0,
         }
-    }
-
-    fn fly_unguarded(&self, columns: &Columns, row: usize, variant: usize) -> LaneResult {
-        let sim = match self.variant(columns, row) {
-            Ok(s) => s,
-            Err(e) => return self.empty(variant, Status::Refused, e),
-        };
-        let flight = sim.run(&mut ());
-        self.result_of(&sim, flight, variant)
     }
 
     /// A lane's result from its simulation and its flight.
@@ -476,7 +452,7 @@ impl Batch {
         self.check(columns)?;
         let n = columns.len;
         // Each row's simulation, built when its lane starts; lanes borrow their model from it.
-        let sims: Vec<OnceCell<Result<Simulation, String>>> =
+        let sims: Vec<OnceCell<Result<Simulation, (Status, String)>>> =
             (0..n).map(|_| OnceCell::new()).collect();
         let mut results: Vec<Option<LaneResult>> = (0..n).map(|_| None).collect();
         let mut lanes: Vec<Lane<'_>> = Vec::with_capacity(LANES_IN_FLIGHT);
@@ -486,19 +462,15 @@ impl Batch {
                 let row = next_row;
                 next_row += 1;
                 let variant = first + row;
-                let sim = sims[row].get_or_init(|| {
-                    guarded(|| self.variant(columns, row))
-                        .unwrap_or_else(|p| Err(format!("the simulator panicked: {p}")))
+                let sim = sims[row].get_or_init(|| match guarded(|| self.variant(columns, row)) {
+                    Ok(Ok(sim)) => Ok(sim),
+                    Ok(Err(refusal)) => Err((Status::Refused, refusal)),
+                    Err(p) => Err((Status::Failed, format!("the simulator panicked: {p}"))),
                 });
                 let sim = match sim {
                     Ok(s) => s,
-                    Err(e) => {
-                        let status = if e.starts_with("the simulator panicked") {
-                            Status::Failed
-                        } else {
-                            Status::Refused
-                        };
-                        results[row] = Some(self.empty(variant, status, e.clone()));
+                    Err((status, e)) => {
+                        results[row] = Some(self.empty(variant, *status, e.clone()));
                         continue;
                     }
                 };
@@ -697,7 +669,7 @@ fn step_lanes(group: &mut [Lane<'_>]) {
         });
         let four = FourModels::new(models);
         let mut y = [F64x4::splat(0.0); N6];
-        let mut ms = pack_mass([&MASS0; 4]);
+        let mut ms = pack_mass([&MassLanes::ZERO; 4]);
         let mut thrust = F64x4::splat(0.0);
         // Serial of the mass state each slot holds (refreshed only when it changes).
         let mut serial = [u64::MAX; 4];
@@ -721,7 +693,7 @@ fn step_lanes(group: &mut [Lane<'_>]) {
                 }
                 let (m, th, sn) = p.mass_at(t);
                 if sn != serial[l] {
-                    set_mass_lane(&mut ms, l, m);
+                    ms.set_lane(l, m);
                     serial[l] = sn;
                 }
                 thrust.0[l] = th;
@@ -796,67 +768,6 @@ fn step_lanes_dispatch(group: &mut [Lane<'_>]) {
 #[target_feature(enable = "avx2")]
 fn step_lanes_avx2(group: &mut [Lane<'_>]) {
     step_lanes(group);
-}
-
-/// A mass state to start packing from (every lane is overwritten).
-const MASS0: MassLanes<f64> = MassLanes {
-    m: 0.0,
-    m_rate: 0.0,
-    m_accel: 0.0,
-    r: V3 {
-        x: 0.0,
-        y: 0.0,
-        z: 0.0,
-    },
-    r_rate: V3 {
-        x: 0.0,
-        y: 0.0,
-        z: 0.0,
-    },
-    r_accel: V3 {
-        x: 0.0,
-        y: 0.0,
-        z: 0.0,
-    },
-    i_o: M3 { m: [[0.0; 3]; 3] },
-    i_o_rate: M3 { m: [[0.0; 3]; 3] },
-    h: V3 {
-        x: 0.0,
-        y: 0.0,
-        z: 0.0,
-    },
-    h_rate: V3 {
-        x: 0.0,
-        y: 0.0,
-        z: 0.0,
-    },
-};
-
-/// Write one lane's mass state into lane `l` of a four-lane one.
-#[inline(always)]
-fn set_mass_lane(ms: &mut MassLanes<F64x4>, l: usize, m: &MassLanes<f64>) {
-    let v = |d: &mut V3<F64x4>, s: &V3<f64>| {
-        d.x.0[l] = s.x;
-        d.y.0[l] = s.y;
-        d.z.0[l] = s.z;
-    };
-    let mat = |d: &mut M3<F64x4>, s: &M3<f64>| {
-        for r in 0..3 {
-            for c in 0..3 {
-                d.m[r][c].0[l] = s.m[r][c];
-            }
-        }
-    };
-    ms.m.0[l] = m.m;
-    ms.m_rate.0[l] = m.m_rate;
-    ms.m_accel.0[l] = m.m_accel;
-    v(&mut ms.r, &m.r);
-    v(&mut ms.r_rate, &m.r_rate);
-    v(&mut ms.r_accel, &m.r_accel);
-    mat(&mut ms.i_o, &m.i_o);
-    mat(&mut ms.i_o_rate, &m.i_o_rate);
-    v(&mut ms.h, &m.h);
-    v(&mut ms.h_rate, &m.h_rate);
 }
 
 /// The 6-DOF kernel on four lanes, in AVX2 registers where the processor has them (the same

@@ -502,7 +502,7 @@ fn the_four_lane_kernel_is_bit_for_bit_four_single_lane_kernels() {
     let models: [&FlightModel; 4] = std::array::from_fn(|l| sims[l].model());
     let four = FourModels::new(models).expect("variants share the design's aerodynamic tables");
     let mut rng = Rng(99);
-    let mut ms = pack_mass([&MASS0; 4]);
+    let mut ms = pack_mass([&MassLanes::ZERO; 4]);
     let mut thrust = F64x4::splat(0.0);
     let mut y = [F64x4::splat(0.0); N6];
     let mut singles = Vec::new();
@@ -529,7 +529,7 @@ fn the_four_lane_kernel_is_bit_for_bit_four_single_lane_kernels() {
             rng.uniform(-2.0, 2.0),
             rng.uniform(-20.0, 20.0),
         ];
-        set_mass_lane(&mut ms, l, &m);
+        ms.set_lane(l, &m);
         thrust.0[l] = inst.motor.thrust_n;
         for k in 0..N6 {
             y[k].0[l] = yi[k];

@@ -125,6 +125,71 @@ impl MassLanes<f64> {
     }
 }
 
+impl MassLanes<f64> {
+    /// All zeros (a place to pack lanes into).
+    pub const ZERO: MassLanes<f64> = MassLanes {
+        m: 0.0,
+        m_rate: 0.0,
+        m_accel: 0.0,
+        r: V3 {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        },
+        r_rate: V3 {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        },
+        r_accel: V3 {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        },
+        i_o: M3 { m: [[0.0; 3]; 3] },
+        i_o_rate: M3 { m: [[0.0; 3]; 3] },
+        h: V3 {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        },
+        h_rate: V3 {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        },
+    };
+}
+
+impl MassLanes<F64x4> {
+    /// Write one lane's mass state into lane `l`.
+    #[inline(always)]
+    pub fn set_lane(&mut self, l: usize, m: &MassLanes<f64>) {
+        let v = |d: &mut V3<F64x4>, s: &V3<f64>| {
+            d.x.0[l] = s.x;
+            d.y.0[l] = s.y;
+            d.z.0[l] = s.z;
+        };
+        let mat = |d: &mut M3<F64x4>, s: &M3<f64>| {
+            for r in 0..3 {
+                for c in 0..3 {
+                    d.m[r][c].0[l] = s.m[r][c];
+                }
+            }
+        };
+        self.m.0[l] = m.m;
+        self.m_rate.0[l] = m.m_rate;
+        self.m_accel.0[l] = m.m_accel;
+        v(&mut self.r, &m.r);
+        v(&mut self.r_rate, &m.r_rate);
+        v(&mut self.r_accel, &m.r_accel);
+        mat(&mut self.i_o, &m.i_o);
+        mat(&mut self.i_o_rate, &m.i_o_rate);
+        v(&mut self.h, &m.h);
+        v(&mut self.h_rate, &m.h_rate);
+    }
+}
+
 /// Four lanes' mass states side by side.
 #[inline(always)]
 pub fn pack_mass(ms: [&MassLanes<f64>; 4]) -> MassLanes<F64x4> {
@@ -216,28 +281,6 @@ pub fn accelerations<S: Real>(
     let omega_dot = i_cm.inverse().mul_v(&(t21 - r.cross(&t20)));
     let a_o = V3::new(t20.x / m, t20.y / m, t20.z / m) - omega_dot.cross(r);
     (a_o, omega_dot)
-}
-
-/// [`accelerations`] for one flight in nalgebra's types. Returns `None` when the inertia
-/// about the center of mass cannot be inverted (the results are not finite).
-#[inline]
-pub fn rigid_body_accelerations(
-    ms: &MassState,
-    loads: &Loads,
-    gravity_b: &Vector3<f64>,
-    omega: &Vector3<f64>,
-    nozzle: &Nozzle,
-) -> Option<(Vector3<f64>, Vector3<f64>)> {
-    let (a, w) = accelerations(
-        &MassLanes::of(ms),
-        &V3::from_na(&loads.force_b),
-        &V3::from_na(&loads.moment_o_b),
-        &V3::from_na(gravity_b),
-        &V3::from_na(omega),
-        &nozzle.lanes(),
-    );
-    let ok = [a.x, a.y, a.z, w.x, w.y, w.z].iter().all(|v| v.is_finite());
-    ok.then(|| (a.to_na(), w.to_na()))
 }
 
 /// The 6-DOF state derivative from the accelerations, on lanes: `y` and `dy` hold the 13

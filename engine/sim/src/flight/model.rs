@@ -211,8 +211,7 @@ impl FlightModel {
 
     #[inline]
     fn wind_n(&self, h: f64) -> Vector3<f64> {
-        let [e, n] = self.env.wind.velocity_en(h);
-        Vector3::new(e, n, 0.0)
+        ModelLanes::<f64>::wind(self, h).to_na()
     }
 
     /// The 6-DOF derivative (free flight) at `(t, y)`.

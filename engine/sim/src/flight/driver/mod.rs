@@ -517,7 +517,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         atol3,
         settled: None,
         serial: 0,
-        moving: MassLanes::of(&model.instant(&[f64::INFINITY; MAX_SHIFTS], t).mass),
+        moving: MassLanes::ZERO,
     })))
 }
 
@@ -625,7 +625,7 @@ impl<'a, O: Observer> Paused<'a, O> {
                 return (ms, 0.0, *serial);
             }
         }
-        let i = model.instant(starts, t);
+        let i = model.instant_computed(starts, t);
         self.moving = MassLanes::of(&i.mass);
         self.serial += 1;
         (&self.moving, i.motor.thrust_n, self.serial)
