@@ -2,7 +2,10 @@
 //! results do not depend on threads or chunking.
 
 use super::*;
+use crate::eom::{pack_mass, MassLanes, N6};
+use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
 use crate::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
+use crate::lanes::{F64x4, Real};
 use crate::MassShift;
 use hpr_design::motor::{self, MotorOptions};
 use hpr_design::Design;

@@ -32,15 +32,16 @@
 //! What it does not do yet: each lane's stepper arithmetic, event location, samples and
 //! descent run one lane at a time; only the 6-DOF kernel is evaluated across lanes.
 
-use crate::eom::{pack_mass, MassLanes, N6};
+mod group;
+
+pub use group::{eval_four, LANES_IN_FLIGHT};
+
 use crate::events::EventKind;
-use crate::flight::driver::{fly_to_free, Paused, Progress, StepEnd};
-use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
+use crate::flight::driver::{fly_to_free, Progress};
 use crate::flight::{Flight, Metrics, SimError, Simulation};
-use crate::integrate::StepOutcome;
-use crate::lanes::{F64x4, Real};
 use crate::trigger::Trigger;
 use crate::wind::Wind;
+use group::{step_group, Lane, LaneEnd};
 use rayon::prelude::*;
 use std::cell::OnceCell;
 use std::ops::Range;
@@ -179,6 +180,11 @@ fn with_number(t: Trigger, v: f64) -> Result<Trigger, String> {
             return Err(format!("trigger {t} has no number to vary"))
         }
     })
+}
+
+/// Run `f`, turning a panic into its message.
+fn guarded<R>(f: impl FnOnce() -> R) -> Result<R, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|p| panic_message(&*p))
 }
 
 /// The message of a panic's payload.
@@ -598,207 +604,4 @@ impl Batch {
 }
 
 #[cfg(test)]
-#[path = "batch_tests.rs"]
 mod tests;
-
-/// Most lanes of one chunk in flight at once (four groups of four).
-pub const LANES_IN_FLIGHT: usize = 16;
-
-/// One lane: a row of the chunk in its free flight.
-struct Lane<'a> {
-    row: usize,
-    sim: &'a Simulation,
-    paused: Option<Box<Paused<'a, ()>>>,
-    /// Set when the lane's free flight is over.
-    end: Option<LaneEnd>,
-}
-
-enum LaneEnd {
-    Phase(StepEnd),
-    Error(SimError),
-    Panic(String),
-}
-
-/// Run `f`, turning a panic into its message.
-fn guarded<R>(f: impl FnOnce() -> R) -> Result<R, String> {
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|p| panic_message(&*p))
-}
-
-/// One free-flight step of every lane of `group` (at most four): a stage at a time, the
-/// 6-DOF kernel evaluated on the four lanes together; each lane's step then ends as a single
-/// flight's does. Lanes whose integrator steps whole (RK4) take their step alone.
-fn step_group(group: &mut [Lane<'_>]) {
-    if let Err(message) = guarded(|| step_lanes_dispatch(group)) {
-        for lane in group.iter_mut() {
-            lane.end = Some(LaneEnd::Panic(message.clone()));
-        }
-    }
-}
-
-/// The body of [`step_group`].
-#[inline(always)]
-fn step_lanes(group: &mut [Lane<'_>]) {
-    // Which lanes step a stage at a time (and which are done with this step).
-    let mut staged = [false; 4];
-    let mut outcomes: [Option<StepOutcome>; 4] = [None; 4];
-    for (i, lane) in group.iter_mut().enumerate() {
-        let Some(p) = lane.paused.as_mut() else {
-            continue;
-        };
-        match p.begin_step() {
-            Ok(true) => staged[i] = true,
-            Ok(false) => match p.step() {
-                Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
-                Ok(None) => {}
-                Err(e) => lane.end = Some(LaneEnd::Error(e)),
-            },
-            Err(e) => lane.end = Some(LaneEnd::Error(e)),
-        }
-    }
-    let n = group.len();
-    if let Some(first) = (0..n).find(|&i| staged[i]) {
-        // Slot l holds lane l; a slot without a staged lane repeats the first one's input
-        // (filled once, its results ignored). A lane done with its step idles in its slot.
-        let slots: [usize; 4] = std::array::from_fn(|l| if l < n && staged[l] { l } else { first });
-        let models: [&FlightModel; 4] = slots.map(|i| {
-            group[i]
-                .paused
-                .as_deref()
-                .expect("a staged lane flies")
-                .model()
-        });
-        let four = FourModels::new(models);
-        let mut y = [F64x4::splat(0.0); N6];
-        let mut ms = pack_mass([&MassLanes::ZERO; 4]);
-        let mut thrust = F64x4::splat(0.0);
-        // Serial of the mass state each slot holds (refreshed only when it changes).
-        let mut serial = [u64::MAX; 4];
-        let mut dy = [0.0; N6];
-        let mut dy4 = [F64x4::splat(0.0); N6];
-        loop {
-            let active: [bool; 4] =
-                std::array::from_fn(|l| l < n && staged[l] && outcomes[l].is_none());
-            if !active.iter().any(|&a| a) {
-                break;
-            }
-            for (l, &i) in slots.iter().enumerate() {
-                let own = l == i;
-                if (own && !active[l]) || (!own && serial[l] != u64::MAX) {
-                    continue;
-                }
-                let p = group[i].paused.as_mut().expect("a staged lane flies");
-                let (t, yi) = p.stage_input();
-                for k in 0..N6 {
-                    y[k].0[l] = yi[k];
-                }
-                let (m, th, sn) = p.mass_at(t);
-                if sn != serial[l] {
-                    ms.set_lane(l, m);
-                    serial[l] = sn;
-                }
-                thrust.0[l] = th;
-            }
-            match &four {
-                Some(four) => eval_four(four, &ms, thrust, &y, &mut dy4),
-                None => {
-                    // Lanes that do not share their aerodynamic tables: one at a time.
-                    for (l, &i) in slots.iter().enumerate() {
-                        if l != i || !active[l] {
-                            continue;
-                        }
-                        let p = group[i].paused.as_mut().expect("a staged lane flies");
-                        let (t, yi) = p.stage_input();
-                        let yi = *yi;
-                        let (m, th, _) = p.mass_at(t);
-                        let mut d = [0.0; N6];
-                        derivative_6dof_lanes(models[l], m, th, &yi, &mut d);
-                        for k in 0..N6 {
-                            dy4[k].0[l] = d[k];
-                        }
-                    }
-                }
-            }
-            for l in 0..n {
-                if !active[l] {
-                    continue;
-                }
-                for k in 0..N6 {
-                    dy[k] = dy4[k].0[l];
-                }
-                let lane = &mut group[l];
-                let p = lane.paused.as_mut().expect("a staged lane flies");
-                match p.feed_stage(&dy) {
-                    Ok(None) => {}
-                    Ok(Some(o)) => outcomes[l] = Some(o),
-                    Err(e) => {
-                        lane.end = Some(LaneEnd::Error(e));
-                        staged[l] = false;
-                    }
-                }
-            }
-        }
-    }
-    for (i, lane) in group.iter_mut().enumerate() {
-        if let (Some(o), Some(p)) = (outcomes[i], lane.paused.as_mut()) {
-            match p.end_step(o) {
-                Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
-                Ok(None) => {}
-                Err(e) => lane.end = Some(LaneEnd::Error(e)),
-            }
-        }
-    }
-}
-
-/// [`step_lanes`] compiled for AVX2 where the processor has it: the lanes' stepper arithmetic
-/// (13-state loops) and the kernel then run four doubles to a register. The same IEEE
-/// operations either way (no FMA), so the same bits.
-fn step_lanes_dispatch(group: &mut [Lane<'_>]) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor has AVX2 (checked just above).
-            unsafe { step_lanes_avx2(group) };
-            return;
-        }
-    }
-    step_lanes(group);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn step_lanes_avx2(group: &mut [Lane<'_>]) {
-    step_lanes(group);
-}
-
-/// The 6-DOF kernel on four lanes, in AVX2 registers where the processor has them (the same
-/// IEEE operations lane by lane either way: AVX2 without FMA changes no result).
-#[inline]
-pub fn eval_four(
-    four: &FourModels<'_>,
-    ms: &MassLanes<F64x4>,
-    thrust: F64x4,
-    y: &[F64x4; N6],
-    dy: &mut [F64x4; N6],
-) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor has AVX2 (checked just above).
-            unsafe { eval_four_avx2(four, ms, thrust, y, dy) };
-            return;
-        }
-    }
-    derivative_6dof_lanes(four, ms, thrust, y, dy);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn eval_four_avx2(
-    four: &FourModels<'_>,
-    ms: &MassLanes<F64x4>,
-    thrust: F64x4,
-    y: &[F64x4; N6],
-    dy: &mut [F64x4; N6],
-) {
-    derivative_6dof_lanes(four, ms, thrust, y, dy);
-}
