@@ -135,7 +135,7 @@ pub fn loads<S: Real>(
         // half its digits (and it is cheaper); this one runs in vector registers.
         let alpha = atan2_upper(cross, -u.z);
         let mach = speed / speed_of_sound;
-        let cn = mach.map(|_, m| s.cn_alpha.at(m));
+        let cn = S::mach_table(&s.cn_alpha, mach);
         let n = S::select(none, zero, half * rho * speed2 * area * cn * alpha);
         let f = V3::new(n * u.x / cross, n * u.y / cross, zero);
         force = force + f;
@@ -146,10 +146,19 @@ pub fn loads<S: Real>(
     let v = v2.sqrt();
     let mach = v / speed_of_sound;
     let q = half * rho * v2;
-    let cd = mach.map(|i, m| t.cd(m, S::mask_lane(powered, i)));
+    let cd = if S::LANES == 1 {
+        // One lane: read only the table in use.
+        mach.map(|i, m| t.cd(m, S::mask_lane(powered, i)))
+    } else {
+        S::select(
+            powered,
+            S::mach_table(&t.cd_power_on, mach),
+            S::mach_table(&t.cd_power_off, mach),
+        )
+    };
     let d = S::splat(t.ref_diameter_m);
-    let forcing = q * area * d * mach.map(|_, m| t.roll_forcing.at(m));
-    let damping = half * rho * v * area * d * d * mach.map(|_, m| t.roll_damping.at(m)) * omega.z
+    let forcing = q * area * d * S::mach_table(&t.roll_forcing, mach);
+    let damping = half * rho * v * area * d * d * S::mach_table(&t.roll_damping, mach) * omega.z
         / S::splat(2.0);
     force.z = S::select(moving, force.z - q * area * drag_scale * cd, force.z);
     moment.z = S::select(moving, moment.z + (forcing - damping), moment.z);

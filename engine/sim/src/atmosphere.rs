@@ -287,6 +287,32 @@ impl AirTable {
             }
         }
     }
+
+    /// [`AirTable::at_msl`] at four altitudes, lane by lane the same operations: the four
+    /// cells are found side by side (in vector registers where the caller is compiled for
+    /// them); if any altitude is outside the table, each lane takes `at_msl` itself.
+    #[inline(always)]
+    pub fn at_msl_four(&self, altitude_msl_m: [f64; 4]) -> ([f64; 4], [f64; 4]) {
+        let last = (self.nodes.len() - 1) as f64;
+        let x = altitude_msl_m.map(|z| (z - MIN_ALTITUDE_MSL_M) / AIR_TABLE_STEP_M);
+        if x.iter().all(|&x| x >= 0.0 && x < last) {
+            // x is in [0, last), a few thousand nodes: truncation through i32 is exact.
+            let i: [usize; 4] = x.map(|x| x as i32 as usize);
+            let a: [(f64, f64); 4] = std::array::from_fn(|l| self.nodes[i[l]]);
+            let b: [(f64, f64); 4] = std::array::from_fn(|l| self.nodes[i[l] + 1]);
+            let f: [f64; 4] = std::array::from_fn(|l| x[l] - i[l] as f64);
+            (
+                std::array::from_fn(|l| a[l].0 + f[l] * (b[l].0 - a[l].0)),
+                std::array::from_fn(|l| a[l].1 + f[l] * (b[l].1 - a[l].1)),
+            )
+        } else {
+            let air = altitude_msl_m.map(|z| self.at_msl(z));
+            (
+                air.map(|a| a.density_kg_m3),
+                air.map(|a| a.speed_of_sound_m_s),
+            )
+        }
+    }
 }
 
 fn standard_msl(z: f64) -> AirState {
@@ -298,6 +324,32 @@ fn standard_msl(z: f64) -> AirState {
 #[cfg(test)]
 mod table_tests {
     use super::*;
+
+    #[test]
+    fn four_altitudes_at_once_read_the_table_as_one_altitude_does_bit_for_bit() {
+        let table = AirTable::standard();
+        // Inside the table, on its nodes, at and past both ends (mixed in one call too).
+        let mut z: Vec<f64> = (0..40_000).map(|k| -5_000.0 + 2.371 * k as f64).collect();
+        z.extend([
+            -5_000.0, -5_000.1, -9e9, 86_000.0, 85_999.99, 86_000.5, 1e12, 0.0, -0.0,
+        ]);
+        z.extend((0..200).map(|k| -5_000.0 + 10.0 * k as f64));
+        for w in z.chunks(4) {
+            let mut four = [1234.5; 4];
+            four[..w.len()].copy_from_slice(w);
+            let (rho, sound) = table.at_msl_four(four);
+            for l in 0..4 {
+                let one = table.at_msl(four[l]);
+                assert_eq!(rho[l].to_bits(), one.density_kg_m3.to_bits(), "{}", four[l]);
+                assert_eq!(
+                    sound[l].to_bits(),
+                    one.speed_of_sound_m_s.to_bits(),
+                    "{}",
+                    four[l]
+                );
+            }
+        }
+    }
 
     #[test]
     fn the_air_table_follows_the_standard_atmosphere_to_its_interpolation_error() {

@@ -12,6 +12,7 @@
 //! [`V3`] and [`M3`] are the small vector and matrix types of the generic kernels (nalgebra's
 //! types need a full `RealField`, which a lane bundle is not).
 
+use hpr_design::aero::table::{MachTable, MACH_NODES, MACH_STEP};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A number, or a bundle of numbers (lanes) operated on together.
@@ -44,6 +45,8 @@ pub trait Real:
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
     /// Lane `i` of a mask.
     fn mask_lane(m: Self::Mask, i: usize) -> bool;
+    /// `table` at Mach `mach`, lane by lane exactly [`MachTable::at`].
+    fn mach_table(table: &MachTable, mach: Self) -> Self;
 }
 
 impl Real for f64 {
@@ -92,6 +95,10 @@ impl Real for f64 {
     #[inline(always)]
     fn mask_lane(m: bool, _: usize) -> bool {
         m
+    }
+    #[inline(always)]
+    fn mach_table(table: &MachTable, mach: f64) -> f64 {
+        table.at(mach)
     }
 }
 
@@ -179,6 +186,36 @@ impl Real for F64x4 {
     #[inline(always)]
     fn mask_lane(m: [bool; 4], i: usize) -> bool {
         m[i]
+    }
+    /// The four lanes' look-ups without a branch, so that they run in vector registers but
+    /// for the eight loads: the same division, truncation, subtraction and interpolation as
+    /// [`MachTable::at`], and its end values and NaN chosen afterwards by select.
+    #[inline(always)]
+    fn mach_table(table: &MachTable, mach: F64x4) -> F64x4 {
+        const LAST: usize = MACH_NODES - 1;
+        let v: &[f64; MACH_NODES] = table
+            .values()
+            .try_into()
+            .expect("a Mach table has a value at every node");
+        let u = mach.0.map(|m| m / MACH_STEP);
+        // The cell's index: u truncated, with u held in [0, LAST − 1] first (f64::max returns
+        // 0 for NaN), so that every lane reads inside the table whatever its u.
+        let i: [usize; 4] = std::array::from_fn(|l| {
+            (u[l].max(0.0).min((LAST - 1) as f64) as i32 as usize).min(LAST - 1)
+        });
+        let a: [f64; 4] = std::array::from_fn(|l| v[i[l]]);
+        let b: [f64; 4] = std::array::from_fn(|l| v[i[l] + 1]);
+        F64x4(std::array::from_fn(|l| {
+            let t = u[l] - i[l] as f64;
+            let x = a[l] + (b[l] - a[l]) * t;
+            let x = if u[l] <= 0.0 { v[0] } else { x };
+            let x = if u[l] >= LAST as f64 { v[LAST] } else { x };
+            if mach.0[l].is_nan() {
+                f64::NAN
+            } else {
+                x
+            }
+        }))
     }
 }
 
@@ -431,6 +468,51 @@ mod tests {
     /// Distance in units in the last place between two positive doubles.
     fn ulps(a: f64, b: f64) -> u64 {
         (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs()
+    }
+
+    #[test]
+    fn the_four_lane_mach_table_look_up_is_the_one_lane_look_up_bit_for_bit() {
+        use hpr_design::aero::table::MACH_MAX;
+        // A table whose neighbouring values differ (so a wrong cell or weight shows).
+        let table = MachTable::from_fn(|m| 0.3 + 0.1 * (7.0 * m).sin() + 0.02 * m * m);
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let node = |i: usize| i as f64 * MACH_STEP;
+        let mut machs = vec![
+            0.0,
+            -0.0,
+            -1e-300,
+            1e-300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            MACH_MAX,
+            node(MACH_NODES - 1),
+            node(MACH_NODES - 2),
+            MACH_MAX - 1e-12,
+            MACH_MAX + 1e-12,
+            -3.0,
+            60.0,
+        ];
+        machs.extend((0..MACH_NODES).map(node));
+        machs.extend((0..20_000).map(|_| -0.2 + 5.6 * next()));
+        for w in machs.chunks(4) {
+            let mut four = [0.0; 4];
+            four[..w.len()].copy_from_slice(w);
+            let got = F64x4::mach_table(&table, F64x4(four));
+            for (&mach, &got) in four.iter().zip(&got.0) {
+                let want = table.at(mach);
+                assert!(
+                    got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                    "Mach {mach}: four lanes {got} against one {want}"
+                );
+            }
+        }
     }
 
     #[test]

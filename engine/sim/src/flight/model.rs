@@ -497,6 +497,8 @@ pub struct FourModels<'a> {
     pub models: [&'a FlightModel; 4],
     nozzle: NozzleLanes<F64x4>,
     drag_scale: F64x4,
+    /// The four read one air table (then their look-ups run side by side).
+    same_air: bool,
 }
 
 impl<'a> FourModels<'a> {
@@ -510,6 +512,7 @@ impl<'a> FourModels<'a> {
             models,
             nozzle: crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]]),
             drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
+            same_air: models.iter().all(|m| std::ptr::eq(m.air, models[0].air)),
         })
     }
 }
@@ -521,6 +524,14 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     }
     #[inline(always)]
     fn air(&self, h: F64x4) -> (F64x4, F64x4) {
+        if self.same_air {
+            // What `FlightModel::air` does, four lanes at a time.
+            let m = &self.models;
+            let z = std::array::from_fn(|i| h.0[i] + m[i].env.elevation_m);
+            let (rho, sound) = m[0].air.at_msl_four(z);
+            let rho = F64x4::from_fn(|i| if m[i].env.vacuum { 0.0 } else { rho[i] });
+            return (rho, F64x4(sound));
+        }
         let a: [(f64, f64); 4] = std::array::from_fn(|i| self.models[i].air(h.0[i]));
         (F64x4::from_fn(|i| a[i].0), F64x4::from_fn(|i| a[i].1))
     }

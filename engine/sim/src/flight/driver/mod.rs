@@ -135,6 +135,8 @@ struct Run<'a, O: Observer> {
     model: &'a FlightModel,
     observer: &'a mut O,
     starts: ShiftStarts,
+    /// How many times `starts` has changed (a cheap test of whether it did).
+    starts_changed: u64,
     /// Pending stop times, unsorted; the next one is their minimum above the current time.
     stops: Stops,
     samples: Vec<Sample>,
@@ -212,6 +214,7 @@ impl<'a, O: Observer> Run<'a, O> {
             });
         }
         self.starts[k] = t;
+        self.starts_changed += 1;
         let d = self.model.shifts[k].duration_s;
         for i in 1..=STOPS_PER_SHIFT {
             self.stops.push(t + d * i as f64 / STOPS_PER_SHIFT as f64);
@@ -422,8 +425,9 @@ pub(crate) struct Paused<'a, O: Observer> {
     watch: Watch<N6>,
     rtol: f64,
     atol3: [f64; N3],
-    /// The mass state while nothing changes the mass, and the shift starts it holds for.
-    settled: Option<(ShiftStarts, MassLanes<f64>, u64)>,
+    /// The mass state while nothing changes the mass, and the count of shift-start changes
+    /// it holds for (`Run::starts_changed`).
+    settled: Option<(u64, MassLanes<f64>, u64)>,
     /// Serial number of the last mass state handed out by [`Paused::mass_at`].
     serial: u64,
     /// The mass state of the last stage that was not settled.
@@ -468,6 +472,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         model,
         observer,
         starts: [f64::INFINITY; MAX_SHIFTS],
+        starts_changed: 0,
         stops,
         samples: Vec::with_capacity(if model.options.keep_samples { 2048 } else { 0 }),
         events: Vec::with_capacity(16),
@@ -616,10 +621,11 @@ impl<'a, O: Observer> Paused<'a, O> {
         let model = self.run.model;
         let starts = &self.run.starts;
         if model.mass_settled(starts, t) {
-            if !matches!(&self.settled, Some((s, _, _)) if s == starts) {
+            let changes = self.run.starts_changed;
+            if !matches!(&self.settled, Some((c, _, _)) if *c == changes) {
                 let ms = MassLanes::of(&model.instant(starts, t).mass);
                 self.serial += 1;
-                self.settled = Some((*starts, ms, self.serial));
+                self.settled = Some((changes, ms, self.serial));
             }
             if let Some((_, ms, serial)) = &self.settled {
                 return (ms, 0.0, *serial);
