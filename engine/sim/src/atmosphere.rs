@@ -293,14 +293,12 @@ impl AirTable {
     /// them); if any altitude is outside the table, each lane takes `at_msl` itself.
     #[inline(always)]
     pub fn at_msl_four(&self, altitude_msl_m: [f64; 4]) -> ([f64; 4], [f64; 4]) {
-        let last = (self.nodes.len() - 1) as f64;
+        let cells = self.nodes.len() - 1;
         let x = altitude_msl_m.map(|z| (z - MIN_ALTITUDE_MSL_M) / AIR_TABLE_STEP_M);
-        if x.iter().all(|&x| x >= 0.0 && x < last) {
-            // x is in [0, last), a few thousand nodes: truncation through i32 is exact.
-            let i: [usize; 4] = x.map(|x| x as i32 as usize);
+        if x.iter().all(|&x| x >= 0.0 && x < cells as f64) {
+            let (i, f) = crate::lanes::grid_cells(x, cells);
             let a: [(f64, f64); 4] = std::array::from_fn(|l| self.nodes[i[l]]);
             let b: [(f64, f64); 4] = std::array::from_fn(|l| self.nodes[i[l] + 1]);
-            let f: [f64; 4] = std::array::from_fn(|l| x[l] - i[l] as f64);
             (
                 std::array::from_fn(|l| a[l].0 + f[l] * (b[l].0 - a[l].0)),
                 std::array::from_fn(|l| a[l].1 + f[l] * (b[l].1 - a[l].1)),

@@ -198,16 +198,11 @@ impl Real for F64x4 {
             .try_into()
             .expect("a Mach table has a value at every node");
         let u = mach.0.map(|m| m / MACH_STEP);
-        // The cell's index: u truncated, with u held in [0, LAST − 1] first (f64::max returns
-        // 0 for NaN), so that every lane reads inside the table whatever its u.
-        let i: [usize; 4] = std::array::from_fn(|l| {
-            (u[l].max(0.0).min((LAST - 1) as f64) as i32 as usize).min(LAST - 1)
-        });
+        let (i, t) = grid_cells(u, LAST);
         let a: [f64; 4] = std::array::from_fn(|l| v[i[l]]);
         let b: [f64; 4] = std::array::from_fn(|l| v[i[l] + 1]);
         F64x4(std::array::from_fn(|l| {
-            let t = u[l] - i[l] as f64;
-            let x = a[l] + (b[l] - a[l]) * t;
+            let x = a[l] + (b[l] - a[l]) * t[l];
             let x = if u[l] <= 0.0 { v[0] } else { x };
             let x = if u[l] >= LAST as f64 { v[LAST] } else { x };
             if mach.0[l].is_nan() {
@@ -217,6 +212,19 @@ impl Real for F64x4 {
             }
         }))
     }
+}
+
+/// Four look-ups' cells on a uniform grid of `cells` cells, the positions `u` given in grid
+/// steps: each cell's index, `u` truncated, and the fraction `u − index` across it, as a
+/// one-lane look-up computes them for `u` inside the grid. A `u` outside (or NaN) is held in
+/// `[0, cells − 1]` first, so every lane's index reads inside the table; the caller chooses
+/// what such a lane gives. Written without branches, so that four lanes run in vector registers.
+#[inline(always)]
+pub fn grid_cells(u: [f64; 4], cells: usize) -> ([usize; 4], [f64; 4]) {
+    let top = cells - 1;
+    // f64::max returns 0 for NaN; the integer clamp lets the compiler drop bounds checks.
+    let i: [usize; 4] = u.map(|u| (u.max(0.0).min(top as f64) as i32 as usize).min(top));
+    (i, std::array::from_fn(|l| u[l] - i[l] as f64))
 }
 
 impl F64x4 {

@@ -107,7 +107,7 @@ fn step_lanes(group: &mut [Lane<'_>]) {
             match &four {
                 Some(four) => eval_four(four, &ms, thrust, &y, &mut dy4),
                 None => {
-                    // Lanes that do not share their aerodynamic tables: one at a time.
+                    // Lanes that do not share their aerodynamic and air tables: one at a time.
                     for (l, &i) in slots.iter().enumerate() {
                         if l != i || !active[l] {
                             continue;

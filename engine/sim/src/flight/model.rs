@@ -490,29 +490,26 @@ impl ModelLanes<f64> for FlightModel {
     }
 }
 
-/// Four flights' models side by side (their aerodynamic tables must be one and the same:
+/// Four flights' models side by side (their aerodynamic and air tables must be one and the same:
 /// [`FourModels::new`] checks), with what the kernel reads of them packed once.
 #[derive(Clone, Copy)]
 pub struct FourModels<'a> {
     pub models: [&'a FlightModel; 4],
     nozzle: NozzleLanes<F64x4>,
     drag_scale: F64x4,
-    /// The four read one air table (then their look-ups run side by side).
-    same_air: bool,
 }
 
 impl<'a> FourModels<'a> {
-    /// `None` unless the four share their aerodynamic tables.
+    /// `None` unless the four share their aerodynamic tables and their air table.
     pub fn new(models: [&'a FlightModel; 4]) -> Option<FourModels<'a>> {
-        let same = models
-            .iter()
-            .all(|m| std::sync::Arc::ptr_eq(&m.aero, &models[0].aero));
+        let same = models.iter().all(|m| {
+            std::sync::Arc::ptr_eq(&m.aero, &models[0].aero) && std::ptr::eq(m.air, models[0].air)
+        });
         let n = models.map(|m| m.nozzle.lanes());
         same.then(|| FourModels {
             models,
             nozzle: crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]]),
             drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
-            same_air: models.iter().all(|m| std::ptr::eq(m.air, models[0].air)),
         })
     }
 }
@@ -524,16 +521,12 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     }
     #[inline(always)]
     fn air(&self, h: F64x4) -> (F64x4, F64x4) {
-        if self.same_air {
-            // What `FlightModel::air` does, four lanes at a time.
-            let m = &self.models;
-            let z = std::array::from_fn(|i| h.0[i] + m[i].env.elevation_m);
-            let (rho, sound) = m[0].air.at_msl_four(z);
-            let rho = F64x4::from_fn(|i| if m[i].env.vacuum { 0.0 } else { rho[i] });
-            return (rho, F64x4(sound));
-        }
-        let a: [(f64, f64); 4] = std::array::from_fn(|i| self.models[i].air(h.0[i]));
-        (F64x4::from_fn(|i| a[i].0), F64x4::from_fn(|i| a[i].1))
+        // What `FlightModel::air` does, the four lanes' look-ups side by side in their one table.
+        let m = &self.models;
+        let z = std::array::from_fn(|i| h.0[i] + m[i].env.elevation_m);
+        let (rho, sound) = m[0].air.at_msl_four(z);
+        let rho = F64x4::from_fn(|i| if m[i].env.vacuum { 0.0 } else { rho[i] });
+        (rho, F64x4(sound))
     }
     #[inline(always)]
     fn wind(&self, h: F64x4) -> V3<F64x4> {
