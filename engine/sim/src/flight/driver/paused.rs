@@ -1,0 +1,256 @@
+//! A flight paused in its free flight: the pad and the rail flown ([`fly_to_free`]), the
+//! free flight stepped one step at a time by the single flight or a stage at a time by the
+//! batch engine, and the rest (descent, record) once the free flight ends ([`finish`]).
+
+use super::*;
+
+/// A flight paused in its free flight, between two steps. The single flight steps it with
+/// [`Paused::step`]; the batch engine steps four lanes' free flights together, a stage at a
+/// time ([`Paused::begin_step`], [`Paused::stage_input`], [`Paused::feed_stage`]), and hands
+/// every finished step to the same [`Paused::end_step`].
+pub(crate) struct Paused<'a, O: Observer> {
+    run: Run<'a, O>,
+    s6: Stepper<N6>,
+    free: SixDof,
+    watch: Watch<N6>,
+    rtol: f64,
+    atol3: [f64; N3],
+    /// The mass state while nothing changes the mass, and the count of shift-start changes
+    /// it holds for (`Run::starts_changed`).
+    settled: Option<(u64, MassLanes<f64>, u64)>,
+    /// Serial number of the last mass state handed out by [`Paused::mass_at`].
+    serial: u64,
+    /// The mass state of the last stage that was not settled.
+    moving: MassLanes<f64>,
+}
+
+/// Where a flight is after [`fly_to_free`].
+#[allow(clippy::large_enum_variant)]
+pub(crate) enum Progress<'a, O: Observer> {
+    /// In free flight, between steps.
+    Free(Box<Paused<'a, O>>),
+    /// Over before any free flight (it ended on the rail).
+    Done(Flight),
+}
+
+/// Set the flight up and fly it to the start of its free flight: the pad and the rail (or
+/// straight into free flight from `from`).
+pub(crate) fn fly_to_free<'a, O: Observer>(
+    model: &'a FlightModel,
+    observer: &'a mut O,
+    from: Option<(f64, [f64; N6])>,
+) -> Result<Progress<'a, O>, SimError> {
+    let n_chutes = model.parachutes.len();
+    let mut stops = Stops(Vec::with_capacity(
+        64 + STOPS_PER_SHIFT * model.shifts.len() + 2 * n_chutes,
+    ));
+    for &k in &model.thrust_knots_s {
+        stops.push(k);
+    }
+    stops.push(model.burnout_s);
+    for tr in model
+        .parachutes
+        .iter()
+        .map(|p| p.trigger)
+        .chain(model.shifts.iter().map(|s| s.trigger))
+    {
+        if let Some(t) = tr.fixed_time(model.burnout_s, model.motor_delay_s) {
+            stops.push(t);
+        }
+    }
+    let mut run = Run {
+        model,
+        observer,
+        starts: [f64::INFINITY; MAX_SHIFTS],
+        starts_changed: 0,
+        stops,
+        samples: Vec::with_capacity(if model.options.keep_samples { 2048 } else { 0 }),
+        events: Vec::with_capacity(16),
+        metrics: Metrics::default(),
+        evaluations: 0,
+        steps: 0,
+        apogee_done: false,
+        chute_triggered: vec![None; n_chutes],
+        chute_open: vec![false; n_chutes],
+        rail_exit_done: false,
+        burnout_done: false,
+    };
+
+    let (rtol, atol6, atol3) = tolerances(&model.options.integrator);
+    let (t, y, on_rail) = match from {
+        Some((t0, y0)) => {
+            run.rail_exit_done = true;
+            run.burnout_done = t0 >= model.burnout_s;
+            // Started on the way down (or at the top), the apogee is behind it: the landing
+            // and the height triggers are armed at once.
+            run.apogee_done = cm_of(model, &run.starts, t0, &y0).1.z <= 0.0;
+            run.stops.0.retain(|&s| s > t0);
+            (t0, y0, false)
+        }
+        None => {
+            let (t, y) = pad(&mut run)?;
+            (t, y, true)
+        }
+    };
+    let mut s6: Stepper<N6> =
+        Stepper::new(&model.options.integrator, atol6, rtol).map_err(|e| integ(t, e, "setup"))?;
+    let (t, y) = if on_rail {
+        match six_dof_phase(&mut run, &mut s6, Phase::Rail, t, &y)? {
+            (t, y, PhaseEnd::RailExit) => (t, y),
+            end => return finish(run, rtol, atol3, end).map(Progress::Done),
+        }
+    } else {
+        (t, y)
+    };
+    let free = SixDof::start(&mut run, &mut s6, Phase::Free, t, &y)?;
+    Ok(Progress::Free(Box::new(Paused {
+        run,
+        s6,
+        free,
+        watch: Watch::new(t),
+        rtol,
+        atol3,
+        settled: None,
+        serial: 0,
+        moving: MassLanes::ZERO,
+    })))
+}
+
+/// The flight after its rail or free flight ended with `end`: the descent if a canopy
+/// opened, then the flight's record.
+fn finish<O: Observer>(
+    mut run: Run<'_, O>,
+    rtol: f64,
+    atol3: [f64; N3],
+    (t, y, end): (f64, [f64; N6], PhaseEnd),
+) -> Result<Flight, SimError> {
+    let model = run.model;
+    if let PhaseEnd::Deploy = end {
+        // Descent: the center of mass as a point, with its velocity (including r′) kept.
+        let (pos, vel) = cm_of(model, &run.starts, t, &y);
+        let y3 = [pos.x, pos.y, pos.z, vel.x, vel.y, vel.z];
+        let mut s3: Stepper<N3> = Stepper::new(&model.options.integrator, atol3, rtol)
+            .map_err(|e| integ(t, e, "setup"))?;
+        descent_phase(&mut run, &mut s3, t, &y3)?;
+    }
+    Ok(Flight {
+        samples: run.samples,
+        events: run.events,
+        metrics: run.metrics,
+        shift_starts_s: run.starts[..model.shifts.len()]
+            .iter()
+            .map(|&s| s.is_finite().then_some(s))
+            .collect(),
+        derivative_evaluations: run.evaluations,
+        steps: run.steps,
+    })
+}
+
+/// A free-flight step's end: time, state and why the phase ended.
+pub(crate) type StepEnd = (f64, [f64; N6], PhaseEnd);
+
+impl<'a, O: Observer> Paused<'a, O> {
+    /// The flight's model.
+    pub(crate) fn model(&self) -> &'a FlightModel {
+        self.run.model
+    }
+
+    /// One free-flight step with the flight's own derivative; the phase's end if it ended.
+    pub(crate) fn step(&mut self) -> Result<Option<StepEnd>, SimError> {
+        self.free.step(&mut self.run, &mut self.s6)
+    }
+
+    /// The flight from the end of its free flight (descent, record).
+    pub(crate) fn finish(self, end: StepEnd) -> Result<Flight, SimError> {
+        finish(self.run, self.rtol, self.atol3, end)
+    }
+
+    /// Start a step to be taken a stage at a time. False when the integrator does not step
+    /// that way (fixed-step RK4): then take the step with [`Paused::step`].
+    pub(crate) fn begin_step(&mut self) -> Result<bool, SimError> {
+        if !matches!(self.s6, Stepper::Adaptive(_)) {
+            return Ok(false);
+        }
+        let t_stop = self.free.next_stop(&mut self.run, &self.s6);
+        let Stepper::Adaptive(d) = &mut self.s6 else {
+            return Ok(false);
+        };
+        let model = self.run.model;
+        let starts = self.run.starts;
+        self.watch = Watch::new(d.t());
+        let watch = &mut self.watch;
+        let mut evals = 0u64;
+        let begun = d.begin_step(
+            &mut |t, y: &[f64; N6], dy: &mut [f64; N6]| {
+                evals += 1;
+                model.derivative_6dof(&starts, t, y, dy);
+                watch.observe(t, y, dy);
+            },
+            t_stop,
+        );
+        self.run.evaluations += evals;
+        begun.map_err(|e| self.watch.error(e, d.y(), Phase::Free.name()))?;
+        Ok(true)
+    }
+
+    /// Where the step begun by [`Paused::begin_step`] needs the derivative next.
+    #[inline]
+    pub(crate) fn stage_input(&self) -> (f64, &[f64; N6]) {
+        match &self.s6 {
+            Stepper::Adaptive(d) => d.stage_input(),
+            Stepper::Fixed(r) => (r.t(), r.y()),
+        }
+    }
+
+    /// The mass state (as the equations read it) and the thrust at `t`, and a serial number
+    /// that changes whenever the mass state handed out does (so that a caller holding a
+    /// copy knows when to refresh it). While the motor is out and no part moves it is
+    /// computed once and kept (the same numbers `instant` gives).
+    #[inline(always)]
+    pub(crate) fn mass_at(&mut self, t: f64) -> (&MassLanes<f64>, f64, u64) {
+        let model = self.run.model;
+        let starts = &self.run.starts;
+        if model.mass_settled(starts, t) {
+            let changes = self.run.starts_changed;
+            if !matches!(&self.settled, Some((c, _, _)) if *c == changes) {
+                let ms = MassLanes::of(&model.instant(starts, t).mass);
+                self.serial += 1;
+                self.settled = Some((changes, ms, self.serial));
+            }
+            if let Some((_, ms, serial)) = &self.settled {
+                return (ms, 0.0, *serial);
+            }
+        }
+        let i = model.instant_computed(starts, t);
+        self.moving = MassLanes::of(&i.mass);
+        self.serial += 1;
+        (&self.moving, i.motor.thrust_n, self.serial)
+    }
+
+    /// Hand over the derivative at [`Paused::stage_input`]; the step's outcome once it is
+    /// done.
+    #[inline(always)]
+    pub(crate) fn feed_stage(&mut self, dy: &[f64; N6]) -> Result<Option<StepOutcome>, SimError> {
+        let Stepper::Adaptive(d) = &mut self.s6 else {
+            return Err(SimError::Setup(
+                "a fixed-step flight was stepped a stage at a time".into(),
+            ));
+        };
+        self.run.evaluations += 1;
+        let (t, y) = d.stage_input();
+        self.watch.observe(t, y, dy);
+        match d.feed_stage(dy) {
+            Err(e) => Err(self.watch.error(e, d.y(), Phase::Free.name())),
+            Ok(None) => Ok(None),
+            Ok(Some(outcome)) => {
+                self.watch.check_end(d.t(), d.y())?;
+                Ok(Some(outcome))
+            }
+        }
+    }
+
+    /// After a step taken a stage at a time: the same as the end of [`Paused::step`].
+    pub(crate) fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<StepEnd>, SimError> {
+        self.free.after_step(&mut self.run, &mut self.s6, outcome)
+    }
+}
