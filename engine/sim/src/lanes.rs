@@ -36,6 +36,8 @@ pub trait Real:
     fn map(self, f: impl FnMut(usize, f64) -> f64) -> Self;
     fn sqrt(self) -> Self;
     fn abs(self) -> Self;
+    /// Lane-wise [`f64::max`] (a NaN lane gives the other operand).
+    fn max(self, other: Self) -> Self;
     /// Lane-wise `self > other`.
     fn gt(self, other: Self) -> Self::Mask;
     /// Lane-wise `self == other`.
@@ -71,6 +73,10 @@ impl Real for f64 {
     #[inline(always)]
     fn abs(self) -> f64 {
         f64::abs(self)
+    }
+    #[inline(always)]
+    fn max(self, other: f64) -> f64 {
+        f64::max(self, other)
     }
     #[inline(always)]
     fn gt(self, other: f64) -> bool {
@@ -158,6 +164,11 @@ impl Real for F64x4 {
     fn abs(self) -> F64x4 {
         let a = self.0;
         F64x4([a[0].abs(), a[1].abs(), a[2].abs(), a[3].abs()])
+    }
+    #[inline(always)]
+    fn max(self, o: F64x4) -> F64x4 {
+        let (a, b) = (self.0, o.0);
+        F64x4([a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2]), a[3].max(b[3])])
     }
     #[inline(always)]
     fn gt(self, o: F64x4) -> [bool; 4] {

@@ -9,7 +9,8 @@ use crate::eom::{pack_mass, MassLanes, N6};
 use crate::flight::driver::{Paused, StepEnd};
 use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
 use crate::flight::{SimError, Simulation};
-use crate::integrate::StepOutcome;
+use crate::integrate::dopri54::arithmetic;
+use crate::integrate::{DenseStepper, StepOutcome};
 use crate::lanes::{F64x4, Real};
 
 /// Most lanes of one chunk in flight at once (four groups of four).
@@ -30,9 +31,10 @@ pub(super) enum LaneEnd {
     Panic(String),
 }
 
-/// One free-flight step of every lane of `group` (at most four): a stage at a time, the
-/// 6-DOF kernel evaluated on the four lanes together; each lane's step then ends as a single
-/// flight's does. Lanes whose integrator steps whole (RK4) take their step alone.
+/// One free-flight step of every lane of `group` (at most four): the lanes' steppers held
+/// side by side as structure of arrays, each Dormand–Prince stage one stage combination and
+/// one 6-DOF kernel call for the four lanes; each lane's step then ends as a single flight's
+/// does. Lanes whose integrator steps whole (RK4) take their step alone.
 pub(super) fn step_group(group: &mut [Lane<'_>]) {
     if let Err(message) = guarded(|| step_lanes_dispatch(group)) {
         for lane in group.iter_mut() {
@@ -41,18 +43,69 @@ pub(super) fn step_group(group: &mut [Lane<'_>]) {
     }
 }
 
+/// Four lanes' Dormand–Prince steps in progress, as structure of arrays: lane `l` of every
+/// number is slot `l`'s. The arithmetic is [`arithmetic`]'s, the single flight's.
+struct Steps {
+    h: F64x4,
+    y: [F64x4; N6],
+    k1: [F64x4; N6],
+    /// Stages k2..k7.
+    k: [[F64x4; N6]; 6],
+    /// The state of the stage being evaluated.
+    ys: [F64x4; N6],
+}
+
+/// Lane `l` of a structure-of-arrays state.
+#[inline(always)]
+fn lane_of(v: &[F64x4; N6], l: usize) -> [f64; N6] {
+    std::array::from_fn(|k| v[k].0[l])
+}
+
+/// Which lanes of `dy` are all finite (a lane with an infinity or a NaN gives NaN times 0).
+#[inline(always)]
+fn finite_lanes(dy: &[F64x4; N6]) -> [bool; 4] {
+    let zero = F64x4::splat(0.0);
+    let mut s = zero;
+    for v in dy {
+        s = s + *v * zero;
+    }
+    s.eq(zero)
+}
+
 /// The body of [`step_group`].
 #[inline(always)]
 fn step_lanes(group: &mut [Lane<'_>]) {
-    // Which lanes step a stage at a time (and which are done with this step).
-    let mut staged = [false; 4];
+    let n = group.len();
+    // Which lanes step on lanes (and which are still in their step), and their outcomes.
+    let mut active = [false; 4];
     let mut outcomes: [Option<StepOutcome>; 4] = [None; 4];
-    for (i, lane) in group.iter_mut().enumerate() {
+    let zero = F64x4::splat(0.0);
+    let mut st = Steps {
+        h: zero,
+        y: [zero; N6],
+        k1: [zero; N6],
+        k: [[zero; N6]; 6],
+        ys: [zero; N6],
+    };
+    let mut atol = [zero; N6];
+    let mut rtol = zero;
+    for (l, lane) in group.iter_mut().enumerate() {
         let Some(p) = lane.paused.as_mut() else {
             continue;
         };
         match p.begin_step() {
-            Ok(true) => staged[i] = true,
+            Ok(true) => {
+                active[l] = true;
+                let d = p.dopri();
+                st.h.0[l] = d.attempt_step();
+                let tol = d.tolerances();
+                rtol.0[l] = tol.rtol();
+                for k in 0..N6 {
+                    st.y[k].0[l] = d.y()[k];
+                    st.k1[k].0[l] = d.dy()[k];
+                    atol[k].0[l] = tol.atol()[k];
+                }
+            }
             Ok(false) => match p.step() {
                 Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
                 Ok(None) => {}
@@ -61,42 +114,45 @@ fn step_lanes(group: &mut [Lane<'_>]) {
             Err(e) => lane.end = Some(LaneEnd::Error(e)),
         }
     }
-    let n = group.len();
-    if let Some(first) = (0..n).find(|&i| staged[i]) {
-        // Slot l holds lane l; a slot without a staged lane repeats the first one's input
-        // (filled once, its results ignored). A lane done with its step idles in its slot.
-        let slots: [usize; 4] = std::array::from_fn(|l| if l < n && staged[l] { l } else { first });
+    if let Some(first) = (0..n).find(|&l| active[l]) {
+        // A slot without a lane in step repeats the first one's start (its results are
+        // ignored); a lane done with its step idles in its slot.
+        let slots: [usize; 4] = std::array::from_fn(|l| if l < n && active[l] { l } else { first });
+        for (l, &i) in slots.iter().enumerate() {
+            if l != i {
+                st.h.0[l] = st.h.0[i];
+                rtol.0[l] = rtol.0[i];
+                for k in 0..N6 {
+                    atol[k].0[l] = atol[k].0[i];
+                    st.y[k].0[l] = st.y[k].0[i];
+                    st.k1[k].0[l] = st.k1[k].0[i];
+                }
+            }
+        }
         let models: [&FlightModel; 4] = slots.map(|i| {
             group[i]
                 .paused
                 .as_deref()
-                .expect("a staged lane flies")
+                .expect("a lane in step flies")
                 .model()
         });
         let four = FourModels::new(models);
-        let mut y = [F64x4::splat(0.0); N6];
         let mut ms = pack_mass([&MassLanes::ZERO; 4]);
-        let mut thrust = F64x4::splat(0.0);
+        let mut thrust = zero;
         // Serial of the mass state each slot holds (refreshed only when it changes).
         let mut serial = [u64::MAX; 4];
-        let mut dy = [0.0; N6];
-        let mut dy4 = [F64x4::splat(0.0); N6];
+        let mut t_stage = [0.0; 4];
+        let mut stage = 0;
         loop {
-            let active: [bool; 4] =
-                std::array::from_fn(|l| l < n && staged[l] && outcomes[l].is_none());
-            if !active.iter().any(|&a| a) {
-                break;
-            }
+            arithmetic::stage_state(stage, st.h, &st.y, &st.k1, &st.k, &mut st.ys);
             for (l, &i) in slots.iter().enumerate() {
                 let own = l == i;
                 if (own && !active[l]) || (!own && serial[l] != u64::MAX) {
                     continue;
                 }
-                let p = group[i].paused.as_mut().expect("a staged lane flies");
-                let (t, yi) = p.stage_input();
-                for k in 0..N6 {
-                    y[k].0[l] = yi[k];
-                }
+                let p = group[i].paused.as_mut().expect("a lane in step flies");
+                let t = p.dopri().stage_time(stage);
+                t_stage[l] = t;
                 let (m, th, sn) = p.mass_at(t);
                 if sn != serial[l] {
                     ms.set_lane(l, m);
@@ -104,48 +160,77 @@ fn step_lanes(group: &mut [Lane<'_>]) {
                 }
                 thrust.0[l] = th;
             }
+            let dy4 = &mut st.k[stage];
             match &four {
-                Some(four) => eval_four(four, &ms, thrust, &y, &mut dy4),
+                Some(four) => eval_four(four, &ms, thrust, &st.ys, dy4),
                 None => {
                     // Lanes that do not share their aerodynamic and air tables: one at a time.
-                    for (l, &i) in slots.iter().enumerate() {
-                        if l != i || !active[l] {
+                    for l in 0..n {
+                        if !active[l] {
                             continue;
                         }
-                        let p = group[i].paused.as_mut().expect("a staged lane flies");
-                        let (t, yi) = p.stage_input();
-                        let yi = *yi;
-                        let (m, th, _) = p.mass_at(t);
+                        let p = group[l].paused.as_mut().expect("a lane in step flies");
+                        let (m, th, _) = p.mass_at(t_stage[l]);
                         let mut d = [0.0; N6];
-                        derivative_6dof_lanes(models[l], m, th, &yi, &mut d);
+                        derivative_6dof_lanes(models[l], m, th, &lane_of(&st.ys, l), &mut d);
                         for k in 0..N6 {
                             dy4[k].0[l] = d[k];
                         }
                     }
                 }
             }
+            let finite = finite_lanes(dy4);
+            for l in 0..n {
+                if active[l] && !finite[l] {
+                    let p = group[l].paused.as_mut().expect("a lane in step flies");
+                    p.observe(t_stage[l], &lane_of(&st.ys, l), &lane_of(dy4, l));
+                }
+            }
+            if stage < 5 {
+                stage += 1;
+                continue;
+            }
+            // The attempts are complete: each lane's error norm decides.
+            let sums = arithmetic::error_sum(st.h, &st.y, &st.ys, &st.k1, &st.k, &atol, rtol);
+            let mut cont: Option<[[F64x4; N6]; 4]> = None;
             for l in 0..n {
                 if !active[l] {
                     continue;
                 }
-                for k in 0..N6 {
-                    dy[k] = dy4[k].0[l];
-                }
                 let lane = &mut group[l];
-                let p = lane.paused.as_mut().expect("a staged lane flies");
-                match p.feed_stage(&dy) {
-                    Ok(None) => {}
-                    Ok(Some(o)) => outcomes[l] = Some(o),
+                let p = lane.paused.as_mut().expect("a lane in step flies");
+                let err = (sums.0[l] / N6 as f64).sqrt();
+                match p.judge(err) {
+                    Ok(Some(outcome)) => {
+                        active[l] = false;
+                        let c = cont.get_or_insert_with(|| {
+                            let mut c = [[zero; N6]; 4];
+                            arithmetic::dense_coefficients(
+                                st.h, &st.y, &st.ys, &st.k1, &st.k, &mut c,
+                            );
+                            c
+                        });
+                        let c_l = [0, 1, 2, 3].map(|j| lane_of(&c[j], l));
+                        match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
+                            Ok(()) => outcomes[l] = Some(outcome),
+                            Err(e) => lane.end = Some(LaneEnd::Error(e)),
+                        }
+                    }
+                    Ok(None) => st.h.0[l] = p.dopri().attempt_step(),
                     Err(e) => {
+                        active[l] = false;
                         lane.end = Some(LaneEnd::Error(e));
-                        staged[l] = false;
                     }
                 }
             }
+            if !active.iter().any(|&a| a) {
+                break;
+            }
+            stage = 0;
         }
     }
-    for (i, lane) in group.iter_mut().enumerate() {
-        if let (Some(o), Some(p)) = (outcomes[i], lane.paused.as_mut()) {
+    for (l, lane) in group.iter_mut().enumerate() {
+        if let (Some(o), Some(p)) = (outcomes[l], lane.paused.as_mut()) {
             match p.end_step(o) {
                 Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
                 Ok(None) => {}

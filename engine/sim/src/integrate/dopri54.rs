@@ -21,6 +21,7 @@
 //! shrink the proposal for the next one.
 
 use super::{check_finite, clip_to_stop, DenseStepper, IntegratorError, StepOutcome, Tolerances};
+use crate::lanes::Real;
 
 // Butcher tableau (c_i, a_ij), 5th-order weights b = a7j (FSAL), error weights e = b − b̂.
 const C2: f64 = 1.0 / 5.0;
@@ -310,12 +311,153 @@ impl<const N: usize> Dopri54<N> {
     }
 }
 
+/// The arithmetic of a Dormand–Prince step, written once over [`Real`]: one trajectory
+/// (`f64`, as [`Dopri54`] steps) or four lanes side by side ([`F64x4`](crate::lanes::F64x4),
+/// as the batch engine steps), lane by lane the same IEEE operations in the same order.
+/// `k1` is the derivative at the step's start and `k` the stages k2..k7 (k7 at the 5th-order
+/// solution, FSAL).
+pub mod arithmetic {
+    use super::*;
+
+    /// The state of stage `stage` (0..6 for k2..k7) from the stages before it.
+    #[inline(always)]
+    pub fn stage_state<S: Real, const N: usize>(
+        stage: usize,
+        h: S,
+        y: &[S; N],
+        k1: &[S; N],
+        k: &[[S; N]; 6],
+        ys: &mut [S; N],
+    ) {
+        let c = S::splat;
+        match stage {
+            0 => {
+                for i in 0..N {
+                    ys[i] = y[i] + h * c(A21) * k1[i];
+                }
+            }
+            1 => {
+                for i in 0..N {
+                    ys[i] = y[i] + h * (c(A31) * k1[i] + c(A32) * k[0][i]);
+                }
+            }
+            2 => {
+                for i in 0..N {
+                    ys[i] = y[i] + h * (c(A41) * k1[i] + c(A42) * k[0][i] + c(A43) * k[1][i]);
+                }
+            }
+            3 => {
+                for i in 0..N {
+                    ys[i] = y[i]
+                        + h * (c(A51) * k1[i]
+                            + c(A52) * k[0][i]
+                            + c(A53) * k[1][i]
+                            + c(A54) * k[2][i]);
+                }
+            }
+            4 => {
+                for i in 0..N {
+                    ys[i] = y[i]
+                        + h * (c(A61) * k1[i]
+                            + c(A62) * k[0][i]
+                            + c(A63) * k[1][i]
+                            + c(A64) * k[2][i]
+                            + c(A65) * k[3][i]);
+                }
+            }
+            _ => {
+                for i in 0..N {
+                    ys[i] = y[i]
+                        + h * (c(A71) * k1[i]
+                            + c(A73) * k[1][i]
+                            + c(A74) * k[2][i]
+                            + c(A75) * k[3][i]
+                            + c(A76) * k[4][i]);
+                }
+            }
+        }
+    }
+
+    /// The sum over the components of `(e_i / (atol_i + rtol·max(|y_i|, |y_new_i|)))²`, `e`
+    /// the difference of the 5th- and 4th-order solutions (the error norm is
+    /// `sqrt(sum / N)`).
+    #[inline(always)]
+    pub fn error_sum<S: Real, const N: usize>(
+        h: S,
+        y: &[S; N],
+        y_new: &[S; N],
+        k1: &[S; N],
+        k: &[[S; N]; 6],
+        atol: &[S; N],
+        rtol: S,
+    ) -> S {
+        let c = S::splat;
+        let [_, k3, k4, k5, k6, k7] = k;
+        let mut sum = c(0.0);
+        for i in 0..N {
+            let e = h
+                * (c(E1) * k1[i]
+                    + c(E3) * k3[i]
+                    + c(E4) * k4[i]
+                    + c(E5) * k5[i]
+                    + c(E6) * k6[i]
+                    + c(E7) * k7[i]);
+            let sk = atol[i] + rtol * y[i].abs().max(y_new[i].abs());
+            let q = e / sk;
+            sum = sum + q * q;
+        }
+        sum
+    }
+
+    /// The dense-output coefficients of an accepted step from `y` to `y_new`.
+    #[inline(always)]
+    pub fn dense_coefficients<S: Real, const N: usize>(
+        h: S,
+        y: &[S; N],
+        y_new: &[S; N],
+        k1: &[S; N],
+        k: &[[S; N]; 6],
+        cont: &mut [[S; N]; 4],
+    ) {
+        let c = S::splat;
+        let [_, k3, k4, k5, k6, k7] = k;
+        for i in 0..N {
+            let ydiff = y_new[i] - y[i];
+            let bspl = h * k1[i] - ydiff;
+            cont[0][i] = ydiff;
+            cont[1][i] = bspl;
+            cont[2][i] = ydiff - h * k7[i] - bspl;
+            cont[3][i] = h
+                * (c(D1) * k1[i]
+                    + c(D3) * k3[i]
+                    + c(D4) * k4[i]
+                    + c(D5) * k5[i]
+                    + c(D6) * k6[i]
+                    + c(D7) * k7[i]);
+        }
+    }
+}
+
 impl<const N: usize> Dopri54<N> {
     /// Start a step that will not pass `t_stop` (`f` is called only for the starting-step
     /// estimate of a first step). Then evaluate the derivative at [`Dopri54::stage_input`]
     /// and hand it to [`Dopri54::feed_stage`] until that reports the step done: this is
     /// [`DenseStepper::step`] one stage at a time, the same arithmetic in the same order.
     pub fn begin_step<F>(&mut self, f: &mut F, t_stop: f64) -> Result<(), IntegratorError>
+    where
+        F: FnMut(f64, &[f64; N], &mut [f64; N]),
+    {
+        self.begin_step_outside(f, t_stop)?;
+        self.prepare_stage();
+        Ok(())
+    }
+
+    /// [`Dopri54::begin_step`] for a driver that does the stages' arithmetic itself, with
+    /// the functions of [`arithmetic`] (the batch engine, on four lanes at once): the step
+    /// is set up and clipped, and no stage state is computed here. The driver then reads
+    /// [`Dopri54::attempt_step`] and [`Dopri54::stage_time`], and ends each attempt with
+    /// [`Dopri54::judge`] (and [`Dopri54::commit`] when it is accepted).
+    pub fn begin_step_outside<F>(&mut self, f: &mut F, t_stop: f64) -> Result<(), IntegratorError>
     where
         F: FnMut(f64, &[f64; N], &mut [f64; N]),
     {
@@ -336,7 +478,7 @@ impl<const N: usize> Dopri54<N> {
         self.begin_attempt()
     }
 
-    /// Clip the attempt's step to the stop time and prepare its first stage.
+    /// Clip the attempt's step to the stop time (its first stage is then stage 0).
     #[inline(always)]
     fn begin_attempt(&mut self) -> Result<(), IntegratorError> {
         let c = self.control;
@@ -356,67 +498,35 @@ impl<const N: usize> Dopri54<N> {
         }
         a.t_end = if last { a.t_stop } else { t + h };
         a.stage = 0;
-        self.prepare_stage();
         Ok(())
+    }
+
+    /// Step size of the attempt in progress, s.
+    #[inline(always)]
+    pub fn attempt_step(&self) -> f64 {
+        self.cur.h
+    }
+
+    /// Time of stage `stage` (0..6 for k2..k7) of the attempt in progress.
+    #[inline(always)]
+    pub fn stage_time(&self, stage: usize) -> f64 {
+        let (t, h) = (self.t, self.cur.h);
+        match stage {
+            0 => t + C2 * h,
+            1 => t + C3 * h,
+            2 => t + C4 * h,
+            3 => t + C5 * h,
+            _ => self.cur.t_end,
+        }
     }
 
     /// The time and state of the stage `cur.stage` from the stages before it.
     #[inline(always)]
     fn prepare_stage(&mut self) {
-        let (t, y, k1) = (self.t, &self.y, &self.dy);
+        let t_stage = self.stage_time(self.cur.stage);
         let a = &mut self.cur;
-        let h = a.h;
-        let k = &a.k;
-        let ys = &mut a.y_stage;
-        match a.stage {
-            0 => {
-                for i in 0..N {
-                    ys[i] = y[i] + h * A21 * k1[i];
-                }
-                a.t_stage = t + C2 * h;
-            }
-            1 => {
-                for i in 0..N {
-                    ys[i] = y[i] + h * (A31 * k1[i] + A32 * k[0][i]);
-                }
-                a.t_stage = t + C3 * h;
-            }
-            2 => {
-                for i in 0..N {
-                    ys[i] = y[i] + h * (A41 * k1[i] + A42 * k[0][i] + A43 * k[1][i]);
-                }
-                a.t_stage = t + C4 * h;
-            }
-            3 => {
-                for i in 0..N {
-                    ys[i] =
-                        y[i] + h * (A51 * k1[i] + A52 * k[0][i] + A53 * k[1][i] + A54 * k[2][i]);
-                }
-                a.t_stage = t + C5 * h;
-            }
-            4 => {
-                for i in 0..N {
-                    ys[i] = y[i]
-                        + h * (A61 * k1[i]
-                            + A62 * k[0][i]
-                            + A63 * k[1][i]
-                            + A64 * k[2][i]
-                            + A65 * k[3][i]);
-                }
-                a.t_stage = a.t_end;
-            }
-            _ => {
-                for i in 0..N {
-                    ys[i] = y[i]
-                        + h * (A71 * k1[i]
-                            + A73 * k[1][i]
-                            + A74 * k[2][i]
-                            + A75 * k[3][i]
-                            + A76 * k[4][i]);
-                }
-                a.t_stage = a.t_end;
-            }
-        }
+        arithmetic::stage_state(a.stage, a.h, &self.y, &self.dy, &a.k, &mut a.y_stage);
+        a.t_stage = t_stage;
     }
 
     /// Where the step in progress needs the derivative next.
@@ -438,25 +548,46 @@ impl<const N: usize> Dopri54<N> {
             self.prepare_stage();
             return Ok(None);
         }
-        let c = self.control;
-        let rtol = self.tol.rtol;
-        let alpha = 0.2 - 0.75 * c.beta;
-        let (t, y, k1) = (self.t, self.y, self.dy);
         let a = &self.cur;
-        let (h, h_proposal, last, t_end) = (a.h, a.h_proposal, a.last, a.t_end);
-        let [_, k3, k4, k5, k6, k7] = &a.k;
-        let y_new = a.y_stage;
-        let mut sum = 0.0;
-        for i in 0..N {
-            let e =
-                h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
-            let sk = self.tol.atol[i] + rtol * y[i].abs().max(y_new[i].abs());
-            let q = e / sk;
-            sum += q * q;
-        }
+        let sum = arithmetic::error_sum(
+            a.h,
+            &self.y,
+            &a.y_stage,
+            &self.dy,
+            &a.k,
+            &self.tol.atol,
+            self.tol.rtol,
+        );
         let err = (sum / N as f64).sqrt();
-        let fac_err = err.powf(alpha);
+        match self.judge(err, 0)? {
+            Some(outcome) => {
+                let a = &self.cur;
+                let mut cont = [[0.0; N]; 4];
+                arithmetic::dense_coefficients(a.h, &self.y, &a.y_stage, &self.dy, &a.k, &mut cont);
+                let (y_new, k7) = (a.y_stage, a.k[5]);
+                self.commit(&y_new, &k7, &cont);
+                Ok(Some(outcome))
+            }
+            None => {
+                self.prepare_stage();
+                Ok(None)
+            }
+        }
+    }
 
+    /// The verdict on the attempt in progress once its last stage is in, from its error norm
+    /// `err` (`stages` derivative evaluations done outside [`Dopri54::feed_stage`] are added
+    /// to the count). Accepted: the controller's next step is set and the outcome returned;
+    /// the caller then hands the new state to [`Dopri54::commit`]. Rejected: the next attempt
+    /// is set up (smaller step, clipped) and `None` returned.
+    #[inline(always)]
+    pub fn judge(&mut self, err: f64, stages: u64) -> Result<Option<StepOutcome>, IntegratorError> {
+        self.n_eval += stages;
+        let c = self.control;
+        let alpha = 0.2 - 0.75 * c.beta;
+        let a = &self.cur;
+        let (h, h_proposal, last) = (a.h, a.h_proposal, a.last);
+        let fac_err = err.powf(alpha);
         if err <= 1.0 {
             let fac =
                 (c.safety * self.err_prev.powf(c.beta) / fac_err).clamp(c.min_factor, c.max_factor);
@@ -468,20 +599,6 @@ impl<const N: usize> Dopri54<N> {
                 h_new = h_new.max(h_proposal);
             }
             self.err_prev = err.max(1e-4);
-            for i in 0..N {
-                let ydiff = y_new[i] - y[i];
-                let bspl = h * k1[i] - ydiff;
-                self.cont[0][i] = ydiff;
-                self.cont[1][i] = bspl;
-                self.cont[2][i] = ydiff - h * k7[i] - bspl;
-                self.cont[3][i] = h
-                    * (D1 * k1[i] + D3 * k3[i] + D4 * k4[i] + D5 * k5[i] + D6 * k6[i] + D7 * k7[i]);
-            }
-            self.dy = *k7;
-            self.t_prev = t;
-            self.y_prev = y;
-            self.t = t_end;
-            self.y = y_new;
             self.h_next = h_new;
             self.n_accepted += 1;
             return Ok(Some(if last {
@@ -497,7 +614,20 @@ impl<const N: usize> Dopri54<N> {
         self.begin_attempt()?;
         Ok(None)
     }
+
+    /// Move to the end of the step [`Dopri54::judge`] accepted: its state `y_new`, the
+    /// derivative there `k7` (FSAL) and the step's dense-output coefficients.
+    #[inline(always)]
+    pub fn commit(&mut self, y_new: &[f64; N], k7: &[f64; N], cont: &[[f64; N]; 4]) {
+        self.cont = *cont;
+        self.dy = *k7;
+        self.t_prev = self.t;
+        self.y_prev = self.y;
+        self.t = self.cur.t_end;
+        self.y = *y_new;
+    }
 }
+
 
 impl<const N: usize> DenseStepper<N> for Dopri54<N> {
     fn init<F>(&mut self, mut f: F, t0: f64, y0: &[f64; N]) -> Result<(), IntegratorError>

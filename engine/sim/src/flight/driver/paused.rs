@@ -165,8 +165,9 @@ impl<'a, O: Observer> Paused<'a, O> {
         finish(self.run, self.rtol, self.atol3, end)
     }
 
-    /// Start a step to be taken a stage at a time. False when the integrator does not step
-    /// that way (fixed-step RK4): then take the step with [`Paused::step`].
+    /// Start a step whose stages the batch engine computes itself, on four lanes at once
+    /// (with [`crate::integrate::dopri54::arithmetic`]). False when the integrator does not
+    /// step that way (fixed-step RK4): then take the step with [`Paused::step`].
     pub(crate) fn begin_step(&mut self) -> Result<bool, SimError> {
         if !matches!(self.s6, Stepper::Adaptive(_)) {
             return Ok(false);
@@ -180,7 +181,7 @@ impl<'a, O: Observer> Paused<'a, O> {
         self.watch = Watch::new(d.t());
         let watch = &mut self.watch;
         let mut evals = 0u64;
-        let begun = d.begin_step(
+        let begun = d.begin_step_outside(
             &mut |t, y: &[f64; N6], dy: &mut [f64; N6]| {
                 evals += 1;
                 model.derivative_6dof(&starts, t, y, dy);
@@ -193,12 +194,12 @@ impl<'a, O: Observer> Paused<'a, O> {
         Ok(true)
     }
 
-    /// Where the step begun by [`Paused::begin_step`] needs the derivative next.
-    #[inline]
-    pub(crate) fn stage_input(&self) -> (f64, &[f64; N6]) {
+    /// The adaptive stepper of a step begun by [`Paused::begin_step`].
+    #[inline(always)]
+    pub(crate) fn dopri(&self) -> &Dopri54<N6> {
         match &self.s6 {
-            Stepper::Adaptive(d) => d.stage_input(),
-            Stepper::Fixed(r) => (r.t(), r.y()),
+            Stepper::Adaptive(d) => d,
+            Stepper::Fixed(_) => unreachable!("only an adaptive flight is stepped on lanes"),
         }
     }
 
@@ -227,29 +228,47 @@ impl<'a, O: Observer> Paused<'a, O> {
         (&self.moving, i.motor.thrust_n, self.serial)
     }
 
-    /// Hand over the derivative at [`Paused::stage_input`]; the step's outcome once it is
-    /// done.
+    /// A stage's derivative `dy` at `(t, y)` that is not finite: the first one is where a
+    /// flight that goes non-finite is reported to have done so.
+    #[cold]
+    pub(crate) fn observe(&mut self, t: f64, y: &[f64; N6], dy: &[f64; N6]) {
+        self.watch.observe(t, y, dy);
+    }
+
+    /// The verdict on the attempt whose six stages the batch engine evaluated, from its
+    /// error norm `err` ([`Dopri54::judge`]): the outcome when accepted (then hand the new
+    /// state to [`Paused::commit`]), `None` when the step is tried again, smaller.
     #[inline(always)]
-    pub(crate) fn feed_stage(&mut self, dy: &[f64; N6]) -> Result<Option<StepOutcome>, SimError> {
+    pub(crate) fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
         let Stepper::Adaptive(d) = &mut self.s6 else {
             return Err(SimError::Setup(
                 "a fixed-step flight was stepped a stage at a time".into(),
             ));
         };
-        self.run.evaluations += 1;
-        let (t, y) = d.stage_input();
-        self.watch.observe(t, y, dy);
-        match d.feed_stage(dy) {
-            Err(e) => Err(self.watch.error(e, d.y(), Phase::Free.name())),
-            Ok(None) => Ok(None),
-            Ok(Some(outcome)) => {
-                self.watch.check_end(d.t(), d.y())?;
-                Ok(Some(outcome))
-            }
-        }
+        self.run.evaluations += 6;
+        d.judge(err, 6)
+            .map_err(|e| self.watch.error(e, d.y(), Phase::Free.name()))
     }
 
-    /// After a step taken a stage at a time: the same as the end of [`Paused::step`].
+    /// The end of the step [`Paused::judge`] accepted ([`Dopri54::commit`]); it must be
+    /// finite.
+    #[inline(always)]
+    pub(crate) fn commit(
+        &mut self,
+        y_new: &[f64; N6],
+        k7: &[f64; N6],
+        cont: &[[f64; N6]; 4],
+    ) -> Result<(), SimError> {
+        let Stepper::Adaptive(d) = &mut self.s6 else {
+            return Err(SimError::Setup(
+                "a fixed-step flight was stepped a stage at a time".into(),
+            ));
+        };
+        d.commit(y_new, k7, cont);
+        self.watch.check_end(d.t(), d.y())
+    }
+
+    /// After a step taken on lanes: the same as the end of [`Paused::step`].
     pub(crate) fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<StepEnd>, SimError> {
         self.free.after_step(&mut self.run, &mut self.s6, outcome)
     }
