@@ -35,8 +35,8 @@ pub(super) enum LaneEnd {
 /// side by side as structure of arrays, each Dormand–Prince stage one stage combination and
 /// one 6-DOF kernel call for the four lanes; each lane's step then ends as a single flight's
 /// does. Lanes whose integrator steps whole (RK4) take their step alone.
-pub(super) fn step_group(group: &mut [Lane<'_>]) {
-    if let Err(message) = guarded(|| step_lanes_dispatch(group)) {
+pub(super) fn step_group(group: &mut [Lane<'_>], steps: &mut Steps) {
+    if let Err(message) = guarded(|| step_lanes_dispatch(group, steps)) {
         for lane in group.iter_mut() {
             lane.end = Some(LaneEnd::Panic(message.clone()));
         }
@@ -44,15 +44,36 @@ pub(super) fn step_group(group: &mut [Lane<'_>]) {
 }
 
 /// Four lanes' Dormand–Prince steps in progress, as structure of arrays: lane `l` of every
-/// number is slot `l`'s. The arithmetic is [`arithmetic`]'s, the single flight's.
-struct Steps {
+/// number is slot `l`'s. The arithmetic is [`arithmetic`]'s, the single flight's. Kept by
+/// the chunk from step to step (every field is written before it is read within a step).
+pub(super) struct Steps {
     h: F64x4,
+    atol: [F64x4; N6],
+    rtol: F64x4,
     y: [F64x4; N6],
     k1: [F64x4; N6],
     /// Stages k2..k7.
     k: [[F64x4; N6]; 6],
     /// The state of the stage being evaluated.
     ys: [F64x4; N6],
+    /// Dense-output coefficients of the steps just accepted.
+    cont: [[F64x4; N6]; 4],
+}
+
+impl Steps {
+    pub(super) fn new() -> Box<Steps> {
+        let zero = F64x4::splat(0.0);
+        Box::new(Steps {
+            h: zero,
+            atol: [zero; N6],
+            rtol: zero,
+            y: [zero; N6],
+            k1: [zero; N6],
+            k: [[zero; N6]; 6],
+            ys: [zero; N6],
+            cont: [[zero; N6]; 4],
+        })
+    }
 }
 
 /// Lane `l` of a structure-of-arrays state.
@@ -74,21 +95,12 @@ fn finite_lanes(dy: &[F64x4; N6]) -> [bool; 4] {
 
 /// The body of [`step_group`].
 #[inline(always)]
-fn step_lanes(group: &mut [Lane<'_>]) {
+fn step_lanes(group: &mut [Lane<'_>], st: &mut Steps) {
     let n = group.len();
     // Which lanes step on lanes (and which are still in their step), and their outcomes.
     let mut active = [false; 4];
     let mut outcomes: [Option<StepOutcome>; 4] = [None; 4];
     let zero = F64x4::splat(0.0);
-    let mut st = Steps {
-        h: zero,
-        y: [zero; N6],
-        k1: [zero; N6],
-        k: [[zero; N6]; 6],
-        ys: [zero; N6],
-    };
-    let mut atol = [zero; N6];
-    let mut rtol = zero;
     for (l, lane) in group.iter_mut().enumerate() {
         let Some(p) = lane.paused.as_mut() else {
             continue;
@@ -99,11 +111,11 @@ fn step_lanes(group: &mut [Lane<'_>]) {
                 let d = p.dopri();
                 st.h.0[l] = d.attempt_step();
                 let tol = d.tolerances();
-                rtol.0[l] = tol.rtol();
+                st.rtol.0[l] = tol.rtol();
                 for k in 0..N6 {
                     st.y[k].0[l] = d.y()[k];
                     st.k1[k].0[l] = d.dy()[k];
-                    atol[k].0[l] = tol.atol()[k];
+                    st.atol[k].0[l] = tol.atol()[k];
                 }
             }
             Ok(false) => match p.step() {
@@ -121,9 +133,9 @@ fn step_lanes(group: &mut [Lane<'_>]) {
         for (l, &i) in slots.iter().enumerate() {
             if l != i {
                 st.h.0[l] = st.h.0[i];
-                rtol.0[l] = rtol.0[i];
+                st.rtol.0[l] = st.rtol.0[i];
                 for k in 0..N6 {
-                    atol[k].0[l] = atol[k].0[i];
+                    st.atol[k].0[l] = st.atol[k].0[i];
                     st.y[k].0[l] = st.y[k].0[i];
                     st.k1[k].0[l] = st.k1[k].0[i];
                 }
@@ -191,8 +203,8 @@ fn step_lanes(group: &mut [Lane<'_>]) {
                 continue;
             }
             // The attempts are complete: each lane's error norm decides.
-            let sums = arithmetic::error_sum(st.h, &st.y, &st.ys, &st.k1, &st.k, &atol, rtol);
-            let mut cont: Option<[[F64x4; N6]; 4]> = None;
+            let sums = arithmetic::error_sum(st.h, &st.y, &st.ys, &st.k1, &st.k, &st.atol, st.rtol);
+            let mut cont_done = false;
             for l in 0..n {
                 if !active[l] {
                     continue;
@@ -203,14 +215,13 @@ fn step_lanes(group: &mut [Lane<'_>]) {
                 match p.judge(err) {
                     Ok(Some(outcome)) => {
                         active[l] = false;
-                        let c = cont.get_or_insert_with(|| {
-                            let mut c = [[zero; N6]; 4];
+                        if !cont_done {
                             arithmetic::dense_coefficients(
-                                st.h, &st.y, &st.ys, &st.k1, &st.k, &mut c,
+                                st.h, &st.y, &st.ys, &st.k1, &st.k, &mut st.cont,
                             );
-                            c
-                        });
-                        let c_l = [0, 1, 2, 3].map(|j| lane_of(&c[j], l));
+                            cont_done = true;
+                        }
+                        let c_l = [0, 1, 2, 3].map(|j| lane_of(&st.cont[j], l));
                         match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
                             Ok(()) => outcomes[l] = Some(outcome),
                             Err(e) => lane.end = Some(LaneEnd::Error(e)),
@@ -243,22 +254,22 @@ fn step_lanes(group: &mut [Lane<'_>]) {
 /// [`step_lanes`] compiled for AVX2 where the processor has it: the lanes' stepper arithmetic
 /// (13-state loops) and the kernel then run four doubles to a register. The same IEEE
 /// operations either way (no FMA), so the same bits.
-fn step_lanes_dispatch(group: &mut [Lane<'_>]) {
+fn step_lanes_dispatch(group: &mut [Lane<'_>], steps: &mut Steps) {
     #[cfg(target_arch = "x86_64")]
     {
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the processor has AVX2 (checked just above).
-            unsafe { step_lanes_avx2(group) };
+            unsafe { step_lanes_avx2(group, steps) };
             return;
         }
     }
-    step_lanes(group);
+    step_lanes(group, steps);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn step_lanes_avx2(group: &mut [Lane<'_>]) {
-    step_lanes(group);
+fn step_lanes_avx2(group: &mut [Lane<'_>], steps: &mut Steps) {
+    step_lanes(group, steps);
 }
 
 /// The 6-DOF kernel on four lanes, in AVX2 registers where the processor has them (the same

@@ -41,7 +41,7 @@ use crate::flight::driver::{fly_to_free, Progress};
 use crate::flight::{Flight, Metrics, SimError, Simulation};
 use crate::trigger::Trigger;
 use crate::wind::Wind;
-use group::{step_group, Lane, LaneEnd};
+use group::{step_group, Lane, LaneEnd, Steps};
 use rayon::prelude::*;
 use std::cell::OnceCell;
 use std::ops::Range;
@@ -462,6 +462,7 @@ impl Batch {
             (0..n).map(|_| OnceCell::new()).collect();
         let mut results: Vec<Option<LaneResult>> = (0..n).map(|_| None).collect();
         let mut lanes: Vec<Lane<'_>> = Vec::with_capacity(LANES_IN_FLIGHT);
+        let mut steps = Steps::new();
         let mut next_row = 0;
         loop {
             while lanes.len() < LANES_IN_FLIGHT && next_row < n {
@@ -500,7 +501,7 @@ impl Batch {
                 break;
             }
             for group in lanes.chunks_mut(4) {
-                step_group(group);
+                step_group(group, &mut steps);
             }
             // Lanes whose free flight ended: their descent and their result.
             let mut k = 0;
