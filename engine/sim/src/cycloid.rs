@@ -8,15 +8,16 @@
 
 use std::f64::consts::TAU;
 
-/// Position, velocity and acceleration of a shifted part along its move, at one instant.
+/// Position, velocity and acceleration of a shifted part along its move, at one instant
+/// (of one flight, or of four lanes side by side: `S` = [`crate::lanes::F64x4`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct CycloidState {
+pub struct CycloidState<S = f64> {
     /// Distance moved along the axis, m (signed like the travel).
-    pub delta_m: f64,
+    pub delta_m: S,
     /// Rate of that distance, m/s.
-    pub rate_m_s: f64,
+    pub rate_m_s: S,
     /// Its acceleration, m/s².
-    pub accel_m_s2: f64,
+    pub accel_m_s2: S,
 }
 
 /// The fraction of the way `s(τ) = τ − sin(2πτ)/2π`, for τ clamped to [0, 1].
