@@ -8,16 +8,15 @@
 
 use std::f64::consts::TAU;
 
-/// Position, velocity and acceleration of a shifted part along its move, at one instant
-/// (of one flight, or of four lanes side by side: `S` = [`crate::lanes::F64x4`]).
+/// Position, velocity and acceleration of a shifted part along its move, at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct CycloidState<S = f64> {
+pub struct CycloidState {
     /// Distance moved along the axis, m (signed like the travel).
-    pub delta_m: S,
+    pub delta_m: f64,
     /// Rate of that distance, m/s.
-    pub rate_m_s: S,
+    pub rate_m_s: f64,
     /// Its acceleration, m/s².
-    pub accel_m_s2: S,
+    pub accel_m_s2: f64,
 }
 
 /// The fraction of the way `s(τ) = τ − sin(2πτ)/2π`, for τ clamped to [0, 1].

@@ -55,23 +55,6 @@ pub struct MassState {
 }
 
 impl MassState {
-    /// The mass state the lane kernel computed ([`crate::massprops::mass_lanes`]).
-    #[inline(always)]
-    pub fn of_lanes(l: &MassLanes<f64>) -> MassState {
-        MassState {
-            mass_kg: l.m,
-            mass_rate: l.m_rate,
-            mass_accel: l.m_accel,
-            r_cm: l.r.to_na(),
-            r_cm_rate: l.r_rate.to_na(),
-            r_cm_accel: l.r_accel.to_na(),
-            inertia_o: l.i_o.to_na(),
-            inertia_o_rate: l.i_o_rate.to_na(),
-            h_rel: l.h.to_na(),
-            h_rel_rate: l.h_rate.to_na(),
-        }
-    }
-
     /// Inertia about the center of mass, body axes.
     #[inline]
     pub fn inertia_cm(&self) -> Matrix3<f64> {

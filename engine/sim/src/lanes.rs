@@ -43,9 +43,6 @@ pub trait Real:
     /// Lane-wise `self == other`.
     fn eq(self, other: Self) -> Self::Mask;
     fn or(a: Self::Mask, b: Self::Mask) -> Self::Mask;
-    fn and(a: Self::Mask, b: Self::Mask) -> Self::Mask;
-    /// Whether every lane of `m` is true.
-    fn all(m: Self::Mask) -> bool;
     /// Lane-wise `if m { a } else { b }`.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
     /// Lane `i` of a mask.
@@ -92,14 +89,6 @@ impl Real for f64 {
     #[inline(always)]
     fn or(a: bool, b: bool) -> bool {
         a || b
-    }
-    #[inline(always)]
-    fn and(a: bool, b: bool) -> bool {
-        a && b
-    }
-    #[inline(always)]
-    fn all(m: bool) -> bool {
-        m
     }
     #[inline(always)]
     fn select(m: bool, a: f64, b: f64) -> f64 {
@@ -194,14 +183,6 @@ impl Real for F64x4 {
     #[inline(always)]
     fn or(a: [bool; 4], b: [bool; 4]) -> [bool; 4] {
         [a[0] || b[0], a[1] || b[1], a[2] || b[2], a[3] || b[3]]
-    }
-    #[inline(always)]
-    fn and(a: [bool; 4], b: [bool; 4]) -> [bool; 4] {
-        [a[0] && b[0], a[1] && b[1], a[2] && b[2], a[3] && b[3]]
-    }
-    #[inline(always)]
-    fn all(m: [bool; 4]) -> bool {
-        m[0] && m[1] && m[2] && m[3]
     }
     #[inline(always)]
     fn select(m: [bool; 4], a: F64x4, b: F64x4) -> F64x4 {

@@ -6,18 +6,12 @@
 
 use super::guarded;
 use crate::eom::{pack_mass, MassLanes, N6};
-use crate::cycloid::CycloidState;
-use crate::flight::driver::{MassSource, Paused, StepEnd};
-use crate::flight::model::MAX_MOVING_PARTS;
-use crate::massprops::{mass_lanes, pack_mass_models, select_mass, MassModelLanes, PropellantState};
+use crate::flight::driver::{Paused, StepEnd};
 use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
 use crate::flight::{SimError, Simulation};
 use crate::integrate::dopri54::arithmetic;
 use crate::integrate::{DenseStepper, StepOutcome};
 use crate::lanes::{F64x4, Real};
-
-/// The serial a slot holds while its mass is computed at every stage.
-const MOVING: u64 = u64::MAX - 1;
 
 /// Most lanes of one chunk in flight at once (four groups of four).
 pub const LANES_IN_FLIGHT: usize = 16;
@@ -160,11 +154,6 @@ fn step_lanes(group: &mut [Lane<'_>], st: &mut Steps) {
         // Serial of the mass state each slot holds (refreshed only when it changes).
         let mut serial = [u64::MAX; 4];
         let mut t_stage = [0.0; 4];
-        // The slots whose mass the kernel computes at this stage, and its inputs.
-        let mut moving = [false; 4];
-        let mut props = [PropellantState::default(); 4];
-        let mut lane_motions = [[CycloidState::default(); MAX_MOVING_PARTS]; 4];
-        let mut mass_models: Option<Option<MassModelLanes<F64x4>>> = None;
         let mut stage = 0;
         loop {
             arithmetic::stage_state(stage, st.h, &st.y, &st.k1, &st.k, &mut st.ys);
@@ -176,66 +165,12 @@ fn step_lanes(group: &mut [Lane<'_>], st: &mut Steps) {
                 let p = group[i].paused.as_mut().expect("a lane in step flies");
                 let t = p.dopri().stage_time(stage);
                 t_stage[l] = t;
-                match p.mass_source(t) {
-                    MassSource::Kept(m, sn) => {
-                        if sn != serial[l] {
-                            ms.set_lane(l, m);
-                            serial[l] = sn;
-                        }
-                        thrust.0[l] = 0.0;
-                    }
-                    MassSource::Moving {
-                        prop,
-                        motions,
-                        thrust_n,
-                    } => {
-                        moving[l] = true;
-                        props[l] = prop;
-                        lane_motions[l] = motions;
-                        thrust.0[l] = thrust_n;
-                        serial[l] = MOVING;
-                    }
+                let (m, th, sn) = p.mass_at(t);
+                if sn != serial[l] {
+                    ms.set_lane(l, m);
+                    serial[l] = sn;
                 }
-            }
-            if moving.iter().any(|&m| m) {
-                // The mass kernel on the four lanes at once (the lanes whose mass is kept
-                // keep theirs).
-                if mass_models.is_none() {
-                    let of = slots.map(|i| MassModelLanes::of(&models[i].mass));
-                    mass_models = Some(pack_mass_models([&of[0], &of[1], &of[2], &of[3]]));
-                }
-                match mass_models.as_ref().expect("packed above") {
-                    Some(mm) => {
-                        let prop = PropellantState {
-                            mass_kg: F64x4(props.map(|p| p.mass_kg)),
-                            rate_kg_s: F64x4(props.map(|p| p.rate_kg_s)),
-                            accel_kg_s2: F64x4(props.map(|p| p.accel_kg_s2)),
-                        };
-                        let motions: [CycloidState<F64x4>; MAX_MOVING_PARTS] =
-                            std::array::from_fn(|k| CycloidState {
-                                delta_m: F64x4(lane_motions.map(|m| m[k].delta_m)),
-                                rate_m_s: F64x4(lane_motions.map(|m| m[k].rate_m_s)),
-                                accel_m_s2: F64x4(lane_motions.map(|m| m[k].accel_m_s2)),
-                            });
-                        let computed = mass_lanes(mm, &prop, &motions);
-                        ms = select_mass(moving, &computed, &ms);
-                    }
-                    None => {
-                        // Lanes that move different numbers of parts: one at a time.
-                        for l in 0..4 {
-                            if moving[l] {
-                                let i = slots[l];
-                                let one = mass_lanes(
-                                    &MassModelLanes::of(&models[i].mass),
-                                    &props[l],
-                                    &lane_motions[l],
-                                );
-                                ms.set_lane(l, &one);
-                            }
-                        }
-                    }
-                }
-                moving = [false; 4];
+                thrust.0[l] = th;
             }
             let dy4 = &mut st.k[stage];
             match &four {

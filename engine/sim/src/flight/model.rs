@@ -18,7 +18,7 @@ use nalgebra::Vector3;
 
 /// Most parts that shifts may move in one flight (the kernel keeps their motions in a fixed
 /// array so that it allocates nothing).
-pub const MAX_MOVING_PARTS: usize = crate::massprops::MAX_PARTS;
+pub const MAX_MOVING_PARTS: usize = 8;
 
 /// A shift as the flight runs it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -142,29 +142,18 @@ impl FlightModel {
     /// [`FlightModel::instant`] computed from the motor and the shifts' motions.
     #[inline]
     pub fn instant_computed(&self, starts: &ShiftStarts, t: f64) -> Instant {
-        let (motor, prop, motions) = self.mass_inputs(starts, t);
-        let n = self.mass.parts.len();
-        Instant {
-            motor,
-            mass: mass_state(&self.mass, &prop, &motions[..n]),
-        }
-    }
-
-    /// What the mass kernel reads at `t` besides the model: the motor's state (its
-    /// propellant's mass and rates) and the moving parts' motions.
-    #[inline]
-    pub fn mass_inputs(
-        &self,
-        starts: &ShiftStarts,
-        t: f64,
-    ) -> (MotorState, PropellantState, [CycloidState; MAX_MOVING_PARTS]) {
         let motor = self.motor.eval(t);
         let prop = PropellantState {
             mass_kg: motor.propellant_kg,
             rate_kg_s: motor.propellant_rate_kg_s,
             accel_kg_s2: motor.propellant_accel_kg_s2,
         };
-        (motor, prop, self.motions(starts, t))
+        let motions = self.motions(starts, t);
+        let n = self.mass.parts.len();
+        Instant {
+            motor,
+            mass: mass_state(&self.mass, &prop, &motions[..n]),
+        }
     }
 
     /// Tabulate [`FlightModel::settled`]: for every set of started shifts, the mass state

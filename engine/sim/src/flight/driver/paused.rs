@@ -3,9 +3,6 @@
 //! batch engine, and the rest (descent, record) once the free flight ends ([`finish`]).
 
 use super::*;
-use crate::cycloid::CycloidState;
-use crate::flight::model::MAX_MOVING_PARTS;
-use crate::massprops::PropellantState;
 
 /// A flight paused in its free flight, between two steps. The single flight steps it with
 /// [`Paused::step`]; the batch engine steps four lanes' free flights together, a stage at a
@@ -25,16 +22,6 @@ pub(crate) struct Paused<'a, O: Observer> {
     serial: u64,
     /// The mass state of the last stage that was not settled.
     moving: MassLanes<f64>,
-}
-
-/// Where a lane's mass state at one instant comes from ([`Paused::mass_source`]).
-pub(crate) enum MassSource<'p> {
-    Kept(&'p MassLanes<f64>, u64),
-    Moving {
-        prop: PropellantState,
-        motions: [CycloidState; MAX_MOVING_PARTS],
-        thrust_n: f64,
-    },
 }
 
 /// Where a flight is after [`fly_to_free`].
@@ -239,25 +226,6 @@ impl<'a, O: Observer> Paused<'a, O> {
         self.moving = MassLanes::of(&i.mass);
         self.serial += 1;
         (&self.moving, i.motor.thrust_n, self.serial)
-    }
-
-    /// What the mass state at `t` comes from: the kept state while nothing changes the mass
-    /// (with the serial number [`Paused::mass_at`] gives it), or else the mass kernel's
-    /// inputs and the thrust, for the batch engine to evaluate the kernel on four lanes.
-    #[inline(always)]
-    pub(crate) fn mass_source(&mut self, t: f64) -> MassSource<'_> {
-        let model = self.run.model;
-        let starts = &self.run.starts;
-        if model.mass_settled(starts, t) {
-            let (ms, _, serial) = self.mass_at(t);
-            return MassSource::Kept(ms, serial);
-        }
-        let (motor, prop, motions) = model.mass_inputs(starts, t);
-        MassSource::Moving {
-            prop,
-            motions,
-            thrust_n: motor.thrust_n,
-        }
     }
 
     /// A stage's derivative `dy` at `(t, y)` that is not finite: the first one is where a
