@@ -342,26 +342,26 @@ pub fn angular_momentum_about_cm(
     body_to_inertial * (ms.inertia_cm() * w + h_cm)
 }
 
-/// Descent under a canopy: the center of mass as a point with the canopy's drag.
-/// `cds_m2` is the sum of the open canopies' CdS, `wind_n` the wind (inertial), `rho` the air
-/// density, `g` gravity. State `[x, y, z, vx, vy, vz]` of the center of mass.
-#[inline]
-pub fn descent_derivative(
-    y: &[f64; N3],
-    mass_kg: f64,
-    cds_m2: f64,
-    rho: f64,
-    g: f64,
-    wind_n: &Vector3<f64>,
-    dy: &mut [f64; N3],
+/// Descent under a canopy: the center of mass as a point with the canopy's drag, on lanes
+/// (one flight, or four side by side). `cds_m2` is the sum of the open canopies' CdS, `wind_n`
+/// the wind (inertial), `rho` the air density, `g` gravity. State `[x, y, z, vx, vy, vz]` of
+/// the center of mass.
+#[inline(always)]
+pub fn descent_derivative<S: Real>(
+    y: &[S; N3],
+    mass_kg: S,
+    cds_m2: S,
+    rho: S,
+    g: S,
+    wind_n: &V3<S>,
+    dy: &mut [S; N3],
 ) {
-    let v = Vector3::new(y[3], y[4], y[5]);
-    let rel = v - wind_n;
-    let drag = rel * (-0.5 * rho * cds_m2 * rel.norm());
+    let rel = V3::new(y[3] - wind_n.x, y[4] - wind_n.y, y[5] - wind_n.z);
+    let k = S::splat(-0.5) * rho * cds_m2 * rel.norm_squared().sqrt();
     dy[0] = y[3];
     dy[1] = y[4];
     dy[2] = y[5];
-    dy[3] = drag.x / mass_kg;
-    dy[4] = drag.y / mass_kg;
-    dy[5] = drag.z / mass_kg - g;
+    dy[3] = rel.x * k / mass_kg;
+    dy[4] = rel.y * k / mass_kg;
+    dy[5] = rel.z * k / mass_kg - g;
 }

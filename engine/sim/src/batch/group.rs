@@ -1,42 +1,182 @@
-//! Groups of four lanes stepped together: every Dormand–Prince stage of the four lanes' free
-//! flights is one call of the 6-DOF kernel on [`F64x4`] lanes, and the lanes' stepper
-//! arithmetic is compiled with it for AVX2 where the processor has it. Each lane keeps its
-//! own time, step, stops and error control; the kernel does lane by lane the IEEE operations
-//! of the single flight, so the lanes are bit for bit single flights.
+//! Groups of four lanes stepped together. The four lanes' Dormand–Prince steps are held side
+//! by side as structure of arrays ([`Steps`]): every stage is one stage combination and one
+//! kernel call on [`F64x4`] lanes (the 6-DOF kernel in free flight, the point-mass descent
+//! under canopy), compiled for AVX2 where the processor has it. Each lane keeps its own time,
+//! step, stops and error control, judged and ended by its own flight ([`OnLanes`]); the
+//! kernels do lane by lane the IEEE operations of the single flight, so the lanes are bit for
+//! bit single flights.
 
 use super::guarded;
-use crate::eom::{pack_mass, MassLanes, N6};
-use crate::flight::driver::{Paused, StepEnd};
-use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
+use crate::eom::{pack_mass, MassLanes, N3, N6};
+use crate::flight::driver::{Descending, Paused, PhaseEnd, StepEnd};
+use crate::flight::model::{
+    derivative_6dof_lanes, descent_rates_lanes, FlightModel, FourModels,
+};
 use crate::flight::{SimError, Simulation};
 use crate::integrate::dopri54::arithmetic;
-use crate::integrate::{DenseStepper, StepOutcome};
+use crate::integrate::{DenseStepper, Dopri54, StepOutcome};
 use crate::lanes::{F64x4, Real};
 
 /// Most lanes of one chunk in flight at once (four groups of four).
 pub const LANES_IN_FLIGHT: usize = 16;
 
-/// One lane: a row of the chunk in its free flight.
+/// One lane: a row of the chunk in its free flight or under canopy.
 pub(super) struct Lane<'a> {
     pub(super) row: usize,
     pub(super) sim: &'a Simulation,
-    pub(super) paused: Option<Box<Paused<'a, ()>>>,
-    /// Set when the lane's free flight is over.
+    pub(super) flying: Flying<'a>,
+    /// Set when the lane's phase is over.
     pub(super) end: Option<LaneEnd>,
 }
 
+/// The phase a lane is in.
+pub(super) enum Flying<'a> {
+    Free(Box<Paused<'a, ()>>),
+    Descent(Box<Descending<'a, ()>>),
+    /// Taken out to be ended.
+    Gone,
+}
+
 pub(super) enum LaneEnd {
-    Phase(StepEnd),
+    /// The free flight ended.
+    Free(StepEnd),
+    /// The descent ended.
+    Landed,
     Error(SimError),
     Panic(String),
 }
 
-/// One free-flight step of every lane of `group` (at most four): the lanes' steppers held
-/// side by side as structure of arrays, each Dormand–Prince stage one stage combination and
-/// one 6-DOF kernel call for the four lanes; each lane's step then ends as a single flight's
-/// does. Lanes whose integrator steps whole (RK4) take their step alone.
-pub(super) fn step_group(group: &mut [Lane<'_>], steps: &mut Steps) {
-    if let Err(message) = guarded(|| step_lanes_dispatch(group, steps)) {
+/// A lane's flight in a phase the batch steps four lanes at a time: the single flight's
+/// stepping, a stage at a time.
+pub(super) trait OnLanes<'a, const N: usize> {
+    /// How the phase ends.
+    type End;
+    /// This phase's flight of `lane` (which is in this phase).
+    fn of<'l>(lane: &'l mut Lane<'a>) -> &'l mut Self;
+    fn lane_end(end: Self::End) -> LaneEnd;
+    fn model(&self) -> &'a FlightModel;
+    fn begin_step(&mut self) -> Result<bool, SimError>;
+    /// A whole step with the flight's own derivative (when it does not step on lanes).
+    fn whole_step(&mut self) -> Result<Option<Self::End>, SimError>;
+    fn dopri(&self) -> &Dopri54<N>;
+    fn observe(&mut self, t: f64, y: &[f64; N], dy: &[f64; N]);
+    fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError>;
+    fn commit(
+        &mut self,
+        y_new: &[f64; N],
+        k7: &[f64; N],
+        cont: &[[f64; N]; 4],
+    ) -> Result<(), SimError>;
+    fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<Self::End>, SimError>;
+}
+
+impl<'a> OnLanes<'a, N6> for Paused<'a, ()> {
+    type End = StepEnd;
+    #[inline(always)]
+    fn of<'l>(lane: &'l mut Lane<'a>) -> &'l mut Self {
+        match &mut lane.flying {
+            Flying::Free(p) => p,
+            _ => unreachable!("a free-flight group holds free flights"),
+        }
+    }
+    fn lane_end(end: StepEnd) -> LaneEnd {
+        LaneEnd::Free(end)
+    }
+    #[inline(always)]
+    fn model(&self) -> &'a FlightModel {
+        Paused::model(self)
+    }
+    fn begin_step(&mut self) -> Result<bool, SimError> {
+        Paused::begin_step(self)
+    }
+    fn whole_step(&mut self) -> Result<Option<StepEnd>, SimError> {
+        Paused::step(self)
+    }
+    #[inline(always)]
+    fn dopri(&self) -> &Dopri54<N6> {
+        Paused::dopri(self)
+    }
+    fn observe(&mut self, t: f64, y: &[f64; N6], dy: &[f64; N6]) {
+        Paused::observe(self, t, y, dy)
+    }
+    #[inline(always)]
+    fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
+        Paused::judge(self, err)
+    }
+    #[inline(always)]
+    fn commit(
+        &mut self,
+        y_new: &[f64; N6],
+        k7: &[f64; N6],
+        cont: &[[f64; N6]; 4],
+    ) -> Result<(), SimError> {
+        Paused::commit(self, y_new, k7, cont)
+    }
+    fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<StepEnd>, SimError> {
+        Paused::end_step(self, outcome)
+    }
+}
+
+impl<'a> OnLanes<'a, N3> for Descending<'a, ()> {
+    type End = PhaseEnd;
+    #[inline(always)]
+    fn of<'l>(lane: &'l mut Lane<'a>) -> &'l mut Self {
+        match &mut lane.flying {
+            Flying::Descent(d) => d,
+            _ => unreachable!("a descent group holds descents"),
+        }
+    }
+    fn lane_end(_: PhaseEnd) -> LaneEnd {
+        LaneEnd::Landed
+    }
+    #[inline(always)]
+    fn model(&self) -> &'a FlightModel {
+        Descending::model(self)
+    }
+    fn begin_step(&mut self) -> Result<bool, SimError> {
+        Descending::begin_step(self)
+    }
+    fn whole_step(&mut self) -> Result<Option<PhaseEnd>, SimError> {
+        Descending::step(self)
+    }
+    #[inline(always)]
+    fn dopri(&self) -> &Dopri54<N3> {
+        Descending::dopri(self)
+    }
+    fn observe(&mut self, t: f64, y: &[f64; N3], dy: &[f64; N3]) {
+        Descending::observe(self, t, y, dy)
+    }
+    #[inline(always)]
+    fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
+        Descending::judge(self, err)
+    }
+    #[inline(always)]
+    fn commit(
+        &mut self,
+        y_new: &[f64; N3],
+        k7: &[f64; N3],
+        cont: &[[f64; N3]; 4],
+    ) -> Result<(), SimError> {
+        Descending::commit(self, y_new, k7, cont)
+    }
+    fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<PhaseEnd>, SimError> {
+        Descending::end_step(self, outcome)
+    }
+}
+
+/// One step of every lane of `group` (at most four, all in the same phase), the lanes'
+/// stages evaluated together; each lane's step then ends as a single flight's does. Lanes
+/// whose integrator steps whole (RK4) take their step alone.
+pub(super) fn step_group(group: &mut [Lane<'_>], scratch: &mut Scratch) {
+    let descent = matches!(group.first().map(|l| &l.flying), Some(Flying::Descent(_)));
+    let stepped = guarded(|| {
+        if descent {
+            step_descents_dispatch(group, &mut scratch.descent)
+        } else {
+            step_free_dispatch(group, &mut scratch.free)
+        }
+    });
+    if let Err(message) = stepped {
         for lane in group.iter_mut() {
             lane.end = Some(LaneEnd::Panic(message.clone()));
         }
@@ -46,45 +186,60 @@ pub(super) fn step_group(group: &mut [Lane<'_>], steps: &mut Steps) {
 /// Four lanes' Dormand–Prince steps in progress, as structure of arrays: lane `l` of every
 /// number is slot `l`'s. The arithmetic is [`arithmetic`]'s, the single flight's. Kept by
 /// the chunk from step to step (every field is written before it is read within a step).
-pub(super) struct Steps {
+pub(super) struct Steps<const N: usize> {
     h: F64x4,
-    atol: [F64x4; N6],
+    atol: [F64x4; N],
     rtol: F64x4,
-    y: [F64x4; N6],
-    k1: [F64x4; N6],
+    y: [F64x4; N],
+    k1: [F64x4; N],
     /// Stages k2..k7.
-    k: [[F64x4; N6]; 6],
+    k: [[F64x4; N]; 6],
     /// The state of the stage being evaluated.
-    ys: [F64x4; N6],
+    ys: [F64x4; N],
     /// Dense-output coefficients of the steps just accepted.
-    cont: [[F64x4; N6]; 4],
+    cont: [[F64x4; N]; 4],
 }
 
-impl Steps {
-    pub(super) fn new() -> Box<Steps> {
+impl<const N: usize> Steps<N> {
+    fn new() -> Steps<N> {
         let zero = F64x4::splat(0.0);
-        Box::new(Steps {
+        Steps {
             h: zero,
-            atol: [zero; N6],
+            atol: [zero; N],
             rtol: zero,
-            y: [zero; N6],
-            k1: [zero; N6],
-            k: [[zero; N6]; 6],
-            ys: [zero; N6],
-            cont: [[zero; N6]; 4],
+            y: [zero; N],
+            k1: [zero; N],
+            k: [[zero; N]; 6],
+            ys: [zero; N],
+            cont: [[zero; N]; 4],
+        }
+    }
+}
+
+/// The chunk's scratch for both phases' groups.
+pub(super) struct Scratch {
+    free: Steps<N6>,
+    descent: Steps<N3>,
+}
+
+impl Scratch {
+    pub(super) fn new() -> Box<Scratch> {
+        Box::new(Scratch {
+            free: Steps::new(),
+            descent: Steps::new(),
         })
     }
 }
 
 /// Lane `l` of a structure-of-arrays state.
 #[inline(always)]
-fn lane_of(v: &[F64x4; N6], l: usize) -> [f64; N6] {
+fn lane_of<const N: usize>(v: &[F64x4; N], l: usize) -> [f64; N] {
     std::array::from_fn(|k| v[k].0[l])
 }
 
 /// Which lanes of `dy` are all finite (a lane with an infinity or a NaN gives NaN times 0).
 #[inline(always)]
-fn finite_lanes(dy: &[F64x4; N6]) -> [bool; 4] {
+fn finite_lanes<const N: usize>(dy: &[F64x4; N]) -> [bool; 4] {
     let zero = F64x4::splat(0.0);
     let mut s = zero;
     for v in dy {
@@ -93,18 +248,42 @@ fn finite_lanes(dy: &[F64x4; N6]) -> [bool; 4] {
     s.eq(zero)
 }
 
-/// The body of [`step_group`].
+/// Where a group's four slots stand in a stage: which lane each slot holds (a slot without a
+/// lane in step repeats the first one's, its results ignored), which slots are in step, and
+/// each slot's stage time.
+pub(super) struct Slots {
+    lane: [usize; 4],
+    active: [bool; 4],
+    t: [f64; 4],
+}
+
+impl Slots {
+    /// Whether slot `l` needs its inputs at this stage: a lane in step, or a filler not yet
+    /// filled (`filled`).
+    #[inline(always)]
+    fn wants(&self, l: usize, filled: bool) -> bool {
+        if self.lane[l] == l {
+            self.active[l]
+        } else {
+            !filled
+        }
+    }
+}
+
+/// One step of the lanes of `group` (all in phase `P`) with their steps held side by side.
+/// `eval(group, slots, ys, dy)` evaluates the phase's derivative of the four slots at their
+/// stage states `ys` (the slots' times in `slots.t`).
 #[inline(always)]
-fn step_lanes(group: &mut [Lane<'_>], st: &mut Steps) {
+fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
+    group: &mut [Lane<'a>],
+    st: &mut Steps<N>,
+    mut eval: impl FnMut(&mut [Lane<'a>], &Slots, &[F64x4; N], &mut [F64x4; N]),
+) {
     let n = group.len();
-    // Which lanes step on lanes (and which are still in their step), and their outcomes.
     let mut active = [false; 4];
     let mut outcomes: [Option<StepOutcome>; 4] = [None; 4];
-    let zero = F64x4::splat(0.0);
     for (l, lane) in group.iter_mut().enumerate() {
-        let Some(p) = lane.paused.as_mut() else {
-            continue;
-        };
+        let p = P::of(lane);
         match p.begin_step() {
             Ok(true) => {
                 active[l] = true;
@@ -112,138 +291,100 @@ fn step_lanes(group: &mut [Lane<'_>], st: &mut Steps) {
                 st.h.0[l] = d.attempt_step();
                 let tol = d.tolerances();
                 st.rtol.0[l] = tol.rtol();
-                for k in 0..N6 {
+                for k in 0..N {
                     st.y[k].0[l] = d.y()[k];
                     st.k1[k].0[l] = d.dy()[k];
                     st.atol[k].0[l] = tol.atol()[k];
                 }
             }
-            Ok(false) => match p.step() {
-                Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
+            Ok(false) => match p.whole_step() {
+                Ok(Some(end)) => lane.end = Some(P::lane_end(end)),
                 Ok(None) => {}
                 Err(e) => lane.end = Some(LaneEnd::Error(e)),
             },
             Err(e) => lane.end = Some(LaneEnd::Error(e)),
         }
     }
-    if let Some(first) = (0..n).find(|&l| active[l]) {
-        // A slot without a lane in step repeats the first one's start (its results are
-        // ignored); a lane done with its step idles in its slot.
-        let slots: [usize; 4] = std::array::from_fn(|l| if l < n && active[l] { l } else { first });
-        for (l, &i) in slots.iter().enumerate() {
-            if l != i {
-                st.h.0[l] = st.h.0[i];
-                st.rtol.0[l] = st.rtol.0[i];
-                for k in 0..N6 {
-                    st.atol[k].0[l] = st.atol[k].0[i];
-                    st.y[k].0[l] = st.y[k].0[i];
-                    st.k1[k].0[l] = st.k1[k].0[i];
-                }
+    let Some(first) = (0..n).find(|&l| active[l]) else {
+        return;
+    };
+    let mut slots = Slots {
+        lane: std::array::from_fn(|l| if l < n && active[l] { l } else { first }),
+        active,
+        t: [0.0; 4],
+    };
+    for l in 0..4 {
+        let i = slots.lane[l];
+        if l != i {
+            st.h.0[l] = st.h.0[i];
+            st.rtol.0[l] = st.rtol.0[i];
+            for k in 0..N {
+                st.atol[k].0[l] = st.atol[k].0[i];
+                st.y[k].0[l] = st.y[k].0[i];
+                st.k1[k].0[l] = st.k1[k].0[i];
             }
-        }
-        let models: [&FlightModel; 4] = slots.map(|i| {
-            group[i]
-                .paused
-                .as_deref()
-                .expect("a lane in step flies")
-                .model()
-        });
-        let four = FourModels::new(models);
-        let mut ms = pack_mass([&MassLanes::ZERO; 4]);
-        let mut thrust = zero;
-        // Serial of the mass state each slot holds (refreshed only when it changes).
-        let mut serial = [u64::MAX; 4];
-        let mut t_stage = [0.0; 4];
-        let mut stage = 0;
-        loop {
-            arithmetic::stage_state(stage, st.h, &st.y, &st.k1, &st.k, &mut st.ys);
-            for (l, &i) in slots.iter().enumerate() {
-                let own = l == i;
-                if (own && !active[l]) || (!own && serial[l] != u64::MAX) {
-                    continue;
-                }
-                let p = group[i].paused.as_mut().expect("a lane in step flies");
-                let t = p.dopri().stage_time(stage);
-                t_stage[l] = t;
-                let (m, th, sn) = p.mass_at(t);
-                if sn != serial[l] {
-                    ms.set_lane(l, m);
-                    serial[l] = sn;
-                }
-                thrust.0[l] = th;
-            }
-            let dy4 = &mut st.k[stage];
-            match &four {
-                Some(four) => eval_four(four, &ms, thrust, &st.ys, dy4),
-                None => {
-                    // Lanes that do not share their aerodynamic and air tables: one at a time.
-                    for l in 0..n {
-                        if !active[l] {
-                            continue;
-                        }
-                        let p = group[l].paused.as_mut().expect("a lane in step flies");
-                        let (m, th, _) = p.mass_at(t_stage[l]);
-                        let mut d = [0.0; N6];
-                        derivative_6dof_lanes(models[l], m, th, &lane_of(&st.ys, l), &mut d);
-                        for k in 0..N6 {
-                            dy4[k].0[l] = d[k];
-                        }
-                    }
-                }
-            }
-            let finite = finite_lanes(dy4);
-            for l in 0..n {
-                if active[l] && !finite[l] {
-                    let p = group[l].paused.as_mut().expect("a lane in step flies");
-                    p.observe(t_stage[l], &lane_of(&st.ys, l), &lane_of(dy4, l));
-                }
-            }
-            if stage < 5 {
-                stage += 1;
-                continue;
-            }
-            // The attempts are complete: each lane's error norm decides.
-            let sums = arithmetic::error_sum(st.h, &st.y, &st.ys, &st.k1, &st.k, &st.atol, st.rtol);
-            let mut cont_done = false;
-            for l in 0..n {
-                if !active[l] {
-                    continue;
-                }
-                let lane = &mut group[l];
-                let p = lane.paused.as_mut().expect("a lane in step flies");
-                let err = (sums.0[l] / N6 as f64).sqrt();
-                match p.judge(err) {
-                    Ok(Some(outcome)) => {
-                        active[l] = false;
-                        if !cont_done {
-                            arithmetic::dense_coefficients(
-                                st.h, &st.y, &st.ys, &st.k1, &st.k, &mut st.cont,
-                            );
-                            cont_done = true;
-                        }
-                        let c_l = [0, 1, 2, 3].map(|j| lane_of(&st.cont[j], l));
-                        match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
-                            Ok(()) => outcomes[l] = Some(outcome),
-                            Err(e) => lane.end = Some(LaneEnd::Error(e)),
-                        }
-                    }
-                    Ok(None) => st.h.0[l] = p.dopri().attempt_step(),
-                    Err(e) => {
-                        active[l] = false;
-                        lane.end = Some(LaneEnd::Error(e));
-                    }
-                }
-            }
-            if !active.iter().any(|&a| a) {
-                break;
-            }
-            stage = 0;
         }
     }
+    let mut stage = 0;
+    loop {
+        arithmetic::stage_state(stage, st.h, &st.y, &st.k1, &st.k, &mut st.ys);
+        for l in 0..4 {
+            let i = slots.lane[l];
+            slots.t[l] = P::of(&mut group[i]).dopri().stage_time(stage);
+        }
+        let dy4 = &mut st.k[stage];
+        eval(group, &slots, &st.ys, dy4);
+        let finite = finite_lanes(dy4);
+        for l in 0..n {
+            if slots.active[l] && !finite[l] {
+                P::of(&mut group[l]).observe(slots.t[l], &lane_of(&st.ys, l), &lane_of(dy4, l));
+            }
+        }
+        if stage < 5 {
+            stage += 1;
+            continue;
+        }
+        // The attempts are complete: each lane's error norm decides.
+        let sums = arithmetic::error_sum(st.h, &st.y, &st.ys, &st.k1, &st.k, &st.atol, st.rtol);
+        let mut cont_done = false;
+        for l in 0..n {
+            if !slots.active[l] {
+                continue;
+            }
+            let lane = &mut group[l];
+            let p = P::of(lane);
+            let err = (sums.0[l] / N as f64).sqrt();
+            match p.judge(err) {
+                Ok(Some(outcome)) => {
+                    slots.active[l] = false;
+                    if !cont_done {
+                        arithmetic::dense_coefficients(
+                            st.h, &st.y, &st.ys, &st.k1, &st.k, &mut st.cont,
+                        );
+                        cont_done = true;
+                    }
+                    let c_l = [0, 1, 2, 3].map(|j| lane_of(&st.cont[j], l));
+                    match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
+                        Ok(()) => outcomes[l] = Some(outcome),
+                        Err(e) => lane.end = Some(LaneEnd::Error(e)),
+                    }
+                }
+                Ok(None) => st.h.0[l] = p.dopri().attempt_step(),
+                Err(e) => {
+                    slots.active[l] = false;
+                    lane.end = Some(LaneEnd::Error(e));
+                }
+            }
+        }
+        if !slots.active.iter().any(|&a| a) {
+            break;
+        }
+        stage = 0;
+    }
     for (l, lane) in group.iter_mut().enumerate() {
-        if let (Some(o), Some(p)) = (outcomes[l], lane.paused.as_mut()) {
-            match p.end_step(o) {
-                Ok(Some(end)) => lane.end = Some(LaneEnd::Phase(end)),
+        if let Some(o) = outcomes[l] {
+            match P::of(lane).end_step(o) {
+                Ok(Some(end)) => lane.end = Some(P::lane_end(end)),
                 Ok(None) => {}
                 Err(e) => lane.end = Some(LaneEnd::Error(e)),
             }
@@ -251,25 +392,155 @@ fn step_lanes(group: &mut [Lane<'_>], st: &mut Steps) {
     }
 }
 
-/// [`step_lanes`] compiled for AVX2 where the processor has it: the lanes' stepper arithmetic
-/// (13-state loops) and the kernel then run four doubles to a register. The same IEEE
-/// operations either way (no FMA), so the same bits.
-fn step_lanes_dispatch(group: &mut [Lane<'_>], steps: &mut Steps) {
+/// The four slots' models (a slot repeats its lane's).
+#[inline(always)]
+fn slot_models<'a, const N: usize, P: OnLanes<'a, N>>(
+    group: &mut [Lane<'a>],
+    slots: &Slots,
+) -> [&'a FlightModel; 4] {
+    slots.lane.map(|i| P::of(&mut group[i]).model())
+}
+
+/// One free-flight step of the lanes of `group`: the 6-DOF kernel on four lanes, each slot's
+/// mass state refreshed only when it changes.
+#[inline(always)]
+fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
+    let mut four: Option<Option<FourModels<'_>>> = None;
+    let mut ms = pack_mass([&MassLanes::ZERO; 4]);
+    let mut thrust = F64x4::splat(0.0);
+    // Serial of the mass state each slot holds (refreshed only when it changes).
+    let mut serial = [u64::MAX; 4];
+    step_on_lanes::<N6, Paused<'_, ()>>(group, st, |group, slots, ys, dy| {
+        let four = four.get_or_insert_with(|| {
+            FourModels::new(slot_models::<N6, Paused<'_, ()>>(group, slots))
+        });
+        for l in 0..4 {
+            if !slots.wants(l, serial[l] != u64::MAX) {
+                continue;
+            }
+            let p = Paused::of(&mut group[slots.lane[l]]);
+            let (m, th, sn) = p.mass_at(slots.t[l]);
+            if sn != serial[l] {
+                ms.set_lane(l, m);
+                serial[l] = sn;
+            }
+            thrust.0[l] = th;
+        }
+        match four {
+            Some(four) => eval_four(four, &ms, thrust, ys, dy),
+            None => {
+                // Lanes that do not share their aerodynamic and air tables: one at a time.
+                for l in 0..group.len() {
+                    if !slots.active[l] {
+                        continue;
+                    }
+                    let p = Paused::of(&mut group[l]);
+                    let model = p.model();
+                    let (m, th, _) = p.mass_at(slots.t[l]);
+                    let mut d = [0.0; N6];
+                    derivative_6dof_lanes(model, m, th, &lane_of(ys, l), &mut d);
+                    for k in 0..N6 {
+                        dy[k].0[l] = d[k];
+                    }
+                }
+            }
+        }
+    });
+}
+
+/// One descent step of the lanes of `group`: the point-mass descent on four lanes.
+#[inline(always)]
+fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
+    let mut four: Option<Option<FourModels<'_>>> = None;
+    let mut mass = F64x4::splat(1.0);
+    let mut cds = F64x4::splat(0.0);
+    let mut filled = [false; 4];
+    step_on_lanes::<N3, Descending<'_, ()>>(group, st, |group, slots, ys, dy| {
+        let models = slot_models::<N3, Descending<'_, ()>>(group, slots);
+        let four = four.get_or_insert_with(|| FourModels::new(models));
+        for l in 0..4 {
+            if !slots.wants(l, filled[l]) {
+                continue;
+            }
+            let d = Descending::of(&mut group[slots.lane[l]]);
+            mass.0[l] = models[l].descent_mass(slots.t[l]);
+            cds.0[l] = d.cds();
+            filled[l] = true;
+        }
+        match four {
+            Some(four) => descent_four(four, mass, cds, ys, dy),
+            None => {
+                for l in 0..group.len() {
+                    if !slots.active[l] {
+                        continue;
+                    }
+                    let mut d = [0.0; N3];
+                    descent_rates_lanes(
+                        models[l],
+                        mass.0[l],
+                        cds.0[l],
+                        &lane_of(ys, l),
+                        &mut d,
+                    );
+                    for k in 0..N3 {
+                        dy[k].0[l] = d[k];
+                    }
+                }
+            }
+        }
+    });
+}
+
+/// [`step_free`] compiled for AVX2 where the processor has it: the lanes' stepper arithmetic
+/// and the kernel then run four doubles to a register. The same IEEE operations either way
+/// (no FMA), so the same bits.
+fn step_free_dispatch(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
     #[cfg(target_arch = "x86_64")]
     {
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the processor has AVX2 (checked just above).
-            unsafe { step_lanes_avx2(group, steps) };
+            unsafe { step_free_avx2(group, st) };
             return;
         }
     }
-    step_lanes(group, steps);
+    step_free(group, st);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn step_lanes_avx2(group: &mut [Lane<'_>], steps: &mut Steps) {
-    step_lanes(group, steps);
+fn step_free_avx2(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
+    step_free(group, st);
+}
+
+/// [`step_descents`] compiled for AVX2 where the processor has it (the same bits).
+fn step_descents_dispatch(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (checked just above).
+            unsafe { step_descents_avx2(group, st) };
+            return;
+        }
+    }
+    step_descents(group, st);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn step_descents_avx2(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
+    step_descents(group, st);
+}
+
+/// The descent's derivative on four lanes.
+#[inline(always)]
+fn descent_four(
+    four: &FourModels<'_>,
+    mass: F64x4,
+    cds: F64x4,
+    y: &[F64x4; N3],
+    dy: &mut [F64x4; N3],
+) {
+    descent_rates_lanes(four, mass, cds, y, dy);
 }
 
 /// The 6-DOF kernel on four lanes, in AVX2 registers where the processor has them (the same

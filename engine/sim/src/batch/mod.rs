@@ -37,11 +37,11 @@ mod group;
 pub use group::{eval_four, LANES_IN_FLIGHT};
 
 use crate::events::EventKind;
-use crate::flight::driver::{fly_to_free, Progress};
+use crate::flight::driver::{fly_to_free, AfterFree, Progress};
 use crate::flight::{Flight, Metrics, SimError, Simulation};
 use crate::trigger::Trigger;
 use crate::wind::Wind;
-use group::{step_group, Lane, LaneEnd, Steps};
+use group::{step_group, Flying, Lane, LaneEnd, Scratch};
 use rayon::prelude::*;
 use std::cell::OnceCell;
 use std::ops::Range;
@@ -462,7 +462,7 @@ impl Batch {
             (0..n).map(|_| OnceCell::new()).collect();
         let mut results: Vec<Option<LaneResult>> = (0..n).map(|_| None).collect();
         let mut lanes: Vec<Lane<'_>> = Vec::with_capacity(LANES_IN_FLIGHT);
-        let mut steps = Steps::new();
+        let mut scratch = Scratch::new();
         let mut next_row = 0;
         loop {
             while lanes.len() < LANES_IN_FLIGHT && next_row < n {
@@ -487,7 +487,7 @@ impl Batch {
                     Ok(Ok(Progress::Free(paused))) => lanes.push(Lane {
                         row,
                         sim,
-                        paused: Some(paused),
+                        flying: Flying::Free(paused),
                         end: None,
                     }),
                     Ok(Ok(Progress::Done(flight))) => {
@@ -500,29 +500,49 @@ impl Batch {
             if lanes.is_empty() {
                 break;
             }
-            for group in lanes.chunks_mut(4) {
-                step_group(group, &mut steps);
+            // Free flights first, then descents: each group holds lanes of one phase.
+            lanes.sort_unstable_by_key(|l| matches!(l.flying, Flying::Descent(_)));
+            let n_free = lanes
+                .iter()
+                .take_while(|l| matches!(l.flying, Flying::Free(_)))
+                .count();
+            let (free, descents) = lanes.split_at_mut(n_free);
+            for group in free.chunks_mut(4).chain(descents.chunks_mut(4)) {
+                step_group(group, &mut scratch);
             }
-            // Lanes whose free flight ended: their descent and their result.
+            // Lanes whose phase ended: on to their descent, or to their result.
             let mut k = 0;
             while k < lanes.len() {
                 let Some(end) = lanes[k].end.take() else {
                     k += 1;
                     continue;
                 };
-                let lane = lanes.swap_remove(k);
-                let variant = first + lane.row;
-                let result = match end {
-                    LaneEnd::Phase(end) => match lane.paused {
-                        Some(p) => match guarded(move || p.finish(end)) {
-                            Ok(flight) => self.result_of(lane.sim, flight, variant),
+                let (sim, variant) = (lanes[k].sim, first + lanes[k].row);
+                let flying = std::mem::replace(&mut lanes[k].flying, Flying::Gone);
+                let result = match (end, flying) {
+                    (LaneEnd::Free(end), Flying::Free(p)) => {
+                        match guarded(move || p.after_free(end)) {
+                            Ok(Ok(AfterFree::Descending(d))) => {
+                                lanes[k].flying = Flying::Descent(d);
+                                k += 1;
+                                continue;
+                            }
+                            Ok(Ok(AfterFree::Done(flight))) => {
+                                self.result_of(sim, Ok(flight), variant)
+                            }
+                            Ok(Err(e)) => self.result_of(sim, Err(e), variant),
                             Err(p) => self.panicked(variant, &p),
-                        },
-                        None => self.panicked(variant, "lost its flight"),
+                        }
+                    }
+                    (LaneEnd::Landed, Flying::Descent(d)) => match guarded(move || d.finish()) {
+                        Ok(flight) => self.result_of(sim, Ok(flight), variant),
+                        Err(p) => self.panicked(variant, &p),
                     },
-                    LaneEnd::Error(e) => self.result_of(lane.sim, Err(e), variant),
-                    LaneEnd::Panic(p) => self.panicked(variant, &p),
+                    (LaneEnd::Error(e), _) => self.result_of(sim, Err(e), variant),
+                    (LaneEnd::Panic(p), _) => self.panicked(variant, &p),
+                    _ => self.panicked(variant, "lost its flight"),
                 };
+                let lane = lanes.swap_remove(k);
                 results[lane.row] = Some(result);
             }
         }

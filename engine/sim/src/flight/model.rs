@@ -297,11 +297,11 @@ impl FlightModel {
         y: &[f64; N3],
         dy: &mut [f64; N3],
     ) -> (Air, Vector3<f64>, f64) {
-        let mass_kg = self.mass.fixed_mass_kg + self.motor.eval(t).propellant_kg;
+        let mass_kg = self.descent_mass(t);
         let h = y[2];
         let air = self.air.at_msl(h + self.env.elevation_m);
         let g = self.env.gravity.at(h);
-        let wind = self.wind_n(h);
+        let wind = ModelLanes::<f64>::wind(self, h);
         eom::descent_derivative(
             y,
             mass_kg,
@@ -311,7 +311,14 @@ impl FlightModel {
             &wind,
             dy,
         );
-        (air, wind, g)
+        (air, wind.to_na(), g)
+    }
+
+    /// The mass a descent carries at `t`: the structure's plus the propellant left (exactly
+    /// the mass state's mass).
+    #[inline]
+    pub fn descent_mass(&self, t: f64) -> f64 {
+        self.mass.fixed_mass_kg + self.motor.eval(t).propellant_kg
     }
 
     /// The center of mass's position and velocity (inertial) and a sample's figures at the end
@@ -545,6 +552,21 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     fn nozzle(&self) -> NozzleLanes<F64x4> {
         self.nozzle
     }
+}
+
+/// The descent's derivative on lanes, given each lane's mass ([`FlightModel::descent_mass`])
+/// and canopies' CdS: what [`FlightModel::descent_rates`] computes, four lanes at once.
+#[inline(always)]
+pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
+    lanes: &L,
+    mass_kg: S,
+    cds_m2: S,
+    y: &[S; N3],
+    dy: &mut [S; N3],
+) {
+    let h = y[2];
+    let (rho, _) = lanes.air(h);
+    eom::descent_derivative(y, mass_kg, cds_m2, rho, lanes.gravity(h), &lanes.wind(h), dy);
 }
 
 /// The 6-DOF derivative on lanes, given each lane's mass state and thrust: the one copy of

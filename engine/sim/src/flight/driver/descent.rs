@@ -1,18 +1,26 @@
-//! The descent under canopy: the center of mass as a point with the canopies' drag.
+//! The descent under canopy: the center of mass as a point with the canopies' drag, one step
+//! at a time. The single flight steps it with its own derivative ([`Descent::step`]); the
+//! batch engine steps four lanes' descents together and hands each lane's step to the same
+//! [`Descent::after_step`].
 
 use super::*;
 
-/// Under canopy until landing or the time limit.
-pub(super) fn descent_phase<O: Observer>(
-    run: &mut Run<'_, O>,
-    stepper: &mut Stepper<N3>,
-    t0: f64,
-    y0: &[f64; N3],
-) -> Result<PhaseEnd, SimError> {
-    let model = run.model;
-    let name = Phase::Descent.name();
-    let mut cds = run.cds();
-    {
+/// A descent between its steps: the canopies' CdS in force.
+pub(super) struct Descent {
+    cds: f64,
+}
+
+impl Descent {
+    /// Start under canopy at `(t0, y0)`: the stepper's first derivative and the first sample.
+    pub(super) fn start<O: Observer>(
+        run: &mut Run<'_, O>,
+        stepper: &mut Stepper<N3>,
+        t0: f64,
+        y0: &[f64; N3],
+    ) -> Result<Descent, SimError> {
+        let model = run.model;
+        let name = Phase::Descent.name();
+        let cds = run.cds();
         let starts = run.starts;
         let mut evals = 0u64;
         each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.descent_rates(cds, t, y, dy); }, t0, y0)).map_err(|e| integ_at(t0, y0, e, name))?;
@@ -29,21 +37,54 @@ pub(super) fn descent_phase<O: Observer>(
             &aux,
             model.motor.eval(t0).thrust_n,
         );
+        Ok(Descent { cds })
     }
-    loop {
-        let t_now = each!(stepper, s => s.t());
-        let t_stop = run.next_stop(t_now);
-        let starts = run.starts;
+
+    /// The canopies' CdS in force, m².
+    #[inline(always)]
+    pub(super) fn cds(&self) -> f64 {
+        self.cds
+    }
+
+    /// The stop time of the next step (which starts where the stepper is).
+    pub(super) fn next_stop<O: Observer>(run: &mut Run<'_, O>, stepper: &Stepper<N3>) -> f64 {
+        run.next_stop(each!(stepper, s => s.t()))
+    }
+
+    /// One step with the descent's own derivative; the phase's end if it ended.
+    pub(super) fn step<O: Observer>(
+        &mut self,
+        run: &mut Run<'_, O>,
+        stepper: &mut Stepper<N3>,
+    ) -> Result<Option<PhaseEnd>, SimError> {
+        let model = run.model;
+        let t_stop = Descent::next_stop(run, stepper);
+        let cds = self.cds;
         let mut evals = 0u64;
         let outcome = stepper.checked_step(
             |t, y, dy| {
                 model.descent_rates(cds, t, y, dy);
             },
             t_stop,
-            name,
+            Phase::Descent.name(),
             &mut evals,
         )?;
         run.evaluations += evals;
+        self.after_step(run, stepper, outcome)
+    }
+
+    /// After a step that ended with `outcome`: events in the step (located on the dense
+    /// output), the sample, triggers, stops and a change of canopies. Returns the phase's
+    /// end (landing or the time limit), if this was its last step.
+    pub(super) fn after_step<O: Observer>(
+        &mut self,
+        run: &mut Run<'_, O>,
+        stepper: &mut Stepper<N3>,
+        outcome: StepOutcome,
+    ) -> Result<Option<PhaseEnd>, SimError> {
+        let model = run.model;
+        let name = Phase::Descent.name();
+        let starts = run.starts;
         run.steps += 1;
         let mut found: Option<(f64, EventKind)> = None;
         let mut consider = |t: Option<f64>, k: EventKind| {
@@ -77,7 +118,7 @@ pub(super) fn descent_phase<O: Observer>(
             None => (each!(stepper, s => s.t()), *each!(stepper, s => s.y())),
         };
         let mut dy = [0.0; N3];
-        let aux = model.derivative_descent(&run.starts, cds, t_end, &y_end, &mut dy);
+        let aux = model.derivative_descent(&run.starts, self.cds, t_end, &y_end, &mut dy);
         let pos = Vector3::new(y_end[0], y_end[1], y_end[2]);
         let vel = Vector3::new(y_end[3], y_end[4], y_end[5]);
         run.record(
@@ -102,29 +143,28 @@ pub(super) fn descent_phase<O: Observer>(
                 }
                 EventKind::Landing => {
                     land(run, te, pos, vel);
-                    return Ok(PhaseEnd::Landed);
+                    return Ok(Some(PhaseEnd::Landed));
                 }
                 EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
                 EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
                 _ => {}
             }
         }
-        if found.is_some() || matches!(outcome, crate::integrate::StepOutcome::ReachedStop) {
+        if found.is_some() || matches!(outcome, StepOutcome::ReachedStop) {
             run.at_stop(t_end, alt, speed)?;
         }
         if t_end >= model.options.max_time_s {
             run.push_event(EventKind::TimeLimit, t_end, alt, speed);
-            return Ok(PhaseEnd::TimeLimit);
+            return Ok(Some(PhaseEnd::TimeLimit));
         }
         let new_cds = run.cds();
-        if found.is_some()
-            || new_cds != cds
-            || matches!(outcome, crate::integrate::StepOutcome::ReachedStop)
-        {
-            cds = new_cds;
+        if found.is_some() || new_cds != self.cds || matches!(outcome, StepOutcome::ReachedStop) {
+            self.cds = new_cds;
+            let cds = new_cds;
             let mut evals = 0u64;
             each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.descent_rates(cds, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
         }
+        Ok(None)
     }
 }

@@ -41,8 +41,8 @@ mod descent;
 mod paused;
 mod six_dof;
 
-use descent::descent_phase;
-pub(crate) use paused::{fly_to_free, Paused, Progress, StepEnd};
+use descent::Descent;
+pub(crate) use paused::{fly_to_free, AfterFree, Descending, Paused, Progress, StepEnd};
 use six_dof::{six_dof_phase, SixDof};
 
 /// What a step watches for: the first derivative that is not finite (where it appeared), so

@@ -119,11 +119,37 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
 /// The flight after its rail or free flight ended with `end`: the descent if a canopy
 /// opened, then the flight's record.
 fn finish<O: Observer>(
-    mut run: Run<'_, O>,
+    run: Run<'_, O>,
+    rtol: f64,
+    atol3: [f64; N3],
+    end: (f64, [f64; N6], PhaseEnd),
+) -> Result<Flight, SimError> {
+    match descend(run, rtol, atol3, end)? {
+        AfterFree::Done(flight) => Ok(flight),
+        AfterFree::Descending(mut d) => loop {
+            if d.step()?.is_some() {
+                return Ok(d.finish());
+            }
+        },
+    }
+}
+
+/// Where a flight is once its free flight is over.
+pub(crate) enum AfterFree<'a, O: Observer> {
+    /// Under canopy, between steps.
+    Descending(Box<Descending<'a, O>>),
+    /// Over (it landed or ran out of time without a canopy, or failed).
+    Done(Flight),
+}
+
+/// The flight after its rail or free flight ended with `end`: under canopy if one opened,
+/// else its record.
+fn descend<'a, O: Observer>(
+    mut run: Run<'a, O>,
     rtol: f64,
     atol3: [f64; N3],
     (t, y, end): (f64, [f64; N6], PhaseEnd),
-) -> Result<Flight, SimError> {
+) -> Result<AfterFree<'a, O>, SimError> {
     let model = run.model;
     if let PhaseEnd::Deploy = end {
         // Descent: the center of mass as a point, with its velocity (including r′) kept.
@@ -131,9 +157,21 @@ fn finish<O: Observer>(
         let y3 = [pos.x, pos.y, pos.z, vel.x, vel.y, vel.z];
         let mut s3: Stepper<N3> = Stepper::new(&model.options.integrator, atol3, rtol)
             .map_err(|e| integ(t, e, "setup"))?;
-        descent_phase(&mut run, &mut s3, t, &y3)?;
+        let descent = Descent::start(&mut run, &mut s3, t, &y3)?;
+        return Ok(AfterFree::Descending(Box::new(Descending {
+            run,
+            s3,
+            descent,
+            watch: Watch::new(t),
+        })));
     }
-    Ok(Flight {
+    Ok(AfterFree::Done(record(run)))
+}
+
+/// The flight's record.
+fn record<O: Observer>(run: Run<'_, O>) -> Flight {
+    let model = run.model;
+    Flight {
         samples: run.samples,
         events: run.events,
         metrics: run.metrics,
@@ -143,7 +181,118 @@ fn finish<O: Observer>(
             .collect(),
         derivative_evaluations: run.evaluations,
         steps: run.steps,
-    })
+    }
+}
+
+/// A flight under canopy, between two steps of its descent. The single flight steps it with
+/// [`Descending::step`]; the batch engine steps four lanes' descents together, as it does
+/// their free flights.
+pub(crate) struct Descending<'a, O: Observer> {
+    run: Run<'a, O>,
+    s3: Stepper<N3>,
+    descent: Descent,
+    watch: Watch<N3>,
+}
+
+impl<'a, O: Observer> Descending<'a, O> {
+    /// The flight's model.
+    pub(crate) fn model(&self) -> &'a FlightModel {
+        self.run.model
+    }
+
+    /// The canopies' CdS in force, m².
+    #[inline(always)]
+    pub(crate) fn cds(&self) -> f64 {
+        self.descent.cds()
+    }
+
+    /// One step with the descent's own derivative; the phase's end if it ended.
+    pub(crate) fn step(&mut self) -> Result<Option<PhaseEnd>, SimError> {
+        self.descent.step(&mut self.run, &mut self.s3)
+    }
+
+    /// The flight's record, once its descent has ended.
+    pub(crate) fn finish(self) -> Flight {
+        record(self.run)
+    }
+
+    /// Start a step whose stages the batch engine computes on lanes (as
+    /// [`Paused::begin_step`]). False when the integrator does not step that way.
+    pub(crate) fn begin_step(&mut self) -> Result<bool, SimError> {
+        if !matches!(self.s3, Stepper::Adaptive(_)) {
+            return Ok(false);
+        }
+        let t_stop = Descent::next_stop(&mut self.run, &self.s3);
+        let Stepper::Adaptive(d) = &mut self.s3 else {
+            return Ok(false);
+        };
+        let model = self.run.model;
+        let cds = self.descent.cds();
+        self.watch = Watch::new(d.t());
+        let watch = &mut self.watch;
+        let mut evals = 0u64;
+        let begun = d.begin_step_outside(
+            &mut |t, y: &[f64; N3], dy: &mut [f64; N3]| {
+                evals += 1;
+                model.descent_rates(cds, t, y, dy);
+                watch.observe(t, y, dy);
+            },
+            t_stop,
+        );
+        self.run.evaluations += evals;
+        begun.map_err(|e| self.watch.error(e, d.y(), Phase::Descent.name()))?;
+        Ok(true)
+    }
+
+    /// The adaptive stepper of a step begun by [`Descending::begin_step`].
+    #[inline(always)]
+    pub(crate) fn dopri(&self) -> &Dopri54<N3> {
+        match &self.s3 {
+            Stepper::Adaptive(d) => d,
+            Stepper::Fixed(_) => unreachable!("only an adaptive flight is stepped on lanes"),
+        }
+    }
+
+    /// As [`Paused::observe`].
+    #[cold]
+    pub(crate) fn observe(&mut self, t: f64, y: &[f64; N3], dy: &[f64; N3]) {
+        self.watch.observe(t, y, dy);
+    }
+
+    /// As [`Paused::judge`].
+    #[inline(always)]
+    pub(crate) fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
+        let Stepper::Adaptive(d) = &mut self.s3 else {
+            return Err(SimError::Setup(
+                "a fixed-step flight was stepped a stage at a time".into(),
+            ));
+        };
+        self.run.evaluations += 6;
+        d.judge(err, 6)
+            .map_err(|e| self.watch.error(e, d.y(), Phase::Descent.name()))
+    }
+
+    /// As [`Paused::commit`].
+    #[inline(always)]
+    pub(crate) fn commit(
+        &mut self,
+        y_new: &[f64; N3],
+        k7: &[f64; N3],
+        cont: &[[f64; N3]; 4],
+    ) -> Result<(), SimError> {
+        let Stepper::Adaptive(d) = &mut self.s3 else {
+            return Err(SimError::Setup(
+                "a fixed-step flight was stepped a stage at a time".into(),
+            ));
+        };
+        d.commit(y_new, k7, cont);
+        self.watch.check_end(d.t(), d.y())
+    }
+
+    /// After a step taken on lanes: the same as the end of [`Descending::step`].
+    pub(crate) fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<PhaseEnd>, SimError> {
+        self.descent.after_step(&mut self.run, &mut self.s3, outcome)
+    }
 }
 
 /// A free-flight step's end: time, state and why the phase ended.
@@ -163,6 +312,12 @@ impl<'a, O: Observer> Paused<'a, O> {
     /// The flight from the end of its free flight (descent, record).
     pub(crate) fn finish(self, end: StepEnd) -> Result<Flight, SimError> {
         finish(self.run, self.rtol, self.atol3, end)
+    }
+
+    /// The flight once its free flight ended with `end`: under canopy, to be stepped, or
+    /// over.
+    pub(crate) fn after_free(self, end: StepEnd) -> Result<AfterFree<'a, O>, SimError> {
+        descend(self.run, self.rtol, self.atol3, end)
     }
 
     /// Start a step whose stages the batch engine computes itself, on four lanes at once
