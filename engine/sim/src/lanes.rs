@@ -168,7 +168,12 @@ impl Real for F64x4 {
     #[inline(always)]
     fn max(self, o: F64x4) -> F64x4 {
         let (a, b) = (self.0, o.0);
-        F64x4([a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2]), a[3].max(b[3])])
+        F64x4([
+            a[0].max(b[0]),
+            a[1].max(b[1]),
+            a[2].max(b[2]),
+            a[3].max(b[3]),
+        ])
     }
     #[inline(always)]
     fn gt(self, o: F64x4) -> [bool; 4] {

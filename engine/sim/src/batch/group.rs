@@ -9,9 +9,7 @@
 use super::guarded;
 use crate::eom::{pack_mass, MassLanes, N3, N6};
 use crate::flight::driver::{Descending, Paused, PhaseEnd, StepEnd};
-use crate::flight::model::{
-    derivative_6dof_lanes, descent_rates_lanes, FlightModel, FourModels,
-};
+use crate::flight::model::{derivative_6dof_lanes, descent_rates_lanes, FlightModel, FourModels};
 use crate::flight::{SimError, Simulation};
 use crate::integrate::dopri54::arithmetic;
 use crate::integrate::{DenseStepper, Dopri54, StepOutcome};
@@ -359,7 +357,12 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
                     slots.active[l] = false;
                     if !cont_done {
                         arithmetic::dense_coefficients(
-                            st.h, &st.y, &st.ys, &st.k1, &st.k, &mut st.cont,
+                            st.h,
+                            &st.y,
+                            &st.ys,
+                            &st.k1,
+                            &st.k,
+                            &mut st.cont,
                         );
                         cont_done = true;
                     }
@@ -410,42 +413,47 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
     let mut thrust = F64x4::splat(0.0);
     // Serial of the mass state each slot holds (refreshed only when it changes).
     let mut serial = [u64::MAX; 4];
-    step_on_lanes::<N6, Paused<'_, ()>>(group, st, |group, slots, ys, dy| {
-        let four = four.get_or_insert_with(|| {
-            FourModels::new(slot_models::<N6, Paused<'_, ()>>(group, slots))
-        });
-        for l in 0..4 {
-            if !slots.wants(l, serial[l] != u64::MAX) {
-                continue;
+    step_on_lanes::<N6, Paused<'_, ()>>(
+        group,
+        st,
+        #[inline(always)]
+        |group, slots, ys, dy| {
+            let four = four.get_or_insert_with(|| {
+                FourModels::new(slot_models::<N6, Paused<'_, ()>>(group, slots))
+            });
+            for l in 0..4 {
+                if !slots.wants(l, serial[l] != u64::MAX) {
+                    continue;
+                }
+                let p = Paused::of(&mut group[slots.lane[l]]);
+                let (m, th, sn) = p.mass_at(slots.t[l]);
+                if sn != serial[l] {
+                    ms.set_lane(l, m);
+                    serial[l] = sn;
+                }
+                thrust.0[l] = th;
             }
-            let p = Paused::of(&mut group[slots.lane[l]]);
-            let (m, th, sn) = p.mass_at(slots.t[l]);
-            if sn != serial[l] {
-                ms.set_lane(l, m);
-                serial[l] = sn;
-            }
-            thrust.0[l] = th;
-        }
-        match four {
-            Some(four) => eval_four(four, &ms, thrust, ys, dy),
-            None => {
-                // Lanes that do not share their aerodynamic and air tables: one at a time.
-                for l in 0..group.len() {
-                    if !slots.active[l] {
-                        continue;
-                    }
-                    let p = Paused::of(&mut group[l]);
-                    let model = p.model();
-                    let (m, th, _) = p.mass_at(slots.t[l]);
-                    let mut d = [0.0; N6];
-                    derivative_6dof_lanes(model, m, th, &lane_of(ys, l), &mut d);
-                    for k in 0..N6 {
-                        dy[k].0[l] = d[k];
+            match four {
+                Some(four) => eval_four(four, &ms, thrust, ys, dy),
+                None => {
+                    // Lanes that do not share their aerodynamic and air tables: one at a time.
+                    for (l, lane) in group.iter_mut().enumerate() {
+                        if !slots.active[l] {
+                            continue;
+                        }
+                        let p = Paused::of(lane);
+                        let model = p.model();
+                        let (m, th, _) = p.mass_at(slots.t[l]);
+                        let mut d = [0.0; N6];
+                        derivative_6dof_lanes(model, m, th, &lane_of(ys, l), &mut d);
+                        for k in 0..N6 {
+                            dy[k].0[l] = d[k];
+                        }
                     }
                 }
             }
-        }
-    });
+        },
+    );
 }
 
 /// One descent step of the lanes of `group`: the point-mass descent on four lanes.
@@ -455,40 +463,39 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
     let mut mass = F64x4::splat(1.0);
     let mut cds = F64x4::splat(0.0);
     let mut filled = [false; 4];
-    step_on_lanes::<N3, Descending<'_, ()>>(group, st, |group, slots, ys, dy| {
-        let models = slot_models::<N3, Descending<'_, ()>>(group, slots);
-        let four = four.get_or_insert_with(|| FourModels::new(models));
-        for l in 0..4 {
-            if !slots.wants(l, filled[l]) {
-                continue;
+    step_on_lanes::<N3, Descending<'_, ()>>(
+        group,
+        st,
+        #[inline(always)]
+        |group, slots, ys, dy| {
+            let models = slot_models::<N3, Descending<'_, ()>>(group, slots);
+            let four = four.get_or_insert_with(|| FourModels::new(models));
+            for l in 0..4 {
+                if !slots.wants(l, filled[l]) {
+                    continue;
+                }
+                let d = Descending::of(&mut group[slots.lane[l]]);
+                mass.0[l] = models[l].descent_mass(slots.t[l]);
+                cds.0[l] = d.cds();
+                filled[l] = true;
             }
-            let d = Descending::of(&mut group[slots.lane[l]]);
-            mass.0[l] = models[l].descent_mass(slots.t[l]);
-            cds.0[l] = d.cds();
-            filled[l] = true;
-        }
-        match four {
-            Some(four) => descent_four(four, mass, cds, ys, dy),
-            None => {
-                for l in 0..group.len() {
-                    if !slots.active[l] {
-                        continue;
-                    }
-                    let mut d = [0.0; N3];
-                    descent_rates_lanes(
-                        models[l],
-                        mass.0[l],
-                        cds.0[l],
-                        &lane_of(ys, l),
-                        &mut d,
-                    );
-                    for k in 0..N3 {
-                        dy[k].0[l] = d[k];
+            match four {
+                Some(four) => descent_four(four, mass, cds, ys, dy),
+                None => {
+                    for (l, model) in models.iter().enumerate().take(group.len()) {
+                        if !slots.active[l] {
+                            continue;
+                        }
+                        let mut d = [0.0; N3];
+                        descent_rates_lanes(*model, mass.0[l], cds.0[l], &lane_of(ys, l), &mut d);
+                        for k in 0..N3 {
+                            dy[k].0[l] = d[k];
+                        }
                     }
                 }
             }
-        }
-    });
+        },
+    );
 }
 
 /// [`step_free`] compiled for AVX2 where the processor has it: the lanes' stepper arithmetic

@@ -566,7 +566,15 @@ pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
 ) {
     let h = y[2];
     let (rho, _) = lanes.air(h);
-    eom::descent_derivative(y, mass_kg, cds_m2, rho, lanes.gravity(h), &lanes.wind(h), dy);
+    eom::descent_derivative(
+        y,
+        mass_kg,
+        cds_m2,
+        rho,
+        lanes.gravity(h),
+        &lanes.wind(h),
+        dy,
+    );
 }
 
 /// The 6-DOF derivative on lanes, given each lane's mass state and thrust: the one copy of

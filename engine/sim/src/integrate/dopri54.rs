@@ -628,7 +628,6 @@ impl<const N: usize> Dopri54<N> {
     }
 }
 
-
 impl<const N: usize> DenseStepper<N> for Dopri54<N> {
     fn init<F>(&mut self, mut f: F, t0: f64, y0: &[f64; N]) -> Result<(), IntegratorError>
     where

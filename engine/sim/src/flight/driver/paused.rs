@@ -135,6 +135,7 @@ fn finish<O: Observer>(
 }
 
 /// Where a flight is once its free flight is over.
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum AfterFree<'a, O: Observer> {
     /// Under canopy, between steps.
     Descending(Box<Descending<'a, O>>),
@@ -291,7 +292,8 @@ impl<'a, O: Observer> Descending<'a, O> {
 
     /// After a step taken on lanes: the same as the end of [`Descending::step`].
     pub(crate) fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<PhaseEnd>, SimError> {
-        self.descent.after_step(&mut self.run, &mut self.s3, outcome)
+        self.descent
+            .after_step(&mut self.run, &mut self.s3, outcome)
     }
 }
 
