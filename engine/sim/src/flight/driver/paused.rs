@@ -1,12 +1,14 @@
-//! A flight paused in its free flight: the pad and the rail flown ([`fly_to_free`]), the
-//! free flight stepped one step at a time by the single flight or a stage at a time by the
-//! batch engine, and the rest (descent, record) once the free flight ends ([`finish`]).
+//! A flight paused between steps: the pad and the rail flown ([`fly_to_free`]), the free
+//! flight ([`Paused`]) and the descent ([`Descending`]) stepped one step at a time by the
+//! single flight, or with four lanes' stages evaluated together by the batch engine, and the
+//! flight's record once it is over.
 
 use super::*;
 
 /// A flight paused in its free flight, between two steps. The single flight steps it with
-/// [`Paused::step`]; the batch engine steps four lanes' free flights together, a stage at a
-/// time ([`Paused::begin_step`], [`Paused::stage_input`], [`Paused::feed_stage`]), and hands
+/// [`Paused::step`]; the batch engine steps four lanes' free flights together: it begins
+/// each lane's step ([`Paused::begin_step`]), computes the stages of the four lanes side by
+/// side, has each lane judge its attempt ([`Paused::judge`], [`Paused::commit`]), and hands
 /// every finished step to the same [`Paused::end_step`].
 pub(crate) struct Paused<'a, O: Observer> {
     run: Run<'a, O>,
