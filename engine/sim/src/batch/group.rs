@@ -8,11 +8,11 @@
 
 use super::guarded;
 use crate::eom::{pack_mass, MassLanes, N3, N6};
-use crate::flight::driver::{Descending, Paused, PhaseEnd, StepEnd};
+use crate::flight::driver::{Descending, Paused, PausedPhase, PhaseEnd, StepEnd};
 use crate::flight::model::{derivative_6dof_lanes, descent_rates_lanes, FlightModel, FourModels};
 use crate::flight::{SimError, Simulation};
 use crate::integrate::dopri54::arithmetic;
-use crate::integrate::{DenseStepper, Dopri54, StepOutcome};
+use crate::integrate::{DenseStepper, StepOutcome};
 use crate::lanes::{F64x4, Real};
 
 /// Most lanes of one chunk in flight at once (four groups of four).
@@ -44,32 +44,15 @@ pub(super) enum LaneEnd {
     Panic(String),
 }
 
-/// A lane's flight in a phase the batch steps four lanes at a time: the single flight's
-/// stepping, a stage at a time.
-pub(super) trait OnLanes<'a, const N: usize> {
-    /// How the phase ends.
-    type End;
+/// A lane's flight in a phase the batch steps four lanes at a time ([`PausedPhase`]), and
+/// where a lane holds it.
+pub(super) trait OnLanes<'a, const N: usize>: PausedPhase<'a, N> {
     /// This phase's flight of `lane` (which is in this phase).
     fn of<'l>(lane: &'l mut Lane<'a>) -> &'l mut Self;
     fn lane_end(end: Self::End) -> LaneEnd;
-    fn model(&self) -> &'a FlightModel;
-    fn begin_step(&mut self) -> Result<bool, SimError>;
-    /// A whole step with the flight's own derivative (when it does not step on lanes).
-    fn whole_step(&mut self) -> Result<Option<Self::End>, SimError>;
-    fn dopri(&self) -> &Dopri54<N>;
-    fn observe(&mut self, t: f64, y: &[f64; N], dy: &[f64; N]);
-    fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError>;
-    fn commit(
-        &mut self,
-        y_new: &[f64; N],
-        k7: &[f64; N],
-        cont: &[[f64; N]; 4],
-    ) -> Result<(), SimError>;
-    fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<Self::End>, SimError>;
 }
 
 impl<'a> OnLanes<'a, N6> for Paused<'a, ()> {
-    type End = StepEnd;
     #[inline(always)]
     fn of<'l>(lane: &'l mut Lane<'a>) -> &'l mut Self {
         match &mut lane.flying {
@@ -80,43 +63,9 @@ impl<'a> OnLanes<'a, N6> for Paused<'a, ()> {
     fn lane_end(end: StepEnd) -> LaneEnd {
         LaneEnd::Free(end)
     }
-    #[inline(always)]
-    fn model(&self) -> &'a FlightModel {
-        Paused::model(self)
-    }
-    fn begin_step(&mut self) -> Result<bool, SimError> {
-        Paused::begin_step(self)
-    }
-    fn whole_step(&mut self) -> Result<Option<StepEnd>, SimError> {
-        Paused::step(self)
-    }
-    #[inline(always)]
-    fn dopri(&self) -> &Dopri54<N6> {
-        Paused::dopri(self)
-    }
-    fn observe(&mut self, t: f64, y: &[f64; N6], dy: &[f64; N6]) {
-        Paused::observe(self, t, y, dy)
-    }
-    #[inline(always)]
-    fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
-        Paused::judge(self, err)
-    }
-    #[inline(always)]
-    fn commit(
-        &mut self,
-        y_new: &[f64; N6],
-        k7: &[f64; N6],
-        cont: &[[f64; N6]; 4],
-    ) -> Result<(), SimError> {
-        Paused::commit(self, y_new, k7, cont)
-    }
-    fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<StepEnd>, SimError> {
-        Paused::end_step(self, outcome)
-    }
 }
 
 impl<'a> OnLanes<'a, N3> for Descending<'a, ()> {
-    type End = PhaseEnd;
     #[inline(always)]
     fn of<'l>(lane: &'l mut Lane<'a>) -> &'l mut Self {
         match &mut lane.flying {
@@ -126,39 +75,6 @@ impl<'a> OnLanes<'a, N3> for Descending<'a, ()> {
     }
     fn lane_end(_: PhaseEnd) -> LaneEnd {
         LaneEnd::Landed
-    }
-    #[inline(always)]
-    fn model(&self) -> &'a FlightModel {
-        Descending::model(self)
-    }
-    fn begin_step(&mut self) -> Result<bool, SimError> {
-        Descending::begin_step(self)
-    }
-    fn whole_step(&mut self) -> Result<Option<PhaseEnd>, SimError> {
-        Descending::step(self)
-    }
-    #[inline(always)]
-    fn dopri(&self) -> &Dopri54<N3> {
-        Descending::dopri(self)
-    }
-    fn observe(&mut self, t: f64, y: &[f64; N3], dy: &[f64; N3]) {
-        Descending::observe(self, t, y, dy)
-    }
-    #[inline(always)]
-    fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
-        Descending::judge(self, err)
-    }
-    #[inline(always)]
-    fn commit(
-        &mut self,
-        y_new: &[f64; N3],
-        k7: &[f64; N3],
-        cont: &[[f64; N3]; 4],
-    ) -> Result<(), SimError> {
-        Descending::commit(self, y_new, k7, cont)
-    }
-    fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<PhaseEnd>, SimError> {
-        Descending::end_step(self, outcome)
     }
 }
 
@@ -295,7 +211,7 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
                     st.atol[k].0[l] = tol.atol()[k];
                 }
             }
-            Ok(false) => match p.whole_step() {
+            Ok(false) => match p.step() {
                 Ok(Some(end)) => lane.end = Some(P::lane_end(end)),
                 Ok(None) => {}
                 Err(e) => lane.end = Some(LaneEnd::Error(e)),

@@ -42,7 +42,9 @@ mod paused;
 mod six_dof;
 
 use descent::Descent;
-pub(crate) use paused::{fly_to_free, AfterFree, Descending, Paused, Progress, StepEnd};
+pub(crate) use paused::{
+    fly_to_free, AfterFree, Descending, Paused, PausedPhase, Progress, StepEnd,
+};
 use six_dof::{six_dof_phase, SixDof};
 
 /// What a step watches for: the first derivative that is not finite (where it appeared), so

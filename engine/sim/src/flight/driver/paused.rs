@@ -12,9 +12,8 @@ use super::*;
 /// every finished step to the same [`Paused::end_step`].
 pub(crate) struct Paused<'a, O: Observer> {
     run: Run<'a, O>,
-    s6: Stepper<N6>,
+    s6: LaneStepper<N6>,
     free: SixDof,
-    watch: Watch<N6>,
     rtol: f64,
     atol3: [f64; N3],
     /// The mass state while nothing changes the mass, and the count of shift-start changes
@@ -24,6 +23,154 @@ pub(crate) struct Paused<'a, O: Observer> {
     serial: u64,
     /// The mass state of the last stage that was not settled.
     moving: MassLanes<f64>,
+}
+
+/// A phase's stepper as the batch engine steps it, four lanes' stages computed together
+/// outside it: the stepper, the watch over its step in progress, and the phase it steps.
+pub(crate) struct LaneStepper<const N: usize> {
+    stepper: Stepper<N>,
+    watch: Watch<N>,
+    phase: Phase,
+}
+
+impl<const N: usize> LaneStepper<N> {
+    fn new(stepper: Stepper<N>, phase: Phase, t: f64) -> LaneStepper<N> {
+        LaneStepper {
+            stepper,
+            watch: Watch::new(t),
+            phase,
+        }
+    }
+
+    /// Whether its steps can be taken on lanes (adaptive, not fixed-step RK4).
+    fn on_lanes(&self) -> bool {
+        matches!(self.stepper, Stepper::Adaptive(_))
+    }
+
+    /// Begin a step to `t_stop` whose stages are computed outside; `f` is the phase's
+    /// derivative, for the estimate of a first step (its evaluations counted in `evals`).
+    fn begin(
+        &mut self,
+        t_stop: f64,
+        evals: &mut u64,
+        mut f: impl FnMut(f64, &[f64; N], &mut [f64; N]),
+    ) -> Result<(), SimError> {
+        let Stepper::Adaptive(d) = &mut self.stepper else {
+            return Err(not_on_lanes());
+        };
+        self.watch = Watch::new(d.t());
+        let watch = &mut self.watch;
+        let begun = d.begin_step_outside(
+            &mut |t, y: &[f64; N], dy: &mut [f64; N]| {
+                *evals += 1;
+                f(t, y, dy);
+                watch.observe(t, y, dy);
+            },
+            t_stop,
+        );
+        begun.map_err(|e| self.watch.error(e, d.y(), self.phase.name()))
+    }
+
+    /// The adaptive stepper of the step begun.
+    #[inline(always)]
+    pub(crate) fn dopri(&self) -> &Dopri54<N> {
+        match &self.stepper {
+            Stepper::Adaptive(d) => d,
+            Stepper::Fixed(_) => unreachable!("only an adaptive flight is stepped on lanes"),
+        }
+    }
+
+    /// A stage's derivative `dy` at `(t, y)` that is not finite: the first one is where a
+    /// flight that goes non-finite is reported to have done so.
+    #[cold]
+    pub(crate) fn observe(&mut self, t: f64, y: &[f64; N], dy: &[f64; N]) {
+        self.watch.observe(t, y, dy);
+    }
+
+    /// The verdict on the attempt whose six stages were evaluated outside, from its error
+    /// norm `err` ([`Dopri54::judge`]; the six evaluations are counted in `evals`): the
+    /// outcome when accepted (then hand the new state to [`LaneStepper::commit`]), `None`
+    /// when the step is tried again, smaller.
+    #[inline(always)]
+    pub(crate) fn judge(
+        &mut self,
+        err: f64,
+        evals: &mut u64,
+    ) -> Result<Option<StepOutcome>, SimError> {
+        let Stepper::Adaptive(d) = &mut self.stepper else {
+            return Err(not_on_lanes());
+        };
+        *evals += 6;
+        d.judge(err, 6)
+            .map_err(|e| self.watch.error(e, d.y(), self.phase.name()))
+    }
+
+    /// The end of the step [`LaneStepper::judge`] accepted ([`Dopri54::commit`]); it must be
+    /// finite.
+    #[inline(always)]
+    pub(crate) fn commit(
+        &mut self,
+        y_new: &[f64; N],
+        k7: &[f64; N],
+        cont: &[[f64; N]; 4],
+    ) -> Result<(), SimError> {
+        let Stepper::Adaptive(d) = &mut self.stepper else {
+            return Err(not_on_lanes());
+        };
+        d.commit(y_new, k7, cont);
+        self.watch.check_end(d.t(), d.y())
+    }
+}
+
+fn not_on_lanes() -> SimError {
+    SimError::Setup("a fixed-step flight was stepped on lanes".into())
+}
+
+/// A flight paused in a phase that the batch engine steps four lanes at a time ([`Paused`]
+/// in free flight, [`Descending`] under canopy). The single flight takes whole steps
+/// ([`PausedPhase::step`]); the batch engine begins each lane's step
+/// ([`PausedPhase::begin_step`]), computes the four lanes' stages side by side, has each lane
+/// judge and commit its attempt through its [`LaneStepper`], and hands every finished step
+/// to the same [`PausedPhase::end_step`] as the single flight.
+pub(crate) trait PausedPhase<'a, const N: usize> {
+    /// How the phase ends.
+    type End;
+    /// The flight's model.
+    fn model(&self) -> &'a FlightModel;
+    /// One step with the flight's own derivative; the phase's end if it ended.
+    fn step(&mut self) -> Result<Option<Self::End>, SimError>;
+    /// Start a step whose stages are computed on lanes. False when the integrator does not
+    /// step that way (fixed-step RK4): then take the step with [`PausedPhase::step`].
+    fn begin_step(&mut self) -> Result<bool, SimError>;
+    /// After a step taken on lanes: the same as the end of [`PausedPhase::step`].
+    fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<Self::End>, SimError>;
+    /// The phase's lane stepper.
+    fn lanes(&self) -> &LaneStepper<N>;
+    /// The phase's lane stepper and the flight's count of derivative evaluations.
+    fn lanes_mut(&mut self) -> (&mut LaneStepper<N>, &mut u64);
+
+    #[inline(always)]
+    fn dopri(&self) -> &Dopri54<N> {
+        self.lanes().dopri()
+    }
+    #[inline(always)]
+    fn observe(&mut self, t: f64, y: &[f64; N], dy: &[f64; N]) {
+        self.lanes_mut().0.observe(t, y, dy);
+    }
+    #[inline(always)]
+    fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
+        let (lanes, evals) = self.lanes_mut();
+        lanes.judge(err, evals)
+    }
+    #[inline(always)]
+    fn commit(
+        &mut self,
+        y_new: &[f64; N],
+        k7: &[f64; N],
+        cont: &[[f64; N]; 4],
+    ) -> Result<(), SimError> {
+        self.lanes_mut().0.commit(y_new, k7, cont)
+    }
 }
 
 /// Where a flight is after [`fly_to_free`].
@@ -107,9 +254,8 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
     let free = SixDof::start(&mut run, &mut s6, Phase::Free, t, &y)?;
     Ok(Progress::Free(Box::new(Paused {
         run,
-        s6,
+        s6: LaneStepper::new(s6, Phase::Free, t),
         free,
-        watch: Watch::new(t),
         rtol,
         atol3,
         settled: None,
@@ -163,9 +309,8 @@ fn descend<'a, O: Observer>(
         let descent = Descent::start(&mut run, &mut s3, t, &y3)?;
         return Ok(AfterFree::Descending(Box::new(Descending {
             run,
-            s3,
+            s3: LaneStepper::new(s3, Phase::Descent, t),
             descent,
-            watch: Watch::new(t),
         })));
     }
     Ok(AfterFree::Done(record(run)))
@@ -192,110 +337,61 @@ fn record<O: Observer>(run: Run<'_, O>) -> Flight {
 /// their free flights.
 pub(crate) struct Descending<'a, O: Observer> {
     run: Run<'a, O>,
-    s3: Stepper<N3>,
+    s3: LaneStepper<N3>,
     descent: Descent,
-    watch: Watch<N3>,
 }
 
-impl<'a, O: Observer> Descending<'a, O> {
-    /// The flight's model.
-    pub(crate) fn model(&self) -> &'a FlightModel {
-        self.run.model
-    }
-
+impl<O: Observer> Descending<'_, O> {
     /// The canopies' CdS in force, m².
     #[inline(always)]
     pub(crate) fn cds(&self) -> f64 {
         self.descent.cds()
     }
 
-    /// One step with the descent's own derivative; the phase's end if it ended.
-    pub(crate) fn step(&mut self) -> Result<Option<PhaseEnd>, SimError> {
-        self.descent.step(&mut self.run, &mut self.s3)
-    }
-
     /// The flight's record, once its descent has ended.
     pub(crate) fn finish(self) -> Flight {
         record(self.run)
     }
+}
 
-    /// Start a step whose stages the batch engine computes on lanes (as
-    /// [`Paused::begin_step`]). False when the integrator does not step that way.
-    pub(crate) fn begin_step(&mut self) -> Result<bool, SimError> {
-        if !matches!(self.s3, Stepper::Adaptive(_)) {
+impl<'a, O: Observer> PausedPhase<'a, N3> for Descending<'a, O> {
+    type End = PhaseEnd;
+
+    fn model(&self) -> &'a FlightModel {
+        self.run.model
+    }
+
+    fn step(&mut self) -> Result<Option<PhaseEnd>, SimError> {
+        self.descent.step(&mut self.run, &mut self.s3.stepper)
+    }
+
+    fn begin_step(&mut self) -> Result<bool, SimError> {
+        if !self.s3.on_lanes() {
             return Ok(false);
         }
-        let t_stop = Descent::next_stop(&mut self.run, &self.s3);
-        let Stepper::Adaptive(d) = &mut self.s3 else {
-            return Ok(false);
-        };
+        let t_stop = Descent::next_stop(&mut self.run, &self.s3.stepper);
         let model = self.run.model;
         let cds = self.descent.cds();
-        self.watch = Watch::new(d.t());
-        let watch = &mut self.watch;
-        let mut evals = 0u64;
-        let begun = d.begin_step_outside(
-            &mut |t, y: &[f64; N3], dy: &mut [f64; N3]| {
-                evals += 1;
+        self.s3
+            .begin(t_stop, &mut self.run.evaluations, |t, y, dy| {
                 model.descent_rates(cds, t, y, dy);
-                watch.observe(t, y, dy);
-            },
-            t_stop,
-        );
-        self.run.evaluations += evals;
-        begun.map_err(|e| self.watch.error(e, d.y(), Phase::Descent.name()))?;
+            })?;
         Ok(true)
     }
 
-    /// The adaptive stepper of a step begun by [`Descending::begin_step`].
-    #[inline(always)]
-    pub(crate) fn dopri(&self) -> &Dopri54<N3> {
-        match &self.s3 {
-            Stepper::Adaptive(d) => d,
-            Stepper::Fixed(_) => unreachable!("only an adaptive flight is stepped on lanes"),
-        }
-    }
-
-    /// As [`Paused::observe`].
-    #[cold]
-    pub(crate) fn observe(&mut self, t: f64, y: &[f64; N3], dy: &[f64; N3]) {
-        self.watch.observe(t, y, dy);
-    }
-
-    /// As [`Paused::judge`].
-    #[inline(always)]
-    pub(crate) fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
-        let Stepper::Adaptive(d) = &mut self.s3 else {
-            return Err(SimError::Setup(
-                "a fixed-step flight was stepped a stage at a time".into(),
-            ));
-        };
-        self.run.evaluations += 6;
-        d.judge(err, 6)
-            .map_err(|e| self.watch.error(e, d.y(), Phase::Descent.name()))
-    }
-
-    /// As [`Paused::commit`].
-    #[inline(always)]
-    pub(crate) fn commit(
-        &mut self,
-        y_new: &[f64; N3],
-        k7: &[f64; N3],
-        cont: &[[f64; N3]; 4],
-    ) -> Result<(), SimError> {
-        let Stepper::Adaptive(d) = &mut self.s3 else {
-            return Err(SimError::Setup(
-                "a fixed-step flight was stepped a stage at a time".into(),
-            ));
-        };
-        d.commit(y_new, k7, cont);
-        self.watch.check_end(d.t(), d.y())
-    }
-
-    /// After a step taken on lanes: the same as the end of [`Descending::step`].
-    pub(crate) fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<PhaseEnd>, SimError> {
+    fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<PhaseEnd>, SimError> {
         self.descent
-            .after_step(&mut self.run, &mut self.s3, outcome)
+            .after_step(&mut self.run, &mut self.s3.stepper, outcome)
+    }
+
+    #[inline(always)]
+    fn lanes(&self) -> &LaneStepper<N3> {
+        &self.s3
+    }
+
+    #[inline(always)]
+    fn lanes_mut(&mut self) -> (&mut LaneStepper<N3>, &mut u64) {
+        (&mut self.s3, &mut self.run.evaluations)
     }
 }
 
@@ -303,16 +399,6 @@ impl<'a, O: Observer> Descending<'a, O> {
 pub(crate) type StepEnd = (f64, [f64; N6], PhaseEnd);
 
 impl<'a, O: Observer> Paused<'a, O> {
-    /// The flight's model.
-    pub(crate) fn model(&self) -> &'a FlightModel {
-        self.run.model
-    }
-
-    /// One free-flight step with the flight's own derivative; the phase's end if it ended.
-    pub(crate) fn step(&mut self) -> Result<Option<StepEnd>, SimError> {
-        self.free.step(&mut self.run, &mut self.s6)
-    }
-
     /// The flight from the end of its free flight (descent, record).
     pub(crate) fn finish(self, end: StepEnd) -> Result<Flight, SimError> {
         finish(self.run, self.rtol, self.atol3, end)
@@ -322,44 +408,6 @@ impl<'a, O: Observer> Paused<'a, O> {
     /// over.
     pub(crate) fn after_free(self, end: StepEnd) -> Result<AfterFree<'a, O>, SimError> {
         descend(self.run, self.rtol, self.atol3, end)
-    }
-
-    /// Start a step whose stages the batch engine computes itself, on four lanes at once
-    /// (with [`crate::integrate::dopri54::arithmetic`]). False when the integrator does not
-    /// step that way (fixed-step RK4): then take the step with [`Paused::step`].
-    pub(crate) fn begin_step(&mut self) -> Result<bool, SimError> {
-        if !matches!(self.s6, Stepper::Adaptive(_)) {
-            return Ok(false);
-        }
-        let t_stop = self.free.next_stop(&mut self.run, &self.s6);
-        let Stepper::Adaptive(d) = &mut self.s6 else {
-            return Ok(false);
-        };
-        let model = self.run.model;
-        let starts = self.run.starts;
-        self.watch = Watch::new(d.t());
-        let watch = &mut self.watch;
-        let mut evals = 0u64;
-        let begun = d.begin_step_outside(
-            &mut |t, y: &[f64; N6], dy: &mut [f64; N6]| {
-                evals += 1;
-                model.derivative_6dof(&starts, t, y, dy);
-                watch.observe(t, y, dy);
-            },
-            t_stop,
-        );
-        self.run.evaluations += evals;
-        begun.map_err(|e| self.watch.error(e, d.y(), Phase::Free.name()))?;
-        Ok(true)
-    }
-
-    /// The adaptive stepper of a step begun by [`Paused::begin_step`].
-    #[inline(always)]
-    pub(crate) fn dopri(&self) -> &Dopri54<N6> {
-        match &self.s6 {
-            Stepper::Adaptive(d) => d,
-            Stepper::Fixed(_) => unreachable!("only an adaptive flight is stepped on lanes"),
-        }
     }
 
     /// The mass state (as the equations read it) and the thrust at `t`, and a serial number
@@ -386,49 +434,45 @@ impl<'a, O: Observer> Paused<'a, O> {
         self.serial += 1;
         (&self.moving, i.motor.thrust_n, self.serial)
     }
+}
 
-    /// A stage's derivative `dy` at `(t, y)` that is not finite: the first one is where a
-    /// flight that goes non-finite is reported to have done so.
-    #[cold]
-    pub(crate) fn observe(&mut self, t: f64, y: &[f64; N6], dy: &[f64; N6]) {
-        self.watch.observe(t, y, dy);
+impl<'a, O: Observer> PausedPhase<'a, N6> for Paused<'a, O> {
+    type End = StepEnd;
+
+    fn model(&self) -> &'a FlightModel {
+        self.run.model
     }
 
-    /// The verdict on the attempt whose six stages the batch engine evaluated, from its
-    /// error norm `err` ([`Dopri54::judge`]): the outcome when accepted (then hand the new
-    /// state to [`Paused::commit`]), `None` when the step is tried again, smaller.
+    fn step(&mut self) -> Result<Option<StepEnd>, SimError> {
+        self.free.step(&mut self.run, &mut self.s6.stepper)
+    }
+
+    fn begin_step(&mut self) -> Result<bool, SimError> {
+        if !self.s6.on_lanes() {
+            return Ok(false);
+        }
+        let t_stop = self.free.next_stop(&mut self.run, &self.s6.stepper);
+        let model = self.run.model;
+        let starts = self.run.starts;
+        self.s6
+            .begin(t_stop, &mut self.run.evaluations, |t, y, dy| {
+                model.derivative_6dof(&starts, t, y, dy);
+            })?;
+        Ok(true)
+    }
+
+    fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<StepEnd>, SimError> {
+        self.free
+            .after_step(&mut self.run, &mut self.s6.stepper, outcome)
+    }
+
     #[inline(always)]
-    pub(crate) fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
-        let Stepper::Adaptive(d) = &mut self.s6 else {
-            return Err(SimError::Setup(
-                "a fixed-step flight was stepped a stage at a time".into(),
-            ));
-        };
-        self.run.evaluations += 6;
-        d.judge(err, 6)
-            .map_err(|e| self.watch.error(e, d.y(), Phase::Free.name()))
+    fn lanes(&self) -> &LaneStepper<N6> {
+        &self.s6
     }
 
-    /// The end of the step [`Paused::judge`] accepted ([`Dopri54::commit`]); it must be
-    /// finite.
     #[inline(always)]
-    pub(crate) fn commit(
-        &mut self,
-        y_new: &[f64; N6],
-        k7: &[f64; N6],
-        cont: &[[f64; N6]; 4],
-    ) -> Result<(), SimError> {
-        let Stepper::Adaptive(d) = &mut self.s6 else {
-            return Err(SimError::Setup(
-                "a fixed-step flight was stepped a stage at a time".into(),
-            ));
-        };
-        d.commit(y_new, k7, cont);
-        self.watch.check_end(d.t(), d.y())
-    }
-
-    /// After a step taken on lanes: the same as the end of [`Paused::step`].
-    pub(crate) fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<StepEnd>, SimError> {
-        self.free.after_step(&mut self.run, &mut self.s6, outcome)
+    fn lanes_mut(&mut self) -> (&mut LaneStepper<N6>, &mut u64) {
+        (&mut self.s6, &mut self.run.evaluations)
     }
 }
