@@ -105,8 +105,12 @@ impl Flight {
 
 /// Watches a flight as it goes. `()` watches nothing.
 pub trait Observer {
+    /// Whether it reads the samples (an observer that does not is spared their figures).
+    const WANTS_SAMPLES: bool = true;
     fn on_sample(&mut self, _sample: &Sample) {}
     fn on_event(&mut self, _event: &Event) {}
 }
 
-impl Observer for () {}
+impl Observer for () {
+    const WANTS_SAMPLES: bool = false;
+}

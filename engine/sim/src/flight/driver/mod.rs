@@ -307,6 +307,37 @@ impl<'a, O: Observer> Run<'a, O> {
         let m = self.model;
         let mach = aux.air_speed_m_s / aux.speed_of_sound_m_s;
         let speed = vel.norm();
+        let mt = &mut self.metrics;
+        mt.max_speed_m_s = mt.max_speed_m_s.max(speed);
+        if mach.is_finite() {
+            mt.max_mach = mt.max_mach.max(mach);
+        }
+        if aux.accel_cm_m_s2.is_finite() {
+            mt.max_accel_m_s2 = mt.max_accel_m_s2.max(aux.accel_cm_m_s2);
+        }
+        // The margins count until apogee, outside the descent (the flight margin in free
+        // flight only).
+        let margins = phase != Phase::Descent && !self.apogee_done;
+        let sampled = O::WANTS_SAMPLES || m.options.keep_samples;
+        if !sampled && !margins {
+            return;
+        }
+        let static_margin_cal = m.static_margin(&aux.mass);
+        let flight_margin_cal = if sampled || phase == Phase::Free {
+            m.flight_margin(&aux.mass, mach)
+        } else {
+            f64::NAN
+        };
+        if margins {
+            let min = |a: Option<f64>, b: f64| Some(a.map_or(b, |a| a.min(b)));
+            mt.static_margin_min_cal = min(mt.static_margin_min_cal, static_margin_cal);
+            if phase == Phase::Free {
+                mt.flight_margin_min_cal = min(mt.flight_margin_min_cal, flight_margin_cal);
+            }
+        }
+        if !sampled {
+            return;
+        }
         let s = Sample {
             t_s: t,
             phase,
@@ -322,24 +353,9 @@ impl<'a, O: Observer> Run<'a, O> {
             thrust_n,
             mass_kg: aux.mass.mass_kg,
             cg_m: -aux.mass.r_cm.z,
-            static_margin_cal: m.static_margin(&aux.mass),
-            flight_margin_cal: m.flight_margin(&aux.mass, mach),
+            static_margin_cal,
+            flight_margin_cal,
         };
-        let mt = &mut self.metrics;
-        mt.max_speed_m_s = mt.max_speed_m_s.max(speed);
-        if mach.is_finite() {
-            mt.max_mach = mt.max_mach.max(mach);
-        }
-        if aux.accel_cm_m_s2.is_finite() {
-            mt.max_accel_m_s2 = mt.max_accel_m_s2.max(aux.accel_cm_m_s2);
-        }
-        if phase != Phase::Descent && !self.apogee_done {
-            let min = |a: Option<f64>, b: f64| Some(a.map_or(b, |a| a.min(b)));
-            mt.static_margin_min_cal = min(mt.static_margin_min_cal, s.static_margin_cal);
-            if phase == Phase::Free {
-                mt.flight_margin_min_cal = min(mt.flight_margin_min_cal, s.flight_margin_cal);
-            }
-        }
         self.observer.on_sample(&s);
         if m.options.keep_samples {
             self.samples.push(s);

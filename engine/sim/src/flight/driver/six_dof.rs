@@ -14,6 +14,14 @@ enum G {
     Height(f64),
 }
 
+/// The center of mass's position and velocity at a step's end: what the event functions
+/// read there.
+#[derive(Debug, Clone, Copy)]
+struct Ends {
+    pos: Vector3<f64>,
+    vel: Vector3<f64>,
+}
+
 /// What the driver knows at the end of a step: the center's position and velocity and the
 /// figures a sample needs, from one mass-state evaluation.
 #[derive(Debug, Clone, Copy)]
@@ -26,7 +34,7 @@ struct EndPoint {
 impl G {
     /// The function's value from an end point (no further evaluation).
     #[inline]
-    fn at_end(self, model: &FlightModel, y: &[f64; N6], ep: &EndPoint) -> f64 {
+    fn at_end(self, model: &FlightModel, y: &[f64; N6], ep: &Ends) -> f64 {
         match self {
             G::RailTravel => {
                 (Vector3::new(y[0], y[1], y[2]) - model.rail.o_start_n).dot(&model.rail.direction_n)
@@ -75,7 +83,8 @@ pub(super) fn derivative(
 pub(super) struct SixDof {
     pub(super) phase: Phase,
     prev_y: [f64; N6],
-    prev: EndPoint,
+    /// The center's position and velocity at the end of the last step.
+    prev: Ends,
     events: Vec<(EventKind, G)>,
     /// Time at the start of the step in progress.
     t_now: f64,
@@ -112,7 +121,10 @@ impl SixDof {
         Ok(SixDof {
             phase,
             prev_y: *y0,
-            prev: ep,
+            prev: Ends {
+                pos: ep.pos,
+                vel: ep.vel,
+            },
             events: Vec::with_capacity(2 + model.parachutes.len() + model.shifts.len()),
             t_now: t0,
         })
@@ -181,7 +193,14 @@ impl SixDof {
         for &(kind, g) in events.iter() {
             let (g0, g1) = (
                 g.at_end(model, &self.prev_y, &self.prev),
-                g.at_end(model, &y1, &ep1),
+                g.at_end(
+                    model,
+                    &y1,
+                    &Ends {
+                        pos: ep1.pos,
+                        vel: ep1.vel,
+                    },
+                ),
             );
             let crossing = if rail {
                 Crossing::Rising
@@ -219,7 +238,7 @@ impl SixDof {
         let (pos, vel) = (ep.pos, ep.vel);
         let (alt, speed) = (pos.z, vel.norm());
         self.prev_y = y_end;
-        self.prev = ep;
+        self.prev = Ends { pos, vel };
         if let Some((te, kind)) = found {
             match kind {
                 EventKind::RailExit => {
