@@ -146,9 +146,6 @@ pub struct Dopri54<const N: usize> {
     h_next: f64,
     /// Error norm of the last accepted step (≥ 1e-4), for the PI controller.
     err_prev: f64,
-    /// `1e-4^β`, the PI term while the last error is at its floor (computed once: the
-    /// same number `powf` gives each time).
-    floor_pow_beta: f64,
     n_eval: u64,
     n_accepted: u64,
     n_rejected: u64,
@@ -194,7 +191,6 @@ impl<const N: usize> Dopri54<N> {
             cont: [[0.0; N]; 4],
             h_next: 0.0,
             err_prev: 1e-4,
-            floor_pow_beta: 1e-4f64.powf(control.beta),
             n_eval: 0,
             n_accepted: 0,
             n_rejected: 0,
@@ -593,12 +589,8 @@ impl<const N: usize> Dopri54<N> {
         let (h, h_proposal, last) = (a.h, a.h_proposal, a.last);
         let fac_err = err.powf(alpha);
         if err <= 1.0 {
-            let prev_pow = if self.err_prev == 1e-4 {
-                self.floor_pow_beta
-            } else {
-                self.err_prev.powf(c.beta)
-            };
-            let fac = (c.safety * prev_pow / fac_err).clamp(c.min_factor, c.max_factor);
+            let fac =
+                (c.safety * self.err_prev.powf(c.beta) / fac_err).clamp(c.min_factor, c.max_factor);
             let mut h_new = h * fac;
             if a.rejected {
                 h_new = h_new.min(h);
