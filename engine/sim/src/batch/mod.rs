@@ -11,15 +11,17 @@
 //! are the very same code, and so are the kernels.
 //!
 //! **Lanes side by side.** Up to [`LANES_IN_FLIGHT`] rows of a chunk fly at once, and a lane
-//! that lands is replaced by the next row. Their free flight (the bulk of the derivative
-//! evaluations) is stepped four lanes at a time: each lane keeps its own time, step size,
-//! stop times and error control (its own Dormand–Prince stepper, driven a stage at a time),
-//! and every stage of the four lanes' steps is *one* evaluation of the generic 6-DOF kernel
-//! on [`F64x4`] lanes (AVX2 registers where the processor has them, [`eval_four`]). A lane
-//! whose step is done, or a slot without a lane, repeats another lane's input and is ignored.
-//! The kernel does lane by lane exactly the IEEE operations the single flight does, so a
-//! lane's metrics are bit for bit the single-flight simulator's ([`Batch::variant`] gives that
-//! simulation; the tests compare them).
+//! that lands is replaced by the next row. Their free flights and their descents (all but the
+//! pad and the rail) are stepped four lanes of the same phase at a time: each lane keeps its
+//! own time, step size, stop times and error control (its own Dormand–Prince stepper, which
+//! judges and commits its attempts), the four lanes' step states are held as structure of
+//! arrays, and every stage is one stage combination and *one* evaluation of the generic
+//! kernel (6-DOF, or the descent's) on [`F64x4`] lanes (AVX2 registers where the processor
+//! has them, [`eval_four`]). A lane whose step is done, or a slot without a lane, repeats
+//! another lane's input and is ignored. The kernels and the step arithmetic do lane by lane
+//! exactly the IEEE operations the single flight does, so a lane's metrics are bit for bit the
+//! single-flight simulator's ([`Batch::variant`] gives that simulation; the tests compare
+//! them).
 //!
 //! **Determinism.** A lane depends only on its row of the columns, never on its chunk, its
 //! neighbours, its thread or the order lanes are scheduled in; results are handed to the sink
@@ -29,8 +31,9 @@
 //! refused input, a flight that fails or a lane that panics is recorded with its reason and the
 //! run goes on.
 //!
-//! What it does not do yet: each lane's stepper arithmetic, event location, samples and
-//! descent run one lane at a time; only the 6-DOF kernel is evaluated across lanes.
+//! What it does not do yet: each lane's step ends (event functions and their location,
+//! metrics, triggers), its mass states while the motor burns or a part moves, the step-size
+//! controller and the pad and rail run one lane at a time (see `ARCHITECTURE.md`).
 
 mod group;
 
@@ -449,11 +452,11 @@ impl Batch {
     /// Fly every row of `columns` on this thread, row `r` as variant `first + r`, and return
     /// their results in row order. Errs (flying nothing) if the columns' shapes are wrong.
     ///
-    /// Up to [`LANES_IN_FLIGHT`] rows fly at once; each lane's pad, rail, descent and events
-    /// run as in a single flight, and the free-flight steps of four lanes at a time are taken
-    /// together: every stage of their Dormand–Prince steps is one evaluation of the 6-DOF
-    /// kernel on four lanes ([`derivative_6dof_lanes`] on [`F64x4`]). A lane that lands is
-    /// replaced by the next row.
+    /// Up to [`LANES_IN_FLIGHT`] rows fly at once; each lane's pad, rail, events and step
+    /// ends run as in a single flight, and the free-flight and descent steps of four lanes of
+    /// the same phase are taken together: every stage of their Dormand–Prince steps is one
+    /// evaluation of a kernel on four lanes ([`derivative_6dof_lanes`] on [`F64x4`], or the
+    /// descent's). A lane that lands is replaced by the next row.
     pub fn fly_chunk(&self, columns: &Columns, first: usize) -> Result<Vec<LaneResult>, String> {
         self.check(columns)?;
         let n = columns.len;
