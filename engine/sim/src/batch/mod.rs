@@ -16,12 +16,12 @@
 //! own time, step size, stop times and error control (its own Dormand–Prince stepper, which
 //! judges and commits its attempts), the four lanes' step states are held as structure of
 //! arrays, and every stage is one stage combination and *one* evaluation of the generic
-//! kernel (6-DOF, or the descent's) on [`F64x4`] lanes (AVX2 registers where the processor
-//! has them, [`eval_four`]). A lane whose step is done, or a slot without a lane, repeats
-//! another lane's input and is ignored. The kernels and the step arithmetic do lane by lane
-//! exactly the IEEE operations the single flight does, so a lane's metrics are bit for bit the
-//! single-flight simulator's ([`Batch::variant`] gives that simulation; the tests compare
-//! them).
+//! kernel (6-DOF, or the descent's) on [`F64x4`](crate::lanes::F64x4) lanes (AVX2
+//! registers where the processor has them, [`eval_four`]). A lane whose step is done, or a
+//! slot without a lane, repeats another lane's input and is ignored. The kernels and the step
+//! arithmetic do lane by lane exactly the IEEE operations the single flight does, so a lane's
+//! metrics are bit for bit the single-flight simulator's ([`Batch::variant`] gives that
+//! simulation; the tests compare them).
 //!
 //! **Determinism.** A lane depends only on its row of the columns, never on its chunk, its
 //! neighbours, its thread or the order lanes are scheduled in; results are handed to the sink
@@ -455,8 +455,10 @@ impl Batch {
     /// Up to [`LANES_IN_FLIGHT`] rows fly at once; each lane's pad, rail, events and step
     /// ends run as in a single flight, and the free-flight and descent steps of four lanes of
     /// the same phase are taken together: every stage of their Dormand–Prince steps is one
-    /// evaluation of a kernel on four lanes ([`derivative_6dof_lanes`] on [`F64x4`], or the
-    /// descent's). A lane that lands is replaced by the next row.
+    /// evaluation of a kernel on four lanes
+    /// ([`derivative_6dof_lanes`](crate::flight::model::derivative_6dof_lanes) on
+    /// [`F64x4`](crate::lanes::F64x4), or the descent's). A lane that lands is replaced by the
+    /// next row.
     pub fn fly_chunk(&self, columns: &Columns, first: usize) -> Result<Vec<LaneResult>, String> {
         self.check(columns)?;
         let n = columns.len;
