@@ -5,7 +5,7 @@
 //! reads (reference diameter, length, rail guides, motor mount, cluster offsets) and refuses
 //! anything that would make the mass or aerodynamics meaningless, with a [`DesignError`]
 //! naming the file, the component, the field and the rule. The body components are in
-//! [`bodies`], the parts inside and outside them in [`parts`], the drag curves in [`drag`].
+//! `bodies`, the parts inside and outside them in `parts`, the drag curves in `drag`.
 
 mod bodies;
 mod drag;
