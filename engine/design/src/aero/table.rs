@@ -24,7 +24,16 @@ pub fn mach_node(i: usize) -> f64 {
 /// A function of Mach number sampled on the uniform grid 0..=5 step 0.01.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MachTable {
-    values: Box<[f64]>,
+    /// One value per node (a fixed-size array, so that a look-up needs no length check).
+    values: Box<[f64; MACH_NODES]>,
+}
+
+/// The boxed node values of a table from exactly [`MACH_NODES`] values.
+fn nodes(values: Vec<f64>) -> Box<[f64; MACH_NODES]> {
+    values
+        .into_boxed_slice()
+        .try_into()
+        .expect("a Mach table has a value at every node")
 }
 
 impl MachTable {
@@ -32,19 +41,20 @@ impl MachTable {
     pub fn from_fn(mut f: impl FnMut(f64) -> f64) -> Self {
         let values: Vec<f64> = (0..MACH_NODES).map(|i| f(mach_node(i))).collect();
         MachTable {
-            values: values.into_boxed_slice(),
+            values: nodes(values),
         }
     }
 
     /// The same value at every Mach number.
     pub fn constant(value: f64) -> Self {
         MachTable {
-            values: vec![value; MACH_NODES].into_boxed_slice(),
+            values: Box::new([value; MACH_NODES]),
         }
     }
 
     /// Node values, Mach 0 first.
-    pub fn values(&self) -> &[f64] {
+    #[inline]
+    pub fn values(&self) -> &[f64; MACH_NODES] {
         &self.values
     }
 
@@ -77,7 +87,7 @@ impl MachTable {
             .map(|(&a, &b)| f(a, b))
             .collect();
         MachTable {
-            values: values.into_boxed_slice(),
+            values: nodes(values),
         }
     }
 }
