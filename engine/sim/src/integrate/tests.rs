@@ -607,13 +607,9 @@ fn four_steppers_whose_stages_are_computed_side_by_side_step_exactly_as_four_alo
         let mut stage = 0;
         while active.iter().any(|&a| a) {
             dopri54::arithmetic::stage_state(stage, h, &y, &k1, &k, &mut ys);
-            for l in 0..4 {
+            for (l, s) in lanes.iter().enumerate() {
                 let mut d = [0.0; 2];
-                oscillator(
-                    lanes[l].stage_time(stage),
-                    &[ys[0].0[l], ys[1].0[l]],
-                    &mut d,
-                );
+                oscillator(s.stage_time(stage), &[ys[0].0[l], ys[1].0[l]], &mut d);
                 k[stage][0].0[l] = d[0];
                 k[stage][1].0[l] = d[1];
             }
