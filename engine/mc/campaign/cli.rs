@@ -26,7 +26,7 @@ pub struct RunArgs {
     /// Worker threads (default: one per core). The results do not depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
-    /// Output directory (default: results/<scenario name>).
+    /// Output directory (default: results/ and the scenario's name).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// No progress bar.
