@@ -35,7 +35,6 @@ impl Descent {
             [f64::NAN; 4],
             [0.0; 3],
             &aux,
-            model.motor.eval(t0).thrust_n,
         );
         Ok(Descent { cds })
     }
@@ -129,7 +128,6 @@ impl Descent {
             [f64::NAN; 4],
             [0.0; 3],
             &aux,
-            model.motor.eval(t_end).thrust_n,
         );
         let (alt, speed) = (pos.z, vel.norm());
         if let Some((te, kind)) = found {

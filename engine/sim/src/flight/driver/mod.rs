@@ -302,7 +302,6 @@ impl<'a, O: Observer> Run<'a, O> {
         q: [f64; 4],
         w: [f64; 3],
         aux: &FlightAux,
-        thrust_n: f64,
     ) {
         let m = self.model;
         let mach = aux.air_speed_m_s / aux.speed_of_sound_m_s;
@@ -350,7 +349,7 @@ impl<'a, O: Observer> Run<'a, O> {
             mach,
             alpha_deg: aux.alpha_rad.to_degrees(),
             accel_m_s2: aux.accel_cm_m_s2,
-            thrust_n,
+            thrust_n: m.motor.eval(t).thrust_n,
             mass_kg: aux.mass.mass_kg,
             cg_m: -aux.mass.r_cm.z,
             static_margin_cal,

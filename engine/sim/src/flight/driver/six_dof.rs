@@ -116,7 +116,6 @@ impl SixDof {
             [y0[6], y0[7], y0[8], y0[9]],
             [y0[10], y0[11], y0[12]],
             &ep.aux,
-            model.motor.eval(t0).thrust_n,
         );
         Ok(SixDof {
             phase,
@@ -233,7 +232,6 @@ impl SixDof {
             [y_end[6], y_end[7], y_end[8], y_end[9]],
             [y_end[10], y_end[11], y_end[12]],
             &ep.aux,
-            model.motor.eval(t_end).thrust_n,
         );
         let (pos, vel) = (ep.pos, ep.vel);
         let (alt, speed) = (pos.z, vel.norm());
