@@ -85,9 +85,15 @@ pub(super) fn step_group(group: &mut [Lane<'_>], scratch: &mut Scratch) {
     let descent = matches!(group.first().map(|l| &l.flying), Some(Flying::Descent(_)));
     let stepped = guarded(|| {
         if descent {
-            step_descents_dispatch(group, &mut scratch.descent)
+            with_avx2(
+                #[inline(always)]
+                || step_descents(group, &mut scratch.descent),
+            )
         } else {
-            step_free_dispatch(group, &mut scratch.free)
+            with_avx2(
+                #[inline(always)]
+                || step_free(group, &mut scratch.free),
+            )
         }
     });
     if let Err(message) = stepped {
@@ -375,7 +381,8 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
 /// One descent step of the lanes of `group`: the point-mass descent on four lanes.
 #[inline(always)]
 fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
-    let mut four: Option<Option<FourModels<'_>>> = None;
+    // The slots' models and, if they share their tables, the four-lane view of them.
+    let mut models_four: Option<([&FlightModel; 4], Option<FourModels<'_>>)> = None;
     let mut mass = F64x4::splat(1.0);
     let mut cds = F64x4::splat(0.0);
     let mut filled = [false; 4];
@@ -384,8 +391,10 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
         st,
         #[inline(always)]
         |group, slots, ys, dy| {
-            let models = slot_models::<N3, Descending<'_, ()>>(group, slots);
-            let four = four.get_or_insert_with(|| FourModels::new(models));
+            let (models, four) = models_four.get_or_insert_with(|| {
+                let models = slot_models::<N3, Descending<'_, ()>>(group, slots);
+                (models, FourModels::new(models))
+            });
             for l in 0..4 {
                 if !slots.wants(l, filled[l]) {
                     continue;
@@ -396,7 +405,7 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
                 filled[l] = true;
             }
             match four {
-                Some(four) => descent_four(four, mass, cds, ys, dy),
+                Some(four) => descent_rates_lanes(four, mass, cds, ys, dy),
                 None => {
                     for (l, model) in models.iter().enumerate().take(group.len()) {
                         if !slots.active[l] {
@@ -414,56 +423,26 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
     );
 }
 
-/// [`step_free`] compiled for AVX2 where the processor has it: the lanes' stepper arithmetic
-/// and the kernel then run four doubles to a register. The same IEEE operations either way
-/// (no FMA), so the same bits.
-fn step_free_dispatch(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor has AVX2 (checked just above).
-            unsafe { step_free_avx2(group, st) };
-            return;
-        }
-    }
-    step_free(group, st);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn step_free_avx2(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
-    step_free(group, st);
-}
-
-/// [`step_descents`] compiled for AVX2 where the processor has it (the same bits).
-fn step_descents_dispatch(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor has AVX2 (checked just above).
-            unsafe { step_descents_avx2(group, st) };
-            return;
-        }
-    }
-    step_descents(group, st);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn step_descents_avx2(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
-    step_descents(group, st);
-}
-
-/// The descent's derivative on four lanes.
+/// `f` (a group's step, inlined into it) compiled for AVX2 where the processor has it: the
+/// lanes' stepper arithmetic and the kernels then run four doubles to a register. The same
+/// IEEE operations either way (no FMA), so the same bits.
 #[inline(always)]
-fn descent_four(
-    four: &FourModels<'_>,
-    mass: F64x4,
-    cds: F64x4,
-    y: &[F64x4; N3],
-    dy: &mut [F64x4; N3],
-) {
-    descent_rates_lanes(four, mass, cds, y, dy);
+fn with_avx2(f: impl FnOnce()) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (checked just above).
+            unsafe { avx2(f) };
+            return;
+        }
+    }
+    f();
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn avx2(f: impl FnOnce()) {
+    f();
 }
 
 /// The 6-DOF kernel on four lanes, in AVX2 registers where the processor has them (the same
