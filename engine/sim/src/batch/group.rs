@@ -171,7 +171,7 @@ fn finite_lanes<const N: usize>(dy: &[F64x4; N]) -> [bool; 4] {
 /// Where a group's four slots stand in a stage: which lane each slot holds (a slot without a
 /// lane in step repeats the first one's, its results ignored), which slots are in step, and
 /// each slot's stage time.
-pub(super) struct Slots {
+struct Slots {
     lane: [usize; 4],
     active: [bool; 4],
     t: [f64; 4],
