@@ -120,7 +120,7 @@ macro_rules! lanewise {
             #[inline(always)]
             fn $f(self, o: F64x4) -> F64x4 {
                 let (a, b) = (self.0, o.0);
-                F64x4([a[0] $op b[0], a[1] $op b[1], a[2] $op b[2], a[3] $op b[3]])
+                F64x4(std::array::from_fn(|i| a[i] $op b[i]))
             }
         }
     };
@@ -134,8 +134,7 @@ impl Neg for F64x4 {
     type Output = F64x4;
     #[inline(always)]
     fn neg(self) -> F64x4 {
-        let a = self.0;
-        F64x4([-a[0], -a[1], -a[2], -a[3]])
+        F64x4(self.0.map(|a| -a))
     }
 }
 
@@ -153,59 +152,44 @@ impl Real for F64x4 {
     #[inline(always)]
     fn map(self, mut f: impl FnMut(usize, f64) -> f64) -> F64x4 {
         let a = self.0;
-        F64x4([f(0, a[0]), f(1, a[1]), f(2, a[2]), f(3, a[3])])
+        F64x4(std::array::from_fn(|i| f(i, a[i])))
     }
     #[inline(always)]
     fn sqrt(self) -> F64x4 {
-        let a = self.0;
-        F64x4([a[0].sqrt(), a[1].sqrt(), a[2].sqrt(), a[3].sqrt()])
+        F64x4(self.0.map(f64::sqrt))
     }
     #[inline(always)]
     fn abs(self) -> F64x4 {
-        let a = self.0;
-        F64x4([a[0].abs(), a[1].abs(), a[2].abs(), a[3].abs()])
+        F64x4(self.0.map(f64::abs))
     }
     #[inline(always)]
     fn max(self, o: F64x4) -> F64x4 {
         let (a, b) = (self.0, o.0);
-        F64x4([
-            a[0].max(b[0]),
-            a[1].max(b[1]),
-            a[2].max(b[2]),
-            a[3].max(b[3]),
-        ])
+        F64x4(std::array::from_fn(|i| a[i].max(b[i])))
     }
     #[inline(always)]
     fn gt(self, o: F64x4) -> [bool; 4] {
         let (a, b) = (self.0, o.0);
-        [a[0] > b[0], a[1] > b[1], a[2] > b[2], a[3] > b[3]]
+        std::array::from_fn(|i| a[i] > b[i])
     }
     #[inline(always)]
     fn eq(self, o: F64x4) -> [bool; 4] {
         let (a, b) = (self.0, o.0);
-        [a[0] == b[0], a[1] == b[1], a[2] == b[2], a[3] == b[3]]
+        std::array::from_fn(|i| a[i] == b[i])
     }
     #[inline(always)]
     fn or(a: [bool; 4], b: [bool; 4]) -> [bool; 4] {
-        [a[0] || b[0], a[1] || b[1], a[2] || b[2], a[3] || b[3]]
+        std::array::from_fn(|i| a[i] || b[i])
     }
     #[inline(always)]
     fn select(m: [bool; 4], a: F64x4, b: F64x4) -> F64x4 {
         let (x, y) = (a.0, b.0);
-        F64x4([
-            if m[0] { x[0] } else { y[0] },
-            if m[1] { x[1] } else { y[1] },
-            if m[2] { x[2] } else { y[2] },
-            if m[3] { x[3] } else { y[3] },
-        ])
+        F64x4(std::array::from_fn(|i| if m[i] { x[i] } else { y[i] }))
     }
     #[inline(always)]
     fn mask_lane(m: [bool; 4], i: usize) -> bool {
         m[i]
     }
-    /// The four lanes' look-ups without a branch, so that they run in vector registers but
-    /// for the eight loads: the same division, truncation, subtraction and interpolation as
-    /// [`MachTable::at`], and its end values and NaN chosen afterwards by select.
     #[inline(always)]
     fn mach_table(table: &MachTable, mach: F64x4) -> F64x4 {
         const LAST: usize = MACH_NODES - 1;
@@ -233,10 +217,10 @@ impl Real for F64x4 {
 /// `[0, cells − 1]` first, so every lane's index reads inside the table; the caller chooses
 /// what such a lane gives. Written without branches, so that four lanes run in vector registers.
 #[inline(always)]
-pub fn grid_cells(u: [f64; 4], cells: usize) -> ([usize; 4], [f64; 4]) {
+pub fn grid_cells<const K: usize>(u: [f64; K], cells: usize) -> ([usize; K], [f64; K]) {
     let top = cells - 1;
     // f64::max returns 0 for NaN; the integer clamp lets the compiler drop bounds checks.
-    let i: [usize; 4] = u.map(|u| (u.max(0.0).min(top as f64) as i32 as usize).min(top));
+    let i: [usize; K] = u.map(|u| (u.max(0.0).min(top as f64) as i32 as usize).min(top));
     (i, std::array::from_fn(|l| u[l] - i[l] as f64))
 }
 
