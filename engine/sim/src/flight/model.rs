@@ -280,7 +280,7 @@ impl FlightModel {
             air_speed_m_s: rel.norm(),
             speed_of_sound_m_s: air.speed_of_sound_m_s,
             accel_cm_m_s2: a.norm(),
-            alpha_rad: f64::NAN,
+            air_velocity_b: Vector3::repeat(f64::NAN),
         }
     }
 }
@@ -361,7 +361,7 @@ impl FlightModel {
             air_speed_m_s: v_air_n.norm(),
             speed_of_sound_m_s: air.speed_of_sound_m_s,
             accel_cm_m_s2: accel,
-            alpha_rad: if rail { 0.0 } else { angle_of_attack(&v_air_b) },
+            air_velocity_b: if rail { Vector3::zeros() } else { v_air_b },
         };
         (pos, vel, aux)
     }
@@ -375,7 +375,18 @@ pub struct FlightAux {
     pub speed_of_sound_m_s: f64,
     /// Magnitude of the center of mass's inertial acceleration, m/s².
     pub accel_cm_m_s2: f64,
-    pub alpha_rad: f64,
+    /// The air's velocity relative to the rocket in body axes, m/s (zero on the rail, where
+    /// the angle of attack is held at zero; NaN in the descent, where there is none). Kept
+    /// rather than the angle, which only a sample reads ([`FlightAux::alpha_rad`]).
+    pub air_velocity_b: Vector3<f64>,
+}
+
+impl FlightAux {
+    /// The angle of attack, rad (0 on the rail, NaN in the descent).
+    #[inline]
+    pub fn alpha_rad(&self) -> f64 {
+        angle_of_attack(&self.air_velocity_b)
+    }
 }
 
 /// Angle between the rocket's axis and its velocity through the air, rad.

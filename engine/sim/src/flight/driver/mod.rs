@@ -347,7 +347,7 @@ impl<'a, O: Observer> Run<'a, O> {
             altitude_m: pos.z,
             speed_m_s: speed,
             mach,
-            alpha_deg: aux.alpha_rad.to_degrees(),
+            alpha_deg: aux.alpha_rad().to_degrees(),
             accel_m_s2: aux.accel_cm_m_s2,
             thrust_n: m.motor.eval(t).thrust_n,
             mass_kg: aux.mass.mass_kg,
