@@ -31,7 +31,7 @@ pub const N6: usize = 13;
 pub const N3: usize = 6;
 
 /// Mass properties of the whole rocket at one instant and their rates, in body axes about O.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MassState {
     pub mass_kg: f64,
     /// dm/dt, kg/s (negative while the motor burns).

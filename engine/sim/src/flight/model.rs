@@ -83,10 +83,45 @@ pub type ShiftStarts = [f64; MAX_SHIFTS];
 pub const MAX_SHIFTS: usize = 16;
 
 /// Everything at one instant that depends on time alone (and on which shifts have started).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 pub struct Instant {
     pub motor: MotorState,
     pub mass: MassState,
+}
+
+/// The last [`Instant`] a flight computed while the mass was changing, and what it holds
+/// for: its time and the count of shift-start changes (`starts` changes only with that
+/// count). A Dormand–Prince step's last two stages and the step's end share a time, so a
+/// flight keeps its last computed instant and computes each one once: the same numbers,
+/// since an instant depends on nothing else. Settled instants are read from
+/// [`FlightModel::settled`] in place.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct InstantMemo {
+    key: Option<(u64, u64)>,
+    inst: Instant,
+}
+
+impl InstantMemo {
+    /// The mass state and the thrust at `t` for `starts` (whose changes `starts_changed`
+    /// counts).
+    #[inline]
+    pub fn get<'m>(
+        &'m mut self,
+        model: &'m FlightModel,
+        starts: &ShiftStarts,
+        starts_changed: u64,
+        t: f64,
+    ) -> (&'m MassState, f64) {
+        if let Some(ms) = model.settled_state(starts, t) {
+            return (ms, 0.0);
+        }
+        let key = Some((t.to_bits(), starts_changed));
+        if self.key != key {
+            self.inst = model.instant_computed(starts, t);
+            self.key = key;
+        }
+        (&self.inst.mass, self.inst.motor.thrust_n)
+    }
 }
 
 impl FlightModel {
@@ -124,6 +159,19 @@ impl FlightModel {
     /// [`FlightModel::settled`] (the same numbers, computed once).
     #[inline]
     pub fn instant(&self, starts: &ShiftStarts, t: f64) -> Instant {
+        match self.settled_state(starts, t) {
+            Some(ms) => Instant {
+                motor: MotorState::default(),
+                mass: *ms,
+            },
+            None => self.instant_computed(starts, t),
+        }
+    }
+
+    /// The tabulated mass state at `t` if nothing changes the mass then (the motor's state
+    /// is then all zeros), `None` otherwise.
+    #[inline]
+    pub fn settled_state(&self, starts: &ShiftStarts, t: f64) -> Option<&MassState> {
         if !self.settled.is_empty() && self.mass_settled(starts, t) {
             let mut set = 0;
             for (k, &start) in starts.iter().enumerate().take(self.shifts.len()) {
@@ -131,12 +179,9 @@ impl FlightModel {
                     set |= 1 << k;
                 }
             }
-            return Instant {
-                motor: MotorState::default(),
-                mass: self.settled[set],
-            };
+            return Some(&self.settled[set]);
         }
-        self.instant_computed(starts, t)
+        None
     }
 
     /// [`FlightModel::instant`] computed from the motor and the shifts' motions.
@@ -218,14 +263,37 @@ impl FlightModel {
     #[inline]
     pub fn derivative_6dof(&self, starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]) {
         let inst = self.instant(starts, t);
-        derivative_6dof_lanes(self, &MassLanes::of(&inst.mass), inst.motor.thrust_n, y, dy);
+        self.derivative_6dof_at(&inst.mass, inst.motor.thrust_n, y, dy);
+    }
+
+    /// [`FlightModel::derivative_6dof`] given the mass state and the thrust.
+    #[inline]
+    pub fn derivative_6dof_at(
+        &self,
+        ms: &MassState,
+        thrust_n: f64,
+        y: &[f64; N6],
+        dy: &mut [f64; N6],
+    ) {
+        derivative_6dof_lanes(self, &MassLanes::of(ms), thrust_n, y, dy);
     }
 
     /// The rail's derivative: O slides along the rail; attitude fixed, no rotation.
     #[inline]
     pub fn derivative_rail(&self, starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]) {
         let inst = self.instant(starts, t);
-        let ms = &inst.mass;
+        self.derivative_rail_at(&inst.mass, inst.motor.thrust_n, y, dy);
+    }
+
+    /// [`FlightModel::derivative_rail`] given the mass state and the thrust.
+    #[inline]
+    pub fn derivative_rail_at(
+        &self,
+        ms: &MassState,
+        thrust_n: f64,
+        y: &[f64; N6],
+        dy: &mut [f64; N6],
+    ) {
         let u = self.rail.direction_n;
         let v = Vector3::new(y[3], y[4], y[5]);
         let speed = v.dot(&u);
@@ -237,7 +305,7 @@ impl FlightModel {
         let wind_b = r.transpose() * self.wind_n(h);
         let v_air_b = r.transpose() * v - wind_b;
         let air_at = self.air_at(&air);
-        let powered = inst.motor.thrust_n > 0.0;
+        let powered = thrust_n > 0.0;
         let loads = aero_loads(
             &self.aero,
             &v_air_b,
@@ -248,7 +316,7 @@ impl FlightModel {
             self.drag_scale,
         );
         let g_along = -self.env.gravity.at(h) * u.z;
-        let mut a = (inst.motor.thrust_n + loads.force_b.z) / ms.mass_kg + g_along;
+        let mut a = (thrust_n + loads.force_b.z) / ms.mass_kg + g_along;
         if a < 0.0 && speed <= 0.0 {
             a = 0.0;
         }
@@ -322,17 +390,17 @@ impl FlightModel {
     }
 
     /// The center of mass's position and velocity (inertial) and a sample's figures at the end
-    /// of a step whose derivative `dy` is known (the integrator's FSAL stage): one mass-state
-    /// evaluation, no aerodynamics. Agrees with [`FlightModel::derivative_6dof`]'s figures.
+    /// of a step whose derivative `dy` is known (the integrator's FSAL stage), given the mass
+    /// state there `ms`: no aerodynamics. Agrees with [`FlightModel::derivative_6dof`]'s
+    /// figures.
     pub fn end_point(
         &self,
-        starts: &ShiftStarts,
-        t: f64,
+        ms: &MassState,
         y: &[f64; N6],
         dy: &[f64; N6],
         rail: bool,
     ) -> (Vector3<f64>, Vector3<f64>, FlightAux) {
-        let ms = self.instant(starts, t).mass;
+        let ms = *ms;
         let q = if rail {
             self.rail.attitude
         } else {

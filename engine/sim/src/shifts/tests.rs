@@ -445,3 +445,55 @@ fn a_shift_starts_at_apogee_or_at_its_height_on_the_way_down() {
     assert!((s1.altitude_m - 200.0).abs() <= 1e-6, "{}", s1.altitude_m);
     assert!(s1.time_s > apogee.time_s);
 }
+
+#[test]
+fn the_instant_memo_gives_the_model_s_instant_and_never_one_held_for_other_starts() {
+    use crate::flight::model::InstantMemo;
+    let sim = simulation(
+        design(&reference_json()),
+        Environment::default(),
+        SimOptions::default(),
+    )
+    .with_shifts(vec![MassShift::new(
+        Trigger::Time { time_s: 1.0 },
+        "ballast",
+        0.3,
+        1.0,
+    )])
+    .unwrap();
+    let model = sim.model();
+    let idle = [f64::INFINITY; MAX_SHIFTS];
+    let mut moving = idle;
+    moving[0] = 1.0;
+    let mut memo = InstantMemo::default();
+    // Repeated times (a step's last two stages), the burn, the shift, and after both; the
+    // starts change (counted by the second argument) while the time stays the same.
+    let calls = [
+        (idle, 0, 0.4),
+        (idle, 0, 0.4),
+        (idle, 0, 1.2),
+        (moving, 1, 1.2),
+        (moving, 1, 1.2),
+        (moving, 1, 1.6),
+        (moving, 1, 9.0),
+        (idle, 2, 1.6),
+    ];
+    for (starts, changes, t) in calls {
+        let want = model.instant(&starts, t);
+        let (ms, thrust_n) = memo.get(model, &starts, changes, t);
+        // Bit for bit: the memo only saves recomputing the same function.
+        assert_eq!(*ms, want.mass, "mass state at {t} s, changes {changes}");
+        assert_eq!(
+            thrust_n.to_bits(),
+            want.motor.thrust_n.to_bits(),
+            "thrust at {t} s"
+        );
+    }
+    // The case the key exists for: same time, other starts, other mass state.
+    let a = model.instant(&idle, 1.6).mass.r_cm.z;
+    let b = model.instant(&moving, 1.6).mass.r_cm.z;
+    assert!(
+        (a - b).abs() > 1e-3,
+        "the shift moves the center: {a} against {b}"
+    );
+}

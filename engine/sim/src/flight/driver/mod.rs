@@ -4,7 +4,7 @@
 //! root-finding on the dense output, and records samples and metrics.
 
 use super::config::Integrator;
-use super::model::{FlightAux, FlightModel, ShiftStarts, MAX_SHIFTS};
+use super::model::{FlightAux, FlightModel, InstantMemo, ShiftStarts, MAX_SHIFTS};
 use super::output::{Flight, Metrics, Observer, Phase, Sample};
 use super::SimError;
 use crate::eom::{self, MassLanes, N3, N6};
@@ -141,6 +141,8 @@ struct Run<'a, O: Observer> {
     starts: ShiftStarts,
     /// How many times `starts` has changed (a cheap test of whether it did).
     starts_changed: u64,
+    /// The last instant computed (see [`InstantMemo`]).
+    memo: InstantMemo,
     /// Pending stop times, unsorted; the next one is their minimum above the current time.
     stops: Stops,
     samples: Vec<Sample>,

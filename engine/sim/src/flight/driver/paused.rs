@@ -21,8 +21,11 @@ pub(crate) struct Paused<'a, O: Observer> {
     settled: Option<(u64, MassLanes<f64>, u64)>,
     /// Serial number of the last mass state handed out by [`Paused::mass_at`].
     serial: u64,
-    /// The mass state of the last stage that was not settled.
+    /// The mass state of the last stage that was not settled, its thrust, and the time
+    /// and count of shift-start changes they hold for.
     moving: MassLanes<f64>,
+    moving_thrust_n: f64,
+    moving_key: Option<(u64, u64)>,
 }
 
 /// A phase's stepper as the batch engine steps it, four lanes' stages computed together
@@ -212,6 +215,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         observer,
         starts: [f64::INFINITY; MAX_SHIFTS],
         starts_changed: 0,
+        memo: InstantMemo::default(),
         stops,
         samples: Vec::with_capacity(if model.options.keep_samples { 2048 } else { 0 }),
         events: Vec::with_capacity(16),
@@ -261,6 +265,8 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         settled: None,
         serial: 0,
         moving: MassLanes::ZERO,
+        moving_thrust_n: 0.0,
+        moving_key: None,
     })))
 }
 
@@ -429,10 +435,16 @@ impl<'a, O: Observer> Paused<'a, O> {
                 return (ms, 0.0, *serial);
             }
         }
-        let i = model.instant_computed(starts, t);
-        self.moving = MassLanes::of(&i.mass);
-        self.serial += 1;
-        (&self.moving, i.motor.thrust_n, self.serial)
+        // The step's last two stages share a time: the second reads the first's mass state.
+        let key = (t.to_bits(), self.run.starts_changed);
+        if self.moving_key != Some(key) {
+            let (ms, thrust_n) = self.run.memo.get(model, starts, key.1, t);
+            self.moving = MassLanes::of(ms);
+            self.moving_thrust_n = thrust_n;
+            self.moving_key = Some(key);
+            self.serial += 1;
+        }
+        (&self.moving, self.moving_thrust_n, self.serial)
     }
 }
 

@@ -59,20 +59,25 @@ impl G {
     }
 }
 
-/// The derivative of the rail or the free flight.
+/// The derivative of the rail or the free flight, its instant read through the flight's
+/// memo (`changes` counts the changes of `starts`).
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub(super) fn derivative(
     model: &FlightModel,
     rail: bool,
+    memo: &mut InstantMemo,
     starts: &ShiftStarts,
+    changes: u64,
     t: f64,
     y: &[f64; N6],
     dy: &mut [f64; N6],
 ) {
+    let (ms, thrust_n) = memo.get(model, starts, changes, t);
     if rail {
-        model.derivative_rail(starts, t, y, dy)
+        model.derivative_rail_at(ms, thrust_n, y, dy)
     } else {
-        model.derivative_6dof(starts, t, y, dy)
+        model.derivative_6dof_at(ms, thrust_n, y, dy)
     }
 }
 
@@ -101,12 +106,14 @@ impl SixDof {
     ) -> Result<SixDof, SimError> {
         let model = run.model;
         let rail = phase == Phase::Rail;
-        let starts = run.starts;
+        let (starts, changes) = (run.starts, run.starts_changed);
+        let memo = &mut run.memo;
         let mut evals = 0u64;
-        each!(stepper, s => s.init(|t, y, dy| { evals += 1; derivative(model, rail, &starts, t, y, dy); }, t0, y0))
+        each!(stepper, s => s.init(|t, y, dy| { evals += 1; derivative(model, rail, memo, &starts, changes, t, y, dy); }, t0, y0))
             .map_err(|e| integ_at(t0, y0, e, phase.name()))?;
         run.evaluations += evals;
-        let (pos, vel, aux) = model.end_point(&starts, t0, y0, each!(stepper, s => s.dy()), rail);
+        let ms = run.memo.get(model, &starts, changes, t0).0;
+        let (pos, vel, aux) = model.end_point(ms, y0, each!(stepper, s => s.dy()), rail);
         let ep = EndPoint { pos, vel, aux };
         run.record(
             phase,
@@ -156,8 +163,8 @@ impl SixDof {
         let starts = run.starts;
         run.steps += 1;
         let (t1, y1) = (each!(stepper, s => s.t()), *each!(stepper, s => s.y()));
-        let (pos1, vel1, aux1) =
-            model.end_point(&starts, t1, &y1, each!(stepper, s => s.dy()), rail);
+        let ms1 = run.memo.get(model, &starts, run.starts_changed, t1).0;
+        let (pos1, vel1, aux1) = model.end_point(ms1, &y1, each!(stepper, s => s.dy()), rail);
         let ep1 = EndPoint {
             pos: pos1,
             vel: vel1,
@@ -218,8 +225,19 @@ impl SixDof {
             Some((te, _)) => {
                 let ye = each!(stepper, s => s.dense(te));
                 let mut dy = [0.0; N6];
-                derivative(model, rail, &run.starts, te, &ye, &mut dy);
-                let (pos, vel, aux) = model.end_point(&run.starts, te, &ye, &dy, rail);
+                let changes = run.starts_changed;
+                derivative(
+                    model,
+                    rail,
+                    &mut run.memo,
+                    &starts,
+                    changes,
+                    te,
+                    &ye,
+                    &mut dy,
+                );
+                let ms = run.memo.get(model, &starts, changes, te).0;
+                let (pos, vel, aux) = model.end_point(ms, &ye, &dy, rail);
                 (te, ye, EndPoint { pos, vel, aux })
             }
             None => (t1, y1, ep1),
@@ -274,9 +292,10 @@ impl SixDof {
             return Ok(Some((t_end, y_end, PhaseEnd::TimeLimit)));
         }
         if found.is_some() {
-            let starts = run.starts;
+            let (starts, changes) = (run.starts, run.starts_changed);
+            let memo = &mut run.memo;
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; derivative(model, rail, &starts, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; derivative(model, rail, memo, &starts, changes, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
         }
         Ok(None)
@@ -291,10 +310,11 @@ impl SixDof {
         let model = run.model;
         let rail = self.phase == Phase::Rail;
         let t_stop = self.next_stop(run, stepper);
-        let starts = run.starts;
+        let (starts, changes) = (run.starts, run.starts_changed);
+        let memo = &mut run.memo;
         let mut evals = 0u64;
         let outcome = stepper.checked_step(
-            |t, y, dy| derivative(model, rail, &starts, t, y, dy),
+            |t, y, dy| derivative(model, rail, memo, &starts, changes, t, y, dy),
             t_stop,
             self.phase.name(),
             &mut evals,
