@@ -245,13 +245,19 @@ impl FlightModel {
     /// Static margin (center of pressure at Mach 0 minus center of mass, in calibres).
     #[inline]
     pub fn static_margin(&self, ms: &MassState) -> f64 {
-        (self.cp_mach0_m - (-ms.r_cm.z)) / self.ref_diameter_m
+        self.static_margin_of(ms.r_cm.z)
     }
 
-    /// Flight margin at `mach`.
+    /// [`FlightModel::static_margin`] given the center of mass's body z, m (negative: aft).
     #[inline]
-    pub fn flight_margin(&self, ms: &MassState, mach: f64) -> f64 {
-        (self.aero.cp_m(mach) - (-ms.r_cm.z)) / self.ref_diameter_m
+    pub fn static_margin_of(&self, r_cm_z_m: f64) -> f64 {
+        (self.cp_mach0_m - (-r_cm_z_m)) / self.ref_diameter_m
+    }
+
+    /// Flight margin at `mach`, given the center of mass's body z, m.
+    #[inline]
+    pub fn flight_margin_of(&self, r_cm_z_m: f64, mach: f64) -> f64 {
+        (self.aero.cp_m(mach) - (-r_cm_z_m)) / self.ref_diameter_m
     }
 
     #[inline]
@@ -339,12 +345,19 @@ impl FlightModel {
         y: &[f64; N3],
         dy: &mut [f64; N3],
     ) -> FlightAux {
-        let inst = self.instant(starts, t);
+        let (mass_kg, r_cm_z_m) = match self.settled_state(starts, t) {
+            Some(ms) => (ms.mass_kg, ms.r_cm.z),
+            None => {
+                let ms = self.instant_computed(starts, t).mass;
+                (ms.mass_kg, ms.r_cm.z)
+            }
+        };
         let (air, wind, g) = self.descent_rates(cds_m2, t, y, dy);
         let rel = Vector3::new(y[3], y[4], y[5]) - wind;
         let a = Vector3::new(dy[3], dy[4], dy[5] + g);
         FlightAux {
-            mass: inst.mass,
+            mass_kg,
+            r_cm_z_m,
             air_speed_m_s: rel.norm(),
             speed_of_sound_m_s: air.speed_of_sound_m_s,
             accel_cm_m_s2: a.norm(),
@@ -400,7 +413,6 @@ impl FlightModel {
         dy: &[f64; N6],
         rail: bool,
     ) -> (Vector3<f64>, Vector3<f64>, FlightAux) {
-        let ms = *ms;
         let q = if rail {
             self.rail.attitude
         } else {
@@ -408,8 +420,8 @@ impl FlightModel {
         };
         let r = frames::body_to_inertial(&q);
         let omega = Vector3::new(y[10], y[11], y[12]);
-        let pos = eom::center_of_mass_position(y, &ms, &r);
-        let vel = eom::center_of_mass_velocity(y, &ms, &r);
+        let pos = eom::center_of_mass_position(y, ms, &r);
+        let vel = eom::center_of_mass_velocity(y, ms, &r);
         let air = self.air.at_msl(pos.z + self.env.elevation_m);
         let v_air_n = vel - self.wind_n(pos.z);
         let v_air_b = r.transpose() * v_air_n;
@@ -425,7 +437,8 @@ impl FlightModel {
             (a_o_n + r * rel).norm()
         };
         let aux = FlightAux {
-            mass: ms,
+            mass_kg: ms.mass_kg,
+            r_cm_z_m: ms.r_cm.z,
             air_speed_m_s: v_air_n.norm(),
             speed_of_sound_m_s: air.speed_of_sound_m_s,
             accel_cm_m_s2: accel,
@@ -438,7 +451,9 @@ impl FlightModel {
 /// What a derivative evaluation knows besides the derivative.
 #[derive(Debug, Clone, Copy)]
 pub struct FlightAux {
-    pub mass: MassState,
+    pub mass_kg: f64,
+    /// The center of mass's body z, m (negative: aft of the tip).
+    pub r_cm_z_m: f64,
     pub air_speed_m_s: f64,
     pub speed_of_sound_m_s: f64,
     /// Magnitude of the center of mass's inertial acceleration, m/s².

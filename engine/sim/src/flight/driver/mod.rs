@@ -323,9 +323,9 @@ impl<'a, O: Observer> Run<'a, O> {
         if !sampled && !margins {
             return;
         }
-        let static_margin_cal = m.static_margin(&aux.mass);
+        let static_margin_cal = m.static_margin_of(aux.r_cm_z_m);
         let flight_margin_cal = if sampled || phase == Phase::Free {
-            m.flight_margin(&aux.mass, mach)
+            m.flight_margin_of(aux.r_cm_z_m, mach)
         } else {
             f64::NAN
         };
@@ -352,8 +352,8 @@ impl<'a, O: Observer> Run<'a, O> {
             alpha_deg: aux.alpha_rad().to_degrees(),
             accel_m_s2: aux.accel_cm_m_s2,
             thrust_n: m.motor.eval(t).thrust_n,
-            mass_kg: aux.mass.mass_kg,
-            cg_m: -aux.mass.r_cm.z,
+            mass_kg: aux.mass_kg,
+            cg_m: -aux.r_cm_z_m,
             static_margin_cal,
             flight_margin_cal,
         };

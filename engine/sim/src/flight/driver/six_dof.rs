@@ -263,7 +263,7 @@ impl SixDof {
                     run.metrics.rail_exit_time_s = Some(te);
                     run.metrics.rail_exit_speed_m_s = Some(speed);
                     run.metrics.static_margin_rail_exit_cal =
-                        Some(model.static_margin(&ep.aux.mass));
+                        Some(model.static_margin_of(ep.aux.r_cm_z_m));
                     return Ok(Some((te, y_end, PhaseEnd::RailExit)));
                 }
                 EventKind::Apogee => {
