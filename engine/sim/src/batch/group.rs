@@ -9,11 +9,14 @@
 use super::guarded;
 use crate::eom::{pack_mass, MassLanes, N3, N6};
 use crate::flight::driver::{Descending, Paused, PausedPhase, PhaseEnd, StepEnd};
-use crate::flight::model::{derivative_6dof_lanes, descent_rates_lanes, FlightModel, FourModels};
+use crate::flight::model::{
+    derivative_6dof_lanes, descent_rates_lanes, end_point_lanes, CenterLanes, FlightModel,
+    FourModels,
+};
 use crate::flight::{SimError, Simulation};
 use crate::integrate::dopri54::arithmetic;
 use crate::integrate::{DenseStepper, StepOutcome};
-use crate::lanes::{F64x4, Real};
+use crate::lanes::{F64x4, Real, V3};
 
 /// Most lanes of one chunk in flight at once (four groups of four).
 pub const LANES_IN_FLIGHT: usize = 16;
@@ -118,6 +121,10 @@ pub(super) struct Steps<const N: usize> {
     ys: [F64x4; N],
     /// Dense-output coefficients of the steps just accepted.
     cont: [[F64x4; N]; 4],
+    /// The end state and its derivative of each slot whose step was accepted (the others'
+    /// lanes hold old values, never read).
+    end_y: [F64x4; N],
+    end_dy: [F64x4; N],
 }
 
 impl<const N: usize> Steps<N> {
@@ -132,6 +139,8 @@ impl<const N: usize> Steps<N> {
             k: [[zero; N]; 6],
             ys: [zero; N],
             cont: [[zero; N]; 4],
+            end_y: [zero; N],
+            end_dy: [zero; N],
         }
     }
 }
@@ -192,13 +201,15 @@ impl Slots {
 
 /// One step of the lanes of `group` (all in phase `P`) with their steps held side by side.
 /// `eval(group, slots, ys, dy)` evaluates the phase's derivative of the four slots at their
-/// stage states `ys` (the slots' times in `slots.t`).
+/// stage states `ys` (the slots' times in `slots.t`). Returns how each slot's step ended, if
+/// it was accepted (its end state in `st.end_y`, `st.end_dy`); the caller ends those steps
+/// ([`end_steps`]).
 #[inline(always)]
 fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
     group: &mut [Lane<'a>],
     st: &mut Steps<N>,
     mut eval: impl FnMut(&mut [Lane<'a>], &Slots, &[F64x4; N], &mut [F64x4; N]),
-) {
+) -> [Option<StepOutcome>; 4] {
     let n = group.len();
     let mut active = [false; 4];
     let mut outcomes: [Option<StepOutcome>; 4] = [None; 4];
@@ -226,7 +237,7 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
         }
     }
     let Some(first) = (0..n).find(|&l| active[l]) else {
-        return;
+        return outcomes;
     };
     let mut slots = Slots {
         lane: std::array::from_fn(|l| if l < n && active[l] { l } else { first }),
@@ -290,7 +301,13 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
                     }
                     let c_l = [0, 1, 2, 3].map(|j| lane_of(&st.cont[j], l));
                     match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
-                        Ok(()) => outcomes[l] = Some(outcome),
+                        Ok(()) => {
+                            outcomes[l] = Some(outcome);
+                            for k in 0..N {
+                                st.end_y[k].0[l] = st.ys[k].0[l];
+                                st.end_dy[k].0[l] = st.k[5][k].0[l];
+                            }
+                        }
                         Err(e) => lane.end = Some(LaneEnd::Error(e)),
                     }
                 }
@@ -306,10 +323,21 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
         }
         stage = 0;
     }
+    outcomes
+}
+
+/// End the steps `step_on_lanes` accepted: `end(phase, outcome, l)` is lane `l`'s
+/// [`PausedPhase::end_step`].
+#[inline(always)]
+fn end_steps<'a, const N: usize, P: OnLanes<'a, N>>(
+    group: &mut [Lane<'a>],
+    outcomes: &[Option<StepOutcome>; 4],
+    mut end: impl FnMut(&mut P, StepOutcome, usize) -> Result<Option<P::End>, SimError>,
+) {
     for (l, lane) in group.iter_mut().enumerate() {
         if let Some(o) = outcomes[l] {
-            match P::of(lane).end_step(o) {
-                Ok(Some(end)) => lane.end = Some(P::lane_end(end)),
+            match end(P::of(lane), o, l) {
+                Ok(Some(e)) => lane.end = Some(P::lane_end(e)),
                 Ok(None) => {}
                 Err(e) => lane.end = Some(LaneEnd::Error(e)),
             }
@@ -335,7 +363,7 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
     let mut thrust = F64x4::splat(0.0);
     // Serial of the mass state each slot holds (refreshed only when it changes).
     let mut serial = [u64::MAX; 4];
-    step_on_lanes::<N6, Paused<'_, ()>>(
+    let outcomes = step_on_lanes::<N6, Paused<'_, ()>>(
         group,
         st,
         #[inline(always)]
@@ -376,6 +404,38 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
             }
         },
     );
+    // The accepted steps' end figures on four lanes where the lanes share their tables.
+    let ends = match &four {
+        Some(Some(four)) if outcomes.iter().any(Option::is_some) => {
+            let mut c = CenterLanes {
+                r: V3::zero(),
+                r_rate: V3::zero(),
+                r_accel: V3::zero(),
+            };
+            let mut mass_kg = [0.0; 4];
+            for (l, lane) in group.iter_mut().enumerate() {
+                if outcomes[l].is_some() {
+                    let (cl, m) = Paused::of(lane).end_center();
+                    c.set_lane(l, &cl);
+                    mass_kg[l] = m;
+                }
+            }
+            Some((
+                end_point_lanes(four, &c, &st.end_y, &st.end_dy),
+                mass_kg,
+                c.r.z,
+            ))
+        }
+        _ => None,
+    };
+    end_steps::<N6, Paused<'_, ()>>(group, &outcomes, |p, o, l| match &ends {
+        Some((e, mass_kg, c_z)) => {
+            let aux = e.lane(l).aux(mass_kg[l], c_z.0[l]);
+            let e = e.lane(l);
+            p.end_step_with(o, (e.pos.to_na(), e.vel.to_na(), aux))
+        }
+        None => p.end_step(o),
+    });
 }
 
 /// One descent step of the lanes of `group`: the point-mass descent on four lanes.
@@ -386,7 +446,7 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
     let mut mass = F64x4::splat(1.0);
     let mut cds = F64x4::splat(0.0);
     let mut filled = [false; 4];
-    step_on_lanes::<N3, Descending<'_, ()>>(
+    let outcomes = step_on_lanes::<N3, Descending<'_, ()>>(
         group,
         st,
         #[inline(always)]
@@ -421,6 +481,7 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
             }
         },
     );
+    end_steps::<N3, Descending<'_, ()>>(group, &outcomes, |p, o, _| p.end_step(o));
 }
 
 /// `f` (a group's step, inlined into it) compiled for AVX2 where the processor has it: the

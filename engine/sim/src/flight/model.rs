@@ -412,41 +412,31 @@ impl FlightModel {
         y: &[f64; N6],
         dy: &[f64; N6],
         rail: bool,
-    ) -> (Vector3<f64>, Vector3<f64>, FlightAux) {
-        let q = if rail {
-            self.rail.attitude
-        } else {
-            [y[6], y[7], y[8], y[9]]
-        };
-        let r = frames::body_to_inertial(&q);
-        let omega = Vector3::new(y[10], y[11], y[12]);
+    ) -> EndFigures {
+        if !rail {
+            let e = end_point_lanes(self, &CenterLanes::of(ms), y, dy);
+            return (e.pos.to_na(), e.vel.to_na(), e.aux(ms.mass_kg, ms.r_cm.z));
+        }
+        let r = frames::body_to_inertial(&self.rail.attitude);
         let pos = eom::center_of_mass_position(y, ms, &r);
         let vel = eom::center_of_mass_velocity(y, ms, &r);
         let air = self.air.at_msl(pos.z + self.env.elevation_m);
         let v_air_n = vel - self.wind_n(pos.z);
-        let v_air_b = r.transpose() * v_air_n;
-        let a_o_n = Vector3::new(dy[3], dy[4], dy[5]);
-        let accel = if rail {
-            a_o_n.norm()
-        } else {
-            let w_dot = Vector3::new(dy[10], dy[11], dy[12]);
-            let rel = w_dot.cross(&ms.r_cm)
-                + omega.cross(&omega.cross(&ms.r_cm))
-                + omega.cross(&ms.r_cm_rate) * 2.0
-                + ms.r_cm_accel;
-            (a_o_n + r * rel).norm()
-        };
         let aux = FlightAux {
             mass_kg: ms.mass_kg,
             r_cm_z_m: ms.r_cm.z,
             air_speed_m_s: v_air_n.norm(),
             speed_of_sound_m_s: air.speed_of_sound_m_s,
-            accel_cm_m_s2: accel,
-            air_velocity_b: if rail { Vector3::zeros() } else { v_air_b },
+            accel_cm_m_s2: Vector3::new(dy[3], dy[4], dy[5]).norm(),
+            air_velocity_b: Vector3::zeros(),
         };
         (pos, vel, aux)
     }
 }
+
+/// A step end's figures: the center of mass's position and velocity (inertial) and what a
+/// sample reads besides ([`FlightModel::end_point`]).
+pub type EndFigures = (Vector3<f64>, Vector3<f64>, FlightAux);
 
 /// What a derivative evaluation knows besides the derivative.
 #[derive(Debug, Clone, Copy)]
@@ -669,6 +659,118 @@ pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
         &lanes.wind(h),
         dy,
     );
+}
+
+/// What a free-flight step end reads of the mass state: the center of mass and its rates,
+/// body axes, on lanes.
+#[derive(Debug, Clone, Copy)]
+pub struct CenterLanes<S> {
+    pub r: V3<S>,
+    pub r_rate: V3<S>,
+    pub r_accel: V3<S>,
+}
+
+impl CenterLanes<f64> {
+    #[inline(always)]
+    pub fn of(ms: &MassState) -> CenterLanes<f64> {
+        CenterLanes {
+            r: V3::from_na(&ms.r_cm),
+            r_rate: V3::from_na(&ms.r_cm_rate),
+            r_accel: V3::from_na(&ms.r_cm_accel),
+        }
+    }
+}
+
+impl CenterLanes<F64x4> {
+    /// Set lane `l`.
+    #[inline(always)]
+    pub fn set_lane(&mut self, l: usize, c: &CenterLanes<f64>) {
+        let set = |d: &mut V3<F64x4>, s: &V3<f64>| {
+            d.x.0[l] = s.x;
+            d.y.0[l] = s.y;
+            d.z.0[l] = s.z;
+        };
+        set(&mut self.r, &c.r);
+        set(&mut self.r_rate, &c.r_rate);
+        set(&mut self.r_accel, &c.r_accel);
+    }
+}
+
+/// A free-flight step end's figures on lanes ([`end_point_lanes`]).
+#[derive(Debug, Clone, Copy)]
+pub struct EndLanes<S> {
+    /// The center of mass's position and velocity, inertial.
+    pub pos: V3<S>,
+    pub vel: V3<S>,
+    pub air_speed_m_s: S,
+    pub speed_of_sound_m_s: S,
+    /// Magnitude of the center of mass's inertial acceleration.
+    pub accel_cm_m_s2: S,
+    /// The air's velocity relative to the rocket, body axes.
+    pub air_velocity_b: V3<S>,
+}
+
+impl EndLanes<f64> {
+    /// The step end's [`FlightAux`], given its mass and the center's body z.
+    #[inline(always)]
+    pub fn aux(&self, mass_kg: f64, r_cm_z_m: f64) -> FlightAux {
+        FlightAux {
+            mass_kg,
+            r_cm_z_m,
+            air_speed_m_s: self.air_speed_m_s,
+            speed_of_sound_m_s: self.speed_of_sound_m_s,
+            accel_cm_m_s2: self.accel_cm_m_s2,
+            air_velocity_b: self.air_velocity_b.to_na(),
+        }
+    }
+}
+
+impl EndLanes<F64x4> {
+    /// Lane `l`.
+    #[inline(always)]
+    pub fn lane(&self, l: usize) -> EndLanes<f64> {
+        let v = |v: &V3<F64x4>| V3::new(v.x.0[l], v.y.0[l], v.z.0[l]);
+        EndLanes {
+            pos: v(&self.pos),
+            vel: v(&self.vel),
+            air_speed_m_s: self.air_speed_m_s.0[l],
+            speed_of_sound_m_s: self.speed_of_sound_m_s.0[l],
+            accel_cm_m_s2: self.accel_cm_m_s2.0[l],
+            air_velocity_b: v(&self.air_velocity_b),
+        }
+    }
+}
+
+/// The figures at the end of a free-flight step whose derivative `dy` is known (the
+/// integrator's FSAL stage), given the center of mass there: no aerodynamics. The single
+/// flight calls it on one lane ([`FlightModel::end_point`]), the batch on four.
+#[inline(always)]
+pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
+    lanes: &L,
+    c: &CenterLanes<S>,
+    y: &[S; N6],
+    dy: &[S; N6],
+) -> EndLanes<S> {
+    let r = frames::rotation([y[6], y[7], y[8], y[9]]);
+    let omega = V3::new(y[10], y[11], y[12]);
+    let pos = V3::new(y[0], y[1], y[2]) + r.mul_v(&c.r);
+    let vel = V3::new(y[3], y[4], y[5]) + r.mul_v(&(omega.cross(&c.r) + c.r_rate));
+    let (_, speed_of_sound_m_s) = lanes.air(pos.z);
+    let v_air_n = vel - lanes.wind(pos.z);
+    let a_o_n = V3::new(dy[3], dy[4], dy[5]);
+    let w_dot = V3::new(dy[10], dy[11], dy[12]);
+    let rel = w_dot.cross(&c.r)
+        + omega.cross(&omega.cross(&c.r))
+        + omega.cross(&c.r_rate).scale(S::splat(2.0))
+        + c.r_accel;
+    EndLanes {
+        pos,
+        vel,
+        air_speed_m_s: v_air_n.norm_squared().sqrt(),
+        speed_of_sound_m_s,
+        accel_cm_m_s2: (a_o_n + r.mul_v(&rel)).norm_squared().sqrt(),
+        air_velocity_b: r.tr_mul_v(&v_air_n),
+    }
 }
 
 /// The 6-DOF derivative on lanes, given each lane's mass state and thrust: the one copy of

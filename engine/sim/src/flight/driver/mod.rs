@@ -4,7 +4,9 @@
 //! root-finding on the dense output, and records samples and metrics.
 
 use super::config::Integrator;
-use super::model::{FlightAux, FlightModel, InstantMemo, ShiftStarts, MAX_SHIFTS};
+use super::model::{
+    CenterLanes, EndFigures, FlightAux, FlightModel, InstantMemo, ShiftStarts, MAX_SHIFTS,
+};
 use super::output::{Flight, Metrics, Observer, Phase, Sample};
 use super::SimError;
 use crate::eom::{self, MassLanes, N3, N6};

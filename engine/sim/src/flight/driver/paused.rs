@@ -416,6 +416,32 @@ impl<'a, O: Observer> Paused<'a, O> {
         descend(self.run, self.rtol, self.atol3, end)
     }
 
+    /// The center of mass and its rates, and the mass, at the end of the step just taken on
+    /// lanes, for its figures computed on lanes ([`crate::flight::model::end_point_lanes`]).
+    #[inline(always)]
+    pub(crate) fn end_center(&mut self) -> (CenterLanes<f64>, f64) {
+        let model = self.run.model;
+        let t1 = self.s6.dopri().t();
+        let ms = self
+            .run
+            .memo
+            .get(model, &self.run.starts, self.run.starts_changed, t1)
+            .0;
+        (CenterLanes::of(ms), ms.mass_kg)
+    }
+
+    /// [`PausedPhase::end_step`] with the step end's figures computed on lanes (for the
+    /// center [`Paused::end_center`] gave).
+    #[inline(always)]
+    pub(crate) fn end_step_with(
+        &mut self,
+        outcome: StepOutcome,
+        ep1: EndFigures,
+    ) -> Result<Option<StepEnd>, SimError> {
+        self.free
+            .after_step(&mut self.run, &mut self.s6.stepper, outcome, Some(ep1))
+    }
+
     /// The mass state (as the equations read it) and the thrust at `t`, and a serial number
     /// that changes whenever the mass state handed out does (so that a caller holding a
     /// copy knows when to refresh it). While the motor is out and no part moves it is
@@ -475,7 +501,7 @@ impl<'a, O: Observer> PausedPhase<'a, N6> for Paused<'a, O> {
 
     fn end_step(&mut self, outcome: StepOutcome) -> Result<Option<StepEnd>, SimError> {
         self.free
-            .after_step(&mut self.run, &mut self.s6.stepper, outcome)
+            .after_step(&mut self.run, &mut self.s6.stepper, outcome, None)
     }
 
     #[inline(always)]

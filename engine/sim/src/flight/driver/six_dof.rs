@@ -148,12 +148,15 @@ impl SixDof {
 
     /// After a step that ended with `outcome`: events in the step (located on the dense
     /// output), the sample, triggers and stops. Returns the phase's end, if this was its last
-    /// step.
+    /// step. `ep1` is the step end's figures if the caller has computed them
+    /// ([`FlightModel::end_point`], or the batch's [`crate::flight::model::end_point_lanes`]
+    /// on four lanes); otherwise they are computed here.
     pub(super) fn after_step<O: Observer>(
         &mut self,
         run: &mut Run<'_, O>,
         stepper: &mut Stepper<N6>,
         outcome: crate::integrate::StepOutcome,
+        ep1: Option<EndFigures>,
     ) -> Result<Option<(f64, [f64; N6], PhaseEnd)>, SimError> {
         let model = run.model;
         let phase = self.phase;
@@ -163,8 +166,13 @@ impl SixDof {
         let starts = run.starts;
         run.steps += 1;
         let (t1, y1) = (each!(stepper, s => s.t()), *each!(stepper, s => s.y()));
-        let ms1 = run.memo.get(model, &starts, run.starts_changed, t1).0;
-        let (pos1, vel1, aux1) = model.end_point(ms1, &y1, each!(stepper, s => s.dy()), rail);
+        let (pos1, vel1, aux1) = match ep1 {
+            Some(ep) => ep,
+            None => {
+                let ms1 = run.memo.get(model, &starts, run.starts_changed, t1).0;
+                model.end_point(ms1, &y1, each!(stepper, s => s.dy()), rail)
+            }
+        };
         let ep1 = EndPoint {
             pos: pos1,
             vel: vel1,
@@ -320,7 +328,7 @@ impl SixDof {
             &mut evals,
         )?;
         run.evaluations += evals;
-        self.after_step(run, stepper, outcome)
+        self.after_step(run, stepper, outcome, None)
     }
 }
 
