@@ -163,7 +163,12 @@ impl Scratch {
 /// Lane `l` of a structure-of-arrays state.
 #[inline(always)]
 fn lane_of<const N: usize>(v: &[F64x4; N], l: usize) -> [f64; N] {
-    std::array::from_fn(|k| v[k].0[l])
+    // A plain loop: `array::from_fn` here was left as a call per element.
+    let mut out = [0.0; N];
+    for (o, x) in out.iter_mut().zip(v) {
+        *o = x.0[l];
+    }
+    out
 }
 
 /// Which lanes of `dy` are all finite (a lane with an infinity or a NaN gives NaN times 0).
@@ -299,7 +304,12 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
                         );
                         cont_done = true;
                     }
-                    let c_l = [0, 1, 2, 3].map(|j| lane_of(&st.cont[j], l));
+                    let c_l = [
+                        lane_of(&st.cont[0], l),
+                        lane_of(&st.cont[1], l),
+                        lane_of(&st.cont[2], l),
+                        lane_of(&st.cont[3], l),
+                    ];
                     match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
                         Ok(()) => {
                             outcomes[l] = Some(outcome);
