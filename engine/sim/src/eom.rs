@@ -165,11 +165,6 @@ impl MassLanes<F64x4> {
     /// Write one lane's mass state into lane `l`.
     #[inline(always)]
     pub fn set_lane(&mut self, l: usize, m: &MassLanes<f64>) {
-        let v = |d: &mut V3<F64x4>, s: &V3<f64>| {
-            d.x.0[l] = s.x;
-            d.y.0[l] = s.y;
-            d.z.0[l] = s.z;
-        };
         let mat = |d: &mut M3<F64x4>, s: &M3<f64>| {
             for r in 0..3 {
                 for c in 0..3 {
@@ -180,13 +175,13 @@ impl MassLanes<F64x4> {
         self.m.0[l] = m.m;
         self.m_rate.0[l] = m.m_rate;
         self.m_accel.0[l] = m.m_accel;
-        v(&mut self.r, &m.r);
-        v(&mut self.r_rate, &m.r_rate);
-        v(&mut self.r_accel, &m.r_accel);
+        self.r.set_lane(l, &m.r);
+        self.r_rate.set_lane(l, &m.r_rate);
+        self.r_accel.set_lane(l, &m.r_accel);
         mat(&mut self.i_o, &m.i_o);
         mat(&mut self.i_o_rate, &m.i_o_rate);
-        v(&mut self.h, &m.h);
-        v(&mut self.h_rate, &m.h_rate);
+        self.h.set_lane(l, &m.h);
+        self.h_rate.set_lane(l, &m.h_rate);
     }
 }
 

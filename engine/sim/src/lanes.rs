@@ -312,6 +312,16 @@ impl<S: Real> Neg for V3<S> {
     }
 }
 
+impl V3<F64x4> {
+    /// Write `v` into lane `l`.
+    #[inline(always)]
+    pub fn set_lane(&mut self, l: usize, v: &V3<f64>) {
+        self.x.0[l] = v.x;
+        self.y.0[l] = v.y;
+        self.z.0[l] = v.z;
+    }
+}
+
 /// A 3×3 matrix of lanes, rows first.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct M3<S> {

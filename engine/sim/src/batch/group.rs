@@ -439,11 +439,7 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
         _ => None,
     };
     end_steps::<N6, Paused<'_, ()>>(group, &outcomes, |p, o, l| match &ends {
-        Some((e, mass_kg, c_z)) => {
-            let aux = e.lane(l).aux(mass_kg[l], c_z.0[l]);
-            let e = e.lane(l);
-            p.end_step_with(o, (e.pos.to_na(), e.vel.to_na(), aux))
-        }
+        Some((e, mass_kg, c_z)) => p.end_step_with(o, e.lane(l).figures(mass_kg[l], c_z.0[l])),
         None => p.end_step(o),
     });
 }

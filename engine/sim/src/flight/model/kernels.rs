@@ -1,0 +1,272 @@
+//! The kernels on lanes that both drivers call, written once over [`Real`]: the model read
+//! through [`ModelLanes`] (one flight's, or [`FourModels`] sharing their tables), the 6-DOF
+//! derivative, the descent's, and a free-flight step end's figures. The single flight calls
+//! them on `f64`, the batch engine on [`F64x4`].
+
+use super::*;
+
+/// What the 6-DOF derivative reads of a flight's model, on lanes: one model per lane, the
+/// aerodynamic tables shared by all of them.
+pub trait ModelLanes<S: Real> {
+    /// The aerodynamic tables (the same for every lane).
+    fn aero(&self) -> &AeroTables;
+    /// Air density (0 in a vacuum) and speed of sound at a height above the site.
+    fn air(&self, h_agl_m: S) -> (S, S);
+    /// Wind, inertial, at a height above the site.
+    fn wind(&self, h_agl_m: S) -> V3<S>;
+    /// Gravity's magnitude at a height above the site.
+    fn gravity(&self, h_agl_m: S) -> S;
+    fn drag_scale(&self) -> S;
+    fn nozzle(&self) -> NozzleLanes<S>;
+}
+
+impl ModelLanes<f64> for FlightModel {
+    #[inline(always)]
+    fn aero(&self) -> &AeroTables {
+        &self.aero
+    }
+    #[inline(always)]
+    fn air(&self, h: f64) -> (f64, f64) {
+        let a = self.air_at(&self.air.at_msl(h + self.env.elevation_m));
+        (a.density_kg_m3, a.speed_of_sound_m_s)
+    }
+    #[inline(always)]
+    fn wind(&self, h: f64) -> V3<f64> {
+        let [e, n] = self.env.wind.velocity_en(h);
+        V3::new(e, n, 0.0)
+    }
+    #[inline(always)]
+    fn gravity(&self, h: f64) -> f64 {
+        self.env.gravity.at(h)
+    }
+    #[inline(always)]
+    fn drag_scale(&self) -> f64 {
+        self.drag_scale
+    }
+    #[inline(always)]
+    fn nozzle(&self) -> NozzleLanes<f64> {
+        self.nozzle.lanes()
+    }
+}
+
+/// Four flights' models side by side (their aerodynamic and air tables must be one and the same:
+/// [`FourModels::new`] checks), with what the kernel reads of them packed once.
+#[derive(Clone, Copy)]
+pub struct FourModels<'a> {
+    pub models: [&'a FlightModel; 4],
+    nozzle: NozzleLanes<F64x4>,
+    drag_scale: F64x4,
+}
+
+impl<'a> FourModels<'a> {
+    /// `None` unless the four share their aerodynamic tables and their air table.
+    pub fn new(models: [&'a FlightModel; 4]) -> Option<FourModels<'a>> {
+        let same = models.iter().all(|m| {
+            std::sync::Arc::ptr_eq(&m.aero, &models[0].aero) && std::ptr::eq(m.air, models[0].air)
+        });
+        let n = models.map(|m| m.nozzle.lanes());
+        same.then(|| FourModels {
+            models,
+            nozzle: crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]]),
+            drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
+        })
+    }
+}
+
+impl ModelLanes<F64x4> for FourModels<'_> {
+    #[inline(always)]
+    fn aero(&self) -> &AeroTables {
+        &self.models[0].aero
+    }
+    #[inline(always)]
+    fn air(&self, h: F64x4) -> (F64x4, F64x4) {
+        // What `FlightModel::air` does, the four lanes' look-ups side by side in their one table.
+        let m = &self.models;
+        let z = std::array::from_fn(|i| h.0[i] + m[i].env.elevation_m);
+        let (rho, sound) = m[0].air.at_msl_four(z);
+        let rho = F64x4::from_fn(|i| if m[i].env.vacuum { 0.0 } else { rho[i] });
+        (rho, F64x4(sound))
+    }
+    #[inline(always)]
+    fn wind(&self, h: F64x4) -> V3<F64x4> {
+        let w: [V3<f64>; 4] = std::array::from_fn(|i| self.models[i].wind(h.0[i]));
+        crate::lanes::pack_v3([&w[0], &w[1], &w[2], &w[3]])
+    }
+    #[inline(always)]
+    fn gravity(&self, h: F64x4) -> F64x4 {
+        F64x4::from_fn(|i| self.models[i].gravity(h.0[i]))
+    }
+    #[inline(always)]
+    fn drag_scale(&self) -> F64x4 {
+        self.drag_scale
+    }
+    #[inline(always)]
+    fn nozzle(&self) -> NozzleLanes<F64x4> {
+        self.nozzle
+    }
+}
+
+/// The descent's derivative on lanes, given each lane's mass ([`FlightModel::descent_mass`])
+/// and canopies' CdS: what [`FlightModel::descent_rates`] computes, four lanes at once.
+#[inline(always)]
+pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
+    lanes: &L,
+    mass_kg: S,
+    cds_m2: S,
+    y: &[S; N3],
+    dy: &mut [S; N3],
+) {
+    let h = y[2];
+    let (rho, _) = lanes.air(h);
+    eom::descent_derivative(
+        y,
+        mass_kg,
+        cds_m2,
+        rho,
+        lanes.gravity(h),
+        &lanes.wind(h),
+        dy,
+    );
+}
+
+/// What a free-flight step end reads of the mass state: the center of mass and its rates,
+/// body axes, on lanes.
+#[derive(Debug, Clone, Copy)]
+pub struct CenterLanes<S> {
+    pub r: V3<S>,
+    pub r_rate: V3<S>,
+    pub r_accel: V3<S>,
+}
+
+impl CenterLanes<f64> {
+    #[inline(always)]
+    pub fn of(ms: &MassState) -> CenterLanes<f64> {
+        CenterLanes {
+            r: V3::from_na(&ms.r_cm),
+            r_rate: V3::from_na(&ms.r_cm_rate),
+            r_accel: V3::from_na(&ms.r_cm_accel),
+        }
+    }
+}
+
+impl CenterLanes<F64x4> {
+    /// Set lane `l`.
+    #[inline(always)]
+    pub fn set_lane(&mut self, l: usize, c: &CenterLanes<f64>) {
+        self.r.set_lane(l, &c.r);
+        self.r_rate.set_lane(l, &c.r_rate);
+        self.r_accel.set_lane(l, &c.r_accel);
+    }
+}
+
+/// A free-flight step end's figures on lanes ([`end_point_lanes`]).
+#[derive(Debug, Clone, Copy)]
+pub struct EndLanes<S> {
+    /// The center of mass's position and velocity, inertial.
+    pub pos: V3<S>,
+    pub vel: V3<S>,
+    pub air_speed_m_s: S,
+    pub speed_of_sound_m_s: S,
+    /// Magnitude of the center of mass's inertial acceleration.
+    pub accel_cm_m_s2: S,
+    /// The air's velocity relative to the rocket, body axes.
+    pub air_velocity_b: V3<S>,
+}
+
+impl EndLanes<f64> {
+    /// The step end's figures, given its mass and the center's body z.
+    #[inline(always)]
+    pub fn figures(&self, mass_kg: f64, r_cm_z_m: f64) -> EndFigures {
+        let aux = FlightAux {
+            mass_kg,
+            r_cm_z_m,
+            air_speed_m_s: self.air_speed_m_s,
+            speed_of_sound_m_s: self.speed_of_sound_m_s,
+            accel_cm_m_s2: self.accel_cm_m_s2,
+            air_velocity_b: self.air_velocity_b.to_na(),
+        };
+        (self.pos.to_na(), self.vel.to_na(), aux)
+    }
+}
+
+impl EndLanes<F64x4> {
+    /// Lane `l`.
+    #[inline(always)]
+    pub fn lane(&self, l: usize) -> EndLanes<f64> {
+        let v = |v: &V3<F64x4>| V3::new(v.x.0[l], v.y.0[l], v.z.0[l]);
+        EndLanes {
+            pos: v(&self.pos),
+            vel: v(&self.vel),
+            air_speed_m_s: self.air_speed_m_s.0[l],
+            speed_of_sound_m_s: self.speed_of_sound_m_s.0[l],
+            accel_cm_m_s2: self.accel_cm_m_s2.0[l],
+            air_velocity_b: v(&self.air_velocity_b),
+        }
+    }
+}
+
+/// The figures at the end of a free-flight step whose derivative `dy` is known (the
+/// integrator's FSAL stage), given the center of mass there: no aerodynamics. The single
+/// flight calls it on one lane ([`FlightModel::end_point`]), the batch on four.
+#[inline(always)]
+pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
+    lanes: &L,
+    c: &CenterLanes<S>,
+    y: &[S; N6],
+    dy: &[S; N6],
+) -> EndLanes<S> {
+    let r = frames::rotation([y[6], y[7], y[8], y[9]]);
+    let omega = V3::new(y[10], y[11], y[12]);
+    let pos = V3::new(y[0], y[1], y[2]) + r.mul_v(&c.r);
+    let vel = V3::new(y[3], y[4], y[5]) + r.mul_v(&(omega.cross(&c.r) + c.r_rate));
+    let (_, speed_of_sound_m_s) = lanes.air(pos.z);
+    let v_air_n = vel - lanes.wind(pos.z);
+    let a_o_n = V3::new(dy[3], dy[4], dy[5]);
+    let w_dot = V3::new(dy[10], dy[11], dy[12]);
+    let rel = w_dot.cross(&c.r)
+        + omega.cross(&omega.cross(&c.r))
+        + omega.cross(&c.r_rate).scale(S::splat(2.0))
+        + c.r_accel;
+    EndLanes {
+        pos,
+        vel,
+        air_speed_m_s: v_air_n.norm_squared().sqrt(),
+        speed_of_sound_m_s,
+        accel_cm_m_s2: (a_o_n + r.mul_v(&rel)).norm_squared().sqrt(),
+        air_velocity_b: r.tr_mul_v(&v_air_n),
+    }
+}
+
+/// The 6-DOF derivative on lanes, given each lane's mass state and thrust: the one copy of
+/// the free-flight equations (frames, air, wind, loads, gravity, EoM v1).
+#[inline(always)]
+pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
+    lanes: &L,
+    ms: &MassLanes<S>,
+    thrust_n: S,
+    y: &[S; N6],
+    dy: &mut [S; N6],
+) {
+    let zero = S::splat(0.0);
+    let r = frames::rotation([y[6], y[7], y[8], y[9]]);
+    let omega = V3::new(y[10], y[11], y[12]);
+    let h = y[2] + r.mul_v(&ms.r).z;
+    let (rho, speed_of_sound) = lanes.air(h);
+    let wind_b = r.tr_mul_v(&lanes.wind(h));
+    let v_o_air_b = r.tr_mul_v(&V3::new(y[3], y[4], y[5])) - wind_b;
+    let v_cm_air_b = v_o_air_b + omega.cross(&ms.r) + ms.r_rate;
+    let (mut force, moment) = aero_loads::loads(
+        lanes.aero(),
+        &v_o_air_b,
+        &v_cm_air_b,
+        &omega,
+        rho,
+        speed_of_sound,
+        thrust_n.gt(zero),
+        lanes.drag_scale(),
+    );
+    force.z = force.z + thrust_n;
+    let g_b = r.tr_mul_v(&V3::new(zero, zero, -lanes.gravity(h)));
+    let (a_o, w_dot) = eom::accelerations(ms, &force, &moment, &g_b, &omega, &lanes.nozzle());
+    eom::rigid_body_derivative_lanes(y, &a_o, &w_dot, &r, dy);
+}
