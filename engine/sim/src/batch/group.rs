@@ -28,6 +28,9 @@ pub(super) struct Lane<'a> {
     pub(super) flying: Flying<'a>,
     /// Set when the lane's phase is over.
     pub(super) end: Option<LaneEnd>,
+    /// Whether the lane's last attempt was rejected: its next group step tries the same step
+    /// again, smaller (its stepper holds the attempt), rather than beginning a new one.
+    pub(super) retrying: bool,
 }
 
 /// The phase a lane is in.
@@ -81,9 +84,10 @@ impl<'a> OnLanes<'a, N3> for Descending<'a, ()> {
     }
 }
 
-/// One step of every lane of `group` (at most four, all in the same phase), the lanes'
-/// stages evaluated together; each lane's step then ends as a single flight's does. Lanes
-/// whose integrator steps whole (RK4) take their step alone.
+/// One attempt of every lane of `group` (at most four, all in the same phase), the lanes'
+/// stages evaluated together; each lane's accepted step then ends as a single flight's does,
+/// and a rejected one is tried again, smaller, at the next. Lanes whose integrator steps
+/// whole (RK4) take their step alone.
 pub(super) fn step_group(group: &mut [Lane<'_>], scratch: &mut Scratch) {
     let descent = matches!(group.first().map(|l| &l.flying), Some(Flying::Descent(_)));
     let stepped = guarded(|| {
@@ -204,7 +208,8 @@ impl Slots {
     }
 }
 
-/// One step of the lanes of `group` (all in phase `P`) with their steps held side by side.
+/// One attempt of each lane of `group` (all in phase `P`) with their attempts held side by
+/// side: a new step, or the smaller retry of a step its last attempt had rejected.
 /// `eval(group, slots, ys, dy)` evaluates the phase's derivative of the four slots at their
 /// stage states `ys` (the slots' times in `slots.t`). Returns how each slot's step ended, if
 /// it was accepted (its end state in `st.end_y`, `st.end_dy`); the caller ends those steps
@@ -219,8 +224,9 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
     let mut active = [false; 4];
     let mut outcomes: [Option<StepOutcome>; 4] = [None; 4];
     for (l, lane) in group.iter_mut().enumerate() {
+        let retrying = lane.retrying;
         let p = P::of(lane);
-        match p.begin_step() {
+        match if retrying { Ok(true) } else { p.begin_step() } {
             Ok(true) => {
                 active[l] = true;
                 let d = p.dopri();
@@ -261,8 +267,7 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
             }
         }
     }
-    let mut stage = 0;
-    loop {
+    for stage in 0..6 {
         arithmetic::stage_state(stage, st.h, &st.y, &st.k1, &st.k, &mut st.ys);
         for l in 0..4 {
             let i = slots.lane[l];
@@ -276,62 +281,57 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
                 P::of(&mut group[l]).observe(slots.t[l], &lane_of(&st.ys, l), &lane_of(dy4, l));
             }
         }
-        if stage < 5 {
-            stage += 1;
+    }
+    // The attempts are complete: each lane's error norm decides. A rejected lane tries again
+    // at the group's next step, beside the other lanes' next steps (its stepper holds the
+    // smaller attempt), so no slot waits on another lane's retry.
+    let sums = arithmetic::error_sum(st.h, &st.y, &st.ys, &st.k1, &st.k, &st.atol, st.rtol);
+    let mut cont_done = false;
+    for l in 0..n {
+        if !slots.active[l] {
             continue;
         }
-        // The attempts are complete: each lane's error norm decides.
-        let sums = arithmetic::error_sum(st.h, &st.y, &st.ys, &st.k1, &st.k, &st.atol, st.rtol);
-        let mut cont_done = false;
-        for l in 0..n {
-            if !slots.active[l] {
-                continue;
-            }
-            let lane = &mut group[l];
-            let p = P::of(lane);
-            let err = (sums.0[l] / N as f64).sqrt();
-            match p.judge(err) {
-                Ok(Some(outcome)) => {
-                    slots.active[l] = false;
-                    if !cont_done {
-                        arithmetic::dense_coefficients(
-                            st.h,
-                            &st.y,
-                            &st.ys,
-                            &st.k1,
-                            &st.k,
-                            &mut st.cont,
-                        );
-                        cont_done = true;
-                    }
-                    let c_l = [
-                        lane_of(&st.cont[0], l),
-                        lane_of(&st.cont[1], l),
-                        lane_of(&st.cont[2], l),
-                        lane_of(&st.cont[3], l),
-                    ];
-                    match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
-                        Ok(()) => {
-                            outcomes[l] = Some(outcome);
-                            for k in 0..N {
-                                st.end_y[k].0[l] = st.ys[k].0[l];
-                                st.end_dy[k].0[l] = st.k[5][k].0[l];
-                            }
+        let lane = &mut group[l];
+        let p = P::of(lane);
+        let err = (sums.0[l] / N as f64).sqrt();
+        let (retrying, error) = match p.judge(err) {
+            Ok(Some(outcome)) => {
+                if !cont_done {
+                    arithmetic::dense_coefficients(
+                        st.h,
+                        &st.y,
+                        &st.ys,
+                        &st.k1,
+                        &st.k,
+                        &mut st.cont,
+                    );
+                    cont_done = true;
+                }
+                let c_l = [
+                    lane_of(&st.cont[0], l),
+                    lane_of(&st.cont[1], l),
+                    lane_of(&st.cont[2], l),
+                    lane_of(&st.cont[3], l),
+                ];
+                match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
+                    Ok(()) => {
+                        outcomes[l] = Some(outcome);
+                        for k in 0..N {
+                            st.end_y[k].0[l] = st.ys[k].0[l];
+                            st.end_dy[k].0[l] = st.k[5][k].0[l];
                         }
-                        Err(e) => lane.end = Some(LaneEnd::Error(e)),
+                        (false, None)
                     }
-                }
-                Ok(None) => st.h.0[l] = p.dopri().attempt_step(),
-                Err(e) => {
-                    slots.active[l] = false;
-                    lane.end = Some(LaneEnd::Error(e));
+                    Err(e) => (false, Some(e)),
                 }
             }
+            Ok(None) => (true, None),
+            Err(e) => (false, Some(e)),
+        };
+        lane.retrying = retrying;
+        if let Some(e) = error {
+            lane.end = Some(LaneEnd::Error(e));
         }
-        if !slots.active.iter().any(|&a| a) {
-            break;
-        }
-        stage = 0;
     }
     outcomes
 }
@@ -364,7 +364,7 @@ fn slot_models<'a, const N: usize, P: OnLanes<'a, N>>(
     slots.lane.map(|i| P::of(&mut group[i]).model())
 }
 
-/// One free-flight step of the lanes of `group`: the 6-DOF kernel on four lanes, each slot's
+/// One free-flight attempt of the lanes of `group`: the 6-DOF kernel on four lanes, each slot's
 /// mass state refreshed only when it changes.
 #[inline(always)]
 fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
@@ -444,7 +444,7 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
     });
 }
 
-/// One descent step of the lanes of `group`: the point-mass descent on four lanes.
+/// One descent attempt of the lanes of `group`: the point-mass descent on four lanes.
 #[inline(always)]
 fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
     // The slots' models and, if they share their tables, the four-lane view of them.

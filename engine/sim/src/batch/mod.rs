@@ -494,6 +494,7 @@ impl Batch {
                         sim,
                         flying: Flying::Free(paused),
                         end: None,
+                        retrying: false,
                     }),
                     Ok(Ok(Progress::Done(flight))) => {
                         results[row] = Some(self.result_of(sim, Ok(flight), variant))

@@ -243,6 +243,9 @@ fn every_lane_equals_the_single_flight_with_the_same_inputs() {
                 }
                 assert_eq!(lane.shifts[0].start_s, f.shift_starts_s[0]);
                 assert_eq!(lane.end_s, f.events.last().unwrap().time_s);
+                // The same attempts, the rejected ones (tried again at the lane's next group
+                // step) included.
+                assert_eq!(lane.derivative_evaluations, f.derivative_evaluations, "variant {i}");
                 assert!(lane.flown);
                 landed += 1;
             }
