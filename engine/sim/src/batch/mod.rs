@@ -14,11 +14,13 @@
 //! that lands is replaced by the next row. Their free flights and their descents (all but the
 //! pad and the rail) are stepped four lanes of the same phase at a time: each lane keeps its
 //! own time, step size, stop times and error control (its own Dormand–Prince stepper, which
-//! judges and commits its attempts), the four lanes' step states are held as structure of
+//! judges and commits its attempts), the four lanes' attempts are held as structure of
 //! arrays, and every stage is one stage combination and *one* evaluation of the generic
 //! kernel (6-DOF, or the descent's) on [`F64x4`](crate::lanes::F64x4) lanes (AVX2
-//! registers where the processor has them, [`eval_four`]). A lane whose step is done, or a
-//! slot without a lane, repeats another lane's input and is ignored. The kernels and the step
+//! registers where the processor has them, [`eval_four`]). Each group step is one attempt
+//! per lane: a lane whose attempt is rejected tries again, smaller, at the next group step,
+//! beside the other lanes' new steps. A slot without a lane repeats another lane's input
+//! and is ignored. The kernels and the step
 //! arithmetic do lane by lane exactly the IEEE operations the single flight does, so a lane's
 //! metrics are bit for bit the single-flight simulator's ([`Batch::variant`] gives that
 //! simulation; the tests compare them).
