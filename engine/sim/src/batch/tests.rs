@@ -245,7 +245,10 @@ fn every_lane_equals_the_single_flight_with_the_same_inputs() {
                 assert_eq!(lane.end_s, f.events.last().unwrap().time_s);
                 // The same attempts, the rejected ones (tried again at the lane's next group
                 // step) included.
-                assert_eq!(lane.derivative_evaluations, f.derivative_evaluations, "variant {i}");
+                assert_eq!(
+                    lane.derivative_evaluations, f.derivative_evaluations,
+                    "variant {i}"
+                );
                 assert!(lane.flown);
                 landed += 1;
             }
