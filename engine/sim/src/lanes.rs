@@ -190,6 +190,9 @@ impl Real for F64x4 {
     fn mask_lane(m: [bool; 4], i: usize) -> bool {
         m[i]
     }
+    /// The four lanes' look-ups without a branch, so that they run in vector registers but
+    /// for the eight loads: the same division, truncation, subtraction and interpolation as
+    /// [`MachTable::at`], and its end values and NaN chosen afterwards by select.
     #[inline(always)]
     fn mach_table(table: &MachTable, mach: F64x4) -> F64x4 {
         const LAST: usize = MACH_NODES - 1;
@@ -217,10 +220,10 @@ impl Real for F64x4 {
 /// `[0, cells − 1]` first, so every lane's index reads inside the table; the caller chooses
 /// what such a lane gives. Written without branches, so that four lanes run in vector registers.
 #[inline(always)]
-pub fn grid_cells<const K: usize>(u: [f64; K], cells: usize) -> ([usize; K], [f64; K]) {
+pub fn grid_cells(u: [f64; 4], cells: usize) -> ([usize; 4], [f64; 4]) {
     let top = cells - 1;
     // f64::max returns 0 for NaN; the integer clamp lets the compiler drop bounds checks.
-    let i: [usize; K] = u.map(|u| (u.max(0.0).min(top as f64) as i32 as usize).min(top));
+    let i: [usize; 4] = u.map(|u| (u.max(0.0).min(top as f64) as i32 as usize).min(top));
     (i, std::array::from_fn(|l| u[l] - i[l] as f64))
 }
 

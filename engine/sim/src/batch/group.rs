@@ -522,25 +522,8 @@ pub fn eval_four(
     y: &[F64x4; N6],
     dy: &mut [F64x4; N6],
 ) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor has AVX2 (checked just above).
-            unsafe { eval_four_avx2(four, ms, thrust, y, dy) };
-            return;
-        }
-    }
-    derivative_6dof_lanes(four, ms, thrust, y, dy);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn eval_four_avx2(
-    four: &FourModels<'_>,
-    ms: &MassLanes<F64x4>,
-    thrust: F64x4,
-    y: &[F64x4; N6],
-    dy: &mut [F64x4; N6],
-) {
-    derivative_6dof_lanes(four, ms, thrust, y, dy);
+    with_avx2(
+        #[inline(always)]
+        || derivative_6dof_lanes(four, ms, thrust, y, dy),
+    );
 }
