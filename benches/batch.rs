@@ -3,9 +3,10 @@
 //!
 //! `cargo bench --bench batch` runs 1k and 10k variants; `cargo bench --bench batch -- 1000
 //! 100000` runs those sizes (each size in its own process, so that its peak resident memory,
-//! read from /proc/self/status, is its own). It prints medians of 3 runs (one run above 10k
-//! variants, on 2 threads only) and the ratios the batch must reach: ≥ 2,000 flights/s on 2
-//! threads, ≥ 3× the rayon loop per flight, 2 threads ≥ 1.8× 1.
+//! read from /proc/self/status, is its own). Up to 10k variants it times five interleaved
+//! rounds of (batch on 2 threads, batch on 1, rayon loop on 2) and prints the medians and the
+//! median of the rounds' ratios; above 10k, one batch run on 2 threads. The targets: ≥ 2,000
+//! flights/s on 2 threads, ≥ 3× the rayon loop per flight, 2 threads ≥ 1.8× 1.
 //! The variants are the batch tests': the reference design with its ballast moving, drogue and
 //! main, wind, rail, motor and mass dispersions. Their inputs are never held whole: each
 //! chunk's columns are drawn from (seed, variant index) when the chunk is flown, so the peak
@@ -150,6 +151,9 @@ fn from_scratch(design: &Design, i: usize) -> f64 {
     }
 }
 
+/// Interleaved rounds per size up to 10k variants.
+const ROUNDS: usize = 5;
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -169,64 +173,72 @@ fn peak_rss_kib() -> u64 {
 fn measure(n: usize, compare: bool) {
     let design = Design::load(REFERENCE).unwrap();
     let batch = Batch::new(base(&design), Some("ballast")).unwrap();
-    let reps = if compare { 3 } else { 1 };
-    let time_batch = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        median(
-            (0..reps)
-                .map(|_| {
-                    let t = Instant::now();
-                    let mut sum = 0.0;
-                    pool.install(|| {
-                        batch.run(n, 16, 64, columns_of, |r| {
-                            sum += r.metrics.apogee_m.unwrap_or(0.0)
-                        })
-                    })
-                    .unwrap();
-                    std::hint::black_box(sum);
-                    t.elapsed().as_secs_f64()
-                })
-                .collect(),
-        )
+    let pools: Vec<rayon::ThreadPool> = [1, 2]
+        .iter()
+        .map(|&t| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .unwrap()
+        })
+        .collect();
+    let time_batch = |pool: &rayon::ThreadPool| {
+        let t = Instant::now();
+        let mut sum = 0.0;
+        pool.install(|| {
+            batch.run(n, 16, 64, columns_of, |r| {
+                sum += r.metrics.apogee_m.unwrap_or(0.0)
+            })
+        })
+        .unwrap();
+        std::hint::black_box(sum);
+        t.elapsed().as_secs_f64()
     };
-    let b2 = time_batch(2);
-    let mut batch_peak_kib = peak_rss_kib();
-    if compare {
-        let b1 = time_batch(1);
-        batch_peak_kib = peak_rss_kib();
-        println!("{n:>7} variants  batch: 1 thread {:>8.0} flights/s, 2 threads {:>8.0} flights/s (2 threads / 1 = {:.2}x)", n as f64 / b1, n as f64 / b2, b1 / b2);
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(2)
-            .build()
-            .unwrap();
-        let l2 = median(
-            (0..3)
-                .map(|_| {
-                    let t = Instant::now();
-                    let s: f64 = pool.install(|| {
-                        (0..n)
-                            .into_par_iter()
-                            .map(|i| from_scratch(&design, i))
-                            .sum()
-                    });
-                    std::hint::black_box(s);
-                    t.elapsed().as_secs_f64()
-                })
-                .collect(),
-        );
-        println!("{n:>7} variants  Simulation in a rayon loop, 2 threads: {:>8.0} flights/s; batch / loop = {:.2}x per flight", n as f64 / l2, l2 / b2);
-    } else {
+    let time_loop = |pool: &rayon::ThreadPool| {
+        let t = Instant::now();
+        let s: f64 = pool.install(|| {
+            (0..n)
+                .into_par_iter()
+                .map(|i| from_scratch(&design, i))
+                .sum()
+        });
+        std::hint::black_box(s);
+        t.elapsed().as_secs_f64()
+    };
+    if !compare {
+        let b2 = time_batch(&pools[1]);
         println!(
             "{n:>7} variants  batch: 2 threads {:>8.0} flights/s (one run)",
             n as f64 / b2
         );
+    } else {
+        // Rounds of (batch on 2 threads, batch on 1, loop on 2), so that a slow spell of the
+        // shared machine falls on all three alike rather than on one of them; each ratio is
+        // the median of the rounds' own ratios.
+        let (mut b1, mut b2, mut l2) = (Vec::new(), Vec::new(), Vec::new());
+        let mut batch_peak_kib = 0;
+        for round in 0..ROUNDS {
+            b2.push(time_batch(&pools[1]));
+            b1.push(time_batch(&pools[0]));
+            if round == 0 {
+                batch_peak_kib = peak_rss_kib();
+            }
+            l2.push(time_loop(&pools[1]));
+        }
+        let scaling = median(b1.iter().zip(&b2).map(|(a, b)| a / b).collect());
+        let per_flight = median(l2.iter().zip(&b2).map(|(l, b)| l / b).collect());
+        let (b1, b2, l2) = (median(b1), median(b2), median(l2));
+        println!("{n:>7} variants  batch: 1 thread {:>8.0} flights/s, 2 threads {:>8.0} flights/s (2 threads / 1 = {scaling:.2}x)", n as f64 / b1, n as f64 / b2);
+        println!("{n:>7} variants  Simulation in a rayon loop, 2 threads: {:>8.0} flights/s; batch / loop = {per_flight:.2}x per flight", n as f64 / l2);
+        println!(
+            "{n:>7} variants  peak resident memory {:.1} MiB after the batch's first runs, {:.1} MiB in all",
+            batch_peak_kib as f64 / 1024.0,
+            peak_rss_kib() as f64 / 1024.0
+        );
+        return;
     }
     println!(
-        "{n:>7} variants  peak resident memory {:.1} MiB after the batch runs, {:.1} MiB in all",
-        batch_peak_kib as f64 / 1024.0,
+        "{n:>7} variants  peak resident memory {:.1} MiB",
         peak_rss_kib() as f64 / 1024.0
     );
 }
