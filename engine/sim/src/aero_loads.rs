@@ -7,6 +7,14 @@
 //! between `u` and `−b3`; its normal force is `½ ρ |u|² A_ref CNα(M) α` along the part of `u`
 //! across the axis. Drag is `½ ρ V² A_ref Cd(M)` along `−b3`, with `V` the center of mass's
 //! speed through the air. Tables are built once ([`AeroTables`]); a call allocates nothing.
+//!
+//! Past what RocketPy models, for a rocket that tumbles or flies tail first (an unstable
+//! design): beyond 90° a surface's normal force is that of the supplementary angle `π − α`,
+//! so it vanishes when the air runs along the axis from either end, and the axial drag turns
+//! over smoothly between 45° and 135° (the center of mass's angle of attack) to oppose a flow
+//! from behind. Below 45° both are RocketPy's, bit for bit. RocketPy's linear `α` up to 180°
+//! and always-aft drag would push a rocket flying tail first ever faster, with a normal force
+//! that flips with the crossflow's sign: its steps collapse.
 
 use crate::eom::Loads;
 use crate::lanes::{atan2_upper, Real, V3};
@@ -134,6 +142,12 @@ pub fn loads<S: Real>(
         // The angle between u and −b3: atan2 is exact near zero, where acos(−u_z/|u|) loses
         // half its digits (and it is cheaper); this one runs in vector registers.
         let alpha = atan2_upper(cross, -u.z);
+        // Past 90° the air meets the surface from behind: its normal force is that of the
+        // supplementary angle, and vanishes when the air runs along the axis from either end.
+        // (Linear in α up to 180°, it would be largest flying tail first and flip with the
+        // crossflow's sign: a tumbling rocket's steps would collapse.) Below 90° this is α.
+        let back = S::splat(std::f64::consts::PI) - alpha;
+        let alpha = S::select(alpha.gt(back), back, alpha);
         let mach = speed / speed_of_sound;
         let cn = S::mach_table(&s.cn_alpha, mach);
         let n = S::select(none, zero, half * rho * speed2 * area * cn * alpha);
@@ -160,7 +174,126 @@ pub fn loads<S: Real>(
     let forcing = q * area * d * S::mach_table(&t.roll_forcing, mach);
     let damping = half * rho * v * area * d * d * S::mach_table(&t.roll_damping, mach) * omega.z
         / S::splat(2.0);
-    force.z = S::select(moving, force.z - q * area * drag_scale * cd, force.z);
+    // The axial force opposes the axial flow. Up to 45° off the nose it is the whole drag
+    // (RocketPy's model, every ordinary flight), from 135° (flying tail first) the whole drag
+    // the other way, and in between it turns over smoothly through zero broadside. A drag that
+    // always pointed aft would drive a rocket that flies tail first ever faster.
+    let x = v_cm_air_b.z / v * S::splat(std::f64::consts::SQRT_2);
+    let turning = x * (S::splat(3.0) - x * x) * half;
+    let axial = S::select(
+        x.gt(one),
+        one,
+        S::select(S::splat(-1.0).gt(x), S::splat(-1.0), turning),
+    );
+    force.z = S::select(
+        moving,
+        force.z - q * area * drag_scale * cd * axial,
+        force.z,
+    );
     moment.z = S::select(moving, moment.z + (forcing - damping), moment.z);
     (force, moment)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const AREA_M2: f64 = 0.002;
+    const CD: f64 = 0.5;
+    const CN_ALPHA: f64 = 10.0;
+
+    /// One surface 0.8 m aft of the tip, constant coefficients, no roll terms.
+    fn tables() -> AeroTables {
+        AeroTables {
+            ref_area_m2: AREA_M2,
+            ref_diameter_m: 0.05,
+            surfaces: vec![SurfaceTable {
+                x_cp_m: 0.8,
+                cn_alpha: MachTable::constant(CN_ALPHA),
+            }],
+            cd_power_off: MachTable::constant(CD),
+            cd_power_on: MachTable::constant(CD),
+            roll_forcing: MachTable::constant(0.0),
+            roll_damping: MachTable::constant(0.0),
+            cp_mach0_m: 0.8,
+        }
+    }
+
+    /// The rocket's velocity through the air at `alpha_deg` off the nose, 100 m/s: along
+    /// (sin α, 0, cos α) in body axes, so the air comes at α off −b3.
+    fn velocity(alpha_deg: f64) -> Vector3<f64> {
+        let a = alpha_deg.to_radians();
+        Vector3::new(100.0 * a.sin(), 0.0, 100.0 * a.cos())
+    }
+
+    /// Dynamic pressure at `alpha_deg`, rounded as the kernel rounds it.
+    fn q_pa(alpha_deg: f64) -> f64 {
+        let v = velocity(alpha_deg);
+        0.5 * 1.225 * (v.x * v.x + v.y * v.y + v.z * v.z)
+    }
+
+    /// The loads of air met at `alpha_deg` off the nose, no rotation, sea-level air.
+    fn at(alpha_deg: f64) -> Loads {
+        let v = velocity(alpha_deg);
+        let air = AirAt {
+            density_kg_m3: 1.225,
+            speed_of_sound_m_s: 340.0,
+        };
+        aero_loads(&tables(), &v, &v, &Vector3::zeros(), &air, false, 1.0)
+    }
+
+    const Q_PA: f64 = 0.5 * 1.225 * 100.0 * 100.0;
+
+    #[test]
+    fn up_to_45_degrees_the_drag_is_the_whole_drag_along_the_axis_as_in_rocketpy() {
+        for deg in [0.0, 3.0, 20.0, 44.9] {
+            // Bit for bit RocketPy's −q A Cd: the turn-over factor is exactly 1 here.
+            assert_eq!(
+                at(deg).force_b.z,
+                0.0 - q_pa(deg) * AREA_M2 * 1.0 * CD,
+                "{deg}°"
+            );
+        }
+    }
+
+    #[test]
+    fn flying_tail_first_the_drag_points_forward_and_broadside_there_is_none() {
+        let drag = Q_PA * AREA_M2 * CD;
+        for deg in [135.1, 150.0, 180.0] {
+            let f = at(deg).force_b.z;
+            assert!((f - drag).abs() <= 1e-12 * drag, "{deg}°: {f} N");
+        }
+        assert!(
+            at(90.0).force_b.z.abs() <= 1e-12 * drag,
+            "broadside: {}",
+            at(90.0).force_b.z
+        );
+        // In between it turns over smoothly and without a jump: 89.9° and 90.1° differ by
+        // about the slope 1.5·√2 q A Cd per radian times 0.2°.
+        let step = (at(90.1).force_b.z - at(89.9).force_b.z).abs();
+        let slope = 1.5 * std::f64::consts::SQRT_2 * drag * 0.2f64.to_radians();
+        assert!(
+            (step - slope).abs() < 1e-3 * slope,
+            "{step} N against {slope} N"
+        );
+    }
+
+    #[test]
+    fn past_90_degrees_the_normal_force_is_that_of_the_supplementary_angle() {
+        // Below 90°: q A CNα α along the crossflow, bit for bit.
+        let a = 30f64.to_radians();
+        let n30 = q_pa(30.0) * AREA_M2 * CN_ALPHA * a;
+        assert!((at(30.0).force_b.x.abs() - n30).abs() <= 1e-12 * n30);
+        for deg in [100.0, 150.0, 175.0] {
+            let (n, mirror) = (at(deg).force_b.x, at(180.0 - deg).force_b.x);
+            assert!(
+                (n.abs() - mirror.abs()).abs() <= 1e-9 * mirror.abs(),
+                "{deg}°: {n} N against {mirror} N"
+            );
+        }
+        // Straight tail first: no crossflow, no normal force (RocketPy's linear α would give
+        // q A CNα π here, its sign set by rounding).
+        assert!(at(180.0).force_b.x.abs() < 1e-9, "{}", at(180.0).force_b.x);
+        assert!(at(179.0).force_b.x.abs() < 0.02 * Q_PA * AREA_M2 * CN_ALPHA);
+    }
 }

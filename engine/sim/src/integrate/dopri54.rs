@@ -82,6 +82,11 @@ pub struct StepControl {
     pub h_max: f64,
     /// First step, s; 0 (default) = Hairer's estimate from the derivative.
     pub h_initial: f64,
+    /// Most attempts (accepted and rejected steps) one stepper may make, ≥ 1. Default
+    /// 100,000, some 300 times a whole flight's steps at the default tolerances: a flight
+    /// whose steps collapse without quite underflowing (a chattering force) ends with
+    /// [`IntegratorError::TooManySteps`] instead of running for hours.
+    pub max_steps: u64,
 }
 
 impl Default for StepControl {
@@ -94,6 +99,7 @@ impl Default for StepControl {
             h_min: 0.0,
             h_max: f64::INFINITY,
             h_initial: 0.0,
+            max_steps: 100_000,
         }
     }
 }
@@ -126,6 +132,9 @@ impl StepControl {
                 self.h_initial,
                 "must be finite and >= 0 (0 = estimate)",
             );
+        }
+        if self.max_steps == 0 {
+            return bad("max_steps", 0.0, "must be at least 1");
         }
         Ok(())
     }
@@ -362,6 +371,12 @@ impl<const N: usize> Dopri54<N> {
         let (h, last) = clip_to_stop(t, a.h_proposal, a.t_stop);
         a.h = h;
         a.last = last;
+        if self.n_accepted + self.n_rejected >= c.max_steps {
+            return Err(IntegratorError::TooManySteps {
+                t,
+                steps: c.max_steps,
+            });
+        }
         let h_floor = c.h_min.max(10.0 * f64::EPSILON * t.abs());
         if !last && (h.is_nan() || h < h_floor || h <= 0.0) {
             return Err(IntegratorError::StepSizeUnderflow {

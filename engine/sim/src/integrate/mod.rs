@@ -95,6 +95,17 @@ pub enum IntegratorError {
         /// The minimum in force there, s.
         h_min: f64,
     },
+    /// The stepper made its most attempts ([`StepControl::max_steps`]) before its stop.
+    #[error(
+        "{steps} steps by t = {t} s without reaching the phase's end (the limit `max_steps`): \
+         the steps collapsed (a force that chatters, or stiffness at these tolerances)"
+    )]
+    TooManySteps {
+        /// Time of the step start, s.
+        t: f64,
+        /// The limit reached.
+        steps: u64,
+    },
     /// `t_stop` must be strictly after the current time (and not NaN).
     #[error("stop time {t_stop} s is not after the current time {t} s")]
     StopTimeNotAhead {

@@ -420,6 +420,49 @@ fn a_derivative_that_turns_nan_ends_in_a_step_size_underflow_error() {
 }
 
 #[test]
+fn a_chattering_derivative_ends_at_the_step_limit_instead_of_running_on() {
+    // y' = −1000·sign(y) from y = 1 reaches 0 at t = 1 ms and then chatters about it: each
+    // step across zero is rejected down to about atol/1000, far above the underflow floor, so
+    // only the count of attempts can stop it (2·10¹¹ steps to t = 1 s otherwise).
+    let f = |_t: f64, y: &[f64; 1], dy: &mut [f64; 1]| {
+        dy[0] = -1000.0 * y[0].signum();
+    };
+    let control = StepControl {
+        max_steps: 1_000,
+        ..StepControl::default()
+    };
+    let mut s = Dopri54::new(Tolerances::uniform(1e-8, 1e-8).unwrap(), control).unwrap();
+    s.init(f, 0.0, &[1.0]).unwrap();
+    let err = loop {
+        if let Err(e) = s.step(f, 1.0) {
+            break e;
+        }
+    };
+    eprintln!("{err}");
+    assert_eq!(s.n_accepted() + s.n_rejected(), 1_000);
+    match err {
+        IntegratorError::TooManySteps { t, steps } => {
+            assert_eq!(steps, 1_000);
+            // Stuck within a few step sizes of the zero at 1 ms.
+            assert!((t - 1e-3).abs() < 1e-6, "t = {t}");
+        }
+        other => panic!("unexpected {other}"),
+    }
+    assert!(err.to_string().contains("max_steps"), "{err}");
+    // The default allows a whole flight's steps hundreds of times over.
+    assert_eq!(StepControl::default().max_steps, 100_000);
+    let none = StepControl {
+        max_steps: 0,
+        ..StepControl::default()
+    };
+    assert!(none
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .contains("max_steps"));
+}
+
+#[test]
 fn bad_tolerances_and_settings_are_typed_errors() {
     for rtol in [0.0, 1e-15, 0.2, f64::NAN, f64::INFINITY] {
         let e = Tolerances::<2>::uniform(rtol, 1e-6).unwrap_err();

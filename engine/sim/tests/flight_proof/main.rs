@@ -12,4 +12,5 @@ mod common;
 mod events;
 mod exact;
 mod inputs;
+mod large_angles;
 mod rocket_equation;
