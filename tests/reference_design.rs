@@ -111,3 +111,28 @@ fn inspect_prints_the_reference_design_s_mass_properties_and_margin() {
         assert!(line.contains(figure), "{line}");
     }
 }
+
+#[test]
+fn fly_takes_negative_numbers_after_a_space_as_values() {
+    // `--heading-deg -30` is the value −30, not an unknown flag; it equals `--heading-deg=-30`.
+    let fly = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
+            .args(["fly", REFERENCE, "--json", "--wind-m-s", "3"])
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let spaced = fly(&["--heading-deg", "-30", "--inclination-deg", "85"]);
+    let joined = fly(&["--heading-deg=-30", "--inclination-deg=85"]);
+    assert_eq!(spaced, joined);
+    assert_ne!(
+        spaced,
+        fly(&["--heading-deg", "30", "--inclination-deg", "85"])
+    );
+}

@@ -25,6 +25,7 @@ enum Command {
     /// Mass, center of mass, inertia, center of pressure and static margin of a design.
     Inspect(hpr_mc::cli::InspectArgs),
     /// Fly one flight and print its metrics and events.
+    #[command(allow_negative_numbers = true)]
     Fly(hpr_mc::cli::FlyArgs),
     /// Run a scenario (sweeps × dispersions) and write Parquet.
     Run(hpr_mc::cli::RunCommand),

@@ -337,10 +337,7 @@ pub fn write_trajectory(path: &Path, f: &Flight) -> Result<()> {
             w.write(&batch)?;
             w.close()?;
         }
-        _ => bail!(
-            "{}: the trajectory file must end in .csv or .parquet",
-            path.display()
-        ),
+        _ => bail!("the trajectory file must end in .csv or .parquet"),
     }
     std::fs::rename(&tmp, path)?;
     Ok(())

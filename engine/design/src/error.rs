@@ -227,7 +227,7 @@ pub enum DesignError {
         source: std::io::Error,
     },
     /// JSON syntax, a wrong type, a missing or an unknown field (from serde).
-    #[error("{file}: line {line}, column {column}: {message}")]
+    #[error("{file}: not a JSON design: line {line}, column {column}: {message}")]
     Json {
         file: String,
         line: usize,

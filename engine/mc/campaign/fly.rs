@@ -100,6 +100,17 @@ impl Prepared {
             Design::load(&scenario.design_file).map_err(|e| bad("design.file", e.to_string()))?;
         let motor = motor::find(&scenario.motor).map_err(|e| bad("motor.name", e.to_string()))?;
 
+        for (i, shift) in scenario.shifts.iter().enumerate() {
+            if design.component_index(&shift.component).is_none() {
+                return Err(bad(
+                    &format!("shifts[{i}].component"),
+                    format!(
+                        "the design \"{}\" has no component with id \"{}\"",
+                        design.name, shift.component
+                    ),
+                ));
+            }
+        }
         let uses_ballast = scenario.inputs.iter().find(|i| i.param == Param::BallastKg);
         let ballast = match &scenario.ballast {
             None => {

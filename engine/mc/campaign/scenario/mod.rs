@@ -23,11 +23,11 @@ use std::path::{Path, PathBuf};
 /// A scenario file that can't be read or breaks a rule.
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
-    #[error("{file}: can't read it: {source}")]
+    #[error("{file}: can't read it: {cause}")]
     Io {
         file: String,
-        #[source]
-        source: std::io::Error,
+        /// Not a `#[source]`: the message already says it, and error chains would say it twice.
+        cause: std::io::Error,
     },
     #[error("{file}: {key}: {rule}")]
     Invalid {
@@ -164,9 +164,9 @@ pub fn with_trigger_value(t: &Trigger, v: f64) -> Trigger {
 impl Scenario {
     /// Read and validate the scenario file at `path`.
     pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+        let text = std::fs::read_to_string(path).map_err(|cause| ScenarioError::Io {
             file: path.display().to_string(),
-            source,
+            cause,
         })?;
         Scenario::parse(&text, path)
     }

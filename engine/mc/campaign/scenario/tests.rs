@@ -268,6 +268,19 @@ fn rules_that_need_the_design_and_motor_name_their_key() {
         e.to_string().contains("which is 0") && e.to_string().contains("wind_speed_m_s = 0"),
         "{e}"
     );
+    // A shift of a part the design does not have is the shift's component's fault, not the
+    // sweep's.
+    let text = BASE.replace("component = \"ballast\"", "component = \"ballastt\"");
+    let e = Prepared::new(Scenario::parse(&text, &path()).unwrap()).unwrap_err();
+    assert_eq!(e.key(), "shifts[0].component");
+    assert!(
+        e.to_string().contains("no component with id \"ballastt\""),
+        "{e}"
+    );
+    // A file that is not there is said once.
+    let e = Scenario::load(&path().with_file_name("no-such-scenario.toml")).unwrap_err();
+    let chain = format!("{:#}", anyhow::Error::from(e));
+    assert_eq!(chain.matches("os error").count(), 1, "{chain}");
     // A sweep point whose nominal flight the simulator refuses: 0.9 m of travel takes the
     // ballast out of the body tube.
     let e = prep("[sweep]\nshifts.ballast.travel_m = [0.1, 0.9]\n");
