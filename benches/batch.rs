@@ -173,15 +173,13 @@ fn peak_rss_kib() -> u64 {
 fn measure(n: usize, compare: bool) {
     let design = Design::load(REFERENCE).unwrap();
     let batch = Batch::new(base(&design), Some("ballast")).unwrap();
-    let pools: Vec<rayon::ThreadPool> = [1, 2]
-        .iter()
-        .map(|&t| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(t)
-                .build()
-                .unwrap()
-        })
-        .collect();
+    let pool = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+    };
+    let (one_thread, two_threads) = (pool(1), pool(2));
     let time_batch = |pool: &rayon::ThreadPool| {
         let t = Instant::now();
         let mut sum = 0.0;
@@ -206,7 +204,7 @@ fn measure(n: usize, compare: bool) {
         t.elapsed().as_secs_f64()
     };
     if !compare {
-        let b2 = time_batch(&pools[1]);
+        let b2 = time_batch(&two_threads);
         println!(
             "{n:>7} variants  batch: 2 threads {:>8.0} flights/s (one run)",
             n as f64 / b2
@@ -218,12 +216,12 @@ fn measure(n: usize, compare: bool) {
         let (mut b1, mut b2, mut l2) = (Vec::new(), Vec::new(), Vec::new());
         let mut batch_peak_kib = 0;
         for round in 0..ROUNDS {
-            b2.push(time_batch(&pools[1]));
-            b1.push(time_batch(&pools[0]));
+            b2.push(time_batch(&two_threads));
+            b1.push(time_batch(&one_thread));
             if round == 0 {
                 batch_peak_kib = peak_rss_kib();
             }
-            l2.push(time_loop(&pools[1]));
+            l2.push(time_loop(&two_threads));
         }
         let scaling = median(b1.iter().zip(&b2).map(|(a, b)| a / b).collect());
         let per_flight = median(l2.iter().zip(&b2).map(|(l, b)| l / b).collect());

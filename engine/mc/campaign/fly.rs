@@ -24,7 +24,7 @@ use hpr_design::design::model::Design;
 use hpr_design::mass;
 use hpr_design::motor::{self, Motor};
 use hpr_sim::batch::{Batch, LaneResult};
-use hpr_sim::{Simulation, Trigger};
+use hpr_sim::{SimError, Simulation, Trigger};
 use setup::{Fixed, Setup};
 
 /// How a variant ended: the batch lane's status.
@@ -100,17 +100,6 @@ impl Prepared {
             Design::load(&scenario.design_file).map_err(|e| bad("design.file", e.to_string()))?;
         let motor = motor::find(&scenario.motor).map_err(|e| bad("motor.name", e.to_string()))?;
 
-        for (i, shift) in scenario.shifts.iter().enumerate() {
-            if design.component_index(&shift.component).is_none() {
-                return Err(bad(
-                    &format!("shifts[{i}].component"),
-                    format!(
-                        "the design \"{}\" has no component with id \"{}\"",
-                        design.name, shift.component
-                    ),
-                ));
-            }
-        }
         let uses_ballast = scenario.inputs.iter().find(|i| i.param == Param::BallastKg);
         let ballast = match &scenario.ballast {
             None => {
@@ -262,15 +251,23 @@ impl Prepared {
                 }
             }
             let setup = fixed.setup(&centers).map_err(|r| bad(point_key, r))?;
-            let refused = |r: String| {
-                bad(
-                    point_key,
-                    format!("the nominal flight{at} can't be set up: {r}"),
-                )
+            let refused_at = |key: &str, r: &dyn std::fmt::Display| {
+                bad(key, format!("the nominal flight{at} can't be set up: {r}"))
             };
+            let refused = |r: String| refused_at(point_key, &r);
             match &batch {
                 None => {
-                    let base = fixed.simulation(&setup).map_err(refused)?;
+                    // A shift the simulator refuses is named by its own key.
+                    let base = fixed.simulation(&setup).map_err(|e| {
+                        let shift = match &e {
+                            SimError::Shift(r) => r.field(),
+                            _ => None,
+                        };
+                        match shift {
+                            Some((i, field)) => refused_at(&format!("shifts[{i}].{field}"), &e),
+                            None => refused_at(point_key, &e),
+                        }
+                    })?;
                     let part = ballast.map(|i| design.components[i].id.as_str());
                     batch = Some(Batch::new(base, part).map_err(refused)?);
                 }

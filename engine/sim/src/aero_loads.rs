@@ -142,10 +142,7 @@ pub fn loads<S: Real>(
         // The angle between u and −b3: atan2 is exact near zero, where acos(−u_z/|u|) loses
         // half its digits (and it is cheaper); this one runs in vector registers.
         let alpha = atan2_upper(cross, -u.z);
-        // Past 90° the air meets the surface from behind: its normal force is that of the
-        // supplementary angle, and vanishes when the air runs along the axis from either end.
-        // (Linear in α up to 180°, it would be largest flying tail first and flip with the
-        // crossflow's sign: a tumbling rocket's steps would collapse.) Below 90° this is α.
+        // Past 90°, the supplementary angle (see the module doc); below, α itself.
         let back = S::splat(std::f64::consts::PI) - alpha;
         let alpha = S::select(alpha.gt(back), back, alpha);
         let mach = speed / speed_of_sound;
@@ -174,17 +171,11 @@ pub fn loads<S: Real>(
     let forcing = q * area * d * S::mach_table(&t.roll_forcing, mach);
     let damping = half * rho * v * area * d * d * S::mach_table(&t.roll_damping, mach) * omega.z
         / S::splat(2.0);
-    // The axial force opposes the axial flow. Up to 45° off the nose it is the whole drag
-    // (RocketPy's model, every ordinary flight), from 135° (flying tail first) the whole drag
-    // the other way, and in between it turns over smoothly through zero broadside. A drag that
-    // always pointed aft would drive a rocket that flies tail first ever faster.
+    // The drag's share along −b3: 1 up to 45° off the nose, −1 from 135°, and in between
+    // the cubic through 0 broadside that meets both ends with zero slope (x = √2·cos α).
     let x = v_cm_air_b.z / v * S::splat(std::f64::consts::SQRT_2);
     let turning = x * (S::splat(3.0) - x * x) * half;
-    let axial = S::select(
-        x.gt(one),
-        one,
-        S::select(S::splat(-1.0).gt(x), S::splat(-1.0), turning),
-    );
+    let axial = S::select(x.gt(one), one, S::select((-one).gt(x), -one, turning));
     force.z = S::select(
         moving,
         force.z - q * area * drag_scale * cd * axial,
@@ -242,8 +233,6 @@ mod tests {
         aero_loads(&tables(), &v, &v, &Vector3::zeros(), &air, false, 1.0)
     }
 
-    const Q_PA: f64 = 0.5 * 1.225 * 100.0 * 100.0;
-
     #[test]
     fn up_to_45_degrees_the_drag_is_the_whole_drag_along_the_axis_as_in_rocketpy() {
         for deg in [0.0, 3.0, 20.0, 44.9] {
@@ -258,20 +247,20 @@ mod tests {
 
     #[test]
     fn flying_tail_first_the_drag_points_forward_and_broadside_there_is_none() {
-        let drag = Q_PA * AREA_M2 * CD;
+        let drag = |deg: f64| q_pa(deg) * AREA_M2 * CD;
         for deg in [135.1, 150.0, 180.0] {
             let f = at(deg).force_b.z;
-            assert!((f - drag).abs() <= 1e-12 * drag, "{deg}°: {f} N");
+            assert!((f - drag(deg)).abs() <= 1e-12 * drag(deg), "{deg}°: {f} N");
         }
         assert!(
-            at(90.0).force_b.z.abs() <= 1e-12 * drag,
+            at(90.0).force_b.z.abs() <= 1e-12 * drag(90.0),
             "broadside: {}",
             at(90.0).force_b.z
         );
         // In between it turns over smoothly and without a jump: 89.9° and 90.1° differ by
         // about the slope 1.5·√2 q A Cd per radian times 0.2°.
         let step = (at(90.1).force_b.z - at(89.9).force_b.z).abs();
-        let slope = 1.5 * std::f64::consts::SQRT_2 * drag * 0.2f64.to_radians();
+        let slope = 1.5 * std::f64::consts::SQRT_2 * drag(90.0) * 0.2f64.to_radians();
         assert!(
             (step - slope).abs() < 1e-3 * slope,
             "{step} N against {slope} N"
@@ -294,6 +283,6 @@ mod tests {
         // Straight tail first: no crossflow, no normal force (RocketPy's linear α would give
         // q A CNα π here, its sign set by rounding).
         assert!(at(180.0).force_b.x.abs() < 1e-9, "{}", at(180.0).force_b.x);
-        assert!(at(179.0).force_b.x.abs() < 0.02 * Q_PA * AREA_M2 * CN_ALPHA);
+        assert!(at(179.0).force_b.x.abs() < 0.02 * q_pa(179.0) * AREA_M2 * CN_ALPHA);
     }
 }

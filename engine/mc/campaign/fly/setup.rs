@@ -9,7 +9,7 @@ use hpr_design::motor::{Motor, MotorOptions};
 use hpr_sim::batch::Columns;
 use hpr_sim::gravity::Gravity;
 use hpr_sim::wind::Wind;
-use hpr_sim::{Environment, MassShift, Parachute, Rail, SimOptions, Simulation};
+use hpr_sim::{Environment, MassShift, Parachute, Rail, SimError, SimOptions, Simulation};
 
 /// Every flight's values, nominal or a variant's.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,8 +105,8 @@ impl Fixed<'_> {
     }
 
     /// The simulation of a setup, built from scratch (the base of the lanes).
-    pub(super) fn simulation(&self, s: &Setup) -> Result<Simulation, String> {
-        let err = |e: &dyn std::fmt::Display| e.to_string();
+    pub(super) fn simulation(&self, s: &Setup) -> Result<Simulation, SimError> {
+        let err = |e: &dyn std::fmt::Display| SimError::Setup(e.to_string());
         let gravity = if self.scenario.environment.inverse_square_gravity {
             Gravity::inverse_square(s.elevation_m).map_err(|e| err(&e))?
         } else {
@@ -123,8 +123,7 @@ impl Fixed<'_> {
             inclination_deg: s.rail[1],
             heading_deg: s.rail[2],
         };
-        let sim = Simulation::new(self.design.clone(), self.motor.clone(), env, rail)
-            .map_err(|e| err(&e))?;
+        let sim = Simulation::new(self.design.clone(), self.motor.clone(), env, rail)?;
         let (delta_mass, delta_cg) = self.structure_deltas(s);
         let ballast = self
             .scenario
@@ -183,7 +182,6 @@ impl Fixed<'_> {
             }
             Ok(())
         })
-        .map_err(|e| err(&e))
     }
 
     /// The structure's change from its nominal (which is at the nominal ballast: a ballast

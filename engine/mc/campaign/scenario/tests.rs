@@ -270,13 +270,19 @@ fn rules_that_need_the_design_and_motor_name_their_key() {
     );
     // A shift of a part the design does not have is the shift's component's fault, not the
     // sweep's.
-    let text = BASE.replace("component = \"ballast\"", "component = \"ballastt\"");
-    let e = Prepared::new(Scenario::parse(&text, &path()).unwrap()).unwrap_err();
-    assert_eq!(e.key(), "shifts[0].component");
-    assert!(
-        e.to_string().contains("no component with id \"ballastt\""),
-        "{e}"
-    );
+    // So is a part the simulator will not move (fins are on the outside).
+    for (part, rule) in [
+        ("ballastt", "no component with id \"ballastt\""),
+        ("fins", "outside of the airframe"),
+    ] {
+        let text = BASE.replace(
+            "component = \"ballast\"",
+            &format!("component = \"{part}\""),
+        );
+        let e = Prepared::new(Scenario::parse(&text, &path()).unwrap()).unwrap_err();
+        assert_eq!(e.key(), "shifts[0].component", "{part}");
+        assert!(e.to_string().contains(rule), "{e}");
+    }
     // A file that is not there is said once.
     let e = Scenario::load(&path().with_file_name("no-such-scenario.toml")).unwrap_err();
     let chain = format!("{:#}", anyhow::Error::from(e));

@@ -119,6 +119,29 @@ pub enum ShiftRefusal {
     },
 }
 
+impl ShiftRefusal {
+    /// The shift refused and the field of it at fault (`component`, `travel_m`, `duration_s`
+    /// or `trigger`), so that an input file can name its own key; `None` for a refusal of
+    /// several shifts together (their travels adding up past the holder).
+    pub fn field(&self) -> Option<(usize, &'static str)> {
+        use ShiftRefusal::*;
+        match self {
+            TooShort { index, .. } => Some((*index, "duration_s")),
+            NotFinite { index, .. } => Some((*index, "travel_m")),
+            UnknownComponent { index, .. }
+            | BodyComponent { index, .. }
+            | ExternalPart { index, .. }
+            | HoldsMotor { index, .. }
+            | InsideMovingPart { index, .. }
+            | ClusterTube { index, .. }
+            | StageOverride { index, .. }
+            | ComponentOverride { index, .. } => Some((*index, "component")),
+            Trigger { index, .. } => Some((*index, "trigger")),
+            OutOfHolder { .. } => None,
+        }
+    }
+}
+
 /// The parts that move, each with the shifts that move it, ready for the flight.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShiftPlan {
