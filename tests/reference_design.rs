@@ -10,6 +10,20 @@ const REFERENCE: &str = concat!(
     "/validation/designs/synthetic-54mm-three-fin.json"
 );
 
+/// Run `hpr-mc` with `args`; it must succeed. Its standard output.
+fn hpr_mc(args: &[&str]) -> String {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
 fn simulation() -> Simulation {
     Simulation::new(
         Design::load(REFERENCE).unwrap(),
@@ -74,16 +88,8 @@ fn the_moving_ballast_example_prints_the_specification_s_table_to_every_digit() 
 
 #[test]
 fn inspect_prints_the_reference_design_s_mass_properties_and_margin() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
-        .args(["inspect", REFERENCE, "--json"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v: serde_json::Value =
+        serde_json::from_str(&hpr_mc(&["inspect", REFERENCE, "--json"])).unwrap();
     let b = &v["after_burnout"];
     let f = |k: &str| b[k].as_f64().unwrap();
     assert_eq!(
@@ -98,11 +104,7 @@ fn inspect_prints_the_reference_design_s_mass_properties_and_margin() {
     );
     assert_eq!(v["motor"]["designation"], "411-I175-WH-14A");
     // The text form says the same.
-    let text = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
-        .args(["inspect", REFERENCE])
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&text.stdout);
+    let text = hpr_mc(&["inspect", REFERENCE]);
     let line = text
         .lines()
         .find(|l| l.starts_with("after burnout"))
@@ -115,19 +117,8 @@ fn inspect_prints_the_reference_design_s_mass_properties_and_margin() {
 #[test]
 fn fly_takes_negative_numbers_after_a_space_as_values() {
     // `--heading-deg -30` is the value −30, not an unknown flag; it equals `--heading-deg=-30`.
-    let fly = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
-            .args(["fly", REFERENCE, "--json", "--wind-m-s", "3"])
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        String::from_utf8(out.stdout).unwrap()
-    };
+    let fly =
+        |more: &[&str]| hpr_mc(&[&["fly", REFERENCE, "--json", "--wind-m-s", "3"], more].concat());
     let spaced = fly(&["--heading-deg", "-30", "--inclination-deg", "85"]);
     let joined = fly(&["--heading-deg=-30", "--inclination-deg=85"]);
     assert_eq!(spaced, joined);
