@@ -33,7 +33,7 @@ FIXED_METRICS = [
     "apogee_m", "apogee_time_s", "max_speed_m_s", "max_mach", "max_accel_m_s2",
     "rail_exit_speed_m_s", "static_margin_liftoff_cal", "static_margin_rail_exit_cal",
     "static_margin_burnout_cal", "static_margin_min_cal", "flight_margin_min_cal",
-    "landing_time_s", "landing_x_m", "landing_y_m", "landing_distance_m", "landing_speed_m_s",
+    "max_alpha_deg", "landing_time_s", "landing_x_m", "landing_y_m", "landing_distance_m", "landing_speed_m_s",
 ]
 
 
@@ -52,7 +52,7 @@ def check_file(path):
         if key not in kv:
             fail(f"{path}: no {key} in the file metadata")
     names = schema.names
-    for col in ["variant_id", "point", "replicate", "status", "error"] + FIXED_METRICS:
+    for col in ["variant_id", "point", "replicate", "status", "error", "warnings"] + FIXED_METRICS:
         if col not in names:
             fail(f"{path}: no column {col}")
     for field in schema:

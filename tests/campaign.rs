@@ -145,12 +145,15 @@ fn the_variants_file_reads_back_with_its_schema_units_nulls_metadata_and_values(
         "shift_ballast_travel_m",
         "status",
         "error",
+        "warnings",
     ];
     expected.extend(hpr_mc::campaign::fly::FIXED_METRICS.iter().map(|m| m.0));
     expected.extend([
         "shift_ballast_start_time_s",
         "shift_ballast_margin_before_cal",
         "shift_ballast_margin_after_cal",
+        "parachute_main_deploy_time_s",
+        "parachute_main_deploy_speed_m_s",
     ]);
     assert_eq!(names, expected);
     let unit = |n: &str| {
@@ -167,6 +170,11 @@ fn the_variants_file_reads_back_with_its_schema_units_nulls_metadata_and_values(
     assert_eq!(unit("max_mach").as_deref(), Some("1"));
     assert_eq!(unit("static_margin_min_cal").as_deref(), Some("cal"));
     assert_eq!(unit("status"), None);
+    assert_eq!(unit("max_alpha_deg").as_deref(), Some("deg"));
+    assert_eq!(
+        unit("parachute_main_deploy_speed_m_s").as_deref(),
+        Some("m/s")
+    );
 
     let b = read(&report.outputs.variants);
     let ids = b
@@ -178,6 +186,7 @@ fn the_variants_file_reads_back_with_its_schema_units_nulls_metadata_and_values(
     assert_eq!(ids.values().to_vec(), (0..10).collect::<Vec<u64>>());
     let status = strings(&b, "status");
     let error = strings(&b, "error");
+    let warnings = strings(&b, "warnings");
     let apogee = f64s(&b, "apogee_m");
     let lag = f64s(&b, "parachute_main_lag_s");
     for r in 0..10 {
@@ -199,6 +208,21 @@ fn the_variants_file_reads_back_with_its_schema_units_nulls_metadata_and_values(
             );
         } else {
             assert!(apogee.value(r) > 1000.0);
+            // A stable rocket under its main: nothing to warn of. The main opens one lag
+            // after the apogee, at the speed of a short fall.
+            assert!(warnings.is_null(r), "row {r}: {}", warnings.value(r));
+            let opened = f64s(&b, "parachute_main_deploy_time_s").value(r);
+            let apogee_time = f64s(&b, "apogee_time_s").value(r);
+            assert!(
+                (opened - (apogee_time + lag.value(r))).abs() < 1e-9,
+                "row {r}: opened at {opened} s, apogee at {apogee_time} s, lag {} s",
+                lag.value(r)
+            );
+            let speed = f64s(&b, "parachute_main_deploy_speed_m_s").value(r);
+            assert!(
+                speed > 0.0 && speed < 9.81 * lag.value(r) + 5.0,
+                "row {r}: {speed}"
+            );
         }
         // Every input's value is the plan's draw for this variant.
         let v = report.prepared.plan.variant(r as u64);
@@ -471,4 +495,36 @@ fn every_bundled_scenario_reads_and_sets_up_at_every_sweep_point() {
     }
     names.sort();
     assert_eq!(names, vec!["ballast_sweep", "calisto", "wind_study"]);
+}
+
+#[test]
+fn a_campaign_without_parachutes_marks_every_landing_ballistic_and_counts_it() {
+    // The tiny scenario with its parachute (and the lag's dispersion) taken out.
+    let text = tiny(3)
+        .replace(
+            "[[parachutes]]\nname = \"main\"\ncds_m2 = 0.9\nlag_s = 1.0\ntrigger = \"apogee\"\n",
+            "",
+        )
+        .replace(
+            "parachutes.main.lag_s = { dist = \"uniform\", min = -2.5, max = 0.5 }\n",
+            "",
+        );
+    assert!(!text.contains("parachute"), "{text}");
+    let (dir, file) = setup(&text);
+    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+    assert_eq!(report.landed, 6, "no lag to refuse: every variant lands");
+    assert_eq!(report.warned, vec![("ballistic".to_string(), 6)]);
+    let b = read(&report.outputs.variants);
+    let (warnings, speed) = (strings(&b, "warnings"), f64s(&b, "landing_speed_m_s"));
+    for r in 0..6 {
+        // The text carries the row's own landing speed, as printed to 0.1 m/s.
+        assert_eq!(
+            warnings.value(r),
+            format!(
+                "ballistic: landed at {:.1} m/s with no parachute open",
+                speed.value(r)
+            )
+        );
+        assert!(speed.value(r) > 50.0, "row {r}: {}", speed.value(r));
+    }
 }

@@ -160,11 +160,12 @@ pub fn flight_json(sim: &Simulation, f: &Flight) -> Value {
             "burnout_time_s": opt(m.burnout_time_s),
             "static_margin_liftoff_cal": opt(m.static_margin_liftoff_cal), "static_margin_rail_exit_cal": opt(m.static_margin_rail_exit_cal),
             "static_margin_burnout_cal": opt(m.static_margin_burnout_cal), "static_margin_min_cal": opt(m.static_margin_min_cal),
-            "flight_margin_min_cal": opt(m.flight_margin_min_cal),
+            "flight_margin_min_cal": opt(m.flight_margin_min_cal), "max_alpha_deg": opt(m.max_alpha_deg),
             "landing_time_s": opt(m.landing_time_s),
             "landing_x_m": opt(m.landing_position_m.map(|p| p[0])), "landing_y_m": opt(m.landing_position_m.map(|p| p[1])),
             "landing_speed_m_s": opt(m.landing_speed_m_s),
         },
+        "warnings": f.warnings().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
         "events": f.events.iter().map(|e| json!({"event": e.kind.name(), "time_s": e.time_s, "altitude_m": e.altitude_m, "speed_m_s": e.speed_m_s})).collect::<Vec<_>>(),
         "derivative_evaluations": f.derivative_evaluations,
         "steps": f.steps,
@@ -211,12 +212,21 @@ pub fn flight_text(sim: &Simulation, f: &Flight) -> String {
     );
     let _ = writeln!(
         s,
+        "angle of attack     {} at most while climbing",
+        m.max_alpha_deg
+            .map_or("—".to_string(), |a| format!("{a:.1}°"))
+    );
+    let _ = writeln!(
+        s,
         "landing             {} at {}, {} east and {} north of the rail",
         o(m.landing_speed_m_s, "m/s", 2),
         o(m.landing_time_s, "s", 2),
         o(m.landing_position_m.map(|p| p[0]), "m", 1),
         o(m.landing_position_m.map(|p| p[1]), "m", 1)
     );
+    for w in f.warnings() {
+        let _ = writeln!(s, "warning             {w}");
+    }
     let _ = writeln!(s, "\nevents");
     for e in &f.events {
         let _ = writeln!(

@@ -157,6 +157,14 @@ pub fn summary_text(r: &RunReport) -> String {
         r.outputs.ellipses.display(),
         r.outputs.sensitivity.display()
     );
+    if !r.warned.is_empty() {
+        let counts: Vec<String> = r.warned.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        let _ = writeln!(
+            s,
+            "warnings: {} (the variants' warnings column says which and why)",
+            counts.join(", ")
+        );
+    }
     let width = p
         .metrics
         .iter()

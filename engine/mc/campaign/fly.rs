@@ -37,6 +37,8 @@ pub struct VariantResult {
     pub id: u64,
     pub status: Status,
     pub error: Option<String>,
+    /// The flight's warnings ([`hpr_sim::Warning`]), `; `-separated; `None` if it has none.
+    pub warnings: Option<String>,
     pub metrics: Vec<Option<f64>>,
 }
 
@@ -48,7 +50,7 @@ pub struct Column {
 }
 
 /// The metrics every flight has, in output order.
-pub const FIXED_METRICS: [(&str, &str); 16] = [
+pub const FIXED_METRICS: [(&str, &str); 17] = [
     ("apogee_m", "m"),
     ("apogee_time_s", "s"),
     ("max_speed_m_s", "m/s"),
@@ -60,6 +62,7 @@ pub const FIXED_METRICS: [(&str, &str); 16] = [
     ("static_margin_burnout_cal", "cal"),
     ("static_margin_min_cal", "cal"),
     ("flight_margin_min_cal", "cal"),
+    ("max_alpha_deg", "deg"),
     ("landing_time_s", "s"),
     ("landing_x_m", "m"),
     ("landing_y_m", "m"),
@@ -68,7 +71,7 @@ pub const FIXED_METRICS: [(&str, &str); 16] = [
 ];
 
 /// Indices of the landing point's east (x) and north (y) in the metrics.
-pub const LANDING_XY: (usize, usize) = (12, 13);
+pub const LANDING_XY: (usize, usize) = (13, 14);
 
 /// A scenario ready to fly: the design and motor loaded, the nominals resolved, the plan of
 /// the variants built, and every sweep point's nominal flight checked.
@@ -77,7 +80,8 @@ pub struct Prepared {
     pub scenario: Scenario,
     pub plan: Plan,
     /// The output metrics: [`FIXED_METRICS`], then per shift its start time and the static
-    /// margin just before and just after its move.
+    /// margin just before and just after its move, then per parachute its opening time and
+    /// speed.
     pub metrics: Vec<Column>,
     design: Design,
     motor: Motor,
@@ -204,6 +208,7 @@ impl Prepared {
                     nominal: nominal.get(i.param),
                     sweep: i.sweep.clone(),
                     dispersion: i.dispersion,
+                    keeps_side: matches!(i.param, Param::ShiftTravelM(_)),
                 })
                 .collect(),
         };
@@ -226,6 +231,16 @@ impl Prepared {
             metrics.push(Column {
                 name: format!("shift_{}_margin_after_cal", s.name),
                 unit: "cal",
+            });
+        }
+        for c in &scenario.parachutes {
+            metrics.push(Column {
+                name: format!("parachute_{}_deploy_time_s", c.name),
+                unit: "s",
+            });
+            metrics.push(Column {
+                name: format!("parachute_{}_deploy_speed_m_s", c.name),
+                unit: "m/s",
             });
         }
         let fixed = Fixed {
@@ -332,6 +347,7 @@ impl Prepared {
                 id,
                 status,
                 error,
+                warnings: None,
                 metrics: vec![None; self.metrics.len()],
             };
         }
@@ -349,6 +365,7 @@ impl Prepared {
             m.static_margin_burnout_cal,
             m.static_margin_min_cal,
             m.flight_margin_min_cal,
+            m.max_alpha_deg,
             m.landing_time_s,
             landing.map(|p| p[0]),
             landing.map(|p| p[1]),
@@ -363,10 +380,19 @@ impl Prepared {
                 shift.margin_after_cal,
             ]);
         }
+        for k in 0..self.scenario.parachutes.len() {
+            let chute = lane.parachutes.get(k).copied().unwrap_or_default();
+            out.extend([chute.deploy_time_s, chute.deploy_speed_m_s]);
+        }
+        let warnings = (!lane.warnings.is_empty()).then(|| {
+            let w: Vec<String> = lane.warnings.iter().map(|w| w.to_string()).collect();
+            w.join("; ")
+        });
         VariantResult {
             id,
             status,
             error,
+            warnings,
             metrics: out
                 .into_iter()
                 .map(|x| x.filter(|v| v.is_finite()))
@@ -430,6 +456,7 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
                 id: v.id,
                 status: Status::Failed,
                 error: Some(format!("internal error: {e}")),
+                warnings: None,
                 metrics: vec![None; prepared.metrics.len()],
             };
             return variants.iter().map(failed).collect();
@@ -448,6 +475,7 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
                 id: v.id,
                 status,
                 error: Some(error),
+                warnings: None,
                 metrics: vec![None; prepared.metrics.len()],
             }
         })

@@ -120,7 +120,7 @@ fn sweep_fields(p: &Prepared) -> Vec<Field> {
 }
 
 /// Schema of variants.parquet: ids, the sweep point's values, every input's value, the
-/// status and error, and every metric.
+/// status, error and warnings, and every metric.
 pub fn variants_schema(p: &Prepared, meta: &RunMeta) -> SchemaRef {
     let mut fields = vec![
         field("variant_id", DataType::UInt64, false, None),
@@ -136,6 +136,7 @@ pub fn variants_schema(p: &Prepared, meta: &RunMeta) -> SchemaRef {
     );
     fields.push(field("status", DataType::Utf8, false, None));
     fields.push(field("error", DataType::Utf8, true, None));
+    fields.push(field("warnings", DataType::Utf8, true, None));
     fields.extend(
         p.metrics
             .iter()
@@ -186,6 +187,12 @@ pub fn variants_batch(
     )));
     cols.push(Arc::new(StringArray::from(
         results.iter().map(|r| r.error.clone()).collect::<Vec<_>>(),
+    )));
+    cols.push(Arc::new(StringArray::from(
+        results
+            .iter()
+            .map(|r| r.warnings.clone())
+            .collect::<Vec<_>>(),
     )));
     for m in 0..p.metrics.len() {
         cols.push(Arc::new(Float64Array::from(

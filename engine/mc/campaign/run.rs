@@ -100,6 +100,9 @@ pub struct RunReport {
     pub time_limit: u64,
     pub refused: u64,
     pub failed: u64,
+    /// Flown variants with warnings, per warning kind ([`hpr_sim::Warning::key`]), in
+    /// order of first appearance.
+    pub warned: Vec<(String, u64)>,
     pub stats: Vec<PointStats>,
     pub elapsed: Duration,
 }
@@ -147,6 +150,7 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         time_limit: 0,
         refused: 0,
         failed: 0,
+        warned: Vec::new(),
         stats: vec![],
         elapsed: Duration::ZERO,
     };
@@ -252,8 +256,9 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
     // Statuses other than landed are re-read from the status strings through `landed`; the
     // kinds are counted from the files below.
     report.landed = table.landed.iter().filter(|l| **l).count() as u64;
-    let (t, r, f) = count_failures(&report.outputs.variants)?;
+    let (t, r, f, w) = count_outcomes(&report.outputs.variants)?;
     (report.time_limit, report.refused, report.failed) = (t, r, f);
+    report.warned = w;
     let out = &report.outputs;
     let pairs = meta.pairs();
     let rg = p.scenario.row_group_rows;
@@ -272,15 +277,31 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
     Ok(())
 }
 
-/// Variants that reached the time limit, were refused, or failed, from a variants file.
-fn count_failures(path: &Path) -> anyhow::Result<(u64, u64, u64)> {
+/// Variants that reached the time limit, were refused, or failed, and the variants with
+/// each kind of warning, from a variants file.
+#[allow(clippy::type_complexity)]
+fn count_outcomes(path: &Path) -> anyhow::Result<(u64, u64, u64, Vec<(String, u64)>)> {
     let (mut t, mut r, mut f) = (0, 0, 0);
+    let mut warned: Vec<(String, u64)> = Vec::new();
+    let strings = |batch: &arrow::record_batch::RecordBatch, name: &str| {
+        batch
+            .column_by_name(name)
+            .and_then(|c| c.as_any().downcast_ref::<arrow::array::StringArray>())
+            .cloned()
+            .with_context(|| format!("{} has no string column {name}", path.display()))
+    };
     for batch in pq::read_batches(path)? {
         let batch = batch?;
-        let status = batch
-            .column_by_name("status")
-            .and_then(|c| c.as_any().downcast_ref::<arrow::array::StringArray>())
-            .context("no status column")?;
+        let status = strings(&batch, "status")?;
+        for w in strings(&batch, "warnings")?.iter().flatten() {
+            // Each warning starts with its key: "unstable: ...; ballistic: ...".
+            for key in w.split("; ").filter_map(|x| x.split(':').next()) {
+                match warned.iter_mut().find(|(k, _)| k == key) {
+                    Some((_, n)) => *n += 1,
+                    None => warned.push((key.to_string(), 1)),
+                }
+            }
+        }
         for s in status.iter().flatten() {
             if s == Status::TimeLimit.name() {
                 t += 1;
@@ -291,7 +312,7 @@ fn count_failures(path: &Path) -> anyhow::Result<(u64, u64, u64)> {
             }
         }
     }
-    Ok((t, r, f))
+    Ok((t, r, f, warned))
 }
 
 /// Which chunks have a complete part from this run. Without `resume`, every part of this

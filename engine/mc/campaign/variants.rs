@@ -23,6 +23,9 @@ pub struct PlanInput {
     pub nominal: f64,
     pub sweep: Option<Vec<f64>>,
     pub dispersion: Option<Dispersion>,
+    /// Whether its scattered value stays on its center's side of zero (a shift's travel: a
+    /// scatter shortens or lengthens the move, never reverses it or makes one from none).
+    pub keeps_side: bool,
 }
 
 /// Everything that decides the variants' values.
@@ -108,7 +111,14 @@ impl Plan {
             .into_iter()
             .zip(&self.inputs)
             .map(|(c, input)| match &input.dispersion {
-                Some(d) => d.sample(c, &mut input_rng(self.seed, stream, &input.key)),
+                Some(d) => {
+                    let v = d.sample(c, &mut input_rng(self.seed, stream, &input.key));
+                    if input.keeps_side {
+                        on_side_of(c, v)
+                    } else {
+                        v
+                    }
+                }
                 None => c,
             })
             .collect();
@@ -118,6 +128,17 @@ impl Plan {
             replicate,
             values,
         }
+    }
+}
+
+/// `v` held on `center`'s side of zero: 0 if it crossed, 0 if the center is 0.
+fn on_side_of(center: f64, v: f64) -> f64 {
+    if center > 0.0 {
+        v.max(0.0)
+    } else if center < 0.0 {
+        v.min(0.0)
+    } else {
+        0.0
     }
 }
 
@@ -202,18 +223,21 @@ mod tests {
                     nominal: 1.0,
                     sweep: Some(vec![10.0, 20.0, 30.0]),
                     dispersion: None,
+                    keeps_side: false,
                 },
                 PlanInput {
                     key: "b".into(),
                     nominal: 2.0,
                     sweep: None,
                     dispersion: normal,
+                    keeps_side: false,
                 },
                 PlanInput {
                     key: "c".into(),
                     nominal: 3.0,
                     sweep: Some(vec![0.5, 0.7]),
                     dispersion: normal,
+                    keeps_side: false,
                 },
             ],
         }
@@ -258,6 +282,39 @@ mod tests {
         assert!((a.values[2] - 0.5 - (b.values[2] - 0.7)).abs() < 1e-15);
         let q = plan(false);
         assert_ne!(q.variant(1).values[1], q.variant(21).values[1]);
+    }
+
+    #[test]
+    fn a_value_that_keeps_its_side_is_held_at_zero_and_a_zero_center_stays_zero() {
+        // A swept travel of 0, 0.001 and −0.001 m, scattered by σ = 1 m: most draws cross.
+        let mut p = plan(true);
+        p.inputs[2] = PlanInput {
+            key: "travel".into(),
+            nominal: 0.0,
+            sweep: Some(vec![0.0, 0.001, -0.001]),
+            dispersion: p.inputs[1].dispersion,
+            keeps_side: true,
+        };
+        let (mut zero, mut crossed) = (0, 0);
+        for id in 0..p.total() {
+            let v = p.variant(id);
+            let center = p.centers(v.point)[2];
+            let free = p.inputs[2]
+                .dispersion
+                .unwrap()
+                .sample(center, &mut input_rng(5, v.replicate, "travel"));
+            let got = v.values[2];
+            if center == 0.0 {
+                assert_eq!(got, 0.0, "variant {id}");
+                zero += 1;
+            } else if free * center < 0.0 {
+                assert_eq!(got, 0.0, "variant {id}: {free} crossed zero");
+                crossed += 1;
+            } else {
+                assert_eq!(got, free, "variant {id}: on its side, untouched");
+            }
+        }
+        assert!(zero == 12 && crossed >= 4, "{zero} {crossed}");
     }
 
     #[test]

@@ -43,7 +43,7 @@ pub use group::{eval_four, LANES_IN_FLIGHT};
 
 use crate::events::EventKind;
 use crate::flight::driver::{fly_to_free, AfterFree, Progress};
-use crate::flight::{Flight, Metrics, SimError, Simulation};
+use crate::flight::{Flight, Metrics, SimError, Simulation, Warning};
 use crate::trigger::Trigger;
 use crate::wind::Wind;
 use group::{step_group, Flying, Lane, LaneEnd, Scratch};
@@ -124,7 +124,19 @@ pub struct LaneResult {
     pub end_s: f64,
     /// Per shift: its start time, and the static margin just before and just after its move.
     pub shifts: Vec<ShiftOutcome>,
+    /// Per parachute: its opening time and speed.
+    pub parachutes: Vec<ParachuteOutcome>,
+    /// What the flight's figures hide (empty where the flight did not happen).
+    pub warnings: Vec<Warning>,
     pub derivative_evaluations: u64,
+}
+
+/// When one parachute opened in a lane (`None` if it never did).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ParachuteOutcome {
+    pub deploy_time_s: Option<f64>,
+    /// Speed of the center of mass as the canopy opened, m/s.
+    pub deploy_speed_m_s: Option<f64>,
 }
 
 /// What one shift did in a lane.
@@ -393,6 +405,8 @@ impl Batch {
             metrics: Metrics::default(),
             end_s: 0.0,
             shifts: vec![ShiftOutcome::default(); self.base.shifts().len()],
+            parachutes: vec![ParachuteOutcome::default(); self.base.parachutes().len()],
+            warnings: Vec::new(),
             derivative_evaluations: 0,
         }
     }
@@ -423,6 +437,15 @@ impl Batch {
                 }
             })
             .collect();
+        let parachutes = (0..self.base.parachutes().len())
+            .map(|i| {
+                let d = flight.deploy(i);
+                ParachuteOutcome {
+                    deploy_time_s: d.map(|d| d.0),
+                    deploy_speed_m_s: d.map(|d| d.1),
+                }
+            })
+            .collect();
         let (status, error) = if flight.metrics.landing_time_s.is_some() {
             (Status::Landed, None)
         } else if flight.event(EventKind::TimeLimit).is_some() {
@@ -447,6 +470,8 @@ impl Batch {
             metrics: flight.metrics,
             end_s: end,
             shifts,
+            parachutes,
+            warnings: flight.warnings(),
             derivative_evaluations: flight.derivative_evaluations,
         }
     }

@@ -186,6 +186,7 @@ fn metric_list(m: &Metrics) -> Vec<Option<f64>> {
         m.static_margin_burnout_cal,
         m.static_margin_min_cal,
         m.flight_margin_min_cal,
+        m.max_alpha_deg,
         m.landing_time_s,
         l.map(|p| p[0]),
         l.map(|p| p[1]),
@@ -243,6 +244,20 @@ fn every_lane_equals_the_single_flight_with_the_same_inputs() {
                 }
                 assert_eq!(lane.shifts[0].start_s, f.shift_starts_s[0]);
                 assert_eq!(lane.end_s, f.events.last().unwrap().time_s);
+                let keys =
+                    |w: &[crate::flight::Warning]| w.iter().map(|w| w.key()).collect::<Vec<_>>();
+                assert_eq!(keys(&lane.warnings), keys(&f.warnings()), "variant {i}");
+                for (k, chute) in lane.parachutes.iter().enumerate() {
+                    let lane_deploy = chute.deploy_time_s.zip(chute.deploy_speed_m_s);
+                    match (lane_deploy, f.deploy(k)) {
+                        (Some(a), Some(b)) => {
+                            worst = worst.max((a.0 - b.0).abs() / b.0.abs());
+                            worst = worst.max((a.1 - b.1).abs() / b.1.abs());
+                        }
+                        (None, None) => {}
+                        _ => panic!("variant {i}: parachute {k} opened in one and not the other"),
+                    }
+                }
                 // The same attempts, the rejected ones (tried again at the lane's next group
                 // step) included.
                 assert_eq!(
@@ -593,6 +608,12 @@ fn fixed_step_lanes_equal_their_single_flights_too() {
         };
         assert_eq!(bits(&lane.metrics), bits(&f.metrics), "variant {i}");
         assert_eq!(lane.derivative_evaluations, f.derivative_evaluations);
+        assert_eq!(lane.warnings, f.warnings(), "variant {i}");
+        for (k, chute) in lane.parachutes.iter().enumerate() {
+            let d = f.deploy(k);
+            assert_eq!(chute.deploy_time_s, d.map(|d| d.0), "variant {i}");
+            assert_eq!(chute.deploy_speed_m_s, d.map(|d| d.1), "variant {i}");
+        }
         flown += 1;
     }
     assert!(flown >= 8, "{flown}");

@@ -17,7 +17,7 @@ pub mod output;
 pub use changes::Changes;
 pub use config::{Environment, Integrator, Parachute, Rail, SimOptions};
 pub use model::FlightModel;
-pub use output::{Flight, Metrics, Observer, Phase, Sample};
+pub use output::{Flight, Metrics, Observer, Phase, Sample, Warning, LARGE_ALPHA_DEG};
 
 use crate::aero_loads::{AeroTables, SurfaceTable};
 use crate::atmosphere::{AirTable, Atmosphere};

@@ -76,6 +76,12 @@ pub struct Metrics {
     pub static_margin_min_cal: Option<f64>,
     /// Smallest flight margin from rail exit to apogee (or the first canopy), calibres.
     pub flight_margin_min_cal: Option<f64>,
+    /// Largest angle of attack of the center of mass in free flight before apogee (or the
+    /// first canopy), degrees, watched as OpenRocket watches its aerodynamic warnings: from
+    /// 0.25 s after rail exit and while the vertical speed is at least 20 % of its highest so
+    /// far. Past 45° the aerodynamics are this crate's extrapolation of RocketPy's model (see
+    /// [`crate::aero_loads`]), and the flight a tumble.
+    pub max_alpha_deg: Option<f64>,
     pub landing_time_s: Option<f64>,
     /// Landing point of the center of mass, east and north of the rail's foot, m.
     pub landing_position_m: Option<[f64; 2]>,
@@ -101,6 +107,86 @@ impl Flight {
     pub fn event(&self, kind: EventKind) -> Option<&Event> {
         self.events.iter().find(|e| e.kind == kind)
     }
+
+    /// Parachute `i`'s opening: its time, s, and the speed of the center of mass then, m/s
+    /// (`None` if it never opened).
+    pub fn deploy(&self, i: usize) -> Option<(f64, f64)> {
+        self.event(EventKind::ParachuteDeploy(i))
+            .map(|e| (e.time_s, e.speed_m_s))
+    }
+
+    /// What a flier should look at before trusting this flight's numbers.
+    pub fn warnings(&self) -> Vec<Warning> {
+        let opened = self
+            .events
+            .iter()
+            .any(|e| matches!(e.kind, EventKind::ParachuteDeploy(_)));
+        Warning::of(&self.metrics, opened)
+    }
+}
+
+/// Angle of attack past which a flight is flagged, degrees: where the loads leave RocketPy's
+/// model for this crate's turn-over (see [`crate::aero_loads`]).
+pub const LARGE_ALPHA_DEG: f64 = 45.0;
+
+/// Something in a flight that its figures alone hide, the way OpenRocket lists warnings
+/// beside a simulation's results. The flight still counts; the warning says how to read it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Warning {
+    /// The static margin fell below zero between liftoff and apogee: the rocket was unstable.
+    NegativeStaticMargin { min_cal: f64 },
+    /// The angle of attack passed [`LARGE_ALPHA_DEG`] in free flight while climbing
+    /// ([`Metrics::max_alpha_deg`]): the rocket tumbled or turned far from its path, on
+    /// extrapolated aerodynamics.
+    LargeAngleOfAttack { max_deg: f64 },
+    /// The rocket reached the ground with no canopy open (a ballistic landing).
+    NoCanopyAtLanding { speed_m_s: f64 },
+}
+
+impl Warning {
+    /// The warnings of a flight with these metrics, `opened` telling whether any canopy opened
+    /// before its end.
+    pub fn of(m: &Metrics, opened: bool) -> Vec<Warning> {
+        let mut w = Vec::new();
+        if let Some(min_cal) = m.static_margin_min_cal.filter(|&x| x < 0.0) {
+            w.push(Warning::NegativeStaticMargin { min_cal });
+        }
+        if let Some(max_deg) = m.max_alpha_deg.filter(|&a| a > LARGE_ALPHA_DEG) {
+            w.push(Warning::LargeAngleOfAttack { max_deg });
+        }
+        if let (false, Some(speed_m_s)) = (opened, m.landing_speed_m_s) {
+            w.push(Warning::NoCanopyAtLanding { speed_m_s });
+        }
+        w
+    }
+
+    /// A short name for counting and filtering (`unstable`, `large_alpha`, `ballistic`).
+    pub fn key(&self) -> &'static str {
+        match self {
+            Warning::NegativeStaticMargin { .. } => "unstable",
+            Warning::LargeAngleOfAttack { .. } => "large_alpha",
+            Warning::NoCanopyAtLanding { .. } => "ballistic",
+        }
+    }
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Warning::NegativeStaticMargin { min_cal } => write!(
+                f,
+                "unstable: the static margin fell to {min_cal:.3} cal (below 0) before apogee"
+            ),
+            Warning::LargeAngleOfAttack { max_deg } => write!(
+                f,
+                "large_alpha: the angle of attack reached {max_deg:.1}° in free flight (past {LARGE_ALPHA_DEG}°, the rocket tumbled or turned far from its path)"
+            ),
+            Warning::NoCanopyAtLanding { speed_m_s } => write!(
+                f,
+                "ballistic: landed at {speed_m_s:.1} m/s with no parachute open"
+            ),
+        }
+    }
 }
 
 /// Watches a flight as it goes. `()` watches nothing.
@@ -113,4 +199,58 @@ pub trait Observer {
 
 impl Observer for () {
     const WANTS_SAMPLES: bool = false;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn metrics(margin: f64, alpha: f64, landing: Option<f64>) -> Metrics {
+        Metrics {
+            static_margin_min_cal: Some(margin),
+            max_alpha_deg: Some(alpha),
+            landing_speed_m_s: landing,
+            ..Metrics::default()
+        }
+    }
+
+    #[test]
+    fn a_warning_starts_just_past_its_threshold() {
+        assert_eq!(Warning::of(&metrics(0.0, 45.0, Some(5.0)), true), vec![]);
+        assert_eq!(
+            Warning::of(&metrics(-1e-12, 45.0 + 1e-12, Some(5.0)), true),
+            vec![
+                Warning::NegativeStaticMargin { min_cal: -1e-12 },
+                Warning::LargeAngleOfAttack {
+                    max_deg: 45.0 + 1e-12
+                },
+            ]
+        );
+    }
+
+    #[test]
+    fn only_a_landing_without_a_canopy_is_ballistic() {
+        assert_eq!(
+            Warning::of(&metrics(1.0, 2.0, Some(80.0)), false),
+            vec![Warning::NoCanopyAtLanding { speed_m_s: 80.0 }]
+        );
+        // No landing (a time limit): nothing to say about it.
+        assert_eq!(Warning::of(&metrics(1.0, 2.0, None), false), vec![]);
+        // A flight that never got that far has no margins and no angles to judge.
+        assert_eq!(Warning::of(&Metrics::default(), false), vec![]);
+    }
+
+    #[test]
+    fn each_warning_s_text_starts_with_its_key() {
+        for w in [
+            Warning::NegativeStaticMargin { min_cal: -0.5 },
+            Warning::LargeAngleOfAttack { max_deg: 90.0 },
+            Warning::NoCanopyAtLanding { speed_m_s: 50.0 },
+        ] {
+            let text = w.to_string();
+            assert!(text.starts_with(&format!("{}: ", w.key())), "{text}");
+            // The campaign joins a flight's warnings with "; " and splits them there.
+            assert!(!text.contains("; "), "{text}");
+        }
+    }
 }

@@ -14,7 +14,7 @@ use hpr_sim::MassShift;
 /// (margin −1.1 cal): it turns over in the coast. The inputs of a variant of the bundled ballast
 /// sweep under a wide dispersion of the structure's center of mass, which before the large-angle
 /// aerodynamics took more than three million steps in its first 10 s.
-fn unstable(shift: bool) -> Simulation {
+pub fn unstable(shift: bool) -> Simulation {
     let env = Environment {
         elevation_m: 300.0,
         wind: Wind::constant(5.69, 298.7).unwrap(),

@@ -14,3 +14,4 @@ mod exact;
 mod inputs;
 mod large_angles;
 mod rocket_equation;
+mod warnings;

@@ -136,6 +136,12 @@ fn tolerances(integrator: &Integrator) -> (f64, [f64; N6], [f64; N3]) {
     }
 }
 
+/// The angle of attack is watched from this long after rail exit, s (OpenRocket's 0.25 s).
+const ALPHA_WATCH_AFTER_RAIL_S: f64 = 0.25;
+/// ... and while the vertical speed is at least this fraction of its highest so far
+/// (OpenRocket's 20 %).
+const ALPHA_WATCH_CLIMB_FRACTION: f64 = 0.2;
+
 /// The flight in progress.
 struct Run<'a, O: Observer> {
     model: &'a FlightModel,
@@ -159,6 +165,8 @@ struct Run<'a, O: Observer> {
     /// Per trigger owner: whether a height-on-the-way-down trigger has fired (chutes, then shifts).
     rail_exit_done: bool,
     burnout_done: bool,
+    /// Highest vertical speed of the center of mass so far, m/s (for the angle-of-attack watch).
+    max_climb_m_s: f64,
 }
 
 /// Pending stop times, latest first (the next one is at the end); NaN is never a stop.
@@ -336,6 +344,20 @@ impl<'a, O: Observer> Run<'a, O> {
             mt.static_margin_min_cal = min(mt.static_margin_min_cal, static_margin_cal);
             if phase == Phase::Free {
                 mt.flight_margin_min_cal = min(mt.flight_margin_min_cal, flight_margin_cal);
+                // Watched as OpenRocket watches its aerodynamic warnings: from 0.25 s after
+                // rail exit, while the climb is at least 20 % of its fastest. Outside that,
+                // a slow rocket's angle of attack is large without meaning a tumble (leaving
+                // the rail in a crosswind, arcing over near apogee).
+                self.max_climb_m_s = self.max_climb_m_s.max(vel.z);
+                let watched = mt
+                    .rail_exit_time_s
+                    .is_some_and(|te| t >= te + ALPHA_WATCH_AFTER_RAIL_S)
+                    && vel.z >= ALPHA_WATCH_CLIMB_FRACTION * self.max_climb_m_s;
+                let alpha_deg = aux.alpha_rad().to_degrees();
+                if watched && alpha_deg.is_finite() {
+                    let max = mt.max_alpha_deg.map_or(alpha_deg, |a| a.max(alpha_deg));
+                    mt.max_alpha_deg = Some(max);
+                }
             }
         }
         if !sampled {

@@ -227,6 +227,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         chute_open: vec![false; n_chutes],
         rail_exit_done: false,
         burnout_done: false,
+        max_climb_m_s: 0.0,
     };
 
     let (rtol, atol6, atol3) = tolerances(&model.options.integrator);
