@@ -464,21 +464,26 @@ impl FlightAux {
     /// The angle of attack, rad (0 on the rail, NaN in the descent).
     #[inline]
     pub fn alpha_rad(&self) -> f64 {
-        angle_of_attack(&self.air_velocity_b)
+        let (cross, axial) = self.alpha_arguments();
+        Self::alpha_of(cross, axial)
     }
-}
 
-/// Angle between the rocket's axis and its velocity through the air, rad.
-#[inline]
-fn angle_of_attack(v_air_b: &Vector3<f64>) -> f64 {
-    let n = v_air_b.norm();
-    if n == 0.0 {
-        0.0
-    } else {
-        crate::lanes::atan2_upper(
-            (v_air_b.x * v_air_b.x + v_air_b.y * v_air_b.y).sqrt(),
-            v_air_b.z,
-        )
+    /// The angle of attack's `atan2` arguments: the crossflow speed (≥ 0) and the axial air
+    /// velocity, m/s; (0, 1) in still air, where the angle is taken as 0.
+    #[inline]
+    pub fn alpha_arguments(&self) -> (f64, f64) {
+        let v = &self.air_velocity_b;
+        if v.norm() == 0.0 {
+            (0.0, 1.0)
+        } else {
+            ((v.x * v.x + v.y * v.y).sqrt(), v.z)
+        }
+    }
+
+    /// The angle of attack from [`FlightAux::alpha_arguments`], rad.
+    #[inline]
+    pub fn alpha_of(cross: f64, axial: f64) -> f64 {
+        crate::lanes::atan2_upper(cross, axial)
     }
 }
 

@@ -167,6 +167,10 @@ struct Run<'a, O: Observer> {
     burnout_done: bool,
     /// Highest vertical speed of the center of mass so far, m/s (for the angle-of-attack watch).
     max_climb_m_s: f64,
+    /// The largest watched angle of attack so far, as the arguments of
+    /// [`FlightAux::alpha_rad`]'s `atan2` (crossflow speed ≥ 0, axial air velocity): angles in
+    /// [0, π] compare by a cross product, and the one `atan2` is taken when the flight ends.
+    steepest: Option<(f64, f64)>,
 }
 
 /// Pending stop times, latest first (the next one is at the end); NaN is never a stop.
@@ -353,10 +357,21 @@ impl<'a, O: Observer> Run<'a, O> {
                     .rail_exit_time_s
                     .is_some_and(|te| t >= te + ALPHA_WATCH_AFTER_RAIL_S)
                     && vel.z >= ALPHA_WATCH_CLIMB_FRACTION * self.max_climb_m_s;
-                let alpha_deg = aux.alpha_rad().to_degrees();
-                if watched && alpha_deg.is_finite() {
-                    let max = mt.max_alpha_deg.map_or(alpha_deg, |a| a.max(alpha_deg));
-                    mt.max_alpha_deg = Some(max);
+                if watched {
+                    let (cross, axial) = aux.alpha_arguments();
+                    if cross.is_finite() && axial.is_finite() {
+                        let steeper = match self.steepest {
+                            None => true,
+                            // r₁r₂ sin(α₁ − α₂) > 0, or 180° against 0° (sin = 0 there).
+                            Some((c, a)) => {
+                                let s = cross * a - axial * c;
+                                s > 0.0 || (s == 0.0 && axial < 0.0 && a > 0.0)
+                            }
+                        };
+                        if steeper {
+                            self.steepest = Some((cross, axial));
+                        }
+                    }
                 }
             }
         }

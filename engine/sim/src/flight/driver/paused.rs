@@ -228,6 +228,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         rail_exit_done: false,
         burnout_done: false,
         max_climb_m_s: 0.0,
+        steepest: None,
     };
 
     let (rtol, atol6, atol3) = tolerances(&model.options.integrator);
@@ -326,10 +327,14 @@ fn descend<'a, O: Observer>(
 /// The flight's record.
 fn record<O: Observer>(run: Run<'_, O>) -> Flight {
     let model = run.model;
+    let mut metrics = run.metrics;
+    metrics.max_alpha_deg = run
+        .steepest
+        .map(|(cross, axial)| FlightAux::alpha_of(cross, axial).to_degrees());
     Flight {
         samples: run.samples,
         events: run.events,
-        metrics: run.metrics,
+        metrics,
         shift_starts_s: run.starts[..model.shifts.len()]
             .iter()
             .map(|&s| s.is_finite().then_some(s))
