@@ -212,37 +212,24 @@ impl Prepared {
                 })
                 .collect(),
         };
-        let mut metrics: Vec<Column> = FIXED_METRICS
-            .iter()
-            .map(|(n, u)| Column {
-                name: n.to_string(),
-                unit: u,
-            })
-            .collect();
-        for s in &scenario.shifts {
-            metrics.push(Column {
-                name: format!("shift_{}_start_time_s", s.name),
-                unit: "s",
-            });
-            metrics.push(Column {
-                name: format!("shift_{}_margin_before_cal", s.name),
-                unit: "cal",
-            });
-            metrics.push(Column {
-                name: format!("shift_{}_margin_after_cal", s.name),
-                unit: "cal",
-            });
-        }
-        for c in &scenario.parachutes {
-            metrics.push(Column {
-                name: format!("parachute_{}_deploy_time_s", c.name),
-                unit: "s",
-            });
-            metrics.push(Column {
-                name: format!("parachute_{}_deploy_speed_m_s", c.name),
-                unit: "m/s",
-            });
-        }
+        let per_shift = [
+            ("start_time_s", "s"),
+            ("margin_before_cal", "cal"),
+            ("margin_after_cal", "cal"),
+        ];
+        let per_chute = [("deploy_time_s", "s"), ("deploy_speed_m_s", "m/s")];
+        let column = |name: String, unit: &'static str| Column { name, unit };
+        let metrics: Vec<Column> =
+            FIXED_METRICS
+                .iter()
+                .map(|(n, u)| column(n.to_string(), u))
+                .chain(scenario.shifts.iter().flat_map(|s| {
+                    per_shift.map(|(n, u)| column(format!("shift_{}_{n}", s.name), u))
+                }))
+                .chain(scenario.parachutes.iter().flat_map(|c| {
+                    per_chute.map(|(n, u)| column(format!("parachute_{}_{n}", c.name), u))
+                }))
+                .collect();
         let fixed = Fixed {
             scenario: &scenario,
             design: &design,
