@@ -79,6 +79,11 @@ pub struct Simulation {
 /// A change to the rocket's structure (everything but the motor): its mass changes by
 /// `delta_mass_kg` (inertia scaled in proportion) and its center of mass moves by
 /// `delta_cg_m` (positive aft). Used for dispersions of mass and center of mass.
+///
+/// The parts that shifts move stay where the design puts them (on their holders, where the
+/// shifts' travel is measured from): the change is made by the rest of the structure
+/// ([`MassAdjustment::apply_holding`]), so that the flight's split of the mass into what is
+/// fixed and what moves describes one body whose inertia is never negative.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MassAdjustment {
     pub delta_mass_kg: f64,
@@ -100,6 +105,48 @@ impl MassAdjustment {
                 dry.inertia_cg
             },
         }
+    }
+
+    /// Apply to the structure `dry` (station frame) that holds `held`, the parts that shifts
+    /// move, each where the design puts it. The result has [`MassAdjustment::apply`]'s mass
+    /// and center of mass, bit for bit, but the change is made by the rest of the structure
+    /// alone, which gains the mass (its inertia scaled in proportion) and moves rigidly as far
+    /// as the whole's center must move; the held parts keep their places. Moving the whole
+    /// structure instead would carry the held parts along in its inertia while the flight
+    /// keeps them where the design puts them: the rest would be left with a negative moment
+    /// of inertia once the center moved far enough, and the rocket's inertia about its center
+    /// of mass could pass through zero as a part moves (a singular rigid body, whose angular
+    /// acceleration has a pole there). Without held parts, or without a change, it is
+    /// [`MassAdjustment::apply`] bit for bit. The error says why the rest cannot make the
+    /// change (it would be left without mass).
+    pub fn apply_holding(&self, dry: &MassProps, held: &[MassProps]) -> Result<MassProps, String> {
+        if held.is_empty() || *self == MassAdjustment::default() {
+            return Ok(self.apply(dry));
+        }
+        let held = held
+            .iter()
+            .fold(MassProps::ZERO, |sum, part| sum.combine(part));
+        let rest = dry.combine(&held.scaled(-1.0));
+        let whole = self.apply(dry);
+        let m = rest.mass_kg + self.delta_mass_kg;
+        if !(rest.mass_kg > 0.0 && m > 0.0) {
+            return Err(format!(
+                "mass adjustment: the structure without the parts its shifts move weighs {} kg, and {} kg after the change of {} kg: nothing is left to make the change",
+                rest.mass_kg, m, self.delta_mass_kg
+            ));
+        }
+        // The whole's first moment, less the held parts', placed on the rest.
+        let moved = MassProps {
+            mass_kg: m,
+            cg_m: (whole.cg_m * whole.mass_kg - held.cg_m * held.mass_kg) / m,
+            inertia_cg: rest.inertia_cg * (m / rest.mass_kg),
+        };
+        // The mass and center are the whole's as `apply` gives them, to the last bit; only
+        // the inertia about that center is the two bodies'.
+        Ok(MassProps {
+            inertia_cg: moved.inertia_about(&whole.cg_m) + held.inertia_about(&whole.cg_m),
+            ..whole
+        })
     }
 }
 
@@ -390,12 +437,14 @@ pub fn build_model(
         let k = scale_of(idx).unwrap_or(1.0);
         dry = dry.combine(&mass::subtree(design, idx).scaled(k - 1.0));
     }
-    let dry = adjustment.apply(&dry);
     let parts: Vec<MassProps> = plan
         .parts
         .iter()
         .map(|&idx| mass::subtree(design, idx).scaled(scale_of(idx).unwrap_or(1.0)))
         .collect();
+    let dry = adjustment
+        .apply_holding(&dry, &parts)
+        .map_err(SimError::Setup)?;
     let mass_model = MassModel::new(&dry, &casing, &propellant, &parts);
     let fixed_cg_m = dry.combine(&casing).cg_m.x;
     let nozzle = Nozzle::at(
