@@ -127,3 +127,50 @@ fn fly_takes_negative_numbers_after_a_space_as_values() {
         fly(&["--heading-deg", "30", "--inclination-deg", "85"])
     );
 }
+
+#[test]
+fn fly_prints_a_ballistic_warning_for_a_rocket_without_parachutes() {
+    let calisto = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/validation/designs/calisto.json"
+    );
+    let v: serde_json::Value = serde_json::from_str(&hpr_mc(&["fly", calisto, "--json"])).unwrap();
+    let speed = v["metrics"]["landing_speed_m_s"].as_f64().unwrap();
+    assert_eq!(
+        v["warnings"],
+        serde_json::json!([format!(
+            "ballistic: landed at {speed:.1} m/s with no parachute open"
+        )])
+    );
+    // The text form says the same on its own line.
+    let text = hpr_mc(&["fly", calisto]);
+    assert!(
+        text.contains(&format!(
+            "\nwarning             ballistic: landed at {speed:.1} m/s"
+        )),
+        "{text}"
+    );
+    // The reference design opens its drogue and main: nothing to warn of.
+    let v: serde_json::Value =
+        serde_json::from_str(&hpr_mc(&["fly", REFERENCE, "--json"])).unwrap();
+    assert_eq!(v["warnings"], serde_json::json!([]));
+}
+
+#[test]
+fn output_into_a_closed_pipe_ends_quietly_instead_of_panicking() {
+    // `true` exits without reading, so hpr-mc's write finds the pipe closed (it flies first,
+    // which takes far longer than `true` does to exit). Its exit status is kept by pipefail.
+    let bin = env!("CARGO_BIN_EXE_hpr-mc");
+    for args in [
+        format!("fly '{REFERENCE}' --json"),
+        format!("inspect '{REFERENCE}'"),
+    ] {
+        let out = std::process::Command::new("bash")
+            .args(["-c", &format!("set -o pipefail; '{bin}' {args} | true")])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args}: {:?} {stderr}", out.status);
+        assert!(!stderr.contains("panicked"), "{args}: {stderr}");
+    }
+}

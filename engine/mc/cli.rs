@@ -12,6 +12,19 @@ use std::process::ExitCode;
 
 pub use crate::campaign::cli::{run, RunArgs, RunCommand};
 
+/// Write `text` to standard output. A reader that went away (`hpr-mc fly … | head`) ends the
+/// output quietly, as it does for other command-line tools, instead of a panic of `print!`.
+pub fn emit(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(e).context("can't write to standard output")
+        }
+        _ => Ok(()),
+    }
+}
+
 #[derive(clap::Args, Debug)]
 pub struct InspectArgs {
     /// The design (JSON).
@@ -105,9 +118,12 @@ pub fn inspect(a: &InspectArgs) -> Result<ExitCode> {
     .map_err(|e| anyhow!("{e}"))?;
     let r = report::Inspection::of(&sim);
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&r.to_json())?);
+        emit(&format!(
+            "{}\n",
+            serde_json::to_string_pretty(&r.to_json())?
+        ))?;
     } else {
-        print!("{}", r.to_text());
+        emit(&r.to_text())?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -186,12 +202,10 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
             .with_context(|| format!("writing {}", path.display()))?;
     }
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report::flight_json(&sim, &flight))?
-        );
+        let json = serde_json::to_string_pretty(&report::flight_json(&sim, &flight))?;
+        emit(&format!("{json}\n"))?;
     } else {
-        print!("{}", report::flight_text(&sim, &flight));
+        emit(&report::flight_text(&sim, &flight))?;
     }
     Ok(ExitCode::SUCCESS)
 }

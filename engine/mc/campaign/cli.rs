@@ -74,7 +74,7 @@ pub fn run(scenario: &Path, args: &RunArgs) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--threads must be at least 1");
     }
     let report = run_campaign(scenario, &args.config())?;
-    print!("{}", summary_text(&report));
+    crate::cli::emit(&summary_text(&report))?;
     let failures = report.failures();
     if failures > 0 {
         eprintln!(
