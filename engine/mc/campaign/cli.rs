@@ -178,7 +178,11 @@ pub fn summary_text(r: &RunReport) -> String {
         let at: Vec<String> = swept
             .iter()
             .zip(p.plan.sweep_values(st.point))
-            .map(|(i, v)| format!("{} = {v} {}", i.key, i.unit))
+            .map(|(i, v)| match i.unit {
+                // A pure number (a scale) has no unit to print.
+                "1" => format!("{} = {v}", i.key),
+                unit => format!("{} = {v} {unit}", i.key),
+            })
             .collect();
         let at = if at.is_empty() {
             String::new()

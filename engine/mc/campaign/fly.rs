@@ -188,6 +188,8 @@ impl Prepared {
             elevation_m: scenario.environment.elevation_m,
             wind_speed_m_s: scenario.environment.wind_speed_m_s,
             wind_from_deg: scenario.environment.wind_from_deg,
+            wind_scale: 1.0,
+            wind_rotation_deg: 0.0,
             rail: [
                 scenario.rail.length_m,
                 scenario.rail.inclination_deg,

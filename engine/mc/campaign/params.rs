@@ -23,6 +23,10 @@ pub enum Param {
     WindSpeedMS,
     /// Direction the wind blows from, degrees clockwise from north.
     WindFromDeg,
+    /// Multiplier of every speed of the wind (nominal 1).
+    WindScale,
+    /// Clockwise turn of every direction of the wind, degrees (nominal 0).
+    WindRotationDeg,
     RailLengthM,
     RailInclinationDeg,
     RailHeadingDeg,
@@ -38,7 +42,7 @@ pub enum Param {
 
 /// The global inputs, in their canonical order (the order of the output's columns and of the
 /// sweep's axes), with their key and unit.
-pub const GLOBAL: [(Param, &str, &str); 12] = [
+pub const GLOBAL: [(Param, &str, &str); 14] = [
     (Param::StructureMassKg, "structure_mass_kg", "kg"),
     (Param::StructureCgM, "structure_cg_m", "m"),
     (Param::BallastKg, "ballast_kg", "kg"),
@@ -48,6 +52,8 @@ pub const GLOBAL: [(Param, &str, &str); 12] = [
     (Param::ElevationM, "elevation_m", "m"),
     (Param::WindSpeedMS, "wind_speed_m_s", "m/s"),
     (Param::WindFromDeg, "wind_from_deg", "deg"),
+    (Param::WindScale, "wind_scale", "1"),
+    (Param::WindRotationDeg, "wind_rotation_deg", "deg"),
     (Param::RailLengthM, "rail_length_m", "m"),
     (Param::RailInclinationDeg, "rail_inclination_deg", "deg"),
     (Param::RailHeadingDeg, "rail_heading_deg", "deg"),
@@ -112,11 +118,12 @@ impl Param {
             | Param::RailLengthM => Domain::Positive,
             // A ballast's mass scales its mass distribution, which needs a mass to scale.
             Param::BallastKg => Domain::Positive,
-            Param::WindSpeedMS | Param::ParachuteLagS(_) => Domain::NonNegative,
+            Param::WindSpeedMS | Param::WindScale | Param::ParachuteLagS(_) => Domain::NonNegative,
             Param::ParachuteCdsM2(_) => Domain::Positive,
             Param::StructureCgM
             | Param::ElevationM
             | Param::WindFromDeg
+            | Param::WindRotationDeg
             | Param::RailHeadingDeg
             | Param::ShiftTravelM(_) => Domain::Finite,
             Param::RailInclinationDeg => Domain::Within(0.0, 90.0),

@@ -48,6 +48,12 @@ pub enum WindError {
         /// The rejected value.
         value: f64,
     },
+    /// A negative or non-finite scale of the speeds ([`Wind::transformed`]).
+    #[error("wind: scale = {value}: must be finite and >= 0")]
+    Scale {
+        /// The rejected value.
+        value: f64,
+    },
     /// Non-finite height, or heights not strictly increasing.
     #[error(
         "wind table row {row}: `height_agl_m` = {value}: must be finite and greater than the \
@@ -82,6 +88,12 @@ enum Profile {
 /// A wind profile.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Wind {
+    /// The wind as given (constant or table), before any [`Wind::transformed`].
+    given: Profile,
+    /// The transformation applied to `given`: speed scale, clockwise turn in degrees.
+    scale: f64,
+    rotation_deg: f64,
+    /// The wind blowing: `given` with its speeds scaled and its directions turned.
     profile: Profile,
 }
 
@@ -92,10 +104,10 @@ impl Default for Wind {
 }
 
 impl Wind {
-    /// Speed (m/s) and from-direction (degrees clockwise from north) of a constant wind;
-    /// `None` for a table.
+    /// Speed (m/s) and from-direction (degrees clockwise from north) of a constant wind as
+    /// given (before [`Wind::transformed`]); `None` for a table.
     pub fn constant_parts(&self) -> Option<(f64, f64)> {
-        match self.profile {
+        match self.given {
             Profile::Constant([e, n]) => {
                 let speed = e.hypot(n);
                 let from = if speed == 0.0 {
@@ -111,18 +123,16 @@ impl Wind {
 
     /// No wind.
     pub fn calm() -> Self {
-        Self {
-            profile: Profile::Constant([0.0, 0.0]),
-        }
+        Self::of(Profile::Constant([0.0, 0.0]))
     }
 
     /// The same wind at every height: `speed_m_s` blowing from `from_deg` (clockwise from
     /// north).
     pub fn constant(speed_m_s: f64, from_deg: f64) -> Result<Self, WindError> {
         check_speed_direction(None, speed_m_s, from_deg)?;
-        Ok(Self {
-            profile: Profile::Constant(components_en(speed_m_s, from_deg)),
-        })
+        Ok(Self::of(Profile::Constant(components_en(
+            speed_m_s, from_deg,
+        ))))
     }
 
     /// A wind table: heights strictly increasing. Built once; lookups do not allocate.
@@ -146,11 +156,62 @@ impl Wind {
             heights_m.push(r.height_agl_m);
             velocity_en.push(components_en(r.speed_m_s, r.from_deg));
         }
-        Ok(Self {
-            profile: Profile::Table {
+        Ok(Self::of(Profile::Table {
+            heights_m,
+            velocity_en,
+        }))
+    }
+
+    fn of(profile: Profile) -> Self {
+        Self {
+            given: profile.clone(),
+            scale: 1.0,
+            rotation_deg: 0.0,
+            profile,
+        }
+    }
+
+    /// The transformation of the wind as given: (speed scale, clockwise turn in degrees);
+    /// (1, 0) for a wind as given.
+    pub fn transformation(&self) -> (f64, f64) {
+        (self.scale, self.rotation_deg)
+    }
+
+    /// The wind as given, every speed multiplied by `scale` (≥ 0) and every direction turned
+    /// `rotation_deg` clockwise (seen from above): how a campaign scatters a wind profile, as
+    /// RocketPy's Monte Carlo scales its wind components. Applied to the wind as given, never
+    /// on top of an earlier transformation; `(1, 0)` gives the wind as given back, bit for bit.
+    pub fn transformed(&self, scale: f64, rotation_deg: f64) -> Result<Self, WindError> {
+        if !scale.is_finite() || scale < 0.0 {
+            return Err(WindError::Scale { value: scale });
+        }
+        if !rotation_deg.is_finite() {
+            return Err(WindError::Direction {
+                row: None,
+                value: rotation_deg,
+            });
+        }
+        if scale == 1.0 && rotation_deg == 0.0 {
+            return Ok(Self::of(self.given.clone()));
+        }
+        // Clockwise by θ in (east, north): north (0, 1) turns toward east (sin θ, cos θ).
+        let (sin, cos) = rotation_deg.to_radians().sin_cos();
+        let turn = |[e, n]: [f64; 2]| [scale * (e * cos + n * sin), scale * (n * cos - e * sin)];
+        let profile = match &self.given {
+            Profile::Constant(v) => Profile::Constant(turn(*v)),
+            Profile::Table {
                 heights_m,
                 velocity_en,
+            } => Profile::Table {
+                heights_m: heights_m.clone(),
+                velocity_en: velocity_en.iter().map(|&v| turn(v)).collect(),
             },
+        };
+        Ok(Self {
+            given: self.given.clone(),
+            scale,
+            rotation_deg,
+            profile,
         })
     }
 
@@ -225,6 +286,54 @@ mod tests {
         let v = Wind::constant(2.0, 225.0).unwrap().velocity_en(0.0);
         let c = 2.0 * std::f64::consts::FRAC_1_SQRT_2;
         assert!(close(v, [c, c]), "{v:?}");
+    }
+
+    #[test]
+    fn a_transformed_wind_is_the_given_one_scaled_and_turned_clockwise() {
+        // A west wind (toward the east) at 4 m/s, doubled and turned 90° clockwise: from the
+        // north, toward the south, at 8 m/s.
+        let west = Wind::constant(4.0, 270.0).unwrap();
+        let v = west.transformed(2.0, 90.0).unwrap().velocity_en(10.0);
+        assert!(close(v, [0.0, -8.0]), "{v:?}");
+        // Each row of a table is turned the same way; heights are kept.
+        let t = north_then_east().transformed(0.5, 180.0).unwrap();
+        let (a, b) = (t.velocity_en(0.0), t.velocity_en(1000.0));
+        let (a0, b0) = (
+            north_then_east().velocity_en(0.0),
+            north_then_east().velocity_en(1000.0),
+        );
+        assert!(close(a, [-0.5 * a0[0], -0.5 * a0[1]]), "{a:?}");
+        assert!(close(b, [-0.5 * b0[0], -0.5 * b0[1]]), "{b:?}");
+        // A transformation applies to the wind as given, never on top of another.
+        let twice = west
+            .transformed(3.0, 10.0)
+            .unwrap()
+            .transformed(2.0, 90.0)
+            .unwrap();
+        assert_eq!(twice, west.transformed(2.0, 90.0).unwrap());
+        assert_eq!(
+            west.transformed(3.0, 10.0)
+                .unwrap()
+                .transformed(1.0, 0.0)
+                .unwrap(),
+            west
+        );
+        // Scale 0 is calm.
+        assert_eq!(
+            west.transformed(0.0, 33.0).unwrap().velocity_en(5.0),
+            [0.0, -0.0]
+        );
+    }
+
+    #[test]
+    fn a_transformation_refuses_a_negative_scale_and_a_non_finite_turn() {
+        let w = Wind::constant(4.0, 270.0).unwrap();
+        assert_eq!(
+            w.transformed(-0.1, 0.0).unwrap_err().to_string(),
+            "wind: scale = -0.1: must be finite and >= 0"
+        );
+        assert!(w.transformed(1.0, f64::NAN).is_err());
+        assert!(w.transformed(f64::INFINITY, 0.0).is_err());
     }
 
     #[test]

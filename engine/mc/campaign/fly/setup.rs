@@ -23,6 +23,8 @@ pub(super) struct Setup {
     pub(super) elevation_m: f64,
     pub(super) wind_speed_m_s: f64,
     pub(super) wind_from_deg: f64,
+    pub(super) wind_scale: f64,
+    pub(super) wind_rotation_deg: f64,
     pub(super) rail: [f64; 3],
     /// Per parachute: CdS, lag, trigger number (NaN if none).
     pub(super) parachutes: Vec<[f64; 3]>,
@@ -42,6 +44,8 @@ impl Setup {
             Param::ElevationM => self.elevation_m,
             Param::WindSpeedMS => self.wind_speed_m_s,
             Param::WindFromDeg => self.wind_from_deg,
+            Param::WindScale => self.wind_scale,
+            Param::WindRotationDeg => self.wind_rotation_deg,
             Param::RailLengthM => self.rail[0],
             Param::RailInclinationDeg => self.rail[1],
             Param::RailHeadingDeg => self.rail[2],
@@ -65,6 +69,8 @@ impl Setup {
             Param::ElevationM => &mut self.elevation_m,
             Param::WindSpeedMS => &mut self.wind_speed_m_s,
             Param::WindFromDeg => &mut self.wind_from_deg,
+            Param::WindScale => &mut self.wind_scale,
+            Param::WindRotationDeg => &mut self.wind_rotation_deg,
             Param::RailLengthM => &mut self.rail[0],
             Param::RailInclinationDeg => &mut self.rail[1],
             Param::RailHeadingDeg => &mut self.rail[2],
@@ -114,7 +120,7 @@ impl Fixed<'_> {
         };
         let env = Environment {
             elevation_m: s.elevation_m,
-            wind: Wind::constant(s.wind_speed_m_s, s.wind_from_deg).map_err(|e| err(&e))?,
+            wind: self.wind(s).map_err(|e| err(&e))?,
             gravity,
             vacuum: false,
         };
@@ -184,6 +190,16 @@ impl Fixed<'_> {
         })
     }
 
+    /// The wind of a setup: the scenario's profile, or its constant wind at the setup's speed
+    /// and direction, scaled and turned by the setup's `wind_scale` and `wind_rotation_deg`.
+    pub(super) fn wind(&self, s: &Setup) -> Result<Wind, hpr_sim::wind::WindError> {
+        let given = match &self.scenario.environment.wind_profile {
+            Some(rows) => Wind::table(rows)?,
+            None => Wind::constant(s.wind_speed_m_s, s.wind_from_deg)?,
+        };
+        given.transformed(s.wind_scale, s.wind_rotation_deg)
+    }
+
     /// The structure's change from its nominal (which is at the nominal ballast: a ballast
     /// change is the part's mass, the structure's dispersion comes on top of it).
     pub(super) fn structure_deltas(&self, s: &Setup) -> (f64, f64) {
@@ -217,7 +233,9 @@ impl Fixed<'_> {
         use Param::*;
         let structure = any(&[StructureMassKg, StructureCgM]);
         let motor = any(&[MotorImpulseNs, MotorBurnTimeS]);
-        let wind = any(&[WindSpeedMS, WindFromDeg]);
+        let wind = any(&[WindSpeedMS, WindFromDeg, WindScale, WindRotationDeg]);
+        // A profile's rows are the scenario's own: only its scale and turn vary.
+        let constant_wind = wind && self.scenario.environment.wind_profile.is_none();
         let rail = any(&[RailLengthM, RailInclinationDeg, RailHeadingDeg]);
         let per = |count: usize, p: fn(usize) -> Param, f: fn(&Setup, usize) -> f64| {
             (0..count)
@@ -234,8 +252,10 @@ impl Fixed<'_> {
             time_scale: col(motor, &|s| self.motor_scales(s).time_scale),
             drag_scale: col(has(DragScale), &|s| s.drag_scale),
             elevation_m: col(has(ElevationM), &|s| s.elevation_m),
-            wind_speed_m_s: col(wind, &|s| s.wind_speed_m_s),
-            wind_from_deg: col(wind, &|s| s.wind_from_deg),
+            wind_speed_m_s: col(constant_wind, &|s| s.wind_speed_m_s),
+            wind_from_deg: col(constant_wind, &|s| s.wind_from_deg),
+            wind_scale: col(wind, &|s| s.wind_scale),
+            wind_rotation_deg: col(wind, &|s| s.wind_rotation_deg),
             rail_length_m: col(rail, &|s| s.rail[0]),
             rail_inclination_deg: col(rail, &|s| s.rail[1]),
             rail_heading_deg: col(rail, &|s| s.rail[2]),

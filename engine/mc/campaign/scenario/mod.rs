@@ -15,6 +15,7 @@ mod tests;
 
 use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
+use hpr_sim::wind::{Wind, WindError, WindRow};
 use hpr_sim::{Integrator, Trigger};
 use raw::RawScenario;
 use rules::{check_name, check_param, finite, inputs, integrator, one_line};
@@ -53,6 +54,9 @@ pub struct EnvironmentSpec {
     pub elevation_m: f64,
     pub wind_speed_m_s: f64,
     pub wind_from_deg: f64,
+    /// A wind that changes with height (`environment.wind_profile`), in place of the constant
+    /// `wind_speed_m_s` from `wind_from_deg`.
+    pub wind_profile: Option<Vec<WindRow>>,
     /// Inverse-square gravity (true) or the constant standard gravity (false).
     pub inverse_square_gravity: bool,
 }
@@ -240,6 +244,40 @@ impl Scenario {
         };
 
         let env = raw.environment.take().unwrap_or_default();
+        let wind_profile = match &env.wind_profile {
+            None => None,
+            Some(_) if env.wind_speed_m_s.is_some() || env.wind_from_deg.is_some() => {
+                return Err(bad(
+                    "environment.wind_profile",
+                    "give either a wind profile or a constant wind_speed_m_s and wind_from_deg, not both".into(),
+                ))
+            }
+            Some(rows) => {
+                let rows: Vec<WindRow> = rows
+                    .iter()
+                    .map(|r| WindRow {
+                        height_agl_m: r.height_m,
+                        speed_m_s: r.speed_m_s,
+                        from_deg: r.from_deg,
+                    })
+                    .collect();
+                Wind::table(&rows).map_err(|e| {
+                    let key = match &e {
+                        WindError::EmptyTable => "environment.wind_profile".to_string(),
+                        WindError::Speed { row, .. } | WindError::Direction { row, .. } => {
+                            format!("environment.wind_profile[{}]", row.unwrap_or(0))
+                        }
+                        WindError::Height { row, .. } => {
+                            format!("environment.wind_profile[{row}].height_m")
+                        }
+                        WindError::Scale { .. } => "environment.wind_profile".to_string(),
+                    };
+                    // The message in the scenario's words: height_m for the table's height.
+                    bad(&key, e.to_string().replace("height_agl_m", "height_m"))
+                })?;
+                Some(rows)
+            }
+        };
         let environment = EnvironmentSpec {
             elevation_m: finite(
                 &bad,
@@ -257,6 +295,7 @@ impl Scenario {
                 "environment.wind_from_deg",
                 env.wind_from_deg.unwrap_or(0.0),
             )?,
+            wind_profile,
             inverse_square_gravity: match env.gravity.as_deref() {
                 None | Some("standard") => false,
                 Some("inverse_square") => true,
@@ -368,6 +407,23 @@ impl Scenario {
             row_group_rows: row_group_rows as usize,
         };
         scenario.inputs = inputs(&scenario, &bad, raw.sweep.take(), raw.dispersions.take())?;
+        if scenario.environment.wind_profile.is_some() {
+            if let Some(i) = scenario
+                .inputs
+                .iter()
+                .find(|i| matches!(i.param, Param::WindSpeedMS | Param::WindFromDeg))
+            {
+                let section = if i.sweep.is_some() {
+                    "sweep"
+                } else {
+                    "dispersions"
+                };
+                return Err(bad(
+                    &format!("{section}.{}", i.key),
+                    "the wind is environment.wind_profile, whose rows give its speeds and directions: vary it with wind_scale (a factor on every speed) and wind_rotation_deg (a clockwise turn of every direction)".into(),
+                ));
+            }
+        }
         if scenario.total_variants().is_none() {
             return Err(bad(
                 "variants_per_point",

@@ -47,7 +47,17 @@ pub(super) struct RawEnvironment {
     pub(super) elevation_m: Option<f64>,
     pub(super) wind_speed_m_s: Option<f64>,
     pub(super) wind_from_deg: Option<f64>,
+    pub(super) wind_profile: Option<Vec<RawWindRow>>,
     pub(super) gravity: Option<String>,
+}
+
+/// A row of `environment.wind_profile`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawWindRow {
+    pub(super) height_m: f64,
+    pub(super) speed_m_s: f64,
+    pub(super) from_deg: f64,
 }
 
 #[derive(Deserialize, Default)]
@@ -153,6 +163,8 @@ pub(super) struct RawParams<T> {
     pub(super) elevation_m: Option<T>,
     pub(super) wind_speed_m_s: Option<T>,
     pub(super) wind_from_deg: Option<T>,
+    pub(super) wind_scale: Option<T>,
+    pub(super) wind_rotation_deg: Option<T>,
     pub(super) rail_length_m: Option<T>,
     pub(super) rail_inclination_deg: Option<T>,
     pub(super) rail_heading_deg: Option<T>,
@@ -164,7 +176,7 @@ pub(super) struct RawParams<T> {
 
 impl<T> RawParams<T> {
     /// The global entries in [`GLOBAL`] order.
-    pub(super) fn globals(&mut self) -> [Option<T>; 12] {
+    pub(super) fn globals(&mut self) -> [Option<T>; 14] {
         [
             self.structure_mass_kg.take(),
             self.structure_cg_m.take(),
@@ -175,6 +187,8 @@ impl<T> RawParams<T> {
             self.elevation_m.take(),
             self.wind_speed_m_s.take(),
             self.wind_from_deg.take(),
+            self.wind_scale.take(),
+            self.wind_rotation_deg.take(),
             self.rail_length_m.take(),
             self.rail_inclination_deg.take(),
             self.rail_heading_deg.take(),

@@ -358,3 +358,65 @@ fn a_swept_or_dispersed_ballast_must_be_an_internal_part_that_holds_nothing() {
     assert_eq!(k, "sweep.ballast_kg[0]");
     assert_eq!(r, "must be positive and finite (got 0)");
 }
+
+/// The base scenario with its constant wind replaced by `environment` lines and `extra` after.
+fn with_environment(environment: &str, extra: &str) -> Result<Scenario, ScenarioError> {
+    let base = BASE.replace("wind_speed_m_s = 4.0\n", environment);
+    Scenario::parse(&format!("{base}{extra}"), &path())
+}
+
+const PROFILE: &str = "wind_profile = [\n  { height_m = 0.0, speed_m_s = 2.0, from_deg = 270.0 },\n  { height_m = 1000.0, speed_m_s = 9.0, from_deg = 300.0 },\n]\n";
+
+#[test]
+fn a_wind_profile_is_read_in_its_rows_and_varied_by_scale_and_turn() {
+    let s = with_environment(
+        PROFILE,
+        "[dispersions]\nwind_scale = { dist = \"normal\", sigma = 0.2, relative = true }\nwind_rotation_deg = { dist = \"uniform\", min = -20.0, max = 20.0 }\n",
+    )
+    .unwrap();
+    let rows = s.environment.wind_profile.as_ref().unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_eq!(
+        (rows[1].height_agl_m, rows[1].speed_m_s, rows[1].from_deg),
+        (1000.0, 9.0, 300.0)
+    );
+    let keys: Vec<&str> = s.inputs.iter().map(|i| i.key.as_str()).collect();
+    assert_eq!(keys, ["wind_scale", "wind_rotation_deg"]);
+    let units: Vec<&str> = s.inputs.iter().map(|i| i.unit).collect();
+    assert_eq!(units, ["1", "deg"]);
+}
+
+#[test]
+fn a_wind_profile_refuses_a_constant_wind_beside_it_and_its_bad_rows() {
+    let err = |env: &str, extra: &str| match with_environment(env, extra) {
+        Err(ScenarioError::Invalid { key, rule, .. }) => (key, rule),
+        other => panic!("accepted or another error: {other:?}"),
+    };
+    let (key, rule) = err(&format!("{PROFILE}wind_from_deg = 10.0\n"), "");
+    assert_eq!(key, "environment.wind_profile");
+    assert!(rule.contains("not both"), "{rule}");
+    let (key, rule) = err(
+        PROFILE,
+        "[dispersions]\nwind_speed_m_s = { dist = \"normal\", sigma = 1.0 }\n",
+    );
+    assert_eq!(key, "dispersions.wind_speed_m_s");
+    assert!(rule.contains("wind_scale"), "{rule}");
+    let (key, _) = err(PROFILE, "[sweep]\nwind_from_deg = [0.0, 90.0]\n");
+    assert_eq!(key, "sweep.wind_from_deg");
+    let (key, rule) = err(
+        "wind_profile = [{ height_m = 100.0, speed_m_s = 2.0, from_deg = 0.0 }, { height_m = 50.0, speed_m_s = 3.0, from_deg = 0.0 }]\n",
+        "",
+    );
+    assert_eq!(key, "environment.wind_profile[1].height_m");
+    assert!(rule.contains("height_m") && !rule.contains("agl"), "{rule}");
+    let (key, _) = err(
+        "wind_profile = [{ height_m = 0.0, speed_m_s = -2.0, from_deg = 0.0 }]\n",
+        "",
+    );
+    assert_eq!(key, "environment.wind_profile[0]");
+    let (key, _) = err("wind_profile = []\n", "");
+    assert_eq!(key, "environment.wind_profile");
+    let (key, rule) = err("", "[sweep]\nwind_scale = [1.0, -0.5]\n");
+    assert_eq!(key, "sweep.wind_scale[1]");
+    assert!(rule.contains("not negative"), "{rule}");
+}

@@ -69,8 +69,13 @@ pub struct Columns {
     pub drag_scale: Vec<f64>,
     pub elevation_m: Vec<f64>,
     pub wind_speed_m_s: Vec<f64>,
-    /// Direction the wind blows from, degrees clockwise from north.
+    /// Direction the wind blows from, degrees clockwise from north (with the speed: a
+    /// constant wind's as given).
     pub wind_from_deg: Vec<f64>,
+    /// Scale of the wind's speeds and clockwise turn of its directions, degrees, applied to
+    /// the wind as given (a table, or the constant wind above): [`Wind::transformed`].
+    pub wind_scale: Vec<f64>,
+    pub wind_rotation_deg: Vec<f64>,
     pub rail_length_m: Vec<f64>,
     pub rail_inclination_deg: Vec<f64>,
     pub rail_heading_deg: Vec<f64>,
@@ -167,6 +172,8 @@ impl Columns {
             elevation_m: flat(&self.elevation_m),
             wind_speed_m_s: flat(&self.wind_speed_m_s),
             wind_from_deg: flat(&self.wind_from_deg),
+            wind_scale: flat(&self.wind_scale),
+            wind_rotation_deg: flat(&self.wind_rotation_deg),
             rail_length_m: flat(&self.rail_length_m),
             rail_inclination_deg: flat(&self.rail_inclination_deg),
             rail_heading_deg: flat(&self.rail_heading_deg),
@@ -237,7 +244,7 @@ impl Batch {
     /// nested one empty or one column per parachute (shift) of the base, each empty or full.
     pub fn check(&self, columns: &Columns) -> Result<(), String> {
         let n = columns.len;
-        let flat: [(&str, &Vec<f64>); 12] = [
+        let flat: [(&str, &Vec<f64>); 14] = [
             ("structure_delta_mass_kg", &columns.structure_delta_mass_kg),
             ("structure_delta_cg_m", &columns.structure_delta_cg_m),
             ("part_mass_kg", &columns.part_mass_kg),
@@ -247,6 +254,8 @@ impl Batch {
             ("elevation_m", &columns.elevation_m),
             ("wind_speed_m_s", &columns.wind_speed_m_s),
             ("wind_from_deg", &columns.wind_from_deg),
+            ("wind_scale", &columns.wind_scale),
+            ("wind_rotation_deg", &columns.wind_rotation_deg),
             ("rail_length_m", &columns.rail_length_m),
             ("rail_inclination_deg", &columns.rail_inclination_deg),
             ("rail_heading_deg", &columns.rail_heading_deg),
@@ -304,6 +313,8 @@ impl Batch {
             if get(&c.elevation_m).is_some()
                 || get(&c.wind_speed_m_s).is_some()
                 || get(&c.wind_from_deg).is_some()
+                || get(&c.wind_scale).is_some()
+                || get(&c.wind_rotation_deg).is_some()
                 || get(&c.rail_length_m).is_some()
                 || get(&c.rail_inclination_deg).is_some()
                 || get(&c.rail_heading_deg).is_some()
@@ -316,9 +327,10 @@ impl Batch {
                         .at_launch_elevation(v)
                         .map_err(|e| setup(format!("environment: {e}")))?;
                 }
+                let (scale, rotation) = env.wind.transformation();
                 if get(&c.wind_speed_m_s).is_some() || get(&c.wind_from_deg).is_some() {
                     let (speed, from) = env.wind.constant_parts().ok_or_else(|| {
-                        setup("the base wind is a table, which the wind columns can't vary".into())
+                        setup("the base wind is a table, whose speed and direction the wind columns can't set (scale and turn it with wind_scale and wind_rotation_deg)".into())
                     })?;
                     env.wind = Wind::constant(
                         get(&c.wind_speed_m_s).unwrap_or(speed),
@@ -326,6 +338,13 @@ impl Batch {
                     )
                     .map_err(|e| setup(format!("wind: {e}")))?;
                 }
+                env.wind = env
+                    .wind
+                    .transformed(
+                        get(&c.wind_scale).unwrap_or(scale),
+                        get(&c.wind_rotation_deg).unwrap_or(rotation),
+                    )
+                    .map_err(|e| setup(format!("{e}")))?;
                 let mut rail = *base.rail();
                 rail.length_m = get(&c.rail_length_m).unwrap_or(rail.length_m);
                 rail.inclination_deg = get(&c.rail_inclination_deg).unwrap_or(rail.inclination_deg);

@@ -109,6 +109,8 @@ fn columns_of(rows: std::ops::Range<usize>, seed: u64) -> Columns {
         c.shift_travel_m[0].push(if i % 20 == 3 { 0.9 } else { travel });
         c.shift_duration_s[0].push(r.uniform(0.2, 1.5));
         c.shift_trigger[0].push(r.uniform(3.0, 8.0));
+        c.wind_scale.push(r.uniform(0.5, 1.5));
+        c.wind_rotation_deg.push(r.uniform(-30.0, 30.0));
     }
     c
 }
@@ -120,8 +122,9 @@ fn columns(n: usize, seed: u64) -> Columns {
 /// The single-flight simulator set up from scratch with row `i`'s inputs.
 fn single(c: &Columns, i: usize) -> Result<Simulation, String> {
     let e = |e: crate::flight::SimError| e.to_string();
-    let wind =
-        Wind::constant(c.wind_speed_m_s[i], c.wind_from_deg[i]).map_err(|e| e.to_string())?;
+    let wind = Wind::constant(c.wind_speed_m_s[i], c.wind_from_deg[i])
+        .and_then(|w| w.transformed(c.wind_scale[i], c.wind_rotation_deg[i]))
+        .map_err(|e| e.to_string())?;
     let env = Environment {
         elevation_m: c.elevation_m[i],
         wind,
@@ -647,4 +650,72 @@ fn the_kept_mass_state_is_the_one_instant_gives_wherever_the_mass_is_settled() {
         assert!(model.mass_settled(&starts, t));
         assert_eq!(at(&starts, t), moved, "t = {t}");
     }
+}
+
+#[test]
+fn a_wind_table_is_scaled_and_turned_lane_by_lane_as_a_single_flight_with_that_table() {
+    let rows = [
+        crate::wind::WindRow {
+            height_agl_m: 0.0,
+            speed_m_s: 3.0,
+            from_deg: 250.0,
+        },
+        crate::wind::WindRow {
+            height_agl_m: 1500.0,
+            speed_m_s: 12.0,
+            from_deg: 300.0,
+        },
+    ];
+    let table = Wind::table(&rows).unwrap();
+    let with_wind = |wind: Wind| {
+        let sim = base();
+        let env = Environment {
+            wind,
+            ..sim.environment().clone()
+        };
+        let rail = *sim.rail();
+        sim.with_changes(|c| c.site(env, rail)).unwrap()
+    };
+    let batch = Batch::new(with_wind(table.clone()), Some("ballast")).unwrap();
+    let (scales, turns) = ([0.0, 0.5, 1.0, 1.7, 2.2], [0.0, -35.0, 0.0, 120.0, 15.0]);
+    let c = Columns {
+        len: 5,
+        wind_scale: scales.to_vec(),
+        wind_rotation_deg: turns.to_vec(),
+        ..Columns::default()
+    };
+    let mut lanes = Vec::new();
+    batch.run_columns(&c, 5, 1, |r| lanes.push(r)).unwrap();
+    let bits = |m: &Metrics| -> Vec<Option<u64>> {
+        metric_list(m).iter().map(|v| v.map(f64::to_bits)).collect()
+    };
+    let mut landings = Vec::new();
+    for (i, lane) in lanes.iter().enumerate() {
+        // From scratch: the table itself scaled and turned, as the site of a plain flight.
+        let f = with_wind(table.transformed(scales[i], turns[i]).unwrap())
+            .run(&mut ())
+            .unwrap();
+        assert_eq!(lane.status, Status::Landed, "variant {i}");
+        assert_eq!(bits(&lane.metrics), bits(&f.metrics), "variant {i}");
+        landings.push(f.metrics.landing_position_m.unwrap());
+    }
+    // Scaled to nothing, the table is calm air; scaled and turned, it moves the landing.
+    let calm = base()
+        .run(&mut ())
+        .unwrap()
+        .metrics
+        .landing_position_m
+        .unwrap();
+    let apart = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    assert!(apart(landings[0], calm) < 1e-9, "{landings:?} {calm:?}");
+    assert!(apart(landings[1], landings[2]) > 5.0, "{landings:?}");
+    assert!(apart(landings[3], landings[2]) > 5.0, "{landings:?}");
+    // A table has no single speed or direction for a column to set.
+    let speed = Columns {
+        len: 1,
+        wind_speed_m_s: vec![4.0],
+        ..Columns::default()
+    };
+    let e = batch.variant(&speed, 0).unwrap_err();
+    assert!(e.contains("wind_scale and wind_rotation_deg"), "{e}");
 }
