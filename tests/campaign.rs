@@ -579,6 +579,22 @@ fn flights(text: &str) -> Vec<[f64; 4]> {
     (0..x.len()).map(|r| [x[r], y[r], a[r], t[r]]).collect()
 }
 
+/// Row by row, the same figures to 1e-9 (relative, or absolute below 1): the same flights up
+/// to the rounding of their inputs.
+fn assert_same_flights(a: &[[f64; 4]], b: &[[f64; 4]]) {
+    assert_eq!(a.len(), b.len());
+    for (r, (a, b)) in a.iter().zip(b).enumerate() {
+        for k in 0..4 {
+            assert!(
+                (a[k] - b[k]).abs() <= 1e-9 * b[k].abs().max(1.0),
+                "row {r} figure {k}: {} against {}",
+                a[k],
+                b[k]
+            );
+        }
+    }
+}
+
 #[test]
 fn a_wind_profile_scaled_and_turned_flies_as_the_profile_written_scaled_and_turned() {
     // Rows 2 m/s from 270° at the ground and 9 m/s from 300° at 1 km; scaled 1.5 and turned
@@ -598,16 +614,7 @@ fn a_wind_profile_scaled_and_turned_flies_as_the_profile_written_scaled_and_turn
     ));
     let written = flights(&windy(&rows(1.5, 40.0), "drag_scale = [1.0]"));
     // The two ways differ only in the rounding of the wind's components (1e-15 of them).
-    for (r, (a, b)) in scaled.iter().zip(&written).enumerate() {
-        for k in 0..4 {
-            assert!(
-                (a[k] - b[k]).abs() <= 1e-9 * b[k].abs().max(1.0),
-                "row {r} figure {k}: {} against {}",
-                a[k],
-                b[k]
-            );
-        }
-    }
+    assert_same_flights(&scaled, &written);
     // And the turn matters: unturned, the rocket lands elsewhere (more than 10 m away).
     let unturned = flights(&windy(&rows(1.5, 0.0), "drag_scale = [1.0]"));
     let apart = (unturned[0][0] - written[0][0]).hypot(unturned[0][1] - written[0][1]);
@@ -624,14 +631,5 @@ fn a_constant_wind_scaled_by_a_half_is_the_constant_wind_of_half_its_speed() {
         "wind_speed_m_s = 3.0\nwind_from_deg = 250.0",
         "drag_scale = [1.0]",
     ));
-    for (r, (a, b)) in scaled.iter().zip(&half).enumerate() {
-        for k in 0..4 {
-            assert!(
-                (a[k] - b[k]).abs() <= 1e-9 * b[k].abs().max(1.0),
-                "row {r} figure {k}: {} against {}",
-                a[k],
-                b[k]
-            );
-        }
-    }
+    assert_same_flights(&scaled, &half);
 }
