@@ -633,3 +633,56 @@ fn a_constant_wind_scaled_by_a_half_is_the_constant_wind_of_half_its_speed() {
     ));
     assert_same_flights(&scaled, &half);
 }
+
+#[test]
+fn fly_with_a_scenario_flies_the_nominal_flight_of_the_point_it_is_given() {
+    // No dispersion: every variant of a sweep point is that point's nominal flight.
+    let text = windy(
+        "wind_speed_m_s = 4.0\nwind_from_deg = 270.0",
+        "wind_scale = [0.5, 1.5]",
+    )
+    .replace(
+        "drag_scale = { dist = \"normal\", sigma = 0.05, relative = true }\n",
+        "",
+    );
+    let (dir, file) = setup(&text);
+    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+    let b = read(&report.outputs.variants);
+    let file = file.to_str().unwrap();
+    for point in 0..2 {
+        let (code, out, err) = hpr_mc(&[
+            "fly",
+            "--scenario",
+            file,
+            "--point",
+            &point.to_string(),
+            "--json",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let row = point * 4; // the first variant of the point
+        for (json, column) in [
+            ("apogee_m", "apogee_m"),
+            ("landing_x_m", "landing_x_m"),
+            ("landing_time_s", "landing_time_s"),
+        ] {
+            let (a, b) = (
+                v["metrics"][json].as_f64().unwrap(),
+                f64s(&b, column).value(row),
+            );
+            assert!(
+                (a - b).abs() <= 1e-9 * b.abs().max(1.0),
+                "point {point} {json}: fly {a}, campaign {b}"
+            );
+        }
+    }
+    // The two points differ (the wind's scale does move the landing), and a point past the
+    // sweep is an error naming the count.
+    assert!((f64s(&b, "landing_x_m").value(0) - f64s(&b, "landing_x_m").value(4)).abs() > 10.0);
+    let (code, _, err) = hpr_mc(&["fly", "--scenario", file, "--point", "2"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--point 2: the scenario has 2 sweep points (0 to 1)"),
+        "{err}"
+    );
+}

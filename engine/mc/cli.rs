@@ -41,7 +41,18 @@ pub struct InspectArgs {
 #[derive(clap::Args, Debug)]
 pub struct FlyArgs {
     /// The design (JSON).
-    pub design: PathBuf,
+    #[arg(required_unless_present = "scenario")]
+    pub design: Option<PathBuf>,
+    /// Fly a scenario's nominal flight instead (every input at its center, its shifts,
+    /// parachutes, site and integrator): the flight its variants scatter around.
+    #[arg(long, value_name = "SCENARIO", conflicts_with_all = [
+        "design", "motor", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
+        "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2", "main_height_m", "lag_s",
+    ])]
+    pub scenario: Option<PathBuf>,
+    /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary).
+    #[arg(long, default_value_t = 0, requires = "scenario")]
+    pub point: usize,
     /// Motor (see `inspect --motor`).
     #[arg(long)]
     pub motor: Option<String>,
@@ -172,7 +183,33 @@ pub fn parachutes_for(
 }
 
 pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
-    let (design, motor) = load(&a.design, &a.motor)?;
+    let sim = match (&a.scenario, &a.design) {
+        (Some(scenario), _) => {
+            let prepared = crate::campaign::run::prepare(scenario, &Default::default())?;
+            prepared
+                .nominal_flight(a.point)
+                .map_err(|e| anyhow!("{}: {e}", scenario.display()))?
+        }
+        (None, Some(design)) => flight_of_arguments(design, a)?,
+        (None, None) => return Err(anyhow!("give a design or --scenario")),
+    };
+    let flight = sim.run(&mut ()).map_err(|e| anyhow!("{e}"))?;
+    if let Some(path) = &a.trajectory {
+        report::write_trajectory(path, &flight)
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    if a.json {
+        let json = serde_json::to_string_pretty(&report::flight_json(&sim, &flight))?;
+        emit(&format!("{json}\n"))?;
+    } else {
+        emit(&report::flight_text(&sim, &flight))?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The flight `fly`'s options describe for `design`.
+fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
+    let (design, motor) = load(design, &a.motor)?;
     let wind = hpr_sim::wind::Wind::constant(a.wind_m_s, a.wind_from_deg)
         .map_err(|e| anyhow!("--wind: {e}"))?;
     let env = Environment {
@@ -192,20 +229,8 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
         a.main_height_m,
         a.lag_s,
     );
-    let sim = Simulation::new(design, motor, env, rail)
+    Simulation::new(design, motor, env, rail)
         .and_then(|s| s.with_parachutes(chutes))
         .and_then(|s| s.with_options(SimOptions::default()))
-        .map_err(|e| anyhow!("{e}"))?;
-    let flight = sim.run(&mut ()).map_err(|e| anyhow!("{e}"))?;
-    if let Some(path) = &a.trajectory {
-        report::write_trajectory(path, &flight)
-            .with_context(|| format!("writing {}", path.display()))?;
-    }
-    if a.json {
-        let json = serde_json::to_string_pretty(&report::flight_json(&sim, &flight))?;
-        emit(&format!("{json}\n"))?;
-    } else {
-        emit(&report::flight_text(&sim, &flight))?;
-    }
-    Ok(ExitCode::SUCCESS)
+        .map_err(|e| anyhow!("{e}"))
 }

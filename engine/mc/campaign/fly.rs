@@ -24,7 +24,7 @@ use hpr_design::design::model::Design;
 use hpr_design::mass;
 use hpr_design::motor::{self, Motor};
 use hpr_sim::batch::{Batch, LaneResult};
-use hpr_sim::{SimError, Simulation, Trigger};
+use hpr_sim::{SimError, SimOptions, Simulation, Trigger};
 use setup::{Fixed, Setup};
 
 /// How a variant ended: the batch lane's status.
@@ -314,6 +314,32 @@ impl Prepared {
     /// The motor as found.
     pub fn motor(&self) -> &Motor {
         &self.motor
+    }
+
+    /// The nominal flight of sweep point `point` (every input at its center), built from
+    /// scratch and keeping its samples: what `hpr-mc fly --scenario` flies.
+    pub fn nominal_flight(&self, point: usize) -> Result<Simulation, String> {
+        let points = self.plan.points();
+        if point >= points {
+            return Err(format!(
+                "--point {point}: the scenario has {points} sweep point{} (0 to {})",
+                if points == 1 { "" } else { "s" },
+                points - 1
+            ));
+        }
+        let fixed = self.fixed();
+        let setup = fixed.setup(&self.plan.centers(point))?;
+        let sim = fixed.simulation(&setup).map_err(|e| e.to_string())?;
+        let options = SimOptions {
+            keep_samples: true,
+            ..*sim.options()
+        };
+        sim.with_options(options).map_err(|e| e.to_string())
+    }
+
+    /// " at sweep point k (key = v, ...)" for `point`, or "" without a sweep.
+    pub fn point_label(&self, point: usize) -> String {
+        at_point(&self.scenario, &self.plan, point)
     }
 
     /// The base flight of every lane (the first sweep point's nominal flight, no samples).
