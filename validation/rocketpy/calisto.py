@@ -125,12 +125,20 @@ def main_trigger(_p, h, y):
 
 def build(latitude=SITE["latitude_deg"], elevation=SITE["elevation_m"],
           button_angle=RAIL_BUTTONS["angular_position_deg"], chutes=True,
-          terminate_on_apogee=False, coriolis=True):
+          terminate_on_apogee=False, coriolis=True, wind_u=None, wind_v=None):
     """Build environment, motor, rocket and fly. The keyword arguments exist
-    only for the sensitivity table; their defaults are the reference case."""
+    for the sensitivity table and the windy cases (calisto_wind.py); their
+    defaults are the reference case. ``wind_u``/``wind_v`` (m/s, toward east
+    and toward north, constant with height) switch to RocketPy's
+    ``custom_atmosphere`` with the ISA pressure and temperature (what it uses
+    when neither is given) and that wind."""
     env = Environment(latitude=latitude, longitude=SITE["longitude_deg"],
                       elevation=elevation, datum=SITE["datum"])
-    env.set_atmospheric_model(type="standard_atmosphere")
+    if wind_u is None and wind_v is None:
+        env.set_atmospheric_model(type="standard_atmosphere")
+    else:
+        env.set_atmospheric_model(type="custom_atmosphere",
+                                  wind_u=wind_u or 0.0, wind_v=wind_v or 0.0)
     if not coriolis:
         env.earth_rotation_vector = [0.0, 0.0, 0.0]
     m = MOTOR

@@ -73,11 +73,21 @@ pub struct Nozzle {
 
 impl Nozzle {
     /// A nozzle of radius `radius_m` at `x_m` aft of the nose tip, with RocketPy's gyration
-    /// tensor: `S33 = r²/2`, `S11 = S22 = S33/2 + d²/4`, `d` its distance from the center of
-    /// dry mass along the axis (given by the caller; 0 is a fine default).
+    /// tensor carried to O. RocketPy writes its equations about the center of dry mass and
+    /// takes there `S33 = r²/2`, `S11 = S22 = S33/2 + d²/4`, `d` the nozzle's distance from
+    /// the center of dry mass along the axis (`lever_m`, given by the caller).
+    ///
+    /// The equations here are about O, and the gyration tensor must be about the same point
+    /// as the inertia whose rate `I_O′` it meets in `T21`: written about a point P, the
+    /// mass-flow terms give the moment `(−I_cm′ + ṁ (S11 − p² + (p − r)²)) ω` about the center
+    /// of mass (transverse ω; `p` the nozzle's and `r` the center's axial position from P), so
+    /// only `S11 − p²` depends on the choice of P. Keeping RocketPy's `S11 − d²` (the parallel
+    /// axis theorem) gives `S11 = S33/2 + d²/4 − d² + x²` about O and RocketPy's jet damping
+    /// exactly. (RocketPy's `d²/4` is a quarter of the exit plane's integral, which gives
+    /// `d²`: RocketPy pull request #1188, after 1.13; this keeps 1.13's.)
     pub fn at(x_m: f64, radius_m: f64, lever_m: f64) -> Nozzle {
         let s33 = 0.5 * radius_m * radius_m;
-        let s11 = 0.5 * s33 + 0.25 * lever_m * lever_m;
+        let s11 = 0.5 * s33 + 0.25 * lever_m * lever_m - lever_m * lever_m + x_m * x_m;
         Nozzle {
             r_noz: frames::axial_point(x_m),
             s_noz: Matrix3::from_diagonal(&Vector3::new(s11, s11, s33)),
