@@ -686,3 +686,32 @@ fn fly_with_a_scenario_flies_the_nominal_flight_of_the_point_it_is_given() {
         "{err}"
     );
 }
+
+#[test]
+fn fly_with_a_scenario_takes_an_input_given_by_its_own_mean_at_that_mean() {
+    let fly = |text: &str| {
+        let (_dir, file) = setup(text);
+        let (code, out, err) = hpr_mc(&["fly", "--scenario", file.to_str().unwrap(), "--json"]);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        v["metrics"]["landing_x_m"].as_f64().unwrap()
+    };
+    let about_mean = fly(&windy(
+        "wind_speed_m_s = 2.0\nwind_from_deg = 270.0",
+        "drag_scale = [1.0]",
+    )
+    .replace(
+        "[dispersions]\n",
+        "[dispersions]\nwind_speed_m_s = { dist = \"normal\", mean = 6.0, sigma = 1.0 }\n",
+    ));
+    let at_six = fly(&windy(
+        "wind_speed_m_s = 6.0\nwind_from_deg = 270.0",
+        "drag_scale = [1.0]",
+    ));
+    let at_two = fly(&windy(
+        "wind_speed_m_s = 2.0\nwind_from_deg = 270.0",
+        "drag_scale = [1.0]",
+    ));
+    assert_eq!(about_mean.to_bits(), at_six.to_bits());
+    assert!((at_six - at_two).abs() > 10.0, "{at_six} {at_two}");
+}

@@ -18,6 +18,7 @@
 mod setup;
 
 use super::params::Param;
+use super::sample::Shape;
 use super::scenario::{trigger_value, Scenario, ScenarioError};
 use super::variants::{Plan, PlanInput, Variant};
 use hpr_design::design::model::Design;
@@ -316,8 +317,9 @@ impl Prepared {
         &self.motor
     }
 
-    /// The nominal flight of sweep point `point` (every input at its center), built from
-    /// scratch and keeping its samples: what `hpr-mc fly --scenario` flies.
+    /// The nominal flight of sweep point `point` (every input at its center, or at its mean
+    /// where it is dispersed as a normal about its own mean), built from scratch and keeping
+    /// its samples: what `hpr-mc fly --scenario` flies.
     pub fn nominal_flight(&self, point: usize) -> Result<Simulation, String> {
         let points = self.plan.points();
         if point >= points {
@@ -328,7 +330,18 @@ impl Prepared {
             ));
         }
         let fixed = self.fixed();
-        let setup = fixed.setup(&self.plan.centers(point))?;
+        // An input given as a normal about its own mean scatters around that mean.
+        let centers: Vec<f64> = self
+            .plan
+            .centers(point)
+            .into_iter()
+            .zip(&self.scenario.inputs)
+            .map(|(c, input)| match input.dispersion.map(|d| d.shape) {
+                Some(Shape::NormalAbout { mean, .. }) => mean,
+                _ => c,
+            })
+            .collect();
+        let setup = fixed.setup(&centers)?;
         let sim = fixed.simulation(&setup).map_err(|e| e.to_string())?;
         let options = SimOptions {
             keep_samples: true,
