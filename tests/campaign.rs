@@ -685,6 +685,25 @@ fn fly_with_a_scenario_flies_the_nominal_flight_of_the_point_it_is_given() {
         err.contains("--point 2: the scenario has 2 sweep points (0 to 1)"),
         "{err}"
     );
+    // The text says which flight it is; --point means nothing without a scenario.
+    let (code, out, _) = hpr_mc(&["fly", "--scenario", file, "--point", "1"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with(&format!(
+            "the nominal flight of {file} at sweep point 1 (wind_scale = 1.5)\n"
+        )),
+        "{out}"
+    );
+    let design = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/validation/designs/synthetic-54mm-three-fin.json"
+    );
+    let (code, _, err) = hpr_mc(&["fly", "--point", "1", design]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--point") && err.contains("--scenario"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -50,9 +50,10 @@ pub struct FlyArgs {
         "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2", "main_height_m", "lag_s",
     ])]
     pub scenario: Option<PathBuf>,
-    /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary).
-    #[arg(long, default_value_t = 0, requires = "scenario")]
-    pub point: usize,
+    /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary;
+    /// default 0).
+    #[arg(long)]
+    pub point: Option<usize>,
     /// Motor (see `inspect --motor`).
     #[arg(long)]
     pub motor: Option<String>,
@@ -183,14 +184,27 @@ pub fn parachutes_for(
 }
 
 pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
-    let sim = match (&a.scenario, &a.design) {
+    if a.point.is_some() && a.scenario.is_none() {
+        return Err(anyhow!(
+            "--point picks a sweep point of a scenario: it needs --scenario FILE"
+        ));
+    }
+    // With a scenario, which flight of it this is: its file and sweep point.
+    let (sim, origin) = match (&a.scenario, &a.design) {
         (Some(scenario), _) => {
             let prepared = crate::campaign::run::prepare(scenario, &Default::default())?;
-            prepared
-                .nominal_flight(a.point)
-                .map_err(|e| anyhow!("{}: {e}", scenario.display()))?
+            let point = a.point.unwrap_or(0);
+            let sim = prepared
+                .nominal_flight(point)
+                .map_err(|e| anyhow!("{}: {e}", scenario.display()))?;
+            let label = format!(
+                "the nominal flight of {}{}",
+                scenario.display(),
+                prepared.point_label(point)
+            );
+            (sim, Some((point, label)))
         }
-        (None, Some(design)) => flight_of_arguments(design, a)?,
+        (None, Some(design)) => (flight_of_arguments(design, a)?, None),
         (None, None) => return Err(anyhow!("give a design or --scenario")),
     };
     let flight = sim.run(&mut ()).map_err(|e| anyhow!("{e}"))?;
@@ -199,10 +213,15 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
             .with_context(|| format!("writing {}", path.display()))?;
     }
     if a.json {
-        let json = serde_json::to_string_pretty(&report::flight_json(&sim, &flight))?;
-        emit(&format!("{json}\n"))?;
+        let mut json = report::flight_json(&sim, &flight);
+        if let (Some((point, label)), Some(o)) = (&origin, json.as_object_mut()) {
+            o.insert("scenario_point".into(), (*point).into());
+            o.insert("flown".into(), label.clone().into());
+        }
+        emit(&format!("{}\n", serde_json::to_string_pretty(&json)?))?;
     } else {
-        emit(&report::flight_text(&sim, &flight))?;
+        let head = origin.map_or(String::new(), |(_, label)| format!("{label}\n"));
+        emit(&format!("{head}{}", report::flight_text(&sim, &flight)))?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -4,6 +4,7 @@
 use anyhow::{bail, Result};
 use hpr_design::mass;
 use hpr_sim::flight::{Flight, Simulation};
+use hpr_sim::EventKind;
 use serde_json::{json, Value};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -229,13 +230,22 @@ pub fn flight_text(sim: &Simulation, f: &Flight) -> String {
     }
     let _ = writeln!(s, "\nevents");
     for e in &f.events {
+        // The parachute's name, or the part a shift moves, beside its index.
+        let name = match e.kind {
+            EventKind::ParachuteTrigger(i) | EventKind::ParachuteDeploy(i) => {
+                sim.parachutes().get(i).map(|p| p.name.as_str())
+            }
+            EventKind::Shift(k) => sim.shifts().get(k).map(|m| m.component.as_str()),
+            _ => None,
+        };
+        let label = match name {
+            Some(n) => format!("{} ({n})", e.kind.name()),
+            None => e.kind.name(),
+        };
         let _ = writeln!(
             s,
-            "  {:<22} {:>10.4} s {:>10.1} m {:>9.2} m/s",
-            e.kind.name(),
-            e.time_s,
-            e.altitude_m,
-            e.speed_m_s
+            "  {:<30} {:>10.4} s {:>10.1} m {:>9.2} m/s",
+            label, e.time_s, e.altitude_m, e.speed_m_s
         );
     }
     let _ = writeln!(

@@ -18,7 +18,6 @@
 mod setup;
 
 use super::params::Param;
-use super::sample::Shape;
 use super::scenario::{trigger_value, Scenario, ScenarioError};
 use super::variants::{Plan, PlanInput, Variant};
 use hpr_design::design::model::Design;
@@ -336,10 +335,7 @@ impl Prepared {
             .centers(point)
             .into_iter()
             .zip(&self.scenario.inputs)
-            .map(|(c, input)| match input.dispersion.map(|d| d.shape) {
-                Some(Shape::NormalAbout { mean, .. }) => mean,
-                _ => c,
-            })
+            .map(|(c, input)| input.dispersion.map_or(c, |d| d.scatter_center(c)))
             .collect();
         let setup = fixed.setup(&centers)?;
         let sim = fixed.simulation(&setup).map_err(|e| e.to_string())?;

@@ -62,6 +62,15 @@ pub struct Dispersion {
 }
 
 impl Dispersion {
+    /// The value the draws scatter around, for an input whose center is `center`: its own
+    /// mean for a normal given by its mean, else the center.
+    pub fn scatter_center(&self, center: f64) -> f64 {
+        match self.shape {
+            Shape::NormalAbout { mean, .. } => mean,
+            _ => center,
+        }
+    }
+
     /// Draw the input's value around `center`.
     pub fn sample(&self, center: f64, rng: &mut ChaCha8Rng) -> f64 {
         let d = match self.shape {

@@ -114,7 +114,7 @@ impl Plan {
                 Some(d) => {
                     let v = d.sample(c, &mut input_rng(self.seed, stream, &input.key));
                     if input.keeps_side {
-                        on_side_of(c, v)
+                        on_side_of(d.scatter_center(c), v)
                     } else {
                         v
                     }
@@ -131,7 +131,8 @@ impl Plan {
     }
 }
 
-/// `v` held on `center`'s side of zero: 0 if it crossed, 0 if the center is 0.
+/// `v` held on `center`'s side of zero (the value its draws scatter around): 0 if it crossed,
+/// 0 if the center is 0.
 fn on_side_of(center: f64, v: f64) -> f64 {
     if center > 0.0 {
         v.max(0.0)
@@ -315,6 +316,29 @@ mod tests {
             }
         }
         assert!(zero == 12 && crossed >= 4, "{zero} {crossed}");
+    }
+
+    #[test]
+    fn a_travel_given_by_its_own_mean_keeps_the_side_of_that_mean() {
+        // Nominal travel 0.1 m, but the draws are N(−0.05, 0.01²): they keep the mean's side.
+        let mut p = plan(true);
+        p.inputs[1] = PlanInput {
+            key: "travel".into(),
+            nominal: 0.1,
+            sweep: None,
+            dispersion: Some(Dispersion {
+                shape: Shape::NormalAbout {
+                    mean: -0.05,
+                    sigma: 0.01,
+                },
+                relative: false,
+            }),
+            keeps_side: true,
+        };
+        let travels: Vec<f64> = (0..p.total()).map(|id| p.variant(id).values[1]).collect();
+        assert!(travels.iter().all(|&t| t < 0.0), "{travels:?}");
+        let mean = travels.iter().sum::<f64>() / travels.len() as f64;
+        assert!((mean + 0.05).abs() < 0.01, "{mean}");
     }
 
     #[test]

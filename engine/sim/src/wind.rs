@@ -56,8 +56,8 @@ pub enum WindError {
     },
     /// Non-finite height, or heights not strictly increasing.
     #[error(
-        "wind table row {row}: `height_agl_m` = {value}: must be finite and greater than the \
-         previous row's {previous}"
+        "wind table row {row}: `height_agl_m` = {value}: {}",
+        height_rule(*previous)
     )]
     Height {
         /// Table row.
@@ -67,6 +67,14 @@ pub enum WindError {
         /// Height of the previous row (−∞ for the first row).
         previous: f64,
     },
+}
+
+fn height_rule(previous: f64) -> String {
+    if previous.is_finite() {
+        format!("must be finite and greater than the previous row's {previous}")
+    } else {
+        "must be finite".into()
+    }
 }
 
 fn row_label(row: Option<usize>) -> String {

@@ -198,11 +198,20 @@ impl Scenario {
 
         let name = match raw.name.take() {
             Some(n) => n,
+            // The file's stem, with what a directory name should not hold made '_'.
             None => path
                 .file_stem()
                 .and_then(|s| s.to_str())
                 .unwrap_or("scenario")
-                .to_string(),
+                .chars()
+                .map(|c| {
+                    if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                        c
+                    } else {
+                        '_'
+                    }
+                })
+                .collect(),
         };
         if name.is_empty()
             || !name
@@ -264,8 +273,11 @@ impl Scenario {
                 Wind::table(&rows).map_err(|e| {
                     let key = match &e {
                         WindError::EmptyTable => "environment.wind_profile".to_string(),
-                        WindError::Speed { row, .. } | WindError::Direction { row, .. } => {
-                            format!("environment.wind_profile[{}]", row.unwrap_or(0))
+                        WindError::Speed { row, .. } => {
+                            format!("environment.wind_profile[{}].speed_m_s", row.unwrap_or(0))
+                        }
+                        WindError::Direction { row, .. } => {
+                            format!("environment.wind_profile[{}].from_deg", row.unwrap_or(0))
                         }
                         WindError::Height { row, .. } => {
                             format!("environment.wind_profile[{row}].height_m")

@@ -218,7 +218,10 @@ pub(super) struct RawShiftParams<T> {
 
 /// A distribution as the file writes it (see `docs/scenarios.md`).
 #[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a distribution table such as { dist = \"normal\", sigma = 0.1 }"
+)]
 pub(super) struct RawDist {
     pub(super) dist: String,
     pub(super) sigma: Option<f64>,

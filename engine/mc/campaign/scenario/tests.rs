@@ -413,10 +413,39 @@ fn a_wind_profile_refuses_a_constant_wind_beside_it_and_its_bad_rows() {
         "wind_profile = [{ height_m = 0.0, speed_m_s = -2.0, from_deg = 0.0 }]\n",
         "",
     );
-    assert_eq!(key, "environment.wind_profile[0]");
+    assert_eq!(key, "environment.wind_profile[0].speed_m_s");
+    let (key, rule) = err(
+        "wind_profile = [{ height_m = nan, speed_m_s = 2.0, from_deg = 0.0 }]\n",
+        "",
+    );
+    assert_eq!(key, "environment.wind_profile[0].height_m");
+    assert!(rule.ends_with("must be finite"), "{rule}");
+    let (key, _) = err(
+        "wind_profile = [{ height_m = 0.0, speed_m_s = 2.0, from_deg = inf }]\n",
+        "",
+    );
+    assert_eq!(key, "environment.wind_profile[0].from_deg");
     let (key, _) = err("wind_profile = []\n", "");
     assert_eq!(key, "environment.wind_profile");
     let (key, rule) = err("", "[sweep]\nwind_scale = [1.0, -0.5]\n");
     assert_eq!(key, "sweep.wind_scale[1]");
     assert!(rule.contains("not negative"), "{rule}");
+}
+
+#[test]
+fn a_scenario_without_a_name_is_named_after_its_file_made_fit_for_a_directory() {
+    let file = path().with_file_name("wind.v2 test.toml");
+    let s = Scenario::parse(BASE, &file).unwrap();
+    assert_eq!(s.name, "wind_v2_test");
+}
+
+#[test]
+fn a_number_where_a_distribution_belongs_says_what_a_distribution_looks_like() {
+    let (key, rule) = refused("[dispersions]\nwind_scale = 0.5\n");
+    assert!(key.starts_with("dispersions"), "{key}");
+    assert!(
+        rule.contains("a distribution table such as { dist = \"normal\", sigma = 0.1 }")
+            && !rule.contains("RawDist"),
+        "{rule}"
+    );
 }
