@@ -280,6 +280,12 @@ const COLUMNS: [&str; 20] = [
     "q3",
 ];
 
+/// The unit of each of [`COLUMNS`], as the campaign's files give it in the field metadata.
+const UNITS: [&str; 20] = [
+    "s", "m", "m", "m", "m/s", "m/s", "m/s", "m/s", "1", "deg", "m/s²", "N", "kg", "m", "cal",
+    "cal", "1", "1", "1", "1",
+];
+
 fn row(s: &hpr_sim::flight::Sample) -> [f64; 20] {
     [
         s.t_s,
@@ -334,11 +340,11 @@ pub fn write_trajectory(path: &Path, f: &Flight) -> Result<()> {
             use arrow::datatypes::{DataType, Field, Schema};
             use arrow::record_batch::RecordBatch;
             let mut fields = vec![Field::new("phase", DataType::Utf8, false)];
-            fields.extend(
-                COLUMNS
-                    .iter()
-                    .map(|c| Field::new(*c, DataType::Float64, true)),
-            );
+            fields.extend(COLUMNS.iter().zip(UNITS).map(|(c, unit)| {
+                Field::new(*c, DataType::Float64, true).with_metadata(
+                    std::collections::HashMap::from([("unit".to_string(), unit.to_string())]),
+                )
+            }));
             let schema = Arc::new(Schema::new(fields));
             let mut cols: Vec<ArrayRef> = vec![Arc::new(StringArray::from_iter_values(
                 f.samples.iter().map(|s| s.phase.name()),
@@ -361,4 +367,29 @@ pub fn write_trajectory(path: &Path, f: &Flight) -> Result<()> {
     }
     std::fs::rename(&tmp, path)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{COLUMNS, UNITS};
+
+    #[test]
+    fn every_trajectory_column_s_unit_is_the_one_its_name_ends_in() {
+        for (column, unit) in COLUMNS.iter().zip(UNITS) {
+            let expected = [
+                ("_m_s2", "m/s²"),
+                ("_m_s", "m/s"),
+                ("_deg", "deg"),
+                ("_cal", "cal"),
+                ("_kg", "kg"),
+                ("_n", "N"),
+                ("_s", "s"),
+                ("_m", "m"),
+            ]
+            .iter()
+            .find(|(suffix, _)| column.ends_with(suffix))
+            .map_or("1", |(_, u)| u);
+            assert_eq!(unit, expected, "{column}");
+        }
+    }
 }
