@@ -174,3 +174,32 @@ fn output_into_a_closed_pipe_ends_quietly_instead_of_panicking() {
         assert!(!stderr.contains("panicked"), "{args}: {stderr}");
     }
 }
+
+#[test]
+fn a_trajectory_file_of_another_kind_is_refused_before_the_flight_and_nothing_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("flight.txt");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
+        .args(["fly", REFERENCE, "--trajectory", bad.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("flight.txt: a trajectory is written as .csv or .parquet"),
+        "{err}"
+    );
+    // Refused before flying: no flight printed, no file left behind.
+    assert!(out.stdout.is_empty());
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    // A CSV trajectory is written, with a header and one row per sample.
+    let csv = dir.path().join("flight.csv");
+    hpr_mc(&["fly", REFERENCE, "--trajectory", csv.to_str().unwrap()]);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(
+        text.starts_with("phase,time_s,x_m,y_m,altitude_m,"),
+        "{}",
+        &text[..80]
+    );
+    assert!(text.lines().count() > 500);
+}

@@ -207,6 +207,9 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
         (None, Some(design)) => (flight_of_arguments(design, a)?, None),
         (None, None) => return Err(anyhow!("give a design or --scenario")),
     };
+    if let Some(path) = &a.trajectory {
+        report::trajectory_format(path)?;
+    }
     let flight = sim.run(&mut ()).map_err(|e| anyhow!("{e}"))?;
     if let Some(path) = &a.trajectory {
         report::write_trajectory(path, &flight)

@@ -311,14 +311,27 @@ fn row(s: &hpr_sim::flight::Sample) -> [f64; 20] {
     ]
 }
 
-/// Write the samples as CSV or Parquet (by the file's extension), through a temporary file
-/// renamed at the end so that no half-written file is left.
-pub fn write_trajectory(path: &Path, f: &Flight) -> Result<()> {
+/// The format of a trajectory file by its extension (`csv` or `parquet`), checked before a
+/// flight is flown for it.
+pub fn trajectory_format(path: &Path) -> Result<String> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
+    match ext.as_str() {
+        "csv" | "parquet" => Ok(ext),
+        _ => bail!(
+            "{}: a trajectory is written as .csv or .parquet (by the file's extension)",
+            path.display()
+        ),
+    }
+}
+
+/// Write the samples as CSV or Parquet (by the file's extension), through a temporary file
+/// renamed at the end so that no half-written file is left.
+pub fn write_trajectory(path: &Path, f: &Flight) -> Result<()> {
+    let ext = trajectory_format(path)?;
     let tmp = path.with_extension(format!("{ext}.partial"));
     match ext.as_str() {
         "csv" => {
