@@ -1,6 +1,7 @@
 //! What the commands print: text tables for people and JSON for scripts, from the same
 //! figures; and the trajectory files (CSV or Parquet) of `fly`.
 
+use crate::campaign::parquet::field;
 use anyhow::{bail, Result};
 use hpr_design::mass;
 use hpr_sim::flight::{Flight, Simulation};
@@ -333,50 +334,47 @@ pub fn trajectory_format(path: &Path) -> Result<String> {
 pub fn write_trajectory(path: &Path, f: &Flight) -> Result<()> {
     let ext = trajectory_format(path)?;
     let tmp = path.with_extension(format!("{ext}.partial"));
-    match ext.as_str() {
-        "csv" => {
-            let mut out = String::with_capacity(f.samples.len() * 200);
-            out.push_str("phase,");
-            out.push_str(&COLUMNS.join(","));
+    if ext == "csv" {
+        let mut out = String::with_capacity(f.samples.len() * 200);
+        out.push_str("phase,");
+        out.push_str(&COLUMNS.join(","));
+        out.push('\n');
+        for s in &f.samples {
+            out.push_str(s.phase.name());
+            for v in row(s) {
+                let _ = write!(out, ",{v}");
+            }
             out.push('\n');
-            for s in &f.samples {
-                out.push_str(s.phase.name());
-                for v in row(s) {
-                    let _ = write!(out, ",{v}");
-                }
-                out.push('\n');
-            }
-            std::fs::write(&tmp, out)?;
         }
-        "parquet" => {
-            use arrow::array::{ArrayRef, Float64Array, StringArray};
-            use arrow::datatypes::{DataType, Field, Schema};
-            use arrow::record_batch::RecordBatch;
-            let mut fields = vec![Field::new("phase", DataType::Utf8, false)];
-            fields.extend(COLUMNS.iter().zip(UNITS).map(|(c, unit)| {
-                Field::new(*c, DataType::Float64, true).with_metadata(
-                    std::collections::HashMap::from([("unit".to_string(), unit.to_string())]),
-                )
-            }));
-            let schema = Arc::new(Schema::new(fields));
-            let mut cols: Vec<ArrayRef> = vec![Arc::new(StringArray::from_iter_values(
-                f.samples.iter().map(|s| s.phase.name()),
-            ))];
-            for j in 0..COLUMNS.len() {
-                cols.push(Arc::new(Float64Array::from_iter_values(
-                    f.samples.iter().map(|s| row(s)[j]),
-                )));
-            }
-            let batch = RecordBatch::try_new(schema.clone(), cols)?;
-            let file = std::fs::File::create(&tmp)?;
-            let props = parquet::file::properties::WriterProperties::builder()
-                .set_compression(parquet::basic::Compression::ZSTD(Default::default()))
-                .build();
-            let mut w = parquet::arrow::ArrowWriter::try_new(file, schema, Some(props))?;
-            w.write(&batch)?;
-            w.close()?;
+        std::fs::write(&tmp, out)?;
+    } else {
+        use arrow::array::{ArrayRef, Float64Array, StringArray};
+        use arrow::datatypes::{DataType, Schema};
+        use arrow::record_batch::RecordBatch;
+        let mut fields = vec![field("phase", DataType::Utf8, false, None)];
+        fields.extend(
+            COLUMNS
+                .iter()
+                .zip(UNITS)
+                .map(|(c, unit)| field(c, DataType::Float64, true, Some(unit))),
+        );
+        let schema = Arc::new(Schema::new(fields));
+        let mut cols: Vec<ArrayRef> = vec![Arc::new(StringArray::from_iter_values(
+            f.samples.iter().map(|s| s.phase.name()),
+        ))];
+        for j in 0..COLUMNS.len() {
+            cols.push(Arc::new(Float64Array::from_iter_values(
+                f.samples.iter().map(|s| row(s)[j]),
+            )));
         }
-        _ => bail!("the trajectory file must end in .csv or .parquet"),
+        let batch = RecordBatch::try_new(schema.clone(), cols)?;
+        let file = std::fs::File::create(&tmp)?;
+        let props = parquet::file::properties::WriterProperties::builder()
+            .set_compression(parquet::basic::Compression::ZSTD(Default::default()))
+            .build();
+        let mut w = parquet::arrow::ArrowWriter::try_new(file, schema, Some(props))?;
+        w.write(&batch)?;
+        w.close()?;
     }
     std::fs::rename(&tmp, path)?;
     Ok(())

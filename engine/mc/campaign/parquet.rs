@@ -96,7 +96,8 @@ impl RunMeta {
     }
 }
 
-fn field(name: &str, dt: DataType, nullable: bool, unit: Option<&str>) -> Field {
+/// A field with its unit in its metadata (`unit`), as every numeric column of hpr-mc's files.
+pub(crate) fn field(name: &str, dt: DataType, nullable: bool, unit: Option<&str>) -> Field {
     let f = Field::new(name, dt, nullable);
     match unit {
         Some(u) => f.with_metadata(HashMap::from([("unit".to_string(), u.to_string())])),

@@ -245,6 +245,7 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
 
 /// Count the statuses, compute and write the statistics.
 fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Result<()> {
+    count_outcomes(report)?;
     let p = &report.prepared;
     let dispersed: Vec<bool> = p
         .scenario
@@ -253,12 +254,8 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
         .map(|i| i.dispersion.is_some())
         .collect();
     report.stats = stats::compute(table, p.plan.points(), &dispersed, LANDING_XY);
-    // Statuses other than landed are re-read from the status strings through `landed`; the
-    // kinds are counted from the files below.
+    // Statuses other than landed were counted from the variants file above.
     report.landed = table.landed.iter().filter(|l| **l).count() as u64;
-    let (t, r, f, w) = count_outcomes(&report.outputs.variants)?;
-    (report.time_limit, report.refused, report.failed) = (t, r, f);
-    report.warned = w;
     let out = &report.outputs;
     let pairs = meta.pairs();
     let rg = p.scenario.row_group_rows;
@@ -277,10 +274,10 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
     Ok(())
 }
 
-/// Variants that reached the time limit, were refused, or failed, and the variants with
-/// each kind of warning, from a variants file.
-#[allow(clippy::type_complexity)]
-fn count_outcomes(path: &Path) -> anyhow::Result<(u64, u64, u64, Vec<(String, u64)>)> {
+/// Count, from the run's variants file, the variants that reached the time limit, were
+/// refused or failed, and those with each kind of warning.
+fn count_outcomes(report: &mut RunReport) -> anyhow::Result<()> {
+    let path = report.outputs.variants.clone();
     let (mut t, mut r, mut f) = (0, 0, 0);
     let mut warned: Vec<(String, u64)> = Vec::new();
     let strings = |batch: &arrow::record_batch::RecordBatch, name: &str| {
@@ -290,7 +287,7 @@ fn count_outcomes(path: &Path) -> anyhow::Result<(u64, u64, u64, Vec<(String, u6
             .cloned()
             .with_context(|| format!("{} has no string column {name}", path.display()))
     };
-    for batch in pq::read_batches(path)? {
+    for batch in pq::read_batches(&path)? {
         let batch = batch?;
         let status = strings(&batch, "status")?;
         for w in strings(&batch, "warnings")?.iter().flatten() {
@@ -312,7 +309,9 @@ fn count_outcomes(path: &Path) -> anyhow::Result<(u64, u64, u64, Vec<(String, u6
             }
         }
     }
-    Ok((t, r, f, warned))
+    (report.time_limit, report.refused, report.failed) = (t, r, f);
+    report.warned = warned;
+    Ok(())
 }
 
 /// Which chunks have a complete part from this run. Without `resume`, every part of this

@@ -193,11 +193,11 @@ impl Fixed<'_> {
     /// The wind of a setup: the scenario's profile, or its constant wind at the setup's speed
     /// and direction, scaled and turned by the setup's `wind_scale` and `wind_rotation_deg`.
     pub(super) fn wind(&self, s: &Setup) -> Result<Wind, hpr_sim::wind::WindError> {
-        let given = match &self.scenario.environment.wind_profile {
-            Some(rows) => Wind::table(rows)?,
-            None => Wind::constant(s.wind_speed_m_s, s.wind_from_deg)?,
-        };
-        given.transformed(s.wind_scale, s.wind_rotation_deg)
+        match &self.scenario.environment.wind_profile {
+            Some(profile) => profile.transformed(s.wind_scale, s.wind_rotation_deg),
+            None => Wind::constant(s.wind_speed_m_s, s.wind_from_deg)?
+                .transformed(s.wind_scale, s.wind_rotation_deg),
+        }
     }
 
     /// The structure's change from its nominal (which is at the nominal ballast: a ballast

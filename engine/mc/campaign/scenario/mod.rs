@@ -54,9 +54,9 @@ pub struct EnvironmentSpec {
     pub elevation_m: f64,
     pub wind_speed_m_s: f64,
     pub wind_from_deg: f64,
-    /// A wind that changes with height (`environment.wind_profile`), in place of the constant
-    /// `wind_speed_m_s` from `wind_from_deg`.
-    pub wind_profile: Option<Vec<WindRow>>,
+    /// A wind that changes with height (`environment.wind_profile`, checked and built once),
+    /// in place of the constant `wind_speed_m_s` from `wind_from_deg`.
+    pub wind_profile: Option<Wind>,
     /// Inverse-square gravity (true) or the constant standard gravity (false).
     pub inverse_square_gravity: bool,
 }
@@ -270,7 +270,7 @@ impl Scenario {
                         from_deg: r.from_deg,
                     })
                     .collect();
-                Wind::table(&rows).map_err(|e| {
+                let table = Wind::table(&rows).map_err(|e| {
                     let key = match &e {
                         WindError::EmptyTable => "environment.wind_profile".to_string(),
                         WindError::Speed { row, .. } => {
@@ -287,7 +287,7 @@ impl Scenario {
                     // The message in the scenario's words: height_m for the table's height.
                     bad(&key, e.to_string().replace("height_agl_m", "height_m"))
                 })?;
-                Some(rows)
+                Some(table)
             }
         };
         let environment = EnvironmentSpec {

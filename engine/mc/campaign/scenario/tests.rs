@@ -374,12 +374,13 @@ fn a_wind_profile_is_read_in_its_rows_and_varied_by_scale_and_turn() {
         "[dispersions]\nwind_scale = { dist = \"normal\", sigma = 0.2, relative = true }\nwind_rotation_deg = { dist = \"uniform\", min = -20.0, max = 20.0 }\n",
     )
     .unwrap();
-    let rows = s.environment.wind_profile.as_ref().unwrap();
-    assert_eq!(rows.len(), 2);
-    assert_eq!(
-        (rows[1].height_agl_m, rows[1].speed_m_s, rows[1].from_deg),
-        (1000.0, 9.0, 300.0)
-    );
+    let row = |height_agl_m, speed_m_s, from_deg| WindRow {
+        height_agl_m,
+        speed_m_s,
+        from_deg,
+    };
+    let written = Wind::table(&[row(0.0, 2.0, 270.0), row(1000.0, 9.0, 300.0)]).unwrap();
+    assert_eq!(s.environment.wind_profile.as_ref(), Some(&written));
     let keys: Vec<&str> = s.inputs.iter().map(|i| i.key.as_str()).collect();
     assert_eq!(keys, ["wind_scale", "wind_rotation_deg"]);
     let units: Vec<&str> = s.inputs.iter().map(|i| i.unit).collect();

@@ -142,6 +142,14 @@ const ALPHA_WATCH_AFTER_RAIL_S: f64 = 0.25;
 /// (OpenRocket's 20 %).
 const ALPHA_WATCH_CLIMB_FRACTION: f64 = 0.2;
 
+/// Whether the angle of attack given by its `atan2` arguments (crossflow ≥ 0, axial) is larger
+/// than `than`'s, without the `atan2`: both lie in [0, π], so `r₁r₂ sin(α₁ − α₂) > 0` says it,
+/// but for 180° against 0°, where the sine is 0 too.
+fn steeper((cross, axial): (f64, f64), (c, a): (f64, f64)) -> bool {
+    let s = cross * a - axial * c;
+    s > 0.0 || (s == 0.0 && axial < 0.0 && a > 0.0)
+}
+
 /// The flight in progress.
 struct Run<'a, O: Observer> {
     model: &'a FlightModel,
@@ -358,19 +366,10 @@ impl<'a, O: Observer> Run<'a, O> {
                     .is_some_and(|te| t >= te + ALPHA_WATCH_AFTER_RAIL_S)
                     && vel.z >= ALPHA_WATCH_CLIMB_FRACTION * self.max_climb_m_s;
                 if watched {
-                    let (cross, axial) = aux.alpha_arguments();
-                    if cross.is_finite() && axial.is_finite() {
-                        let steeper = match self.steepest {
-                            None => true,
-                            // r₁r₂ sin(α₁ − α₂) > 0, or 180° against 0° (sin = 0 there).
-                            Some((c, a)) => {
-                                let s = cross * a - axial * c;
-                                s > 0.0 || (s == 0.0 && axial < 0.0 && a > 0.0)
-                            }
-                        };
-                        if steeper {
-                            self.steepest = Some((cross, axial));
-                        }
+                    let angle = aux.alpha_arguments();
+                    let finite = angle.0.is_finite() && angle.1.is_finite();
+                    if finite && self.steepest.is_none_or(|s| steeper(angle, s)) {
+                        self.steepest = Some(angle);
                     }
                 }
             }

@@ -1,0 +1,105 @@
+//! `hpr-mc fly --scenario`: a scenario's nominal flight at a sweep point, against the
+//! campaign's own rows.
+
+use super::*;
+
+#[test]
+fn fly_with_a_scenario_flies_the_nominal_flight_of_the_point_it_is_given() {
+    // No dispersion: every variant of a sweep point is that point's nominal flight.
+    let text = windy(
+        "wind_speed_m_s = 4.0\nwind_from_deg = 270.0",
+        "wind_scale = [0.5, 1.5]",
+    )
+    .replace(
+        "drag_scale = { dist = \"normal\", sigma = 0.05, relative = true }\n",
+        "",
+    );
+    let (dir, file) = setup(&text);
+    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+    let b = read(&report.outputs.variants);
+    let file = file.to_str().unwrap();
+    for point in 0..2 {
+        let (code, out, err) = hpr_mc(&[
+            "fly",
+            "--scenario",
+            file,
+            "--point",
+            &point.to_string(),
+            "--json",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let row = point * 4; // the first variant of the point
+        for (json, column) in [
+            ("apogee_m", "apogee_m"),
+            ("landing_x_m", "landing_x_m"),
+            ("landing_time_s", "landing_time_s"),
+        ] {
+            let (a, b) = (
+                v["metrics"][json].as_f64().unwrap(),
+                f64s(&b, column).value(row),
+            );
+            assert!(
+                (a - b).abs() <= 1e-9 * b.abs().max(1.0),
+                "point {point} {json}: fly {a}, campaign {b}"
+            );
+        }
+    }
+    // The two points differ (the wind's scale does move the landing), and a point past the
+    // sweep is an error naming the count.
+    assert!((f64s(&b, "landing_x_m").value(0) - f64s(&b, "landing_x_m").value(4)).abs() > 10.0);
+    let (code, _, err) = hpr_mc(&["fly", "--scenario", file, "--point", "2"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--point 2: the scenario has 2 sweep points (0 to 1)"),
+        "{err}"
+    );
+    // The text says which flight it is; --point means nothing without a scenario.
+    let (code, out, _) = hpr_mc(&["fly", "--scenario", file, "--point", "1"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with(&format!(
+            "the nominal flight of {file} at sweep point 1 (wind_scale = 1.5)\n"
+        )),
+        "{out}"
+    );
+    let design = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/validation/designs/synthetic-54mm-three-fin.json"
+    );
+    let (code, _, err) = hpr_mc(&["fly", "--point", "1", design]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--point") && err.contains("--scenario"),
+        "{err}"
+    );
+}
+
+#[test]
+fn fly_with_a_scenario_takes_an_input_given_by_its_own_mean_at_that_mean() {
+    let fly = |text: &str| {
+        let (_dir, file) = setup(text);
+        let (code, out, err) = hpr_mc(&["fly", "--scenario", file.to_str().unwrap(), "--json"]);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        v["metrics"]["landing_x_m"].as_f64().unwrap()
+    };
+    let about_mean = fly(&windy(
+        "wind_speed_m_s = 2.0\nwind_from_deg = 270.0",
+        "drag_scale = [1.0]",
+    )
+    .replace(
+        "[dispersions]\n",
+        "[dispersions]\nwind_speed_m_s = { dist = \"normal\", mean = 6.0, sigma = 1.0 }\n",
+    ));
+    let at_six = fly(&windy(
+        "wind_speed_m_s = 6.0\nwind_from_deg = 270.0",
+        "drag_scale = [1.0]",
+    ));
+    let at_two = fly(&windy(
+        "wind_speed_m_s = 2.0\nwind_from_deg = 270.0",
+        "drag_scale = [1.0]",
+    ));
+    assert_eq!(about_mean.to_bits(), at_six.to_bits());
+    assert!((at_six - at_two).abs() > 10.0, "{at_six} {at_two}");
+}
