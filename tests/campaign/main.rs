@@ -4,6 +4,7 @@
 //! turned (`wind`) and `fly --scenario` (`fly`) on a small windy scenario.
 
 mod fly;
+mod site;
 mod wind;
 
 use arrow::array::{Array, Float64Array, StringArray, UInt32Array, UInt64Array};

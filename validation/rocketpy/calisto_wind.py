@@ -27,13 +27,15 @@ calm run checks that the switch of atmosphere type alone changes nothing
 against ``calisto_reference.json``.
 
 Each case is flown as RocketPy 1.13 flies it (``outputs``, the reference) and
-with what hpr-mc does not model switched off, one at a time, so that each
-difference's worth is RocketPy's own number: Coriolis
-(``earth_rotation_vector = 0``), the canopies' added mass (each Parachute's
-``added_mass_coefficient`` set to 0 before the Flight reads it), and RocketPy
-1.13's sign of the center of mass's and the nozzle's positions in its
-equations of motion (``LEVER_ARM`` below: RocketPy issue #1186); then with all
-three off (``as_hpr_models``).
+with three things switched off, one at a time, so that each difference's worth
+is RocketPy's own number: Coriolis (``earth_rotation_vector = 0``), the
+canopies' added mass (each Parachute's ``added_mass_coefficient`` set to 0
+before the Flight reads it), and RocketPy 1.13's sign of the center of mass's
+and the nozzle's positions in its equations of motion (``LEVER_ARM`` below:
+RocketPy issue #1186). Then as hpr-mc models the flight: added mass off and the
+lever arm corrected, on the turning Earth (``as_hpr_models``, what hpr-mc flies
+with the site's latitude given) and with Coriolis off too
+(``as_hpr_models_inertial``, what it flies without a latitude).
 
 Run from anywhere:  .venv/bin/python validation/rocketpy/calisto_wind.py
 Writes validation/rocketpy/calisto_wind_reference.json next to this file.
@@ -185,6 +187,8 @@ def main():
             "lever_arm_corrected": outputs(
                 *fly(u, v, lever_arm_corrected=True)[::2]),
             "as_hpr_models": outputs(
+                *fly(u, v, added_mass=False, lever_arm_corrected=True)[::2]),
+            "as_hpr_models_inertial": outputs(
                 *fly(u, v, coriolis=False, added_mass=False,
                      lever_arm_corrected=True)[::2]),
         }
@@ -243,14 +247,17 @@ def main():
             "last canopy opened is added to the dry mass",
         "variants": {
             "outputs": "RocketPy 1.13 as it is (the reference)",
-            "coriolis_off": "earth_rotation_vector = 0 (hpr-mc has no "
-                            "Coriolis)",
+            "coriolis_off": "earth_rotation_vector = 0 (hpr-mc without a "
+                            "latitude has no Coriolis)",
             "parachute_added_mass_off": "each Parachute's "
                 "added_mass_coefficient = 0 (hpr-mc's descent has none)",
             "lever_arm_corrected": "r_CM and r_NOZ with the sign the "
                 "equations of motion v1 define (see lever_arm_note)",
-            "as_hpr_models": "lever arm corrected, Coriolis off and no added "
-                             "mass: the physics hpr-mc models",
+            "as_hpr_models": "lever arm corrected and no added mass: the "
+                             "physics hpr-mc models, with the site's latitude",
+            "as_hpr_models_inertial": "lever arm corrected, no added mass "
+                                      "and Coriolis off: hpr-mc without a "
+                                      "latitude",
         },
         "lever_arm_note": LEVER_ARM,
         "cases": cases,

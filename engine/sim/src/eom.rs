@@ -17,7 +17,10 @@
 //!
 //! `a_O` is O's inertial acceleration in body components. The terms in ṁ and m̈ are RocketPy's
 //! mass-flow (thrust-damping) terms, with the nozzle at `r_noz` and its gyration tensor
-//! `S_noz`. All of it is a pure function of plain data: no allocation, no tables built.
+//! `S_noz`. On a turning Earth (a site's latitude given) `g` also holds the Coriolis
+//! acceleration of the center of mass, `−2 Ω × v_cm`: like gravity it acts on the whole mass
+//! at its center, so it moves the center and leaves `ω̇` alone, as RocketPy's `−2 w_earth × v`
+//! does (about the airframe's Ω·ω terms, 1e-4 of it, are left out by both). All of it is a pure function of plain data: no allocation, no tables built.
 
 use crate::frames;
 use crate::lanes::{pack_m3, pack_v3, F64x4, Real, M3, V3};
@@ -347,26 +350,45 @@ pub fn angular_momentum_about_cm(
     body_to_inertial * (ms.inertia_cm() * w + h_cm)
 }
 
-/// Descent under a canopy: the center of mass as a point with the canopy's drag, on lanes
-/// (one flight, or four side by side). `cds_m2` is the sum of the open canopies' CdS, `wind_n`
-/// the wind (inertial), `rho` the air density, `g` gravity. State `[x, y, z, vx, vy, vz]` of
-/// the center of mass.
+/// What a descending point feels of its surroundings where it is, on lanes.
+#[derive(Debug, Clone, Copy)]
+pub struct Surroundings<S> {
+    /// Air density, kg/m³.
+    pub rho: S,
+    /// Gravity's magnitude, m/s².
+    pub g: S,
+    /// The wind, launch frame, m/s.
+    pub wind_n: V3<S>,
+    /// The Earth's rotation in the launch frame, rad/s (`None` for an inertial frame).
+    pub earth_rate_n: Option<V3<S>>,
+}
+
+/// Descent under a canopy: the center of mass as a point with the canopy's drag, gravity and
+/// the Coriolis acceleration `−2 Ω × v`, on lanes (one flight, or four side by side). `cds_m2`
+/// is the sum of the open canopies' CdS. State `[x, y, z, vx, vy, vz]` of the center of mass.
 #[inline(always)]
 pub fn descent_derivative<S: Real>(
     y: &[S; N3],
     mass_kg: S,
     cds_m2: S,
-    rho: S,
-    g: S,
-    wind_n: &V3<S>,
+    at: &Surroundings<S>,
     dy: &mut [S; N3],
 ) {
-    let rel = V3::new(y[3] - wind_n.x, y[4] - wind_n.y, y[5] - wind_n.z);
-    let k = S::splat(-0.5) * rho * cds_m2 * rel.norm_squared().sqrt();
+    let w = &at.wind_n;
+    let rel = V3::new(y[3] - w.x, y[4] - w.y, y[5] - w.z);
+    let k = S::splat(-0.5) * at.rho * cds_m2 * rel.norm_squared().sqrt();
     dy[0] = y[3];
     dy[1] = y[4];
     dy[2] = y[5];
     dy[3] = rel.x * k / mass_kg;
     dy[4] = rel.y * k / mass_kg;
-    dy[5] = rel.z * k / mass_kg - g;
+    dy[5] = rel.z * k / mass_kg - at.g;
+    if let Some(earth) = &at.earth_rate_n {
+        let coriolis = earth
+            .cross(&V3::new(y[3], y[4], y[5]))
+            .scale(S::splat(-2.0));
+        dy[3] = dy[3] + coriolis.x;
+        dy[4] = dy[4] + coriolis.y;
+        dy[5] = dy[5] + coriolis.z;
+    }
 }

@@ -3,7 +3,7 @@
 //! built once from scratch, and the batch engine's columns for the lanes.
 
 use super::super::params::Param;
-use super::super::scenario::{with_trigger_value, Scenario};
+use super::super::scenario::{with_trigger_value, GravityModel, Scenario};
 use hpr_design::design::model::Design;
 use hpr_design::motor::{Motor, MotorOptions};
 use hpr_sim::batch::Columns;
@@ -113,16 +113,23 @@ impl Fixed<'_> {
     /// The simulation of a setup, built from scratch (the base of the lanes).
     pub(super) fn simulation(&self, s: &Setup) -> Result<Simulation, SimError> {
         let err = |e: &dyn std::fmt::Display| SimError::Setup(e.to_string());
-        let gravity = if self.scenario.environment.inverse_square_gravity {
-            Gravity::inverse_square(s.elevation_m).map_err(|e| err(&e))?
-        } else {
-            Gravity::default()
+        let site = &self.scenario.environment;
+        let gravity = match site.gravity {
+            GravityModel::Standard => Gravity::default(),
+            GravityModel::InverseSquare => {
+                Gravity::inverse_square(s.elevation_m).map_err(|e| err(&e))?
+            }
+            GravityModel::Somigliana => {
+                Gravity::somigliana(site.latitude_deg.unwrap_or(0.0), s.elevation_m)
+                    .map_err(|e| err(&e))?
+            }
         };
         let env = Environment {
             elevation_m: s.elevation_m,
             wind: self.wind(s).map_err(|e| err(&e))?,
             gravity,
             vacuum: false,
+            latitude_deg: self.scenario.environment.latitude_deg,
         };
         let rail = Rail {
             length_m: s.rail[0],

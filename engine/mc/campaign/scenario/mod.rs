@@ -57,8 +57,23 @@ pub struct EnvironmentSpec {
     /// A wind that changes with height (`environment.wind_profile`, checked and built once),
     /// in place of the constant `wind_speed_m_s` from `wind_from_deg`.
     pub wind_profile: Option<Wind>,
-    /// Inverse-square gravity (true) or the constant standard gravity (false).
-    pub inverse_square_gravity: bool,
+    pub gravity: GravityModel,
+    /// The site's latitude, degrees north: given, the flights feel the Earth's rotation
+    /// (Coriolis), and `gravity = "somigliana"` needs it.
+    pub latitude_deg: Option<f64>,
+}
+
+/// `environment.gravity`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GravityModel {
+    /// The constant standard gravity, 9.80665 m/s² (the default).
+    Standard,
+    /// Standard gravity at sea level falling off as the inverse square of the distance from
+    /// the Earth's center.
+    InverseSquare,
+    /// The WGS 84 ellipsoid's normal gravity at the site's latitude, with height (RocketPy's
+    /// default).
+    Somigliana,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -308,15 +323,31 @@ impl Scenario {
                 env.wind_from_deg.unwrap_or(0.0),
             )?,
             wind_profile,
-            inverse_square_gravity: match env.gravity.as_deref() {
-                None | Some("standard") => false,
-                Some("inverse_square") => true,
+            gravity: match env.gravity.as_deref() {
+                None | Some("standard") => GravityModel::Standard,
+                Some("inverse_square") => GravityModel::InverseSquare,
+                Some("somigliana") if env.latitude_deg.is_none() => {
+                    return Err(bad(
+                        "environment.gravity",
+                        "\"somigliana\" is the gravity at the site's latitude: give environment.latitude_deg".into(),
+                    ))
+                }
+                Some("somigliana") => GravityModel::Somigliana,
                 Some(other) => {
                     return Err(bad(
                         "environment.gravity",
-                        format!("must be \"standard\" or \"inverse_square\" (got \"{other}\")"),
+                        format!("must be \"standard\", \"inverse_square\" or \"somigliana\" (got \"{other}\")"),
                     ))
                 }
+            },
+            latitude_deg: match env.latitude_deg {
+                Some(l) if !(l.is_finite() && l.abs() <= 90.0) => {
+                    return Err(bad(
+                        "environment.latitude_deg",
+                        format!("must be finite and within [-90, 90] degrees north (got {l})"),
+                    ))
+                }
+                l => l,
             },
         };
         let r = raw.rail.take().unwrap_or_default();

@@ -49,6 +49,7 @@ pub(super) struct RawEnvironment {
     pub(super) wind_from_deg: Option<f64>,
     pub(super) wind_profile: Option<Vec<RawWindRow>>,
     pub(super) gravity: Option<String>,
+    pub(super) latitude_deg: Option<f64>,
 }
 
 /// A row of `environment.wind_profile`.

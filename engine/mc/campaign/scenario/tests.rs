@@ -450,3 +450,29 @@ fn a_number_where_a_distribution_belongs_says_what_a_distribution_looks_like() {
         "{rule}"
     );
 }
+
+#[test]
+fn a_site_s_latitude_and_its_ellipsoid_s_gravity_are_read_and_their_mistakes_refused() {
+    let s = with_environment("latitude_deg = -33.9\ngravity = \"somigliana\"\n", "").unwrap();
+    assert_eq!(s.environment.latitude_deg, Some(-33.9));
+    assert_eq!(s.environment.gravity, GravityModel::Somigliana);
+    let s = with_environment("latitude_deg = 50.0\n", "").unwrap();
+    assert_eq!(s.environment.gravity, GravityModel::Standard);
+    let s = with_environment("", "").unwrap();
+    assert_eq!(s.environment.latitude_deg, None);
+    let err = |env: &str| match with_environment(env, "") {
+        Err(ScenarioError::Invalid { key, rule, .. }) => (key, rule),
+        other => panic!("accepted or another error: {other:?}"),
+    };
+    for bad in ["90.5", "-91.0", "nan"] {
+        let (key, rule) = err(&format!("latitude_deg = {bad}\n"));
+        assert_eq!(key, "environment.latitude_deg");
+        assert!(rule.contains("[-90, 90]"), "{rule}");
+    }
+    let (key, rule) = err("gravity = \"somigliana\"\n");
+    assert_eq!(key, "environment.gravity");
+    assert!(rule.contains("latitude_deg"), "{rule}");
+    let (key, rule) = err("gravity = \"wgs84\"\n");
+    assert_eq!(key, "environment.gravity");
+    assert!(rule.contains("\"somigliana\""), "{rule}");
+}

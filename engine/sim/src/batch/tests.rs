@@ -42,12 +42,25 @@ fn chutes() -> Vec<Parachute> {
     ]
 }
 
+/// The site of the random variants: a latitude (Coriolis on) and its ellipsoid's gravity, which
+/// the elevation column moves.
+const LATITUDE_DEG: f64 = 35.0;
+
+fn site(elevation_m: f64) -> Environment {
+    Environment {
+        elevation_m,
+        gravity: crate::gravity::Gravity::somigliana(LATITUDE_DEG, elevation_m).unwrap(),
+        latitude_deg: Some(LATITUDE_DEG),
+        ..Environment::default()
+    }
+}
+
 fn base() -> Simulation {
     let d = Design::load(REFERENCE).unwrap();
     Simulation::new(
         d,
         motor::find("Cesaroni_I175").unwrap(),
-        Environment::default(),
+        site(0.0),
         Rail {
             length_m: 2.0,
             inclination_deg: 87.0,
@@ -126,9 +139,8 @@ fn single(c: &Columns, i: usize) -> Result<Simulation, String> {
         .and_then(|w| w.transformed(c.wind_scale[i], c.wind_rotation_deg[i]))
         .map_err(|e| e.to_string())?;
     let env = Environment {
-        elevation_m: c.elevation_m[i],
         wind,
-        ..Environment::default()
+        ..site(c.elevation_m[i])
     };
     let rail = Rail {
         length_m: 2.0,

@@ -16,6 +16,12 @@ pub struct Environment {
     pub gravity: Gravity,
     /// No air at all (density zero): for checks against exact answers.
     pub vacuum: bool,
+    /// The site's latitude, degrees north (−90 to 90). Given, the launch frame turns with the
+    /// Earth and the flight feels the Coriolis acceleration `−2 Ω × v` (Ω from
+    /// [`crate::gravity::earth_rate_n`]), as RocketPy's and OpenRocket's do; `None` (the
+    /// default) keeps the launch frame inertial. It does not choose the gravity: see
+    /// [`Gravity::somigliana`].
+    pub latitude_deg: Option<f64>,
 }
 
 impl Default for Environment {
@@ -25,6 +31,26 @@ impl Default for Environment {
             wind: Wind::calm(),
             gravity: Gravity::default(),
             vacuum: false,
+            latitude_deg: None,
+        }
+    }
+}
+
+impl Environment {
+    /// The Earth's rotation in the launch frame (x east, y north, z up), rad/s: zero
+    /// without a latitude.
+    pub fn earth_rate_n(&self) -> [f64; 3] {
+        self.latitude_deg
+            .map_or([0.0; 3], crate::gravity::earth_rate_n)
+    }
+
+    /// Checks the latitude.
+    pub fn validate(&self) -> Result<(), String> {
+        match self.latitude_deg {
+            Some(l) if !(l.is_finite() && l.abs() <= 90.0) => Err(format!(
+                "environment: field \"latitude_deg\" must be finite and within [-90, 90] (got {l})"
+            )),
+            _ => Ok(()),
         }
     }
 }

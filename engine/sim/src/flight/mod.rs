@@ -453,9 +453,10 @@ pub fn build_model(
         mount.motor_aft_m - fixed_cg_m,
     );
 
-    // Checks the site elevation (the flight reads the shared table).
+    // Checks the site elevation (the flight reads the shared table) and latitude.
     Atmosphere::standard(env.elevation_m)
         .map_err(|e| SimError::Setup(format!("environment: {e}")))?;
+    env.validate().map_err(SimError::Setup)?;
     let aft_m = design.length_m.max(mount.motor_aft_m);
     let rail_geo = model::rail_geometry(rail, aft_m, design.rail_guides_m.map(|(upper, _)| upper))?;
     let knots: Vec<f64> = motor_tables
@@ -471,6 +472,7 @@ pub fn build_model(
         drag_scale,
         air: AirTable::standard(),
         env: env.clone(),
+        earth_rate_n: env.earth_rate_n(),
         rail: rail_geo,
         parachutes: parachutes.to_vec(),
         shifts: model::shift_specs(shifts, plan),

@@ -60,6 +60,9 @@ pub struct FlightModel {
     /// The standard atmosphere, tabulated (see [`AirTable`]), shared by every flight.
     pub air: &'static AirTable,
     pub env: Environment,
+    /// The Earth's rotation in the launch frame, rad/s ([`Environment::earth_rate_n`]: zero
+    /// without a latitude), computed once.
+    pub earth_rate_n: [f64; 3],
     pub rail: RailGeometry,
     pub parachutes: Vec<Parachute>,
     pub shifts: Vec<ShiftSpec>,
@@ -389,15 +392,14 @@ impl FlightModel {
         let air = self.air.at_msl(h + self.env.elevation_m);
         let g = self.env.gravity.at(h);
         let wind = ModelLanes::<f64>::wind(self, h);
-        eom::descent_derivative(
-            y,
-            mass_kg,
-            cds_m2,
-            self.air_at(&air).density_kg_m3,
+        let at = eom::Surroundings {
+            rho: self.air_at(&air).density_kg_m3,
             g,
-            &wind,
-            dy,
-        );
+            wind_n: wind,
+            earth_rate_n: ModelLanes::<f64>::turning(self)
+                .then(|| ModelLanes::<f64>::earth_rate(self)),
+        };
+        eom::descent_derivative(y, mass_kg, cds_m2, &at, dy);
         (air, wind.to_na(), g)
     }
 

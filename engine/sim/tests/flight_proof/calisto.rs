@@ -17,11 +17,10 @@
 //!   (2.533 − x_cg) sin 85° up; RocketPy integrates the center of dry mass from ground level.
 //!   At apogee hpr's center is the center of dry mass (x = 1.2711 m), which started 1.257 m
 //!   up: less that, hpr's apogee is 3305.64 m, 0.04 m (+0.001 %) above RocketPy's.
-//! * **Gravity.** RocketPy: Somigliana at 32.99° with its free-air gradient, 9.79133 m/s² at
-//!   the pad, 9.78115 at apogee. Here: the inverse-square law from RocketPy's sea-level value
-//!   9.795653 over the mean Earth radius, 9.79135 at the pad and 9.78118 at apogee (within
-//!   3e-6 of RocketPy's). A constant 9.79133 instead lowers the apogee by 1.32 m and its time
-//!   by 15 ms.
+//! * **Gravity and the Earth's turning: the same.** Both fly Somigliana's gravity at 32.99°
+//!   with its free-air gradient (9.79133 m/s² at the pad, 9.78115 at apogee; hpr's
+//!   `Gravity::somigliana` is RocketPy's formula) and the Coriolis acceleration of the site's
+//!   latitude. A constant 9.79133 instead lowers the apogee by 1.33 m and its time by 15 ms.
 //! * **Motor mass model.** hpr centers the casing (a thin shell, 1.815 kg) and the propellant
 //!   (a solid cylinder, 2.956 kg) at the motor's mid-length, 2.1545 m; RocketPy has the dry
 //!   mass at 2.216 m with inertia (0.125, 0.125, 0.002) kg·m² and the grains at 2.136 m with
@@ -39,8 +38,6 @@
 //!   At the Mach peak (3.39 s, 514 m up) hpr's is 332.87 m/s and RocketPy's, from its max
 //!   Mach and speed, about 332.4 m/s. The speeds agree to 0.02 %, so the Mach gap is
 //!   RocketPy's lower speed of sound, not the flight; its cause was not traced in RocketPy.
-//! * **Coriolis**: hpr has none (the launch frame is inertial). RocketPy's reference run
-//!   without it reaches 3305.64 m, +0.04 m.
 //! * **Initial roll**: RocketPy's buttons at 45° roll the rocket 45°; hpr's rocket starts
 //!   with b1 horizontal (roll 0). RocketPy at 0° reaches 3305.67 m, +0.08 m.
 //! * **Same in both**: drag along the body axis from the Cd(Mach) curve at the center's air
@@ -77,16 +74,19 @@ fn num(v: &Value, pointer: &str) -> f64 {
         .unwrap_or_else(|| panic!("no number at {pointer}"))
 }
 
-/// RocketPy's gravity at the site (Somigliana at 32.990254°, its free-air gradient) as an
-/// inverse-square law: 9.795652669 m/s² at sea level over the mean Earth radius gives
-/// 9.79135 m/s² at the pad (RocketPy 9.79133) and 9.78118 at apogee, 4705 m ASL (9.78115).
+/// RocketPy's gravity at the site: Somigliana's at its latitude with its free-air gradient,
+/// RocketPy's own formula (within 1e-8 m/s² of its table, `gravity.rs`'s tests).
 fn site_gravity(r: &Value) -> Gravity {
-    let g_sea = num(r, "/facts/gravity_vs_height_asl_m_s2/0");
-    Gravity::inverse_square_with(g_sea, hpr_sim::gravity::EARTH_MEAN_RADIUS_M, 1400.0).unwrap()
+    assert_eq!(num(r, "/inputs/site/latitude_deg"), LATITUDE_DEG);
+    Gravity::somigliana(LATITUDE_DEG, num(r, "/inputs/site/elevation_m")).unwrap()
 }
 
+/// The site's latitude, degrees north (Spaceport America, as calisto_reference.json's
+/// inputs): hpr's Calisto flies on the turning Earth, as RocketPy's does.
+const LATITUDE_DEG: f64 = 32.990254;
+
 fn calisto_sim(design: Design, options: MotorOptions, gravity: Gravity) -> Simulation {
-    calisto_sim_in(design, options, gravity, Wind::calm())
+    calisto_sim_in(design, options, gravity, Wind::calm(), Some(LATITUDE_DEG))
 }
 
 /// [`calisto_sim`] in `wind`.
@@ -95,11 +95,13 @@ fn calisto_sim_in(
     options: MotorOptions,
     gravity: Gravity,
     wind: Wind,
+    latitude_deg: Option<f64>,
 ) -> Simulation {
     let env = Environment {
         elevation_m: 1400.0,
         gravity,
         wind,
+        latitude_deg,
         ..Environment::default()
     };
     let rail = Rail {
@@ -322,21 +324,20 @@ fn rocketpy_dry_motor_variant(r: &Value, design: &Design) -> Simulation {
 // Two comparisons per figure:
 //
 // * **Against RocketPy with what hpr does not model switched off** (`as_hpr_models`): no
-//   Coriolis, no added mass under canopy, and the sign of RocketPy 1.13's lever arm corrected
-//   (below). What is left is what the still-air test names: the motor's mass model (hpr's
-//   static margin +0.9 % at rail exit, its transverse inertia −0.8 % loaded), the point the
-//   speeds are of, the speed of sound (−0.1 %), the initial roll, the integrators. Measured
-//   (release build): apogee within 0.84 m (calm; 0.51 west, 0.18 north-east), its time
-//   within 2.3 ms, the apogee's and the landing's horizontal position within 4.6 m (1.3 % of
+//   added mass under canopy, and the sign of RocketPy 1.13's lever arm corrected (below);
+//   both on the turning Earth at the site's latitude. What is left is what the still-air
+//   test names: the motor's mass model (hpr's static margin +0.9 % at rail exit, its
+//   transverse inertia −0.8 % loaded), the point the speeds are of, the speed of sound
+//   (−0.1 %), the initial roll, the integrators. Measured (release build): apogee within
+//   0.86 m (calm; 0.49 west, 0.19 north-east), its time within 2.4 ms, the apogee's and the
+//   landing's horizontal position within 4.5 m (1.3 % of
 //   the west wind's 333 m weathercocking, which is set in the second after rail exit, where
 //   the margin and the inertia differ most), the landing time within 0.04 s, the descent
 //   rate within 0.0003 m/s, the parachute events within 0.04 s. The tolerances
 //   ([`tolerances`]) are about 1.5× these.
 // * **Against RocketPy 1.13 as it is** (`outputs`, the reference): the same tolerance plus
-//   |as it is − as hpr models|, RocketPy's own measure of the three things hpr does not
+//   |as it is − as hpr models|, RocketPy's own measure of the two things hpr does not
 //   share, each flown alone in the reference:
-//   - **Coriolis** (hpr's launch frame is inertial): about 6 m east-west on the apogee and the
-//     landing, 0.75 m on the apogee in the west wind.
 //   - **Added mass under canopy** (RocketPy adds C_a ρ 2/3 π R² H of the last canopy to the
 //     dry mass; hpr's descent has none): the steady descent is the same, the opening slower;
 //     +0.19 s on the landing time, 1.3 m on the landing point.
@@ -373,7 +374,9 @@ struct WindyFlight {
     start_north: f64,
 }
 
-fn windy_flight(r: &Value, w: &Value, case: &str) -> WindyFlight {
+/// hpr's Calisto in `case`, on the turning Earth at the site's latitude or (`None`) in an
+/// inertial launch frame.
+fn windy_flight(r: &Value, w: &Value, case: &str, latitude_deg: Option<f64>) -> WindyFlight {
     let from_deg = num(w, &format!("/cases/{case}/inputs/from_deg"));
     let speed = num(w, &format!("/cases/{case}/inputs/speed_m_s"));
     let sim = calisto_sim_in(
@@ -381,6 +384,7 @@ fn windy_flight(r: &Value, w: &Value, case: &str) -> WindyFlight {
         rocketpy_motor(r),
         site_gravity(r),
         Wind::constant(speed, from_deg).unwrap(),
+        latitude_deg,
     );
     // RocketPy's state is the center of dry mass, starting at ground level at the rail's foot;
     // hpr's center of mass starts with the aft end at the foot, so the center of dry mass
@@ -536,7 +540,7 @@ fn tolerances() -> [f64; 18] {
 fn check_against_rocketpy(case: &str) {
     let r = reference();
     let w = wind_reference();
-    let wf = windy_flight(&r, &w, case);
+    let wf = windy_flight(&r, &w, case, Some(LATITUDE_DEG));
     assert!(
         wf.flight.warnings().is_empty(),
         "{case}: {:?}",
@@ -581,6 +585,58 @@ fn calisto_in_a_west_wind_drifts_and_weathercocks_as_rocketpy_does() {
 #[test]
 fn calisto_in_a_north_east_wind_drifts_and_weathercocks_as_rocketpy_does() {
     check_against_rocketpy("northeast");
+}
+
+/// The Earth's turning is worth what RocketPy says it is: hpr's Calisto in the west wind with
+/// and without the site's latitude moves as RocketPy's with and without its Coriolis term
+/// (both as hpr models: lever arm corrected, no added mass), figure by figure, and without a
+/// latitude hpr still agrees with RocketPy's inertial flight. Measured: Coriolis moves the
+/// apogee 5.683 m west in hpr and 5.680 m in RocketPy, the landing 6.079 m and 6.102 m, the
+/// apogee's height −0.573 m and −0.542 m.
+#[test]
+fn the_turning_earth_moves_calisto_as_much_as_it_moves_rocketpy_s() {
+    let r = reference();
+    let w = wind_reference();
+    let rp = |variant: &str| {
+        w.pointer(&format!("/cases/west/{variant}"))
+            .unwrap()
+            .clone()
+    };
+    let (rp_turning, rp_inertial) = (rp("as_hpr_models"), rp("as_hpr_models_inertial"));
+    let turning = windy_flight(&r, &w, "west", Some(LATITUDE_DEG));
+    let inertial = windy_flight(&r, &w, "west", None);
+    let hpr_t = windy_rows(&turning, &rp_turning);
+    let hpr_i = windy_rows(&inertial, &rp_inertial);
+    let mut failures = Vec::new();
+    for (((name, t, rt), (_, i, ri)), tol) in hpr_t.iter().zip(&hpr_i).zip(tolerances()) {
+        let (ours, theirs) = (t - i, rt - ri);
+        // The worth of Coriolis is a small difference of two flights: the two simulators'
+        // other differences largely cancel in it. A tenth of the figure's tolerance, at least
+        // 0.1 m on positions and, on the parachute events, RocketPy's sampling of its
+        // triggers at 105 Hz (it does not see the apogee 4.4 ms earlier).
+        let event = name.starts_with("drogue") || name.starts_with("main");
+        let allowed = match (event, name.ends_with(", m")) {
+            (true, false) => 0.0095,
+            (_, true) => (0.1 * tol).max(0.1),
+            _ => 0.1 * tol,
+        };
+        eprintln!(
+            "west {name:<28} Coriolis moves hpr by {ours:+.4}, RocketPy by {theirs:+.4} \
+             (allowed ±{allowed}); without it hpr {i:.4} against {ri:.4}"
+        );
+        if (ours - theirs).abs() > allowed {
+            failures.push(format!("{name}: Coriolis worth {ours} against {theirs}"));
+        }
+        if (i - ri).abs() > tol {
+            failures.push(format!("{name}: inertial {i} against {ri}"));
+        }
+    }
+    let east = |rows: &[(&str, f64, f64)]| rows[2].1;
+    assert!(
+        east(&hpr_t) - east(&hpr_i) < -5.0,
+        "the apogee must move west"
+    );
+    assert!(failures.is_empty(), "{failures:#?}");
 }
 
 /// RocketPy writes its equations about the center of dry mass and hpr about the nose tip;

@@ -9,6 +9,7 @@
 
 mod calisto;
 mod common;
+mod coriolis;
 mod events;
 mod exact;
 mod inputs;

@@ -18,6 +18,10 @@ pub trait ModelLanes<S: Real> {
     fn gravity(&self, h_agl_m: S) -> S;
     fn drag_scale(&self) -> S;
     fn nozzle(&self) -> NozzleLanes<S>;
+    /// The Earth's rotation in the launch frame, rad/s (zero: an inertial launch frame).
+    fn earth_rate(&self) -> V3<S>;
+    /// Whether any lane's launch frame turns (else the Coriolis terms, all zero, are skipped).
+    fn turning(&self) -> bool;
 }
 
 impl ModelLanes<f64> for FlightModel {
@@ -47,6 +51,15 @@ impl ModelLanes<f64> for FlightModel {
     fn nozzle(&self) -> NozzleLanes<f64> {
         self.nozzle.lanes()
     }
+    #[inline(always)]
+    fn earth_rate(&self) -> V3<f64> {
+        let [x, y, z] = self.earth_rate_n;
+        V3::new(x, y, z)
+    }
+    #[inline(always)]
+    fn turning(&self) -> bool {
+        self.env.latitude_deg.is_some()
+    }
 }
 
 /// Four flights' models side by side (their aerodynamic and air tables must be one and the same:
@@ -56,6 +69,8 @@ pub struct FourModels<'a> {
     pub models: [&'a FlightModel; 4],
     nozzle: NozzleLanes<F64x4>,
     drag_scale: F64x4,
+    earth_rate: V3<F64x4>,
+    turning: bool,
 }
 
 impl<'a> FourModels<'a> {
@@ -69,6 +84,12 @@ impl<'a> FourModels<'a> {
             models,
             nozzle: crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]]),
             drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
+            earth_rate: V3::new(
+                F64x4::from_fn(|i| models[i].earth_rate_n[0]),
+                F64x4::from_fn(|i| models[i].earth_rate_n[1]),
+                F64x4::from_fn(|i| models[i].earth_rate_n[2]),
+            ),
+            turning: models.iter().any(|m| m.env.latitude_deg.is_some()),
         })
     }
 }
@@ -104,6 +125,14 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     fn nozzle(&self) -> NozzleLanes<F64x4> {
         self.nozzle
     }
+    #[inline(always)]
+    fn earth_rate(&self) -> V3<F64x4> {
+        self.earth_rate
+    }
+    #[inline(always)]
+    fn turning(&self) -> bool {
+        self.turning
+    }
 }
 
 /// The descent's derivative on lanes, given each lane's mass ([`FlightModel::descent_mass`])
@@ -118,15 +147,13 @@ pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
 ) {
     let h = y[2];
     let (rho, _) = lanes.air(h);
-    eom::descent_derivative(
-        y,
-        mass_kg,
-        cds_m2,
+    let at = eom::Surroundings {
         rho,
-        lanes.gravity(h),
-        &lanes.wind(h),
-        dy,
-    );
+        g: lanes.gravity(h),
+        wind_n: lanes.wind(h),
+        earth_rate_n: lanes.turning().then(|| lanes.earth_rate()),
+    };
+    eom::descent_derivative(y, mass_kg, cds_m2, &at, dy);
 }
 
 /// What a free-flight step end reads of the mass state: the center of mass and its rates,
@@ -266,7 +293,13 @@ pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
         lanes.drag_scale(),
     );
     force.z = force.z + thrust_n;
-    let g_b = r.tr_mul_v(&V3::new(zero, zero, -lanes.gravity(h)));
+    let mut g_b = r.tr_mul_v(&V3::new(zero, zero, -lanes.gravity(h)));
+    if lanes.turning() {
+        // The Coriolis acceleration of the center of mass, −2 Ω × v_cm (ground-relative), acts
+        // on the whole mass there as gravity does, so it joins gravity's field.
+        let earth_b = r.tr_mul_v(&lanes.earth_rate());
+        g_b = g_b + earth_b.cross(&(v_cm_air_b + wind_b)).scale(S::splat(-2.0));
+    }
     let (a_o, w_dot) = eom::accelerations(ms, &force, &moment, &g_b, &omega, &lanes.nozzle());
     eom::rigid_body_derivative_lanes(y, &a_o, &w_dot, &r, dy);
 }

@@ -1,0 +1,91 @@
+//! The launch site's latitude and its gravity through a whole campaign: the rows are the flights
+//! `Simulation` flies with the same site set up by hand.
+
+use super::*;
+use hpr_design::Design;
+use hpr_sim::gravity::Gravity;
+use hpr_sim::wind::Wind;
+use hpr_sim::{Environment, Parachute, Rail, SimOptions, Simulation, Trigger};
+
+const SITE: &str = "elevation_m = 1200.0\nlatitude_deg = 40.0\ngravity = \"somigliana\"\nwind_speed_m_s = 4.0\nwind_from_deg = 250.0";
+
+/// Every row's drag scale, apogee and landing point.
+fn rows(text: &str) -> Vec<[f64; 4]> {
+    let (dir, file) = setup(text);
+    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+    assert_eq!(report.landed, report.variants, "every variant lands");
+    let b = read(&report.outputs.variants);
+    let col = |n: &str| f64s(&b, n).values().to_vec();
+    let (d, a, x, y) = (
+        col("drag_scale"),
+        col("apogee_m"),
+        col("landing_x_m"),
+        col("landing_y_m"),
+    );
+    (0..d.len()).map(|r| [d[r], a[r], x[r], y[r]]).collect()
+}
+
+#[test]
+fn a_scenario_s_latitude_and_ellipsoid_gravity_fly_as_the_simulator_set_up_by_hand() {
+    let campaign = rows(&windy(SITE, "drag_scale = [1.0]"));
+    let design = Design::load(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("validation/designs/synthetic-54mm-three-fin.json"),
+    )
+    .unwrap();
+    let env = Environment {
+        elevation_m: 1200.0,
+        wind: Wind::constant(4.0, 250.0).unwrap(),
+        gravity: Gravity::somigliana(40.0, 1200.0).unwrap(),
+        latitude_deg: Some(40.0),
+        vacuum: false,
+    };
+    let rail = Rail {
+        inclination_deg: 85.0,
+        ..Rail::default()
+    };
+    for row in &campaign {
+        let f = Simulation::new(
+            design.clone(),
+            hpr_design::motor::find("Cesaroni_I175").unwrap(),
+            env.clone(),
+            rail,
+        )
+        .and_then(|s| s.with_parachutes(vec![Parachute::new("main", 0.9, Trigger::Apogee, 1.0)]))
+        .and_then(|s| s.with_drag_scale(row[0]))
+        .and_then(|s| {
+            s.with_options(SimOptions {
+                max_time_s: 900.0,
+                ..SimOptions::default()
+            })
+        })
+        .unwrap()
+        .run(&mut ())
+        .unwrap();
+        let [x, y] = f.metrics.landing_position_m.unwrap();
+        let by_hand = [row[0], f.metrics.apogee_m.unwrap(), x, y];
+        for k in 1..4 {
+            // The same flight: equal to rounding (the campaign's drag scale is read back from
+            // its column exactly).
+            assert!(
+                (row[k] - by_hand[k]).abs() <= 1e-9 * by_hand[k].abs().max(1.0),
+                "figure {k}: campaign {} against by hand {}",
+                row[k],
+                by_hand[k]
+            );
+        }
+    }
+    // Without the latitude the Earth stands still: the same rows land elsewhere (Coriolis
+    // moves a 1 km flight by metres) and, with standard gravity, climb differently.
+    let still = rows(&windy(
+        &SITE.replace("latitude_deg = 40.0\ngravity = \"somigliana\"\n", ""),
+        "drag_scale = [1.0]",
+    ));
+    let moved = (campaign[0][2] - still[0][2]).hypot(campaign[0][3] - still[0][3]);
+    eprintln!(
+        "latitude 40° and its gravity: apogee {:.3} m against {:.3} m, landing moved {moved:.3} m",
+        campaign[0][1], still[0][1]
+    );
+    assert!(moved > 0.3, "{moved} m");
+    assert!((campaign[0][1] - still[0][1]).abs() > 0.5);
+}
