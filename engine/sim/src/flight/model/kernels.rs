@@ -69,7 +69,6 @@ pub struct FourModels<'a> {
     pub models: [&'a FlightModel; 4],
     nozzle: NozzleLanes<F64x4>,
     drag_scale: F64x4,
-    earth_rate: V3<F64x4>,
     turning: bool,
 }
 
@@ -84,11 +83,6 @@ impl<'a> FourModels<'a> {
             models,
             nozzle: crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]]),
             drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
-            earth_rate: V3::new(
-                F64x4::from_fn(|i| models[i].earth_rate_n[0]),
-                F64x4::from_fn(|i| models[i].earth_rate_n[1]),
-                F64x4::from_fn(|i| models[i].earth_rate_n[2]),
-            ),
             turning: models.iter().any(|m| m.env.latitude_deg.is_some()),
         })
     }
@@ -127,7 +121,9 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     }
     #[inline(always)]
     fn earth_rate(&self) -> V3<F64x4> {
-        self.earth_rate
+        // Packed when asked (turning flights only), not with the rest at every step.
+        let e = |k: usize| F64x4::from_fn(|i| self.models[i].earth_rate_n[k]);
+        V3::new(e(0), e(1), e(2))
     }
     #[inline(always)]
     fn turning(&self) -> bool {
@@ -265,9 +261,28 @@ pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
 }
 
 /// The 6-DOF derivative on lanes, given each lane's mass state and thrust: the one copy of
-/// the free-flight equations (frames, air, wind, loads, gravity, EoM v1).
+/// the free-flight equations (frames, air, wind, loads, gravity, Coriolis, EoM v1).
 #[inline(always)]
 pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
+    lanes: &L,
+    ms: &MassLanes<S>,
+    thrust_n: S,
+    y: &[S; N6],
+    dy: &mut [S; N6],
+) {
+    // Two copies, chosen once per call: a test inside the kernel cost the inertial flights
+    // 3 % of the batch's instructions (the compiler computed the Coriolis terms and dropped
+    // them, or spilled around a call kept out of line).
+    if lanes.turning() {
+        derivative_6dof_in::<S, L, true>(lanes, ms, thrust_n, y, dy)
+    } else {
+        derivative_6dof_in::<S, L, false>(lanes, ms, thrust_n, y, dy)
+    }
+}
+
+/// [`derivative_6dof_lanes`] on a turning Earth (`TURNING`) or in an inertial launch frame.
+#[inline(always)]
+fn derivative_6dof_in<S: Real, L: ModelLanes<S>, const TURNING: bool>(
     lanes: &L,
     ms: &MassLanes<S>,
     thrust_n: S,
@@ -294,9 +309,9 @@ pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
     );
     force.z = force.z + thrust_n;
     let mut g_b = r.tr_mul_v(&V3::new(zero, zero, -lanes.gravity(h)));
-    if lanes.turning() {
-        // The Coriolis acceleration of the center of mass, −2 Ω × v_cm (ground-relative), acts
-        // on the whole mass there as gravity does, so it joins gravity's field.
+    if TURNING {
+        // The Coriolis acceleration of the center of mass, −2 Ω × v_cm (ground-relative),
+        // acts on the whole mass there as gravity does, so it joins gravity's field.
         let earth_b = r.tr_mul_v(&lanes.earth_rate());
         g_b = g_b + earth_b.cross(&(v_cm_air_b + wind_b)).scale(S::splat(-2.0));
     }
