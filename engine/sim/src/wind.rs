@@ -73,7 +73,7 @@ fn height_rule(previous: f64) -> String {
     if previous.is_finite() {
         format!("must be finite and greater than the previous row's {previous}")
     } else {
-        "must be finite".into()
+        "must be finite and not below the site (>= 0)".into()
     }
 }
 
@@ -152,7 +152,7 @@ impl Wind {
         let mut velocity_en = Vec::with_capacity(rows.len());
         let mut previous = f64::NEG_INFINITY;
         for (i, r) in rows.iter().enumerate() {
-            if !r.height_agl_m.is_finite() || r.height_agl_m <= previous {
+            if !r.height_agl_m.is_finite() || r.height_agl_m <= previous || r.height_agl_m < 0.0 {
                 return Err(WindError::Height {
                     row: i,
                     value: r.height_agl_m,
@@ -420,6 +420,9 @@ mod tests {
             speed_m_s: s,
             from_deg: 0.0,
         };
+        let err = Wind::table(&[row(-5.0, 1.0), row(10.0, 1.0)]).unwrap_err();
+        assert!(matches!(err, WindError::Height { row: 0, .. }));
+        assert!(err.to_string().contains(">= 0"), "{err}");
         let err = Wind::table(&[row(0.0, 1.0), row(0.0, 1.0)]).unwrap_err();
         assert!(matches!(err, WindError::Height { row: 1, .. }));
         assert!(err.to_string().contains("row 1") && err.to_string().contains("height_agl_m"));

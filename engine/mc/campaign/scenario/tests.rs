@@ -420,7 +420,13 @@ fn a_wind_profile_refuses_a_constant_wind_beside_it_and_its_bad_rows() {
         "",
     );
     assert_eq!(key, "environment.wind_profile[0].height_m");
-    assert!(rule.ends_with("must be finite"), "{rule}");
+    assert!(rule.contains("must be finite"), "{rule}");
+    let (key, rule) = err(
+        "wind_profile = [{ height_m = -10.0, speed_m_s = 2.0, from_deg = 0.0 }]\n",
+        "",
+    );
+    assert_eq!(key, "environment.wind_profile[0].height_m");
+    assert!(rule.contains("not below the site"), "{rule}");
     let (key, _) = err(
         "wind_profile = [{ height_m = 0.0, speed_m_s = 2.0, from_deg = inf }]\n",
         "",
