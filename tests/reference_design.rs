@@ -201,5 +201,6 @@ fn a_trajectory_file_of_another_kind_is_refused_before_the_flight_and_nothing_is
         "{}",
         &text[..80]
     );
-    assert!(text.lines().count() > 500);
+    // The flight takes about 490 steps, a sample each.
+    assert!(text.lines().count() > 400, "{} lines", text.lines().count());
 }

@@ -32,10 +32,11 @@ is RocketPy's own number: Coriolis (``earth_rotation_vector = 0``), the
 canopies' added mass (each Parachute's ``added_mass_coefficient`` set to 0
 before the Flight reads it), and RocketPy 1.13's sign of the center of mass's
 and the nozzle's positions in its equations of motion (``LEVER_ARM`` below:
-RocketPy issue #1186). Then as hpr-mc models the flight: added mass off and the
-lever arm corrected, on the turning Earth (``as_hpr_models``, what hpr-mc flies
-with the site's latitude given) and with Coriolis off too
-(``as_hpr_models_inertial``, what it flies without a latitude).
+RocketPy issue #1186). Then as hpr-mc models the flight, the lever arm corrected:
+on the turning Earth (``as_hpr_models``, what hpr-mc flies with the site's
+latitude given) and with Coriolis off (``as_hpr_models_inertial``, what it
+flies without a latitude). hpr-mc's canopies carry RocketPy's default added
+mass (a hemisphere of air sized by the open CdS).
 
 Run from anywhere:  .venv/bin/python validation/rocketpy/calisto_wind.py
 Writes validation/rocketpy/calisto_wind_reference.json next to this file.
@@ -186,12 +187,11 @@ def main():
                 *fly(u, v, added_mass=False)[::2]),
             "lever_arm_corrected": outputs(
                 *fly(u, v, lever_arm_corrected=True)[::2]),
-            "as_hpr_models": outputs(
-                *fly(u, v, added_mass=False, lever_arm_corrected=True)[::2]),
             "as_hpr_models_inertial": outputs(
-                *fly(u, v, coriolis=False, added_mass=False,
-                     lever_arm_corrected=True)[::2]),
+                *fly(u, v, coriolis=False, lever_arm_corrected=True)[::2]),
         }
+        # hpr-mc models all of RocketPy but its lever-arm sign.
+        cases[name]["as_hpr_models"] = cases[name]["lever_arm_corrected"]
         print(f"{name}: u {u:+.4f} v {v:+.4f}; "
               f"apogee {cases[name]['outputs']['apogee_agl_m']:.3f} m at "
               f"({cases[name]['outputs']['apogee_x_m']:.2f}, "
@@ -250,14 +250,13 @@ def main():
             "coriolis_off": "earth_rotation_vector = 0 (hpr-mc without a "
                             "latitude has no Coriolis)",
             "parachute_added_mass_off": "each Parachute's "
-                "added_mass_coefficient = 0 (hpr-mc's descent has none)",
+                "added_mass_coefficient = 0 (its worth)",
             "lever_arm_corrected": "r_CM and r_NOZ with the sign the "
                 "equations of motion v1 define (see lever_arm_note)",
-            "as_hpr_models": "lever arm corrected and no added mass: the "
-                             "physics hpr-mc models, with the site's latitude",
-            "as_hpr_models_inertial": "lever arm corrected, no added mass "
-                                      "and Coriolis off: hpr-mc without a "
-                                      "latitude",
+            "as_hpr_models": "lever arm corrected: the physics hpr-mc "
+                             "models, with the site's latitude",
+            "as_hpr_models_inertial": "lever arm corrected and Coriolis "
+                                      "off: hpr-mc without a latitude",
         },
         "lever_arm_note": LEVER_ARM,
         "cases": cases,

@@ -363,9 +363,29 @@ pub struct Surroundings<S> {
     pub earth_rate_n: Option<V3<S>>,
 }
 
+/// The drag coefficient of an inflated canopy that sizes it from its CdS: a hemisphere's 1.4
+/// (NASA SP-8066), RocketPy's `Parachute(drag_coefficient=1.4)` default.
+pub const CANOPY_CD: f64 = 1.4;
+/// A canopy's geometric porosity, RocketPy's default (its added-mass coefficient is then 1).
+pub const CANOPY_POROSITY: f64 = 0.0432;
+
+/// The added-mass coefficient of a canopy of porosity `p`, RocketPy's
+/// `1.068 (1 − 1.465 p − 0.25975 p² + 1.2626 p³)`.
+pub fn canopy_added_mass_coefficient(p: f64) -> f64 {
+    1.068 * (1.0 - 1.465 * p - 0.25975 * p * p + 1.2626 * p * p * p)
+}
+
+/// `m_a / (ρ CdS^{3/2})` for the open canopies seen as one hemispherical canopy of their total
+/// CdS: radius and height `R = √(CdS / (1.4 π))`, added mass `C_a ρ (2/3) π R² H` (RocketPy
+/// 1.13's `u_dot_parachute` with its default canopy). Checked against the formula in the tests.
+pub const CANOPY_ADDED_MASS_PER_RHO_CDS_1_5: f64 = 0.227_060_450_656_730_7;
+
 /// Descent under a canopy: the center of mass as a point with the canopy's drag, gravity and
 /// the Coriolis acceleration `−2 Ω × v`, on lanes (one flight, or four side by side). `cds_m2`
-/// is the sum of the open canopies' CdS. State `[x, y, z, vx, vy, vz]` of the center of mass.
+/// is the sum of the open canopies' CdS. The air the canopy carries along, its added mass
+/// `m_a` ([`CANOPY_ADDED_MASS_PER_RHO_CDS_1_5`]), is accelerated with the rocket but has no
+/// weight: `(m + m_a) a = D − m g`. The steady descent is the same; the opening is slower.
+/// State `[x, y, z, vx, vy, vz]` of the center of mass.
 #[inline(always)]
 pub fn descent_derivative<S: Real>(
     y: &[S; N3],
@@ -377,12 +397,14 @@ pub fn descent_derivative<S: Real>(
     let w = &at.wind_n;
     let rel = V3::new(y[3] - w.x, y[4] - w.y, y[5] - w.z);
     let k = S::splat(-0.5) * at.rho * cds_m2 * rel.norm_squared().sqrt();
+    let added = S::splat(CANOPY_ADDED_MASS_PER_RHO_CDS_1_5) * at.rho * cds_m2 * cds_m2.sqrt();
+    let inertia = mass_kg + added;
     dy[0] = y[3];
     dy[1] = y[4];
     dy[2] = y[5];
-    dy[3] = rel.x * k / mass_kg;
-    dy[4] = rel.y * k / mass_kg;
-    dy[5] = rel.z * k / mass_kg - at.g;
+    dy[3] = rel.x * k / inertia;
+    dy[4] = rel.y * k / inertia;
+    dy[5] = (rel.z * k - mass_kg * at.g) / inertia;
     if let Some(earth) = &at.earth_rate_n {
         let coriolis = earth
             .cross(&V3::new(y[3], y[4], y[5]))
@@ -390,5 +412,58 @@ pub fn descent_derivative<S: Real>(
         dy[3] = dy[3] + coriolis.x;
         dy[4] = dy[4] + coriolis.y;
         dy[5] = dy[5] + coriolis.z;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_canopy_added_mass_is_rocketpy_s_default_hemisphere_of_air() {
+        // RocketPy 1.13, Parachute(cd_s) with its defaults: R = √(cd_s / (1.4 π)), H = R,
+        // porosity 0.0432, C_a = 1.068 (1 − 1.465 p − 0.25975 p² + 1.2626 p³) = 0.99999941.
+        let c_a = canopy_added_mass_coefficient(CANOPY_POROSITY);
+        assert!((c_a - 0.999_999_411_464_476_4).abs() < 1e-15, "{c_a}");
+        let per =
+            c_a * (2.0 / 3.0) * std::f64::consts::PI / (CANOPY_CD * std::f64::consts::PI).powf(1.5);
+        assert!(
+            (per - CANOPY_ADDED_MASS_PER_RHO_CDS_1_5).abs() < 1e-16,
+            "{per}"
+        );
+        // Calisto's main, CdS 10 m²: R = 1.50786 m, 7.18028 kg of air at ρ = 1 kg/m³.
+        let r = (10.0 / (1.4 * std::f64::consts::PI)).sqrt();
+        let by_hand = c_a * (2.0 / 3.0) * std::f64::consts::PI * r * r * r;
+        assert!((by_hand - 7.180_281_906_195).abs() < 1e-9);
+        assert!((CANOPY_ADDED_MASS_PER_RHO_CDS_1_5 * 10f64.powf(1.5) - by_hand).abs() < 1e-12);
+    }
+
+    #[test]
+    fn under_a_canopy_the_added_mass_slows_the_change_but_not_the_steady_descent() {
+        // 16 kg under 10 m² at ρ = 1.1, still air, inertial frame, g = 9.8.
+        let (m, cds, rho, g) = (16.0, 10.0, 1.1, 9.8);
+        let at = Surroundings {
+            rho,
+            g,
+            wind_n: V3::new(0.0, 0.0, 0.0),
+            earth_rate_n: None,
+        };
+        let m_a = CANOPY_ADDED_MASS_PER_RHO_CDS_1_5 * rho * cds * cds.sqrt();
+        // At the terminal speed √(2 m g / (ρ CdS)) drag and weight balance: no acceleration.
+        let v_t = (2.0 * m * g / (rho * cds)).sqrt();
+        let mut dy = [0.0; N3];
+        descent_derivative(&[0.0, 0.0, 500.0, 0.0, 0.0, -v_t], m, cds, &at, &mut dy);
+        assert!(dy[5].abs() < 1e-13, "{}", dy[5]);
+        // Falling at 20 m/s and drifting 3 m/s east: (m + m_a) a = −½ ρ CdS |v| v − m g ẑ.
+        let v = [3.0, 0.0, -20.0];
+        let speed = (9.0f64 + 400.0).sqrt();
+        descent_derivative(&[0.0, 0.0, 500.0, v[0], v[1], v[2]], m, cds, &at, &mut dy);
+        let drag = |c: f64| -0.5 * rho * cds * speed * c;
+        assert_eq!(&dy[..3], &v);
+        assert!((dy[3] - drag(v[0]) / (m + m_a)).abs() < 1e-13);
+        assert_eq!(dy[4], 0.0);
+        assert!((dy[5] - (drag(v[2]) - m * g) / (m + m_a)).abs() < 1e-12);
+        // 0.22706 × 1.1 × 10^1.5 = 7.8983 kg of air, half the rocket's mass.
+        assert!((m_a - 7.898_310).abs() < 1e-6, "{m_a}");
     }
 }

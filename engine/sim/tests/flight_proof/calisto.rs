@@ -323,24 +323,20 @@ fn rocketpy_dry_motor_variant(r: &Value, design: &Design) -> Simulation {
 //
 // Two comparisons per figure:
 //
-// * **Against RocketPy with what hpr does not model switched off** (`as_hpr_models`): no
-//   added mass under canopy, and the sign of RocketPy 1.13's lever arm corrected (below);
-//   both on the turning Earth at the site's latitude. What is left is what the still-air
-//   test names: the motor's mass model (hpr's static margin +0.9 % at rail exit, its
-//   transverse inertia −0.8 % loaded), the point the speeds are of, the speed of sound
-//   (−0.1 %), the initial roll, the integrators. Measured (release build): apogee within
-//   0.86 m (calm; 0.49 west, 0.19 north-east), its time within 2.4 ms, the apogee's and the
-//   landing's horizontal position within 4.5 m (1.3 % of
-//   the west wind's 333 m weathercocking, which is set in the second after rail exit, where
-//   the margin and the inertia differ most), the landing time within 0.04 s, the descent
-//   rate within 0.0003 m/s, the parachute events within 0.04 s. The tolerances
-//   ([`tolerances`]) are about 1.5× these.
+// * **Against RocketPy with its lever arm's sign corrected** (`as_hpr_models`, below): both
+//   on the turning Earth at the site's latitude, both canopies carrying the same added mass
+//   (C_a ρ 2/3 π R² H of a hemisphere sized by the open CdS; `eom::descent_derivative`).
+//   What is left is what the still-air test names: the motor's mass model (hpr's static
+//   margin +0.9 % at rail exit, its transverse inertia −0.8 % loaded), the point the speeds
+//   are of, the speed of sound (−0.1 %), the initial roll, the integrators. Measured (release
+//   build): apogee within 0.86 m (calm; 0.49 west, 0.19 north-east), its time within 2.4 ms,
+//   the apogee's and the landing's horizontal position within 4.5 m (1.3 % of the west
+//   wind's 333 m weathercocking, which is set in the second after rail exit, where the
+//   margin and the inertia differ most), the landing time within 0.03 s, the descent rate
+//   within 0.0004 m/s, the parachute events within 0.05 s. The tolerances ([`tolerances`])
+//   are about 1.5× these.
 // * **Against RocketPy 1.13 as it is** (`outputs`, the reference): the same tolerance plus
-//   |as it is − as hpr models|, RocketPy's own measure of the two things hpr does not
-//   share, each flown alone in the reference:
-//   - **Added mass under canopy** (RocketPy adds C_a ρ 2/3 π R² H of the last canopy to the
-//     dry mass; hpr's descent has none): the steady descent is the same, the opening slower;
-//     +0.19 s on the landing time, 1.3 m on the landing point.
+//   |as it is − as hpr models|, RocketPy's own measure of the one thing hpr does not share:
 //   - **RocketPy 1.13's lever arm** (RocketPy issue #1186, fix proposed in #1196):
 //     `u_dot_generalized` takes `com_to_cdm_function` and `nozzle_to_cdm`, which run from the
 //     center of mass and the nozzle to the center of dry mass, as the positions of the center
@@ -353,8 +349,8 @@ fn rocketpy_dry_motor_variant(r: &Value, design: &Design) -> Simulation {
 //     7 m and 13 m on its height, 96 m and 66 m on the landing point. hpr keeps the arm the
 //     mass model gives, as the equations of motion v1 define it.
 // * **Inputs mapped, not tuned**: RocketPy's canopies replace one another (after the main
-//   opens the drag is its CdS 10 m² alone); hpr's add up (a drogue stays attached), so hpr's
-//   main is 9 m². RocketPy's heights are its center of dry mass's, which starts at ground
+//   opens the drag and the added mass are its CdS 10 m²'s alone); hpr's add up (a drogue
+//   stays attached), so hpr's main is 9 m². RocketPy's heights are its center of dry mass's, which starts at ground
 //   level; hpr's are the center of mass's, which starts with the aft end at the rail's foot:
 //   hpr's main opens at 800 m plus that start height (1.257 m), and hpr's positions and
 //   landing are moved to RocketPy's point ([`windy_rows`]). RocketPy samples its triggers at
@@ -589,7 +585,7 @@ fn calisto_in_a_north_east_wind_drifts_and_weathercocks_as_rocketpy_does() {
 
 /// The Earth's turning is worth what RocketPy says it is: hpr's Calisto in the west wind with
 /// and without the site's latitude moves as RocketPy's with and without its Coriolis term
-/// (both as hpr models: lever arm corrected, no added mass), figure by figure, and without a
+/// (both as hpr models: lever arm corrected), figure by figure, and without a
 /// latitude hpr still agrees with RocketPy's inertial flight. Measured: Coriolis moves the
 /// apogee 5.683 m west in hpr and 5.680 m in RocketPy, the landing 6.079 m and 6.102 m, the
 /// apogee's height −0.573 m and −0.542 m.
@@ -613,11 +609,13 @@ fn the_turning_earth_moves_calisto_as_much_as_it_moves_rocketpy_s() {
         // The worth of Coriolis is a small difference of two flights: the two simulators'
         // other differences largely cancel in it. A tenth of the figure's tolerance, at least
         // 0.1 m on positions and, on the parachute events, RocketPy's sampling of its
-        // triggers at 105 Hz (it does not see the apogee 4.4 ms earlier).
+        // triggers at 105 Hz (it does not see the apogee 4.4 ms earlier), which the landing
+        // time inherits from the main's opening (measured: −0.019 s against −0.033 s).
         let event = name.starts_with("drogue") || name.starts_with("main");
         let allowed = match (event, name.ends_with(", m")) {
             (true, false) => 0.0095,
             (_, true) => (0.1 * tol).max(0.1),
+            _ if name.starts_with("landing time") => 0.1 * tol + 0.0095,
             _ => 0.1 * tol,
         };
         eprintln!(
