@@ -129,6 +129,63 @@ fn fly_takes_negative_numbers_after_a_space_as_values() {
 }
 
 #[test]
+fn fly_flies_on_the_turning_earth_of_its_latitude_with_the_ellipsoid_s_gravity() {
+    let args = [
+        "fly",
+        REFERENCE,
+        "--json",
+        "--latitude-deg",
+        "-33.9",
+        "--gravity",
+        "somigliana",
+        "--elevation-m",
+        "800",
+        "--wind-m-s",
+        "4",
+    ];
+    let v: serde_json::Value = serde_json::from_str(&hpr_mc(&args)).unwrap();
+    let apogee = v.pointer("/metrics/apogee_m").unwrap().as_f64().unwrap();
+    // The same site by hand (the apogee comes before any canopy).
+    let env = Environment {
+        elevation_m: 800.0,
+        wind: hpr_sim::wind::Wind::constant(4.0, 0.0).unwrap(),
+        gravity: hpr_sim::gravity::Gravity::somigliana(-33.9, 800.0).unwrap(),
+        latitude_deg: Some(-33.9),
+        ..Environment::default()
+    };
+    let by_hand = Simulation::new(
+        Design::load(REFERENCE).unwrap(),
+        motor::find("Cesaroni_I175").unwrap(),
+        env,
+        Rail::default(),
+    )
+    .unwrap()
+    .run(&mut ())
+    .unwrap()
+    .metrics
+    .apogee_m
+    .unwrap();
+    assert!(
+        (apogee - by_hand).abs() < 1e-9,
+        "{apogee} against {by_hand}"
+    );
+    // Somigliana without a latitude, or a latitude past a pole: refused, exit code 2.
+    for (more, says) in [
+        (&["--gravity", "somigliana"][..], "give --latitude-deg"),
+        (&["--latitude-deg", "95"][..], "latitude_deg"),
+    ] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
+            .args([&["fly", REFERENCE][..], more].concat())
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{err}");
+        assert!(out.stdout.is_empty());
+    }
+}
+
+#[test]
 fn fly_prints_a_ballistic_warning_for_a_rocket_without_parachutes() {
     let calisto = concat!(
         env!("CARGO_MANIFEST_DIR"),

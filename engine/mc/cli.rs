@@ -47,7 +47,8 @@ pub struct FlyArgs {
     /// parachutes, site and integrator): the flight its variants scatter around.
     #[arg(long, value_name = "SCENARIO", conflicts_with_all = [
         "design", "motor", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
-        "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2", "main_height_m", "lag_s",
+        "latitude_deg", "gravity", "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2",
+        "main_height_m", "lag_s",
     ])]
     pub scenario: Option<PathBuf>,
     /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary;
@@ -75,6 +76,14 @@ pub struct FlyArgs {
     /// Launch site elevation above sea level, m.
     #[arg(long, default_value_t = 0.0)]
     pub elevation_m: f64,
+    /// The site's latitude, degrees north: the flight feels the Earth's rotation (Coriolis).
+    /// Without it the launch frame is inertial.
+    #[arg(long, allow_negative_numbers = true)]
+    pub latitude_deg: Option<f64>,
+    /// Gravity: standard (9.80665 m/s²), inverse_square, or somigliana (the WGS 84
+    /// ellipsoid's at --latitude-deg, RocketPy's default).
+    #[arg(long, value_enum, default_value_t = GravityArg::Standard)]
+    pub gravity: GravityArg,
     /// Constant wind speed, m/s.
     #[arg(long, default_value_t = 0.0)]
     pub wind_m_s: f64,
@@ -93,6 +102,15 @@ pub struct FlyArgs {
     /// Time from a trigger to an open canopy, s.
     #[arg(long, default_value_t = 1.0)]
     pub lag_s: f64,
+}
+
+/// `fly --gravity`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+#[value(rename_all = "snake_case")]
+pub enum GravityArg {
+    Standard,
+    InverseSquare,
+    Somigliana,
 }
 
 /// The design and its motor (the `--motor` choice, else the design's own).
@@ -234,9 +252,25 @@ fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
     let (design, motor) = load(design, &a.motor)?;
     let wind = hpr_sim::wind::Wind::constant(a.wind_m_s, a.wind_from_deg)
         .map_err(|e| anyhow!("--wind: {e}"))?;
+    use hpr_sim::gravity::Gravity;
+    let gravity = match (a.gravity, a.latitude_deg) {
+        (GravityArg::Standard, _) => Gravity::default(),
+        (GravityArg::InverseSquare, _) => Gravity::inverse_square(a.elevation_m)
+            .map_err(|e| anyhow!("--gravity inverse_square: {e}"))?,
+        (GravityArg::Somigliana, Some(lat)) => {
+            Gravity::somigliana(lat, a.elevation_m).map_err(|e| anyhow!("--latitude-deg: {e}"))?
+        }
+        (GravityArg::Somigliana, None) => {
+            return Err(anyhow!(
+                "--gravity somigliana is the gravity at the site's latitude: give --latitude-deg"
+            ))
+        }
+    };
     let env = Environment {
         elevation_m: a.elevation_m,
         wind,
+        gravity,
+        latitude_deg: a.latitude_deg,
         ..Environment::default()
     };
     let rail = Rail {
