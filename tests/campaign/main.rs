@@ -534,6 +534,19 @@ fn a_campaign_without_parachutes_marks_every_landing_ballistic_and_counts_it() {
     }
 }
 
+/// Runs the campaign `text` (every variant must land) and gives each row's values of the
+/// Float64 columns `names`, in that order.
+fn landed_rows<const N: usize>(text: &str, names: [&str; N]) -> Vec<[f64; N]> {
+    let (dir, file) = setup(text);
+    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+    assert_eq!(report.landed, report.variants, "every variant lands");
+    let b = read(&report.outputs.variants);
+    let cols = names.map(|n| f64s(&b, n).values().to_vec());
+    (0..b.num_rows())
+        .map(|r| std::array::from_fn(|k| cols[k][r]))
+        .collect()
+}
+
 /// The reference design under its main, 4 variants scattered only in drag, with the given
 /// `[environment]` wind lines and `[sweep]` lines.
 fn windy(environment: &str, sweep: &str) -> String {

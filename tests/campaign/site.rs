@@ -11,18 +11,10 @@ const SITE: &str = "elevation_m = 1200.0\nlatitude_deg = 40.0\ngravity = \"somig
 
 /// Every row's drag scale, apogee and landing point.
 fn rows(text: &str) -> Vec<[f64; 4]> {
-    let (dir, file) = setup(text);
-    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
-    assert_eq!(report.landed, report.variants, "every variant lands");
-    let b = read(&report.outputs.variants);
-    let col = |n: &str| f64s(&b, n).values().to_vec();
-    let (d, a, x, y) = (
-        col("drag_scale"),
-        col("apogee_m"),
-        col("landing_x_m"),
-        col("landing_y_m"),
-    );
-    (0..d.len()).map(|r| [d[r], a[r], x[r], y[r]]).collect()
+    landed_rows(
+        text,
+        ["drag_scale", "apogee_m", "landing_x_m", "landing_y_m"],
+    )
 }
 
 #[test]

@@ -5,18 +5,10 @@ use super::*;
 
 /// Every row's landing point, apogee and landing time.
 fn flights(text: &str) -> Vec<[f64; 4]> {
-    let (dir, file) = setup(text);
-    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
-    assert_eq!(report.landed, report.variants, "every variant lands");
-    let b = read(&report.outputs.variants);
-    let col = |n: &str| f64s(&b, n).values().to_vec();
-    let (x, y, a, t) = (
-        col("landing_x_m"),
-        col("landing_y_m"),
-        col("apogee_m"),
-        col("landing_time_s"),
-    );
-    (0..x.len()).map(|r| [x[r], y[r], a[r], t[r]]).collect()
+    landed_rows(
+        text,
+        ["landing_x_m", "landing_y_m", "apogee_m", "landing_time_s"],
+    )
 }
 
 /// Row by row, the same figures to 1e-9 (relative, or absolute below 1): the same flights up
