@@ -18,7 +18,9 @@
 //! `err_prev = max(err of the last accepted step, 1e-4)`; right after a rejection the step may
 //! not grow. After a rejection `h_new = h · max(min_factor, safety · err^{-α})` (a NaN error
 //! counts as a rejection with `min_factor`). A step clipped to land on a stop time does not
-//! shrink the proposal for the next one.
+//! shrink the proposal for the next one. The factor is computed as
+//! `safety · exp(β ln err_prev − α ln err)`, with `ln err_prev` kept from the last step: one
+//! logarithm and one exponential a step where two powers cost 4 % of the batch's instructions.
 
 use super::{check_finite, clip_to_stop, DenseStepper, IntegratorError, StepOutcome, Tolerances};
 
@@ -55,6 +57,9 @@ const E4: f64 = 71.0 / 1920.0;
 const E5: f64 = -17253.0 / 339200.0;
 const E6: f64 = 22.0 / 525.0;
 const E7: f64 = -1.0 / 40.0;
+/// `ln 1e-4`: the floor of the previous step's error norm in the PI controller.
+pub(crate) const LN_ERR_FLOOR: f64 = -9.210_340_371_976_182;
+
 // Shampine's dense-output coefficients.
 const D1: f64 = -12715105075.0 / 11282082432.0;
 const D3: f64 = 87487479700.0 / 32700410799.0;
@@ -154,8 +159,9 @@ pub struct Dopri54<const N: usize> {
     cont: [[f64; N]; 4],
     /// Proposal for the next step; 0 = estimate it.
     h_next: f64,
-    /// Error norm of the last accepted step (≥ 1e-4), for the PI controller.
-    err_prev: f64,
+    /// Logarithm of the error norm of the last accepted step (that norm ≥ 1e-4), for the PI
+    /// controller.
+    ln_err_prev: f64,
     n_eval: u64,
     n_accepted: u64,
     n_rejected: u64,
@@ -200,7 +206,7 @@ impl<const N: usize> Dopri54<N> {
             dy: [0.0; N],
             cont: [[0.0; N]; 4],
             h_next: 0.0,
-            err_prev: 1e-4,
+            ln_err_prev: LN_ERR_FLOOR,
             n_eval: 0,
             n_accepted: 0,
             n_rejected: 0,
@@ -476,10 +482,10 @@ impl<const N: usize> Dopri54<N> {
         let alpha = 0.2 - 0.75 * c.beta;
         let a = &self.cur;
         let (h, h_proposal, last) = (a.h, a.h_proposal, a.last);
-        let fac_err = err.powf(alpha);
+        let ln_err = err.ln();
         if err <= 1.0 {
-            let fac =
-                (c.safety * self.err_prev.powf(c.beta) / fac_err).clamp(c.min_factor, c.max_factor);
+            let fac = (c.safety * (c.beta * self.ln_err_prev - alpha * ln_err).exp())
+                .clamp(c.min_factor, c.max_factor);
             let mut h_new = h * fac;
             if a.rejected {
                 h_new = h_new.min(h);
@@ -487,7 +493,7 @@ impl<const N: usize> Dopri54<N> {
             if last && h < h_proposal {
                 h_new = h_new.max(h_proposal);
             }
-            self.err_prev = err.max(1e-4);
+            self.ln_err_prev = ln_err.max(LN_ERR_FLOOR);
             self.h_next = h_new;
             self.n_accepted += 1;
             return Ok(Some(if last {
@@ -499,6 +505,7 @@ impl<const N: usize> Dopri54<N> {
         // Rejected (a NaN error lands here too, and `min` then picks 1/min_factor).
         self.n_rejected += 1;
         self.cur.rejected = true;
+        let fac_err = (alpha * ln_err).exp();
         self.cur.h = h / (1.0 / c.min_factor).min(fac_err / c.safety);
         self.begin_attempt()?;
         Ok(None)
@@ -524,7 +531,7 @@ impl<const N: usize> DenseStepper<N> for Dopri54<N> {
     {
         self.initialized = false;
         self.h_next = 0.0;
-        self.err_prev = 1e-4;
+        self.ln_err_prev = LN_ERR_FLOOR;
         self.set_state(&mut f, t0, y0)
     }
 

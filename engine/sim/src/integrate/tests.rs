@@ -708,3 +708,9 @@ fn four_steppers_whose_stages_are_computed_side_by_side_step_exactly_as_four_alo
         "the comparison should include rejected attempts"
     );
 }
+
+#[test]
+fn the_controller_s_error_floor_is_the_logarithm_of_1e_4() {
+    // The PI controller keeps ln(max(err_prev, 1e-4)); its floor must be that of 1e-4.
+    assert_eq!(dopri54::LN_ERR_FLOOR, 1e-4f64.ln());
+}
