@@ -1,6 +1,7 @@
 //! The `inspect` and `fly` commands, and the re-export of `run` (see [`crate::campaign`]).
 //! Each command loads its inputs, calls the library, and prints through [`crate::report`].
 
+use crate::campaign::scenario::GravityModel;
 use crate::report;
 use anyhow::{anyhow, Context, Result};
 use hpr_design::motor::{self, Motor};
@@ -82,8 +83,8 @@ pub struct FlyArgs {
     pub latitude_deg: Option<f64>,
     /// Gravity: standard (9.80665 m/s²), inverse_square, or somigliana (the WGS 84
     /// ellipsoid's at --latitude-deg, RocketPy's default).
-    #[arg(long, value_enum, default_value_t = GravityArg::Standard)]
-    pub gravity: GravityArg,
+    #[arg(long, value_enum, default_value_t = GravityModel::Standard)]
+    pub gravity: GravityModel,
     /// Constant wind speed, m/s.
     #[arg(long, default_value_t = 0.0)]
     pub wind_m_s: f64,
@@ -102,15 +103,6 @@ pub struct FlyArgs {
     /// Time from a trigger to an open canopy, s.
     #[arg(long, default_value_t = 1.0)]
     pub lag_s: f64,
-}
-
-/// `fly --gravity`.
-#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-#[value(rename_all = "snake_case")]
-pub enum GravityArg {
-    Standard,
-    InverseSquare,
-    Somigliana,
 }
 
 /// The design and its motor (the `--motor` choice, else the design's own).
@@ -252,20 +244,10 @@ fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
     let (design, motor) = load(design, &a.motor)?;
     let wind = hpr_sim::wind::Wind::constant(a.wind_m_s, a.wind_from_deg)
         .map_err(|e| anyhow!("--wind: {e}"))?;
-    use hpr_sim::gravity::Gravity;
-    let gravity = match (a.gravity, a.latitude_deg) {
-        (GravityArg::Standard, _) => Gravity::default(),
-        (GravityArg::InverseSquare, _) => Gravity::inverse_square(a.elevation_m)
-            .map_err(|e| anyhow!("--gravity inverse_square: {e}"))?,
-        (GravityArg::Somigliana, Some(lat)) => {
-            Gravity::somigliana(lat, a.elevation_m).map_err(|e| anyhow!("--latitude-deg: {e}"))?
-        }
-        (GravityArg::Somigliana, None) => {
-            return Err(anyhow!(
-                "--gravity somigliana is the gravity at the site's latitude: give --latitude-deg"
-            ))
-        }
-    };
+    let gravity = a
+        .gravity
+        .at_site(a.latitude_deg, a.elevation_m, "--latitude-deg")
+        .map_err(|e| anyhow!("--gravity: {e}"))?;
     let env = Environment {
         elevation_m: a.elevation_m,
         wind,

@@ -20,7 +20,9 @@
 //! `S_noz`. On a turning Earth (a site's latitude given) `g` also holds the Coriolis
 //! acceleration of the center of mass, `−2 Ω × v_cm`: like gravity it acts on the whole mass
 //! at its center, so it moves the center and leaves `ω̇` alone, as RocketPy's `−2 w_earth × v`
-//! does (about the airframe's Ω·ω terms, 1e-4 of it, are left out by both). All of it is a pure function of plain data: no allocation, no tables built.
+//! does (both leave out the moment from the airframe's own rotation, terms in Ω·ω, about
+//! 1e-4 of the rest). All of it is a pure function of plain data: no allocation, no tables
+//! built.
 
 use crate::frames;
 use crate::lanes::{pack_m3, pack_v3, F64x4, Real, M3, V3};

@@ -25,6 +25,14 @@ pub const EARTH_MEAN_RADIUS_M: f64 = 6_371_008.8;
 /// value; the IERS's 7.292115e-5 rad/s differs by 2e-8 relative).
 pub const EARTH_RATE_RAD_S: f64 = 2.0 * std::f64::consts::PI / 86_164.1;
 
+/// The rule a site's latitude keeps (degrees north), for every place that checks one.
+pub const LATITUDE_RULE: &str = "must be finite and within [-90, 90]";
+
+/// Whether `latitude_deg` keeps [`LATITUDE_RULE`].
+pub fn is_latitude(latitude_deg: f64) -> bool {
+    latitude_deg.is_finite() && latitude_deg.abs() <= 90.0
+}
+
 /// The Earth's rotation vector at a site of latitude `latitude_deg` (north positive) in the
 /// launch frame (x east, y north, z up), rad/s: `ω (0, cos φ, sin φ)`.
 pub fn earth_rate_n(latitude_deg: f64) -> [f64; 3] {
@@ -149,11 +157,11 @@ impl Gravity {
     /// `γ(z) = γ (1 − 2z/a (1 + f + m − 2f sin²φ) + 3z²/a²)` in the height `z` above the
     /// ellipsoid, over a site `launch_elevation_m` above it: RocketPy's default gravity.
     pub fn somigliana(latitude_deg: f64, launch_elevation_m: f64) -> Result<Self, GravityError> {
-        if !(latitude_deg.is_finite() && latitude_deg.abs() <= 90.0) {
+        if !is_latitude(latitude_deg) {
             return Err(GravityError::Setting {
                 field: "latitude_deg",
                 value: latitude_deg,
-                rule: "must be finite and within [-90, 90]",
+                rule: LATITUDE_RULE,
             });
         }
         if !launch_elevation_m.is_finite() {

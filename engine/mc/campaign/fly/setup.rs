@@ -3,11 +3,10 @@
 //! built once from scratch, and the batch engine's columns for the lanes.
 
 use super::super::params::Param;
-use super::super::scenario::{with_trigger_value, GravityModel, Scenario};
+use super::super::scenario::{with_trigger_value, Scenario};
 use hpr_design::design::model::Design;
 use hpr_design::motor::{Motor, MotorOptions};
 use hpr_sim::batch::Columns;
-use hpr_sim::gravity::Gravity;
 use hpr_sim::wind::Wind;
 use hpr_sim::{Environment, MassShift, Parachute, Rail, SimError, SimOptions, Simulation};
 
@@ -114,16 +113,10 @@ impl Fixed<'_> {
     pub(super) fn simulation(&self, s: &Setup) -> Result<Simulation, SimError> {
         let err = |e: &dyn std::fmt::Display| SimError::Setup(e.to_string());
         let site = &self.scenario.environment;
-        let gravity = match site.gravity {
-            GravityModel::Standard => Gravity::default(),
-            GravityModel::InverseSquare => {
-                Gravity::inverse_square(s.elevation_m).map_err(|e| err(&e))?
-            }
-            GravityModel::Somigliana => {
-                Gravity::somigliana(site.latitude_deg.unwrap_or(0.0), s.elevation_m)
-                    .map_err(|e| err(&e))?
-            }
-        };
+        let gravity = site
+            .gravity
+            .at_site(site.latitude_deg, s.elevation_m, "environment.latitude_deg")
+            .map_err(|e| err(&e))?;
         let env = Environment {
             elevation_m: s.elevation_m,
             wind: self.wind(s).map_err(|e| err(&e))?,

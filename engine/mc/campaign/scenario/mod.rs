@@ -15,6 +15,7 @@ mod tests;
 
 use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
+use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
 use hpr_sim::wind::{Wind, WindError, WindRow};
 use hpr_sim::{Integrator, Trigger};
 use raw::RawScenario;
@@ -63,8 +64,9 @@ pub struct EnvironmentSpec {
     pub latitude_deg: Option<f64>,
 }
 
-/// `environment.gravity`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// `environment.gravity` (and `fly --gravity`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[value(rename_all = "snake_case")]
 pub enum GravityModel {
     /// The constant standard gravity, 9.80665 m/s² (the default).
     Standard,
@@ -74,6 +76,31 @@ pub enum GravityModel {
     /// The WGS 84 ellipsoid's normal gravity at the site's latitude, with height (RocketPy's
     /// default).
     Somigliana,
+}
+
+impl GravityModel {
+    /// The gravity of a site `elevation_m` above sea level at `latitude_deg`, which
+    /// [`GravityModel::Somigliana`] needs (`None` is an error for it; the error says which
+    /// setting is at fault, `latitude_key` naming the latitude's).
+    pub fn at_site(
+        self,
+        latitude_deg: Option<f64>,
+        elevation_m: f64,
+        latitude_key: &str,
+    ) -> Result<Gravity, String> {
+        match (self, latitude_deg) {
+            (GravityModel::Standard, _) => Ok(Gravity::default()),
+            (GravityModel::InverseSquare, _) => {
+                Gravity::inverse_square(elevation_m).map_err(|e| e.to_string())
+            }
+            (GravityModel::Somigliana, Some(lat)) => {
+                Gravity::somigliana(lat, elevation_m).map_err(|e| e.to_string())
+            }
+            (GravityModel::Somigliana, None) => Err(format!(
+                "\"somigliana\" is the gravity at the site's latitude: give {latitude_key}"
+            )),
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -324,32 +351,35 @@ impl Scenario {
             )?,
             wind_profile,
             gravity: match env.gravity.as_deref() {
-                None | Some("standard") => GravityModel::Standard,
-                Some("inverse_square") => GravityModel::InverseSquare,
-                Some("somigliana") if env.latitude_deg.is_none() => {
-                    return Err(bad(
-                        "environment.gravity",
-                        "\"somigliana\" is the gravity at the site's latitude: give environment.latitude_deg".into(),
-                    ))
-                }
-                Some("somigliana") => GravityModel::Somigliana,
-                Some(other) => {
-                    return Err(bad(
-                        "environment.gravity",
-                        format!("must be \"standard\", \"inverse_square\" or \"somigliana\" (got \"{other}\")"),
-                    ))
-                }
+                None => GravityModel::Standard,
+                Some(name) => <GravityModel as clap::ValueEnum>::from_str(name, false).map_err(
+                    |_| {
+                        bad(
+                            "environment.gravity",
+                            format!("must be \"standard\", \"inverse_square\" or \"somigliana\" (got \"{name}\")"),
+                        )
+                    },
+                )?,
             },
             latitude_deg: match env.latitude_deg {
-                Some(l) if !(l.is_finite() && l.abs() <= 90.0) => {
+                Some(l) if !is_latitude(l) => {
                     return Err(bad(
                         "environment.latitude_deg",
-                        format!("must be finite and within [-90, 90] degrees north (got {l})"),
+                        format!("{LATITUDE_RULE} degrees north (got {l})"),
                     ))
                 }
                 l => l,
             },
         };
+        // The site's gravity can be had (Somigliana's needs the latitude).
+        environment
+            .gravity
+            .at_site(
+                environment.latitude_deg,
+                environment.elevation_m,
+                "environment.latitude_deg",
+            )
+            .map_err(|rule| bad("environment.gravity", rule))?;
         let r = raw.rail.take().unwrap_or_default();
         let rail = RailSpec {
             length_m: check_param(

@@ -37,18 +37,18 @@ impl Default for Environment {
 }
 
 impl Environment {
-    /// The Earth's rotation in the launch frame (x east, y north, z up), rad/s: zero
-    /// without a latitude.
-    pub fn earth_rate_n(&self) -> [f64; 3] {
-        self.latitude_deg
-            .map_or([0.0; 3], crate::gravity::earth_rate_n)
+    /// The Earth's rotation in the launch frame (x east, y north, z up), rad/s; `None`
+    /// without a latitude (an inertial launch frame).
+    pub fn earth_rate_n(&self) -> Option<[f64; 3]> {
+        self.latitude_deg.map(crate::gravity::earth_rate_n)
     }
 
     /// Checks the latitude.
     pub fn validate(&self) -> Result<(), String> {
+        use crate::gravity::{is_latitude, LATITUDE_RULE};
         match self.latitude_deg {
-            Some(l) if !(l.is_finite() && l.abs() <= 90.0) => Err(format!(
-                "environment: field \"latitude_deg\" must be finite and within [-90, 90] (got {l})"
+            Some(l) if !is_latitude(l) => Err(format!(
+                "environment: field \"latitude_deg\" {LATITUDE_RULE} (got {l})"
             )),
             _ => Ok(()),
         }

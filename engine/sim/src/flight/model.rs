@@ -60,9 +60,9 @@ pub struct FlightModel {
     /// The standard atmosphere, tabulated (see [`AirTable`]), shared by every flight.
     pub air: &'static AirTable,
     pub env: Environment,
-    /// The Earth's rotation in the launch frame, rad/s ([`Environment::earth_rate_n`]: zero
+    /// The Earth's rotation in the launch frame, rad/s ([`Environment::earth_rate_n`]: `None`
     /// without a latitude), computed once.
-    pub earth_rate_n: [f64; 3],
+    pub earth_rate_n: Option<[f64; 3]>,
     pub rail: RailGeometry,
     pub parachutes: Vec<Parachute>,
     pub shifts: Vec<ShiftSpec>,
@@ -396,8 +396,7 @@ impl FlightModel {
             rho: self.air_at(&air).density_kg_m3,
             g,
             wind_n: wind,
-            earth_rate_n: ModelLanes::<f64>::turning(self)
-                .then(|| ModelLanes::<f64>::earth_rate(self)),
+            earth_rate_n: ModelLanes::<f64>::earth_rate(self),
         };
         eom::descent_derivative(y, mass_kg, cds_m2, &at, dy);
         (air, wind.to_na(), g)

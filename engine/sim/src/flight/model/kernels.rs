@@ -18,10 +18,9 @@ pub trait ModelLanes<S: Real> {
     fn gravity(&self, h_agl_m: S) -> S;
     fn drag_scale(&self) -> S;
     fn nozzle(&self) -> NozzleLanes<S>;
-    /// The Earth's rotation in the launch frame, rad/s (zero: an inertial launch frame).
-    fn earth_rate(&self) -> V3<S>;
-    /// Whether any lane's launch frame turns (else the Coriolis terms, all zero, are skipped).
-    fn turning(&self) -> bool;
+    /// The Earth's rotation in the launch frame, rad/s; `None` when no lane's launch frame
+    /// turns (then the Coriolis terms are skipped, not computed as zeros).
+    fn earth_rate(&self) -> Option<V3<S>>;
 }
 
 impl ModelLanes<f64> for FlightModel {
@@ -52,13 +51,8 @@ impl ModelLanes<f64> for FlightModel {
         self.nozzle.lanes()
     }
     #[inline(always)]
-    fn earth_rate(&self) -> V3<f64> {
-        let [x, y, z] = self.earth_rate_n;
-        V3::new(x, y, z)
-    }
-    #[inline(always)]
-    fn turning(&self) -> bool {
-        self.env.latitude_deg.is_some()
+    fn earth_rate(&self) -> Option<V3<f64>> {
+        self.earth_rate_n.map(|[x, y, z]| V3::new(x, y, z))
     }
 }
 
@@ -83,7 +77,7 @@ impl<'a> FourModels<'a> {
             models,
             nozzle: crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]]),
             drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
-            turning: models.iter().any(|m| m.env.latitude_deg.is_some()),
+            turning: models.iter().any(|m| m.earth_rate_n.is_some()),
         })
     }
 }
@@ -120,14 +114,12 @@ impl ModelLanes<F64x4> for FourModels<'_> {
         self.nozzle
     }
     #[inline(always)]
-    fn earth_rate(&self) -> V3<F64x4> {
-        // Packed when asked (turning flights only), not with the rest at every step.
-        let e = |k: usize| F64x4::from_fn(|i| self.models[i].earth_rate_n[k]);
-        V3::new(e(0), e(1), e(2))
-    }
-    #[inline(always)]
-    fn turning(&self) -> bool {
-        self.turning
+    fn earth_rate(&self) -> Option<V3<F64x4>> {
+        // Packed when asked (turning flights only), not with the rest at every step; a lane
+        // without a latitude turns at zero beside the others.
+        let rate = |i: usize| self.models[i].earth_rate_n.unwrap_or([0.0; 3]);
+        let e = |k: usize| F64x4::from_fn(|i| rate(i)[k]);
+        self.turning.then(|| V3::new(e(0), e(1), e(2)))
     }
 }
 
@@ -147,7 +139,7 @@ pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
         rho,
         g: lanes.gravity(h),
         wind_n: lanes.wind(h),
-        earth_rate_n: lanes.turning().then(|| lanes.earth_rate()),
+        earth_rate_n: lanes.earth_rate(),
     };
     eom::descent_derivative(y, mass_kg, cds_m2, &at, dy);
 }
@@ -270,23 +262,24 @@ pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
     y: &[S; N6],
     dy: &mut [S; N6],
 ) {
-    // Two copies, chosen once per call: a test inside the kernel cost the inertial flights
-    // 3 % of the batch's instructions (the compiler computed the Coriolis terms and dropped
-    // them, or spilled around a call kept out of line).
-    if lanes.turning() {
-        derivative_6dof_in::<S, L, true>(lanes, ms, thrust_n, y, dy)
-    } else {
-        derivative_6dof_in::<S, L, false>(lanes, ms, thrust_n, y, dy)
+    // Two inlined copies, chosen once per call (the `None` one without the Coriolis terms): a
+    // test inside the kernel cost the inertial flights 3 % of the batch's instructions (the
+    // compiler computed the terms and dropped them).
+    match lanes.earth_rate() {
+        Some(earth) => derivative_6dof_in(lanes, ms, thrust_n, y, Some(earth), dy),
+        None => derivative_6dof_in(lanes, ms, thrust_n, y, None, dy),
     }
 }
 
-/// [`derivative_6dof_lanes`] on a turning Earth (`TURNING`) or in an inertial launch frame.
+/// [`derivative_6dof_lanes`] on a turning Earth (`earth_n`, the Earth's rotation in the launch
+/// frame) or in an inertial launch frame (`None`).
 #[inline(always)]
-fn derivative_6dof_in<S: Real, L: ModelLanes<S>, const TURNING: bool>(
+fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     lanes: &L,
     ms: &MassLanes<S>,
     thrust_n: S,
     y: &[S; N6],
+    earth_n: Option<V3<S>>,
     dy: &mut [S; N6],
 ) {
     let zero = S::splat(0.0);
@@ -309,10 +302,10 @@ fn derivative_6dof_in<S: Real, L: ModelLanes<S>, const TURNING: bool>(
     );
     force.z = force.z + thrust_n;
     let mut g_b = r.tr_mul_v(&V3::new(zero, zero, -lanes.gravity(h)));
-    if TURNING {
+    if let Some(earth_n) = earth_n {
         // The Coriolis acceleration of the center of mass, −2 Ω × v_cm (ground-relative),
         // acts on the whole mass there as gravity does, so it joins gravity's field.
-        let earth_b = r.tr_mul_v(&lanes.earth_rate());
+        let earth_b = r.tr_mul_v(&earth_n);
         g_b = g_b + earth_b.cross(&(v_cm_air_b + wind_b)).scale(S::splat(-2.0));
     }
     let (a_o, w_dot) = eom::accelerations(ms, &force, &moment, &g_b, &omega, &lanes.nozzle());
