@@ -361,14 +361,14 @@ impl FlightModel {
                 (ms.mass_kg, ms.r_cm.z)
             }
         };
-        let (air, wind, g) = self.descent_rates(cds_m2, t, y, dy);
-        let rel = Vector3::new(y[3], y[4], y[5]) - wind;
-        let a = Vector3::new(dy[3], dy[4], dy[5] + g);
+        let (at, speed_of_sound_m_s) = self.descent_rates(cds_m2, t, y, dy);
+        let rel = Vector3::new(y[3], y[4], y[5]) - at.wind_n.to_na();
+        let a = Vector3::new(dy[3], dy[4], dy[5] + at.g);
         FlightAux {
             mass_kg,
             r_cm_z_m,
             air_speed_m_s: rel.norm(),
-            speed_of_sound_m_s: air.speed_of_sound_m_s,
+            speed_of_sound_m_s,
             accel_cm_m_s2: a.norm(),
             air_velocity_b: Vector3::repeat(f64::NAN),
         }
@@ -378,7 +378,8 @@ impl FlightModel {
 impl FlightModel {
     /// The descent's derivative alone, as the integrator calls it: the mass is the structure's
     /// plus the propellant left (exactly the mass state's mass; its center and inertia do not
-    /// enter the point-mass descent). Returns the air, the wind and gravity it used.
+    /// enter the point-mass descent). Returns the surroundings it used and the speed of
+    /// sound there.
     #[inline]
     pub fn descent_rates(
         &self,
@@ -386,20 +387,10 @@ impl FlightModel {
         t: f64,
         y: &[f64; N3],
         dy: &mut [f64; N3],
-    ) -> (Air, Vector3<f64>, f64) {
-        let mass_kg = self.descent_mass(t);
-        let h = y[2];
-        let air = self.air.at_msl(h + self.env.elevation_m);
-        let g = self.env.gravity.at(h);
-        let wind = ModelLanes::<f64>::wind(self, h);
-        let at = eom::Surroundings {
-            rho: self.air_at(&air).density_kg_m3,
-            g,
-            wind_n: wind,
-            earth_rate_n: ModelLanes::<f64>::earth_rate(self),
-        };
-        eom::descent_derivative(y, mass_kg, cds_m2, &at, dy);
-        (air, wind.to_na(), g)
+    ) -> (eom::Surroundings<f64>, f64) {
+        let (at, speed_of_sound_m_s) = kernels::descent_surroundings(self, y[2]);
+        eom::descent_derivative(y, self.descent_mass(t), cds_m2, &at, dy);
+        (at, speed_of_sound_m_s)
     }
 
     /// The mass a descent carries at `t`: the structure's plus the propellant left (exactly

@@ -133,15 +133,25 @@ pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
     y: &[S; N3],
     dy: &mut [S; N3],
 ) {
-    let h = y[2];
-    let (rho, _) = lanes.air(h);
+    let (at, _) = descent_surroundings(lanes, y[2]);
+    eom::descent_derivative(y, mass_kg, cds_m2, &at, dy);
+}
+
+/// What a descending point feels at height `h_agl_m` above the site, and the speed of sound
+/// there, on lanes.
+#[inline(always)]
+pub fn descent_surroundings<S: Real, L: ModelLanes<S>>(
+    lanes: &L,
+    h_agl_m: S,
+) -> (eom::Surroundings<S>, S) {
+    let (rho, speed_of_sound) = lanes.air(h_agl_m);
     let at = eom::Surroundings {
         rho,
-        g: lanes.gravity(h),
-        wind_n: lanes.wind(h),
+        g: lanes.gravity(h_agl_m),
+        wind_n: lanes.wind(h_agl_m),
         earth_rate_n: lanes.earth_rate(),
     };
-    eom::descent_derivative(y, mass_kg, cds_m2, &at, dy);
+    (at, speed_of_sound)
 }
 
 /// What a free-flight step end reads of the mass state: the center of mass and its rates,
