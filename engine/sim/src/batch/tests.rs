@@ -485,12 +485,18 @@ fn many_changes_with_one_rebuild_fly_exactly_as_the_same_changes_made_one_by_one
 #[test]
 fn an_elevation_column_moves_an_inverse_square_gravity_with_the_site() {
     use crate::gravity::Gravity;
-    let site = |elevation_m: f64| Environment {
+    let inverse_square_site = |elevation_m: f64| Environment {
         elevation_m,
         gravity: Gravity::inverse_square(elevation_m).unwrap(),
         ..Environment::default()
     };
-    let batch = Batch::new(base().with_site(site(0.0), *base().rail()).unwrap(), None).unwrap();
+    let batch = Batch::new(
+        base()
+            .with_site(inverse_square_site(0.0), *base().rail())
+            .unwrap(),
+        None,
+    )
+    .unwrap();
     let c = Columns {
         len: 1,
         elevation_m: vec![2500.0],
@@ -504,7 +510,7 @@ fn an_elevation_column_moves_an_inverse_square_gravity_with_the_site() {
     let single = batch
         .base()
         .clone()
-        .with_site(site(2500.0), *base().rail())
+        .with_site(inverse_square_site(2500.0), *base().rail())
         .unwrap();
     assert_eq!(
         lane.run(&mut ()).unwrap().metrics,
