@@ -11,14 +11,19 @@ fn flights(text: &str) -> Vec<[f64; 4]> {
     )
 }
 
-/// Row by row, the same figures to 1e-9 (relative, or absolute below 1): the same flights up
-/// to the rounding of their inputs.
+/// Row by row, the same figures to 2e-6 (relative, or absolute below 1): the same flights up
+/// to the rounding of their inputs. Not closer: when an input changes in its last bits, the
+/// adaptive integrator may accept one step more or fewer somewhere, which moves the flight by
+/// the order of its tolerance (rtol 1e-7). Measured on the reference design in the profile
+/// below: 613 steps against 614, the apogee 1.2e-4 m apart on 1705 m; the landing point in
+/// the campaign 2e-3 m apart on 3.7 km (5e-7); a hundredth of the tolerance brings the apogees
+/// to 9e-6 m apart.
 fn assert_same_flights(a: &[[f64; 4]], b: &[[f64; 4]]) {
     assert_eq!(a.len(), b.len());
     for (r, (a, b)) in a.iter().zip(b).enumerate() {
         for k in 0..4 {
             assert!(
-                (a[k] - b[k]).abs() <= 1e-9 * b[k].abs().max(1.0),
+                (a[k] - b[k]).abs() <= 2e-6 * b[k].abs().max(1.0),
                 "row {r} figure {k}: {} against {}",
                 a[k],
                 b[k]

@@ -54,6 +54,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import calisto  # noqa: E402  (the shared set-up: rocket, motor, chutes, site, rail)
+import lever_arm  # noqa: E402  (the lever arm corrected: issue #1186)
 
 OUT = os.path.join(HERE, "calisto_wind_reference.json")
 
@@ -86,8 +87,7 @@ def fly(u, v, coriolis=True, added_mass=True, lever_arm_corrected=False):
         for chute in rocket.parachutes:
             chute.added_mass_coefficient = 0.0
     if lever_arm_corrected:
-        rocket.com_to_cdm_function = -1 * rocket.com_to_cdm_function
-        rocket.nozzle_to_cdm = -rocket.nozzle_to_cdm
+        lever_arm.correct(rocket)
     flight = calisto.Flight(
         rocket=rocket, environment=env,
         rail_length=calisto.RAIL["rail_length_m"],
@@ -111,8 +111,11 @@ LEVER_ARM = (
     "still air the angle of attack is tiny and the apogee moves by under 1 m; "
     "in a crosswind the rocket turns into the wind far more. The "
     "'lever_arm_corrected' flights negate both attributes before the Flight "
-    "is built (as #1196 does in the equations); the nozzle's sign cancels in "
-    "the jet-damping terms, whose products of r_CM and r_NOZ keep their sign")
+    "is built, and add 2 K (r_CM x w_dot) back to the acceleration: the one "
+    "term written for the attribute as it is, v_dot = K (T20/m - r_CM x w_dot), "
+    "needs + r_CM x w_dot with r_CM from the CDM (lever_arm.py). The nozzle's "
+    "sign cancels in the jet-damping terms, whose products of r_CM and r_NOZ "
+    "keep their sign")
 
 
 def outputs(env, flight):

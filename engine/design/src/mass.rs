@@ -122,6 +122,21 @@ impl MassProps {
         }
     }
 
+    /// The body spread evenly round the station `x` axis: the average of all its copies
+    /// turned about that axis. The mass and the center's `x` stay; the center moves onto the
+    /// axis; about it, the axial inertia stays, the two transverse ones become their mean and
+    /// the products vanish (`I_yy, I_zz → (I_yy + I_zz)/2` about the point on the axis).
+    pub fn spread_about_axis(&self) -> MassProps {
+        let on_axis = Vector3::new(self.cg_m.x, 0.0, 0.0);
+        let i = self.inertia_about(&on_axis);
+        let transverse = 0.5 * (i[(1, 1)] + i[(2, 2)]);
+        MassProps {
+            mass_kg: self.mass_kg,
+            cg_m: on_axis,
+            inertia_cg: Matrix3::from_diagonal(&Vector3::new(i[(0, 0)], transverse, transverse)),
+        }
+    }
+
     /// Sum of any number of bodies.
     pub fn sum<'a>(parts: impl IntoIterator<Item = &'a MassProps>) -> MassProps {
         parts

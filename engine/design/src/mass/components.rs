@@ -65,9 +65,19 @@ pub fn component_own(design: &Design, idx: ComponentIdx) -> MassProps {
         };
     }
     let unit = unit_shape(c, &at);
-    match c.mass_spec {
+    let own = match c.mass_spec {
         MassSpec::Density(rho) => unit.scaled(rho),
         spec => unit.with_mass(spec_mass(&spec, unit.mass_kg)),
+    };
+    // A rail guide's few grams stand off the axis, where they would put the center of mass
+    // a fraction of a millimetre off it, and the thrust's line with it: a hard-burning
+    // rocket would turn a fraction of a degree as it leaves the rail. That asymmetry is
+    // smaller than any motor's thrust misalignment, which no one models, and OpenRocket and
+    // RocketPy keep the center on the axis; so the guides count spread round the axis. A
+    // part put off the axis on purpose (`radial_offset_m`) stays where it is.
+    match c.kind {
+        ComponentKind::RailButton(_) | ComponentKind::LaunchLug(_) => own.spread_about_axis(),
+        _ => own,
     }
 }
 

@@ -10,6 +10,7 @@
 mod calisto;
 mod common;
 mod coriolis;
+mod crosscheck;
 mod events;
 mod exact;
 mod inputs;

@@ -126,24 +126,50 @@ fn a_stage_override_applies_to_the_whole_stage() {
 }
 
 #[test]
-fn a_rail_button_stands_on_the_body_with_its_axis_radial() {
+fn a_rail_button_stands_on_the_body_with_its_axis_radial_and_counts_spread_round_the_axis() {
     let d = design(&simple(
         json!({}),
         json!([{"id": "b", "type": "rail_button", "outer_diameter_m": 0.01, "height_m": 0.008, "mass_kg": 0.004,
                 "angle_deg": 90.0, "position": {"from": "top", "offset_m": 0.2}}]),
     ));
     let b = component_own(&d, 2);
-    // Center: x = 0.1 + 0.2 + 0.005, at 90° (+z), R + h/2 = 0.034 off the axis.
+    // Its center at x = 0.1 + 0.2 + 0.005, at 90° (+z), R + h/2 = 0.034 off the axis, spread
+    // round the axis: the center on the axis.
+    assert_eq!(b.mass_kg, 0.004);
     assert!(
-        (b.cg_m - Vector3::new(0.305, 0.0, 0.034)).amax() < 1e-16,
+        (b.cg_m - Vector3::new(0.305, 0.0, 0.0)).amax() < 1e-16,
         "{}",
         b.cg_m
     );
-    // Solid cylinder r 0.005, h 0.008 along z: I_zz = m r²/2, I_xx = I_yy = m (3 r² + h²)/12.
-    let (m, r, h) = (0.004, 0.005, 0.008);
-    assert!(rel(b.inertia_cg[(2, 2)], m * r * r / 2.0) < 1e-14);
-    assert!(rel(b.inertia_cg[(0, 0)], m * (3.0 * r * r + h * h) / 12.0) < 1e-14);
-    assert!(rel(b.inertia_cg[(1, 1)], m * (3.0 * r * r + h * h) / 12.0) < 1e-14);
+    // The solid cylinder r 0.005, h 0.008 along z: about its center I_zz = m r²/2,
+    // I_xx = I_yy = m (3 r² + h²)/12. About the axis point: + m 0.034² on I_xx and I_yy. Spread:
+    // I_xx kept, I_yy = I_zz = their mean, no products.
+    let (m, r, h, off) = (0.004, 0.005, 0.008, 0.034);
+    let side = m * (3.0 * r * r + h * h) / 12.0;
+    let mean = 0.5 * (side + m * off * off + m * r * r / 2.0);
+    assert!(rel(b.inertia_cg[(0, 0)], side + m * off * off) < 1e-14);
+    assert!(rel(b.inertia_cg[(1, 1)], mean) < 1e-14);
+    assert!(rel(b.inertia_cg[(2, 2)], mean) < 1e-14);
+    let products = [(0, 1), (0, 2), (1, 2), (1, 0), (2, 0), (2, 1)];
+    assert!(products.iter().all(|&ij| b.inertia_cg[ij] == 0.0));
+}
+
+#[test]
+fn a_launch_lug_and_rail_buttons_leave_the_center_of_mass_on_the_axis() {
+    let d = design(&simple(
+        json!({}),
+        json!([{"id": "b1", "type": "rail_button", "outer_diameter_m": 0.01, "height_m": 0.008, "mass_kg": 0.004,
+                "angle_deg": 30.0, "position": {"from": "top", "offset_m": 0.1}},
+               {"id": "b2", "type": "rail_button", "outer_diameter_m": 0.01, "height_m": 0.008, "mass_kg": 0.004,
+                "angle_deg": 30.0, "position": {"from": "top", "offset_m": 0.3}},
+               {"id": "lug", "type": "launch_lug", "length_m": 0.05, "outer_diameter_m": 0.01,
+                "wall_thickness_m": 0.001, "mass_kg": 0.01, "angle_deg": 200.0,
+                "position": {"from": "top", "offset_m": 0.2}}]),
+    ));
+    let all = dry(&d);
+    // Exactly on the axis: the body is axisymmetric and every guide is spread round it.
+    assert_eq!((all.cg_m.y, all.cg_m.z), (0.0, 0.0));
+    assert!((all.inertia_cg[(1, 1)] - all.inertia_cg[(2, 2)]).abs() < 1e-18);
 }
 
 #[test]

@@ -1,0 +1,56 @@
+"""RocketPy 1.13's lever-arm sign (issue #1186), corrected for the cross-checks.
+
+``Flight.u_dot_generalized`` writes the equations of motion v1 about the center of dry mass
+(CDM) with ``r_CM`` the center of mass seen from the CDM and ``r_NOZ`` the nozzle seen from
+it, but reads them from ``Rocket.com_to_cdm_function`` and ``Rocket.nozzle_to_cdm``, which run
+the other way (CM to CDM, nozzle to CDM). ``correct(rocket)`` negates both attributes, so
+that every term that uses them as the v1 derivation does gets the right sign: the mass-flow
+terms, the inertia about the center of mass, the weight's moment and the angular solve
+``w_dot = I_CM^-1 (T21 + T20 x r_CM)``.
+
+One term was written for the attribute as it is: the translational equation
+``v_dot = K (T20 / m - r_CM x w_dot)``. For the acceleration of the CDM it must be
+``T20 / m - w_dot x r_CM = T20 / m + r_CM x w_dot`` with ``r_CM`` from the CDM (then
+``m (v_dot + w_dot x r_CM + w x (w x r_CM) + ...)`` is ``m a_CM``, as the issue shows);
+RocketPy's ``- r_CM x w_dot`` is that only with ``r_CM`` from the CM. So after negating the
+attribute this term has the wrong sign, and ``u_dot`` below adds ``2 K (r_CM x w_dot)`` back.
+Measured at a state of the canted, boattailed rocket 0.3 s after liftoff in wind: without it
+the CDM's acceleration is 1.4 m/s^2 off across the axis; with it RocketPy's derivative matches
+hpr-mc's to 1e-3 m/s^2 and 1e-4 of w_dot (the rest is the speed of sound's Mach in the drag).
+
+The patch wraps ``Flight.u_dot_generalized`` for rockets marked by ``correct`` only, and must
+be installed (by importing this module) before the ``Flight`` is built, since RocketPy flies
+in ``Flight.__init__``. It changes the integrated state, not the accelerations RocketPy keeps
+for its post-processed outputs (``Flight.ax`` and the like), which these scripts do not use.
+"""
+
+from rocketpy import Flight
+from rocketpy.mathutils.vector_matrix import Matrix, Vector
+
+_MARK = "_hpr_mc_lever_arm_corrected"
+_UNPATCHED = Flight.u_dot_generalized
+
+
+def correct(rocket):
+    """Give ``rocket`` the lever arm's sign the equations of motion v1 define."""
+    rocket.com_to_cdm_function = -1 * rocket.com_to_cdm_function
+    rocket.nozzle_to_cdm = -rocket.nozzle_to_cdm
+    setattr(rocket, _MARK, True)
+    return rocket
+
+
+def _u_dot(self, t, u, post_processing=False):
+    du = _UNPATCHED(self, t, u, post_processing=post_processing)
+    if not getattr(self.rocket, _MARK, False):
+        return du
+    r_cm = Vector([0, 0, self.rocket.com_to_cdm_function.get_value_opt(t)])
+    w_dot = Vector(du[10:13])
+    fix = Matrix.transformation(u[6:10]) @ (2 * (r_cm ^ w_dot))
+    du = list(du)
+    du[3] += fix.x
+    du[4] += fix.y
+    du[5] += fix.z
+    return du
+
+
+Flight.u_dot_generalized = _u_dot
