@@ -54,7 +54,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import calisto  # noqa: E402  (the shared set-up: rocket, motor, chutes, site, rail)
-import lever_arm  # noqa: E402  (the lever arm corrected: issue #1186)
+import corrections  # noqa: E402  (the lever arm and the speed of sound corrected)
 
 OUT = os.path.join(HERE, "calisto_wind_reference.json")
 
@@ -74,20 +74,24 @@ def components(speed, from_deg):
     return (0.0 if abs(u) < 1e-12 else u), (0.0 if abs(v) < 1e-12 else v)
 
 
-def fly(u, v, coriolis=True, added_mass=True, lever_arm_corrected=False):
+def fly(u, v, coriolis=True, added_mass=True, lever_arm_corrected=False,
+        sound_corrected=False):
     """One flight in wind (u, v). The options switch off, one by one, what
-    hpr-mc does not model: Coriolis, the canopies' added mass, and RocketPy
+    hpr-mc does not model: Coriolis, the canopies' added mass, RocketPy
     1.13's sign of r_CM and r_NOZ in Flight.u_dot_generalized (see
-    LEVER_ARM below)."""
+    LEVER_ARM below) and its speed of sound, a chord of the true one
+    (corrections.py)."""
     env, _, rocket, flight = calisto.build(wind_u=u, wind_v=v,
                                            coriolis=coriolis)
-    if added_mass and not lever_arm_corrected:
+    if added_mass and not lever_arm_corrected and not sound_corrected:
         return env, rocket, flight
+    if sound_corrected:
+        corrections.true_speed_of_sound(env)
     if not added_mass:
         for chute in rocket.parachutes:
             chute.added_mass_coefficient = 0.0
     if lever_arm_corrected:
-        lever_arm.correct(rocket)
+        corrections.correct(rocket)
     flight = calisto.Flight(
         rocket=rocket, environment=env,
         rail_length=calisto.RAIL["rail_length_m"],
@@ -113,7 +117,7 @@ LEVER_ARM = (
     "'lever_arm_corrected' flights negate both attributes before the Flight "
     "is built, and add 2 K (r_CM x w_dot) back to the acceleration: the one "
     "term written for the attribute as it is, v_dot = K (T20/m - r_CM x w_dot), "
-    "needs + r_CM x w_dot with r_CM from the CDM (lever_arm.py). The nozzle's "
+    "needs + r_CM x w_dot with r_CM from the CDM (corrections.py). The nozzle's "
     "sign cancels in the jet-damping terms, whose products of r_CM and r_NOZ "
     "keep their sign")
 
@@ -190,11 +194,13 @@ def main():
                 *fly(u, v, added_mass=False)[::2]),
             "lever_arm_corrected": outputs(
                 *fly(u, v, lever_arm_corrected=True)[::2]),
+            "as_hpr_models": outputs(
+                *fly(u, v, lever_arm_corrected=True,
+                     sound_corrected=True)[::2]),
             "as_hpr_models_inertial": outputs(
-                *fly(u, v, coriolis=False, lever_arm_corrected=True)[::2]),
+                *fly(u, v, coriolis=False, lever_arm_corrected=True,
+                     sound_corrected=True)[::2]),
         }
-        # hpr-mc models all of RocketPy but its lever-arm sign.
-        cases[name]["as_hpr_models"] = cases[name]["lever_arm_corrected"]
         print(f"{name}: u {u:+.4f} v {v:+.4f}; "
               f"apogee {cases[name]['outputs']['apogee_agl_m']:.3f} m at "
               f"({cases[name]['outputs']['apogee_x_m']:.2f}, "
@@ -256,10 +262,12 @@ def main():
                 "added_mass_coefficient = 0 (its worth)",
             "lever_arm_corrected": "r_CM and r_NOZ with the sign the "
                 "equations of motion v1 define (see lever_arm_note)",
-            "as_hpr_models": "lever arm corrected: the physics hpr-mc "
-                             "models, with the site's latitude",
-            "as_hpr_models_inertial": "lever arm corrected and Coriolis "
-                                      "off: hpr-mc without a latitude",
+            "as_hpr_models": "lever arm and speed of sound corrected: the "
+                             "physics hpr-mc models, with the site's "
+                             "latitude",
+            "as_hpr_models_inertial": "lever arm and speed of sound "
+                                      "corrected, Coriolis off: hpr-mc "
+                                      "without a latitude",
         },
         "lever_arm_note": LEVER_ARM,
         "cases": cases,

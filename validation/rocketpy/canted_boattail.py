@@ -5,7 +5,8 @@ M motor. This one is what it does not exercise: a 54 mm rocket
 (``validation/designs/crosscheck-54mm-canted-boattail.json``) with a von Karman nose, three
 trapezoidal fins canted 1 degree, so that it spins up, a conical boattail, and the AeroTech
 J350W, a short hard burn (peak 707 N on 1.26 kg), flown in a wind across a rail that leans
-toward the north-east, with a drogue at apogee and a main at 250 m.
+toward the north-east (constant, and a profile that turns and grows with height), and in
+still air, with a drogue at apogee and a main at 250 m.
 
 The rocket is the one hpr-mc builds from the design file, handed to RocketPy as numbers:
 
@@ -30,9 +31,9 @@ engine/sim/tests/flight_proof):
 * RocketPy's canopies replace one another; hpr-mc's add up: hpr-mc's main is RocketPy's CdS
   less the drogue's.
 
-Each case is flown as RocketPy 1.13 flies it (``outputs``) and with its lever-arm sign
-corrected (``as_hpr_models``; RocketPy issue #1186, see lever_arm.py), which is what
-hpr-mc models.
+Each case is flown as RocketPy 1.13 flies it (``outputs``), with its lever-arm sign
+corrected (``lever_arm_corrected``; RocketPy issue #1186), and with its speed of sound made
+the true one as well (``as_hpr_models``, what hpr-mc models; see corrections.py).
 
 Run:  .venv/bin/python validation/rocketpy/canted_boattail.py
 Writes validation/rocketpy/canted_boattail_reference.json next to this file.
@@ -49,7 +50,7 @@ from rocketpy import Environment, Flight, Function, GenericMotor, Rocket
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-import lever_arm  # noqa: E402  (the lever arm corrected: issue #1186)
+import corrections  # noqa: E402  (the lever arm and the speed of sound corrected)
 
 REPO = os.path.dirname(os.path.dirname(HERE))
 OUT = os.path.join(HERE, "canted_boattail_reference.json")
@@ -61,6 +62,11 @@ SITE = {"latitude_deg": 32.990254, "longitude_deg": -106.974998,
         "elevation_m": 1400.0}
 # Wind constant with height, from 250 deg (meteorological), 6 m/s.
 WIND = {"from_deg": 250.0, "speed_m_s": 6.0}
+# A wind profile: (height above the site m, speed m/s, from deg), as hpr-mc's
+# `environment.wind_profile` rows; RocketPy gets its components at the heights above sea
+# level, interpolated linearly as hpr-mc does (custom_atmosphere's default for lists).
+PROFILE = [(0.0, 2.0, 270.0), (500.0, 6.0, 250.0), (1500.0, 12.0, 290.0),
+           (3000.0, 15.0, 310.0)]
 # hpr-mc's rail: 3 m long, 85 deg up, heading 40 deg (toward the north-east).
 RAIL = {"length_m": 3.0, "inclination_deg": 85.0, "heading_deg": 40.0}
 
@@ -114,13 +120,24 @@ def wind_components(speed, from_deg):
     return -speed * math.sin(a), -speed * math.cos(a)
 
 
-def build(lever_arm_corrected=False, wind=True):
+def build(lever_arm_corrected=False, wind="wind", sound_corrected=False):
+    """The rocket in `wind`: "wind" (constant), "profile" (PROFILE) or "calm";
+    RocketPy's lever arm and speed of sound corrected or not (corrections.py)."""
     env = Environment(latitude=SITE["latitude_deg"],
                       longitude=SITE["longitude_deg"],
                       elevation=SITE["elevation_m"])
-    u, v = wind_components(WIND["speed_m_s"], WIND["from_deg"]) if wind \
-        else (0.0, 0.0)
+    if wind == "wind":
+        u, v = wind_components(WIND["speed_m_s"], WIND["from_deg"])
+    elif wind == "profile":
+        rows = [(SITE["elevation_m"] + h, wind_components(speed, frm))
+                for h, speed, frm in PROFILE]
+        u = [[z, c[0]] for z, c in rows]
+        v = [[z, c[1]] for z, c in rows]
+    else:
+        u, v = 0.0, 0.0
     env.set_atmospheric_model(type="custom_atmosphere", wind_u=u, wind_v=v)
+    if sound_corrected:
+        corrections.true_speed_of_sound(env)
     m = MOTOR
     half = 0.5 * m["length_m"]
     motor = GenericMotor(
@@ -161,7 +178,7 @@ def build(lever_arm_corrected=False, wind=True):
     rocket.add_parachute("drogue", cd_s=d["cd_s_m2"], trigger="apogee",
                          sampling_rate=SAMPLING_HZ, lag=d["lag_s"])
     if lever_arm_corrected:
-        lever_arm.correct(rocket)
+        corrections.correct(rocket)
     rail = RAIL["length_m"] - (r["aft_end_m"] - m["aft_m"])
     flight = Flight(rocket=rocket, environment=env, rail_length=rail,
                     inclination=RAIL["inclination_deg"],
@@ -208,10 +225,13 @@ def main():
     np.random.seed(20261202)  # parachute noise is off; nothing is drawn
     env, motor, rocket, _ = build()
     cases = {}
-    for name, wind in (("wind", True), ("calm", False)):
+    for name in ("wind", "profile", "calm"):
+        wind = name
         cases[name] = {
             "outputs": case(wind=wind),
-            "as_hpr_models": case(lever_arm_corrected=True, wind=wind),
+            "lever_arm_corrected": case(lever_arm_corrected=True, wind=wind),
+            "as_hpr_models": case(lever_arm_corrected=True, wind=wind,
+                                  sound_corrected=True),
         }
     u, v = wind_components(WIND["speed_m_s"], WIND["from_deg"])
     ref = {
@@ -221,6 +241,8 @@ def main():
             "design": "validation/designs/crosscheck-54mm-canted-boattail.json",
             "site": SITE, "wind": {**WIND, "wind_u_toward_east_m_s": u,
                                    "wind_v_toward_north_m_s": v},
+            "wind_profile": [{"height_agl_m": h, "speed_m_s": sp, "from_deg": fr}
+                             for h, sp, fr in PROFILE],
             "rail": {**RAIL, "rocketpy_rail_length_m":
                      RAIL["length_m"] - (ROCKET["aft_end_m"] - MOTOR["aft_m"])},
             "rocket_after_burnout": ROCKET, "motor": MOTOR,

@@ -3,10 +3,13 @@
 //! drag from the Cd-vs-Mach curve, and roll forcing and damping from canted fins.
 //!
 //! As RocketPy does (`Flight.u_dot_generalized`): the air's velocity relative to each surface
-//! is `u = −(v_O + ω × p_i − wind)` in body axes; the surface's angle of attack is the angle
-//! between `u` and `−b3`; its normal force is `½ ρ |u|² A_ref CNα(M) α` along the part of `u`
-//! across the axis. Drag is `½ ρ V² A_ref Cd(M)` along `−b3`, with `V` the center of mass's
-//! speed through the air. Tables are built once ([`AeroTables`]); a call allocates nothing.
+//! is `u = −(v_O + ω × p_i − wind_i)` in body axes, with `wind_i` the wind at the surface's
+//! own height (in a wind that changes with height the nose and the fins meet different air:
+//! the shear turns the rocket as a rotation of the air would); the surface's angle of attack
+//! is the angle between `u` and `−b3`; its normal force is `½ ρ |u|² A_ref CNα(M) α` along the
+//! part of `u` across the axis. Drag is `½ ρ V² A_ref Cd(M)` along `−b3`, with `V` the center
+//! of mass's speed through the air. Tables are built once ([`AeroTables`]); a call allocates
+//! nothing.
 //!
 //! Past what RocketPy models, for a rocket that tumbles or flies tail first (an unstable
 //! design): beyond 90° a surface's normal force is that of the supplementary angle `π − α`,
@@ -81,9 +84,10 @@ impl AeroTables {
     }
 }
 
-/// Aerodynamic loads about O in body axes. `v_o_air_b` is O's velocity relative to the air and
-/// `v_cm_air_b` the center of mass's, both in body axes; `drag_scale` multiplies the drag
-/// coefficient (a dispersion, 1 by default).
+/// Aerodynamic loads about O in body axes, in air that moves the same at every surface.
+/// `v_o_air_b` is O's velocity relative to the air and `v_cm_air_b` the center of mass's,
+/// both in body axes; `drag_scale` multiplies the drag coefficient (a dispersion, 1 by
+/// default).
 #[inline]
 pub fn aero_loads(
     t: &AeroTables,
@@ -97,6 +101,7 @@ pub fn aero_loads(
     let (f, m) = loads(
         t,
         &V3::from_na(v_o_air_b),
+        |_| V3::zero(),
         &V3::from_na(v_cm_air_b),
         &V3::from_na(omega),
         air.density_kg_m3,
@@ -111,12 +116,16 @@ pub fn aero_loads(
 }
 
 /// [`aero_loads`] on lanes (the one copy of these equations): force and moment about O, body
-/// axes. The tables are shared by every lane; look-ups and `atan2` run lane by lane.
+/// axes. `v_o_b` is O's velocity over the ground and `wind_b_at(x)` the wind, both in body
+/// axes, at the surface whose center of pressure is `x` m aft of the tip; `v_cm_air_b` is the
+/// center of mass's velocity through the air. The tables are shared by every lane; look-ups
+/// and `atan2` run lane by lane.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn loads<S: Real>(
     t: &AeroTables,
-    v_o_air_b: &V3<S>,
+    v_o_b: &V3<S>,
+    wind_b_at: impl Fn(S) -> V3<S>,
     v_cm_air_b: &V3<S>,
     omega: &V3<S>,
     rho: S,
@@ -131,8 +140,9 @@ pub fn loads<S: Real>(
     let mut force = V3::<S>::zero();
     let mut moment = V3::<S>::zero();
     for s in &t.surfaces {
-        let p = V3::new(zero, zero, S::splat(-s.x_cp_m));
-        let u = -(*v_o_air_b + omega.cross(&p));
+        let x_cp = S::splat(s.x_cp_m);
+        let p = V3::new(zero, zero, -x_cp);
+        let u = -(*v_o_b + omega.cross(&p) - wind_b_at(x_cp));
         let speed2 = u.norm_squared();
         let cross2 = u.x * u.x + u.y * u.y;
         // No flow across the axis (or none at all): no normal force from this surface.

@@ -298,11 +298,15 @@ fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     let h = y[2] + r.mul_v(&ms.r).z;
     let (rho, speed_of_sound) = lanes.air(h);
     let wind_b = r.tr_mul_v(&lanes.wind(h));
-    let v_o_air_b = r.tr_mul_v(&V3::new(y[3], y[4], y[5])) - wind_b;
-    let v_cm_air_b = v_o_air_b + omega.cross(&ms.r) + ms.r_rate;
+    let v_o_b = r.tr_mul_v(&V3::new(y[3], y[4], y[5]));
+    let v_cm_air_b = v_o_b - wind_b + omega.cross(&ms.r) + ms.r_rate;
+    // Each surface meets the wind at its own height: O's, less `x` along the axis's rise.
+    let rise = r.m[2][2];
+    let wind_b_at = |x_cp: S| r.tr_mul_v(&lanes.wind(y[2] - rise * x_cp));
     let (mut force, moment) = aero_loads::loads(
         lanes.aero(),
-        &v_o_air_b,
+        &v_o_b,
+        wind_b_at,
         &v_cm_air_b,
         &omega,
         rho,
