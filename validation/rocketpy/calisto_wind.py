@@ -55,6 +55,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import calisto  # noqa: E402  (the shared set-up: rocket, motor, chutes, site, rail)
 import corrections  # noqa: E402  (the lever arm and the speed of sound corrected)
+import figures  # noqa: E402  (what each flight records)
 
 OUT = os.path.join(HERE, "calisto_wind_reference.json")
 
@@ -123,37 +124,7 @@ LEVER_ARM = (
 
 
 def outputs(env, flight):
-    f = calisto.f
-    elev = env.elevation
-    events = []
-    for ev in flight.parachute_events:
-        t_ev, chute = ev[0], ev[1]
-        t_in = t_ev + chute.lag
-        events.append({
-            "parachute": chute.name,
-            "trigger_time_s": f(t_ev),
-            "inflation_time_s": f(t_in),
-            "altitude_agl_at_trigger_m": f(flight.z(t_ev) - elev),
-            "x_at_inflation_m": f(flight.x(t_in)),
-            "y_at_inflation_m": f(flight.y(t_in)),
-            "altitude_agl_at_inflation_m": f(flight.z(t_in) - elev),
-        })
-    return {
-        "apogee_agl_m": f(flight.apogee - elev),
-        "apogee_time_s": f(flight.apogee_time),
-        "apogee_x_m": f(flight.apogee_x),
-        "apogee_y_m": f(flight.apogee_y),
-        "rail_exit_time_s": f(flight.out_of_rail_time),
-        "rail_exit_speed_m_s": f(flight.out_of_rail_velocity),
-        "max_speed_m_s": f(flight.max_speed),
-        "max_speed_time_s": f(flight.max_speed_time),
-        "max_mach": f(flight.max_mach_number),
-        "impact_time_s": f(flight.t_final),
-        "impact_x_m": f(flight.x_impact),
-        "impact_y_m": f(flight.y_impact),
-        "impact_speed_m_s": f(flight.impact_velocity),
-        "parachute_events": events,
-    }
+    return figures.flight_figures(env, flight)
 
 
 def ascent_only(u, v, coriolis=True):

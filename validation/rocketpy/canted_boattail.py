@@ -51,6 +51,8 @@ from rocketpy import Environment, Flight, Function, GenericMotor, Rocket
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import corrections  # noqa: E402  (the lever arm and the speed of sound corrected)
+import figures  # noqa: E402  (what each flight records)
+from figures import f  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(HERE))
 OUT = os.path.join(HERE, "canted_boattail_reference.json")
@@ -99,10 +101,6 @@ CHUTES = {
              "height_m": 250.0},
 }
 SAMPLING_HZ = 105.0
-
-
-def f(x):
-    return float(x)
 
 
 def drag_curve():
@@ -187,32 +185,14 @@ def build(lever_arm_corrected=False, wind="wind", sound_corrected=False):
 
 
 def outputs(env, rocket, flight):
-    elev = env.elevation
+    """The common figures, and the roll rate about the body's axis at burnout and at
+    apogee (rad/s)."""
     burn = f(rocket.motor.burn_out_time)
-    events = []
-    for t_ev, chute in flight.parachute_events:
-        t_in = t_ev + chute.lag
-        events.append({"parachute": chute.name, "trigger_time_s": f(t_ev),
-                       "inflation_time_s": f(t_in)})
-    # Roll rate about the body's axis at burnout and at apogee (rad/s).
     return {
-        "apogee_agl_m": f(flight.apogee - elev),
-        "apogee_time_s": f(flight.apogee_time),
-        "apogee_x_m": f(flight.apogee_x),
-        "apogee_y_m": f(flight.apogee_y),
-        "rail_exit_time_s": f(flight.out_of_rail_time),
-        "rail_exit_speed_m_s": f(flight.out_of_rail_velocity),
-        "max_speed_m_s": f(flight.max_speed),
-        "max_speed_time_s": f(flight.max_speed_time),
-        "max_mach": f(flight.max_mach_number),
+        **figures.flight_figures(env, flight),
         "burnout_time_s": burn,
         "roll_rate_at_burnout_rad_s": f(flight.w3(burn)),
         "roll_rate_at_apogee_rad_s": f(flight.w3(flight.apogee_time)),
-        "impact_time_s": f(flight.t_final),
-        "impact_x_m": f(flight.x_impact),
-        "impact_y_m": f(flight.y_impact),
-        "impact_speed_m_s": f(flight.impact_velocity),
-        "parachute_events": events,
     }
 
 
