@@ -244,6 +244,61 @@ mod tests {
     }
 
     #[test]
+    fn each_surface_meets_the_wind_at_its_own_center_of_pressure() {
+        // Two surfaces, at 0.2 m and 0.8 m, in a wind across the axis that grows aft (as in
+        // a shear): each surface's normal force is the one it gets alone in its own wind.
+        let mut two = tables();
+        two.surfaces.insert(
+            0,
+            SurfaceTable {
+                x_cp_m: 0.2,
+                cn_alpha: MachTable::constant(CN_ALPHA),
+            },
+        );
+        let one = |x: f64| AeroTables {
+            surfaces: vec![SurfaceTable {
+                x_cp_m: x,
+                cn_alpha: MachTable::constant(CN_ALPHA),
+            }],
+            ..tables()
+        };
+        let wind_at = |x: f64| V3::new(0.0, 3.0 + 10.0 * x, 0.0);
+        let v_o = V3::new(0.0, 0.0, 100.0);
+        let none = V3::<f64>::zero();
+        let alone = |x: f64| {
+            let v_air = v_o - wind_at(x);
+            loads(
+                &one(x),
+                &v_air,
+                |_| none,
+                &v_air,
+                &none,
+                1.225,
+                340.0,
+                false,
+                1.0,
+            )
+        };
+        let (f, m) = loads(&two, &v_o, wind_at, &v_o, &none, 1.225, 340.0, false, 1.0);
+        let ((f1, m1), (f2, m2)) = (alone(0.2), alone(0.8));
+        // Lateral force and moment: the sum of the two alone, to rounding (1e-12 relative).
+        assert!(
+            (f.y - (f1.y + f2.y)).abs() <= 1e-12 * f.y.abs(),
+            "{} {}",
+            f.y,
+            f1.y + f2.y
+        );
+        assert!(
+            (m.x - (m1.x + m2.x)).abs() <= 1e-12 * m.x.abs(),
+            "{} {}",
+            m.x,
+            m1.x + m2.x
+        );
+        // The aft surface meets 9 m/s across against the fore one's 5: more force there.
+        assert!(f2.y.abs() > 1.7 * f1.y.abs());
+    }
+
+    #[test]
     fn up_to_45_degrees_the_drag_is_the_whole_drag_along_the_axis_as_in_rocketpy() {
         for deg in [0.0, 3.0, 20.0, 44.9] {
             // Bit for bit RocketPy's −q A Cd: the turn-over factor is exactly 1 here.

@@ -129,6 +129,12 @@ impl Wind {
         }
     }
 
+    /// Whether the wind changes with height (a table), or is one constant everywhere.
+    #[inline]
+    pub fn varies_with_height(&self) -> bool {
+        matches!(self.profile, Profile::Table { .. })
+    }
+
     /// No wind.
     pub fn calm() -> Self {
         Self::of(Profile::Constant([0.0, 0.0]))

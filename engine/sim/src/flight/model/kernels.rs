@@ -14,6 +14,9 @@ pub trait ModelLanes<S: Real> {
     fn air(&self, h_agl_m: S) -> (S, S);
     /// Wind, inertial, at a height above the site.
     fn wind(&self, h_agl_m: S) -> V3<S>;
+    /// Whether any lane's wind changes with height (a profile): only then does each lifting
+    /// surface look its own wind up (a constant wind is the same at every height, bit for bit).
+    fn wind_sheared(&self) -> bool;
     /// Gravity's magnitude at a height above the site.
     fn gravity(&self, h_agl_m: S) -> S;
     fn drag_scale(&self) -> S;
@@ -37,6 +40,10 @@ impl ModelLanes<f64> for FlightModel {
     fn wind(&self, h: f64) -> V3<f64> {
         let [e, n] = self.env.wind.velocity_en(h);
         V3::new(e, n, 0.0)
+    }
+    #[inline(always)]
+    fn wind_sheared(&self) -> bool {
+        self.env.wind.varies_with_height()
     }
     #[inline(always)]
     fn gravity(&self, h: f64) -> f64 {
@@ -64,6 +71,7 @@ pub struct FourModels<'a> {
     nozzle: NozzleLanes<F64x4>,
     drag_scale: F64x4,
     turning: bool,
+    sheared: bool,
 }
 
 impl<'a> FourModels<'a> {
@@ -78,6 +86,7 @@ impl<'a> FourModels<'a> {
             nozzle: crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]]),
             drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
             turning: models.iter().any(|m| m.earth_rate_n.is_some()),
+            sheared: models.iter().any(|m| m.wind_sheared()),
         })
     }
 }
@@ -100,6 +109,10 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     fn wind(&self, h: F64x4) -> V3<F64x4> {
         let w: [V3<f64>; 4] = std::array::from_fn(|i| self.models[i].wind(h.0[i]));
         crate::lanes::pack_v3([&w[0], &w[1], &w[2], &w[3]])
+    }
+    #[inline(always)]
+    fn wind_sheared(&self) -> bool {
+        self.sheared
     }
     #[inline(always)]
     fn gravity(&self, h: F64x4) -> F64x4 {
@@ -301,8 +314,16 @@ fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     let v_o_b = r.tr_mul_v(&V3::new(y[3], y[4], y[5]));
     let v_cm_air_b = v_o_b - wind_b + omega.cross(&ms.r) + ms.r_rate;
     // Each surface meets the wind at its own height: O's, less `x` along the axis's rise.
+    // A constant wind is the same everywhere: `wind_b`, the very value a look-up would give.
     let rise = r.m[2][2];
-    let wind_b_at = |x_cp: S| r.tr_mul_v(&lanes.wind(y[2] - rise * x_cp));
+    let sheared = lanes.wind_sheared();
+    let wind_b_at = |x_cp: S| {
+        if sheared {
+            r.tr_mul_v(&lanes.wind(y[2] - rise * x_cp))
+        } else {
+            wind_b
+        }
+    };
     let (mut force, moment) = aero_loads::loads(
         lanes.aero(),
         &v_o_b,
