@@ -1,0 +1,325 @@
+"""Fly hpr-mc's own designs in RocketPy: the cross-check of whole flights beyond Calisto.
+
+Calisto (``calisto.py``, ``calisto_wind.py``) is a 127 mm rocket with four plain fins on an
+M motor, built from RocketPy's own inputs. Here the rockets are hpr-mc design files, handed
+to RocketPy as hpr-mc builds them, so that the two fly the same rocket and only the flight
+is compared:
+
+* ``canted_boattail`` (``validation/designs/crosscheck-54mm-canted-boattail.json``): what
+  Calisto leaves out: a von Karman nose, three fins canted 1 degree (it spins up to 36
+  rad/s), a conical boattail, the AeroTech J350W (peak 707 N on 1.26 kg, Mach 1.38);
+* ``reference_design`` (``validation/designs/synthetic-54mm-three-fin.json``): the moving-mass
+  specification's 54 mm design, ogive nose, three plain fins, on its Cesaroni I175.
+
+Each is flown in a constant wind across its rail, in a wind profile that turns and grows
+with height, and in still air, with a drogue at apogee and a main lower down.
+
+What RocketPy is given (``rocketpy_rocket``):
+
+* the structure and the motor's casing from ``hpr-mc inspect --json`` after burnout (mass,
+  center of mass, the two inertias); the casing goes in the rocket's mass, so RocketPy's
+  motor carries only propellant;
+* ``GenericMotor``, which is hpr-mc's motor model: the .eng curve with (0, 0) prepended,
+  propellant burned in proportion to the impulse, a solid cylinder of the motor's length
+  and diameter at its mid-length, nozzle radius 0.88 of the motor's radius (hpr-mc's
+  ``NOZZLE_RADIUS_FRACTION``);
+* the nose, the fin sets and the conical transitions from the design's geometry, placed
+  where ``inspect`` puts them; the first two rail buttons; the design's drag curve
+  (power on = power off when the design gives one), interpolated linearly in Mach as hpr-mc
+  does (RocketPy reads a bare list of points as a cubic spline).
+
+Mapped, not tuned (see engine/sim/tests/flight_proof/crosscheck.rs): RocketPy measures its
+rail from the nozzle, hpr-mc from the rocket's aft end (the airframe's, or the motor's if it
+sticks out), so RocketPy's rail is shorter by their distance; RocketPy's canopies replace one another and hpr-mc's add up, so hpr-mc's
+main is RocketPy's less the drogue.
+
+Each case is flown as RocketPy 1.13 flies it (``outputs``), with its lever-arm sign
+corrected (``lever_arm_corrected``; RocketPy issue #1186) and with its speed of sound made
+the true one as well (``as_hpr_models``, what hpr-mc models; see corrections.py).
+
+Run from the repository root after ``cargo build --release``:
+    .venv/bin/python validation/rocketpy/design_crosscheck.py
+Writes validation/rocketpy/design_crosscheck_reference.json.
+"""
+
+import importlib.metadata
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+from rocketpy import Environment, Flight, Function, GenericMotor, Rocket
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import corrections  # noqa: E402  (the lever arm and the speed of sound corrected)
+import figures  # noqa: E402  (what each flight records)
+from figures import f  # noqa: E402
+
+REPO = os.path.dirname(os.path.dirname(HERE))
+OUT = os.path.join(HERE, "design_crosscheck_reference.json")
+HPR = os.path.join(REPO, "target", "release", "hpr-mc")
+
+SITE = {"latitude_deg": 32.990254, "longitude_deg": -106.974998,
+        "elevation_m": 1400.0}
+# A wind profile: (height above the site m, speed m/s, from deg), as hpr-mc's
+# `environment.wind_profile` rows; RocketPy gets its components at the heights above sea
+# level, interpolated linearly as hpr-mc does (custom_atmosphere's default for lists).
+PROFILE = [(0.0, 2.0, 270.0), (500.0, 6.0, 250.0), (1500.0, 12.0, 290.0),
+           (3000.0, 15.0, 310.0)]
+SAMPLING_HZ = 105.0
+NOZZLE_RADIUS_FRACTION = 0.88
+NOSE_KINDS = {"conical": "conical", "ogive": "ogive", "von_karman": "vonKarman",
+              "lv_haack": "lvhaack", "elliptical": "elliptical"}
+
+ROCKETS = {
+    "canted_boattail": {
+        "design": "validation/designs/crosscheck-54mm-canted-boattail.json",
+        # 3 m long, 85 deg up, heading 40 deg (toward the north-east).
+        "rail": {"length_m": 3.0, "inclination_deg": 85.0, "heading_deg": 40.0},
+        "wind": {"from_deg": 250.0, "speed_m_s": 6.0},
+        "main_height_m": 250.0,
+    },
+    "reference_design": {
+        "design": "validation/designs/synthetic-54mm-three-fin.json",
+        # 2.5 m long, 84 deg up, heading 200 deg (toward the south-south-west).
+        "rail": {"length_m": 2.5, "inclination_deg": 84.0, "heading_deg": 200.0},
+        "wind": {"from_deg": 120.0, "speed_m_s": 5.0},
+        "main_height_m": 200.0,
+    },
+}
+
+
+def wind_components(speed, from_deg):
+    """(u toward east, v toward north) of a wind blowing FROM from_deg."""
+    a = math.radians(from_deg)
+    return -speed * math.sin(a), -speed * math.cos(a)
+
+
+def inspect(design_path):
+    out = subprocess.run([HPR, "inspect", design_path, "--json"], capture_output=True,
+                         text=True, check=True)
+    return json.loads(out.stdout)
+
+
+def walk(components):
+    for c in components:
+        yield c
+        yield from walk(c.get("children", []))
+
+
+def geometry(design, report):
+    """Everything RocketPy needs of a design, from the file and hpr-mc's own report."""
+    placed = {c["id"]: c for c in report["components"]}
+    parts = list(walk([c for s in design["stages"] for c in s["components"]]))
+    radius = report["reference_diameter_m"] / 2
+    nose = next(c for c in parts if c["type"] == "nose_cone")
+    if nose["shape"] not in NOSE_KINDS or nose["base_diameter_m"] / 2 != radius:
+        raise SystemExit(f"nose {nose['shape']} not mapped to RocketPy")
+    fins = [c for c in parts if c["type"] == "fin_set"]
+    tails = [c for c in parts if c["type"] == "transition"]
+    if any(t["shape"] != "conical" for t in tails):
+        raise SystemExit("only conical transitions map to RocketPy's Tail")
+    buttons = [c for c in parts if c["type"] == "rail_button"][:2]
+    mount = next(c for c in parts if c["type"] == "inner_tube" and "motor_mount" in c)
+    mm = placed[mount["id"]]
+    motor = report["motor"]
+    motor_aft = mm["x_top_m"] + mm["length_m"] + mount["motor_mount"]["overhang_m"]
+    # hpr-mc's rocket stands on the rail's foot with its aft end, the airframe's or the
+    # motor's if it sticks out (the reference design's motor overhangs its tube by 10 mm).
+    aft_end = max([motor_aft] + [placed[c["id"]]["x_top_m"] + placed[c["id"]]["length_m"]
+                                 for c in parts
+                                 if c["type"] in ("nose_cone", "body_tube", "transition")])
+    dry = report["after_burnout"]
+    return {
+        "rocket_after_burnout": {
+            "mass_kg": dry["mass_kg"], "cg_m": dry["cg_m"],
+            "inertia_transverse_kg_m2": dry["inertia_transverse_kg_m2"],
+            "inertia_axial_kg_m2": dry["inertia_axial_kg_m2"],
+            "radius_m": radius, "aft_end_m": aft_end,
+        },
+        "motor": {
+            "file": motor["file"], "propellant_mass_kg": motor["propellant_mass_kg"],
+            "diameter_m": motor["diameter_m"], "length_m": motor["length_m"],
+            "aft_m": motor_aft,
+            "nozzle_radius_fraction": NOZZLE_RADIUS_FRACTION,
+        },
+        "nose": {"length_m": nose["length_m"], "kind": NOSE_KINDS[nose["shape"]],
+                 "position_m": placed[nose["id"]]["x_top_m"]},
+        "fins": [{"n": c["count"], "root_chord_m": c["root_chord_m"],
+                  "tip_chord_m": c["tip_chord_m"], "span_m": c["span_m"],
+                  "sweep_length_m": c.get("sweep_m", 0.0),
+                  "cant_angle_deg": c.get("cant_deg", 0.0),
+                  "position_m": placed[c["id"]]["x_top_m"]} for c in fins],
+        "tails": [{"top_radius_m": c["fore_diameter_m"] / 2,
+                   "bottom_radius_m": c["aft_diameter_m"] / 2,
+                   "length_m": c["length_m"],
+                   "position_m": placed[c["id"]]["x_top_m"]} for c in tails],
+        "buttons": [placed[b["id"]]["x_top_m"] + b["outer_diameter_m"] / 2
+                    for b in buttons],
+        "drag_power_off": design["drag"]["power_off"],
+        "drag_power_on": design["drag"].get("power_on", design["drag"]["power_off"]),
+        "canopies": {c["id"]: c["cd"] * math.pi * c["canopy_diameter_m"] ** 2 / 4
+                     for c in parts if c["type"] == "parachute"},
+    }
+
+
+def linear(points, name):
+    return Function([tuple(p) for p in points], "Mach Number", name,
+                    interpolation="linear", extrapolation="constant")
+
+
+def build(spec, geo, wind="wind", lever_arm=False, sound=False):
+    """The rocket in `wind` ("wind", "profile" or "calm"), RocketPy's lever arm and speed of
+    sound corrected or not."""
+    env = Environment(latitude=SITE["latitude_deg"], longitude=SITE["longitude_deg"],
+                      elevation=SITE["elevation_m"])
+    if wind == "wind":
+        u, v = wind_components(spec["wind"]["speed_m_s"], spec["wind"]["from_deg"])
+    elif wind == "profile":
+        rows = [(SITE["elevation_m"] + h, wind_components(s, d)) for h, s, d in PROFILE]
+        u = [[z, c[0]] for z, c in rows]
+        v = [[z, c[1]] for z, c in rows]
+    else:
+        u, v = 0.0, 0.0
+    env.set_atmospheric_model(type="custom_atmosphere", wind_u=u, wind_v=v)
+    if sound:
+        corrections.true_speed_of_sound(env)
+    m = geo["motor"]
+    half = 0.5 * m["length_m"]
+    eng = os.path.join(REPO, "engine", "design", "motors", m["file"] + ".eng")
+    motor = GenericMotor(
+        thrust_source=eng, burn_time=None,
+        chamber_radius=0.5 * m["diameter_m"], chamber_height=m["length_m"],
+        chamber_position=half, propellant_initial_mass=m["propellant_mass_kg"],
+        nozzle_radius=0.5 * m["diameter_m"] * m["nozzle_radius_fraction"],
+        dry_mass=0.0, center_of_dry_mass_position=half, dry_inertia=(0, 0, 0),
+        nozzle_position=0.0, coordinate_system_orientation="nozzle_to_combustion_chamber")
+    r = geo["rocket_after_burnout"]
+    rocket = Rocket(
+        radius=r["radius_m"], mass=r["mass_kg"],
+        inertia=(r["inertia_transverse_kg_m2"], r["inertia_transverse_kg_m2"],
+                 r["inertia_axial_kg_m2"]),
+        power_off_drag=linear(geo["drag_power_off"], "Drag Coefficient with Power Off"),
+        power_on_drag=linear(geo["drag_power_on"], "Drag Coefficient with Power On"),
+        center_of_mass_without_motor=r["cg_m"], coordinate_system_orientation="nose_to_tail")
+    rocket.add_motor(motor, position=m["aft_m"])
+    n = geo["nose"]
+    rocket.add_nose(length=n["length_m"], kind=n["kind"], position=n["position_m"])
+    for k in geo["fins"]:
+        rocket.add_trapezoidal_fins(
+            n=k["n"], root_chord=k["root_chord_m"], tip_chord=k["tip_chord_m"],
+            span=k["span_m"], position=k["position_m"], cant_angle=k["cant_angle_deg"],
+            sweep_length=k["sweep_length_m"])
+    for t in geo["tails"]:
+        rocket.add_tail(top_radius=t["top_radius_m"], bottom_radius=t["bottom_radius_m"],
+                        length=t["length_m"], position=t["position_m"])
+    upper, lower = geo["buttons"]
+    rocket.set_rail_buttons(upper_button_position=upper, lower_button_position=lower,
+                            angular_position=0.0)
+    chutes = parachutes(spec, geo)
+    rocket.add_parachute("main", cd_s=chutes["main"]["cd_s_m2"],
+                         trigger=chutes["main"]["height_m"], sampling_rate=SAMPLING_HZ,
+                         lag=chutes["main"]["lag_s"])
+    rocket.add_parachute("drogue", cd_s=chutes["drogue"]["cd_s_m2"], trigger="apogee",
+                         sampling_rate=SAMPLING_HZ, lag=chutes["drogue"]["lag_s"])
+    if lever_arm:
+        corrections.correct(rocket)
+    rail = spec["rail"]
+    flight = Flight(rocket=rocket, environment=env,
+                    rail_length=rail["length_m"] - (r["aft_end_m"] - m["aft_m"]),
+                    inclination=rail["inclination_deg"], heading=rail["heading_deg"])
+    return env, motor, rocket, flight
+
+
+def parachutes(spec, geo):
+    """RocketPy's canopies: the design's drogue and main ("drogue" and "chute"), CdS from
+    their diameter and Cd, each opening 1 s after its trigger."""
+    return {
+        "drogue": {"cd_s_m2": geo["canopies"]["drogue"], "lag_s": 1.0},
+        "main": {"cd_s_m2": geo["canopies"]["chute"], "lag_s": 1.0,
+                 "height_m": spec["main_height_m"]},
+    }
+
+
+def outputs(env, rocket, flight):
+    """The common figures, and the roll rate about the body's axis at burnout and at
+    apogee (rad/s)."""
+    burn = f(rocket.motor.burn_out_time)
+    return {
+        **figures.flight_figures(env, flight),
+        "burnout_time_s": burn,
+        "roll_rate_at_burnout_rad_s": f(flight.w3(burn)),
+        "roll_rate_at_apogee_rad_s": f(flight.w3(flight.apogee_time)),
+    }
+
+
+def case(spec, geo, **kw):
+    env, _, rocket, flight = build(spec, geo, **kw)
+    return outputs(env, rocket, flight)
+
+
+def one(name, spec):
+    design_path = os.path.join(REPO, spec["design"])
+    with open(design_path) as fh:
+        design = json.load(fh)
+    geo = geometry(design, inspect(design_path))
+    _, motor, rocket, _ = build(spec, geo, wind="calm")
+    cases = {}
+    for wind in ("wind", "profile", "calm"):
+        cases[wind] = {
+            "outputs": case(spec, geo, wind=wind),
+            "lever_arm_corrected": case(spec, geo, wind=wind, lever_arm=True),
+            "as_hpr_models": case(spec, geo, wind=wind, lever_arm=True, sound=True),
+        }
+        h = cases[wind]["as_hpr_models"]
+        print(f"{name} {wind}: apogee {h['apogee_agl_m']:.2f} m at {h['apogee_time_s']:.3f} s"
+              f" ({cases[wind]['outputs']['apogee_agl_m']:.2f} as RocketPy is); roll at"
+              f" burnout {h['roll_rate_at_burnout_rad_s']:.3f} rad/s; impact"
+              f" ({h['impact_x_m']:.1f}, {h['impact_y_m']:.1f}) at {h['impact_time_s']:.2f} s")
+    u, v = wind_components(spec["wind"]["speed_m_s"], spec["wind"]["from_deg"])
+    r, m = geo["rocket_after_burnout"], geo["motor"]
+    return {
+        "inputs": {
+            **geo,
+            "design": spec["design"],
+            "site": SITE,
+            "wind": {**spec["wind"], "wind_u_toward_east_m_s": u,
+                     "wind_v_toward_north_m_s": v},
+            "wind_profile": [{"height_agl_m": h, "speed_m_s": s, "from_deg": d}
+                             for h, s, d in PROFILE],
+            "rail": {**spec["rail"], "rocketpy_rail_length_m":
+                     spec["rail"]["length_m"] - (r["aft_end_m"] - m["aft_m"])},
+            "parachutes": parachutes(spec, geo),
+            "sampling_rate_hz": SAMPLING_HZ,
+        },
+        "checks": {
+            "liftoff_mass_kg": f(rocket.total_mass(0)),
+            "liftoff_center_of_mass_m": f(rocket.center_of_mass(0)),
+            "propellant_mass_kg": f(motor.propellant_initial_mass),
+            "total_impulse_ns": f(motor.total_impulse),
+            "burn_out_time_s": f(motor.burn_out_time),
+            "center_of_pressure_mach0_m": f(rocket.cp_position(0)),
+            "static_margin_liftoff_cal": f(rocket.static_margin(0)),
+        },
+        "cases": cases,
+    }
+
+
+def main():
+    np.random.seed(20261202)  # parachute noise is off; nothing is drawn
+    ref = {
+        "generator": "validation/rocketpy/design_crosscheck.py",
+        "rocketpy_version": importlib.metadata.version("rocketpy"),
+        "rockets": {name: one(name, spec) for name, spec in ROCKETS.items()},
+    }
+    with open(OUT, "w") as fh:
+        json.dump(ref, fh, indent=1, sort_keys=True)
+        fh.write("\n")
+    print(f"wrote {OUT}")
+
+
+if __name__ == "__main__":
+    main()
