@@ -5,7 +5,8 @@
 //! As RocketPy does (`Flight.u_dot_generalized`): the air's velocity relative to each surface
 //! is `u = −(v_O + ω × p_i − wind_i)` in body axes, with `wind_i` the wind at the surface's
 //! own height (in a wind that changes with height the nose and the fins meet different air:
-//! the shear turns the rocket as a rotation of the air would); the surface's angle of attack
+//! the shear turns the rocket as a rotation of the air would; the caller gives it, from the
+//! wind and its shear at the center of mass); the surface's angle of attack
 //! is the angle between `u` and `−b3`; its normal force is `½ ρ |u|² A_ref CNα(M) α` along the
 //! part of `u` across the axis. Drag is `½ ρ V² A_ref Cd(M)` along `−b3`, with `V` the center
 //! of mass's speed through the air. Tables are built once ([`AeroTables`]); a call allocates

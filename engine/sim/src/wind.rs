@@ -229,6 +229,34 @@ impl Wind {
         })
     }
 
+    /// [`Wind::velocity_en`] and its rate of change with height there, `[east, north]` per
+    /// metre (the slope of the table's segment holding the height; zero for a constant wind
+    /// and below or above the table).
+    #[inline]
+    pub fn velocity_and_shear_en(&self, height_agl_m: f64) -> ([f64; 2], [f64; 2]) {
+        match &self.profile {
+            Profile::Constant(v) => (*v, [0.0, 0.0]),
+            Profile::Table {
+                heights_m,
+                velocity_en,
+            } => {
+                let i = heights_m.partition_point(|&z| z <= height_agl_m);
+                if i == 0 {
+                    return (velocity_en[0], [0.0, 0.0]);
+                }
+                if i == heights_m.len() {
+                    return (velocity_en[i - 1], [0.0, 0.0]);
+                }
+                let (z0, z1) = (heights_m[i - 1], heights_m[i]);
+                let s = (height_agl_m - z0) / (z1 - z0);
+                let (a, b) = (velocity_en[i - 1], velocity_en[i]);
+                let (de, dn) = (b[0] - a[0], b[1] - a[1]);
+                let dz = z1 - z0;
+                ([a[0] + s * de, a[1] + s * dn], [de / dz, dn / dz])
+            }
+        }
+    }
+
     /// Air velocity over the ground at `height_agl_m` above the launch site, as
     /// `[east, north]` m/s.
     #[inline]
@@ -390,6 +418,30 @@ mod tests {
         assert!(close(w.velocity_en(100.0), [-10.0, 0.0]));
         assert!(close(w.velocity_en(-20.0), [0.0, -10.0]));
         assert!(close(w.velocity_en(5_000.0), [-10.0, 0.0]));
+    }
+
+    #[test]
+    fn the_shear_is_the_slope_of_the_segment_and_zero_off_the_table_and_in_a_constant_wind() {
+        let w = north_then_east();
+        // (0, −10) at 0 m to (−10, 0) at 100 m: (−0.1, +0.1) per metre between them.
+        for h in [0.0, 37.5, 99.9] {
+            let (v, shear) = w.velocity_and_shear_en(h);
+            assert_eq!(
+                v,
+                w.velocity_en(h),
+                "the same value as velocity_en at {h} m"
+            );
+            assert!(close(shear, [-0.1, 0.1]), "{shear:?} at {h} m");
+        }
+        for h in [-20.0, 100.0, 5_000.0] {
+            assert_eq!(w.velocity_and_shear_en(h).1, [0.0, 0.0], "{h} m");
+        }
+        let c = Wind::constant(7.0, 30.0).unwrap();
+        assert_eq!(
+            c.velocity_and_shear_en(55.0),
+            (c.velocity_en(55.0), [0.0, 0.0])
+        );
+        assert!(w.varies_with_height() && !c.varies_with_height());
     }
 
     #[test]

@@ -14,8 +14,11 @@ pub trait ModelLanes<S: Real> {
     fn air(&self, h_agl_m: S) -> (S, S);
     /// Wind, inertial, at a height above the site.
     fn wind(&self, h_agl_m: S) -> V3<S>;
-    /// Whether any lane's wind changes with height (a profile): only then does each lifting
-    /// surface look its own wind up (a constant wind is the same at every height, bit for bit).
+    /// Wind, inertial, at a height above the site, and its rate of change with height there
+    /// (per metre; zero in a constant wind).
+    fn wind_and_shear(&self, h_agl_m: S) -> (V3<S>, V3<S>);
+    /// Whether any lane's wind changes with height (a profile): only then do the lifting
+    /// surfaces meet winds of their own.
     fn wind_sheared(&self) -> bool;
     /// Gravity's magnitude at a height above the site.
     fn gravity(&self, h_agl_m: S) -> S;
@@ -40,6 +43,11 @@ impl ModelLanes<f64> for FlightModel {
     fn wind(&self, h: f64) -> V3<f64> {
         let [e, n] = self.env.wind.velocity_en(h);
         V3::new(e, n, 0.0)
+    }
+    #[inline(always)]
+    fn wind_and_shear(&self, h: f64) -> (V3<f64>, V3<f64>) {
+        let ([e, n], [de, dn]) = self.env.wind.velocity_and_shear_en(h);
+        (V3::new(e, n, 0.0), V3::new(de, dn, 0.0))
     }
     #[inline(always)]
     fn wind_sheared(&self) -> bool {
@@ -109,6 +117,15 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     fn wind(&self, h: F64x4) -> V3<F64x4> {
         let w: [V3<f64>; 4] = std::array::from_fn(|i| self.models[i].wind(h.0[i]));
         crate::lanes::pack_v3([&w[0], &w[1], &w[2], &w[3]])
+    }
+    #[inline(always)]
+    fn wind_and_shear(&self, h: F64x4) -> (V3<F64x4>, V3<F64x4>) {
+        let w: [(V3<f64>, V3<f64>); 4] =
+            std::array::from_fn(|i| self.models[i].wind_and_shear(h.0[i]));
+        (
+            crate::lanes::pack_v3([&w[0].0, &w[1].0, &w[2].0, &w[3].0]),
+            crate::lanes::pack_v3([&w[0].1, &w[1].1, &w[2].1, &w[3].1]),
+        )
     }
     #[inline(always)]
     fn wind_sheared(&self) -> bool {
@@ -310,16 +327,23 @@ fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     let omega = V3::new(y[10], y[11], y[12]);
     let h = y[2] + r.mul_v(&ms.r).z;
     let (rho, speed_of_sound) = lanes.air(h);
-    let wind_b = r.tr_mul_v(&lanes.wind(h));
     let v_o_b = r.tr_mul_v(&V3::new(y[3], y[4], y[5]));
-    let v_cm_air_b = v_o_b - wind_b + omega.cross(&ms.r) + ms.r_rate;
-    // Each surface meets the wind at its own height: O's, less `x` along the axis's rise.
-    // A constant wind is the same everywhere: `wind_b`, the very value a look-up would give.
+    // Each surface meets the wind at its own height, `x` aft of O along the axis's rise:
+    // in a profile, the wind at the center of mass plus the shear there times the height
+    // between them (the table's own value while both are in one segment of it; the
+    // surfaces lie within a body length of the center). A constant wind is `wind_b` itself.
     let rise = r.m[2][2];
     let sheared = lanes.wind_sheared();
+    let (wind_b, shear_b) = if sheared {
+        let (w, shear) = lanes.wind_and_shear(h);
+        (r.tr_mul_v(&w), r.tr_mul_v(&shear))
+    } else {
+        (r.tr_mul_v(&lanes.wind(h)), V3::zero())
+    };
+    let v_cm_air_b = v_o_b - wind_b + omega.cross(&ms.r) + ms.r_rate;
     let wind_b_at = |x_cp: S| {
         if sheared {
-            r.tr_mul_v(&lanes.wind(y[2] - rise * x_cp))
+            wind_b + shear_b.scale(y[2] - rise * x_cp - h)
         } else {
             wind_b
         }
