@@ -8,6 +8,9 @@ is compared:
 * ``canted_boattail`` (``validation/designs/crosscheck-54mm-canted-boattail.json``): what
   Calisto leaves out: a von Karman nose, three fins canted 1 degree (it spins up to 36
   rad/s), a conical boattail, the AeroTech J350W (peak 707 N on 1.26 kg, Mach 1.38);
+* ``four_fin_lug`` (``validation/designs/crosscheck-75mm-four-fin-lug.json``): a 75 mm
+  rocket with a conical nose, four fins, a launch lug for its rail guide and a boattail, on
+  the AeroTech K1100T (3.6 kg at liftoff, Mach 1.2);
 * ``reference_design`` (``validation/designs/synthetic-54mm-three-fin.json``): the moving-mass
   specification's 54 mm design, ogive nose, three plain fins, on its Cesaroni I175.
 
@@ -24,7 +27,8 @@ What RocketPy is given (``rocketpy_rocket``):
   and diameter at its mid-length, nozzle radius 0.88 of the motor's radius (hpr-mc's
   ``NOZZLE_RADIUS_FRACTION``);
 * the nose, the fin sets and the conical transitions from the design's geometry, placed
-  where ``inspect`` puts them; the first two rail buttons; the design's drag curve
+  where ``inspect`` puts them; the rail guides as RocketPy's two buttons (a lug's two ends);
+  the design's drag curve
   (power on = power off when the design gives one), interpolated linearly in Mach as hpr-mc
   does (RocketPy reads a bare list of points as a cubic spline).
 
@@ -71,8 +75,10 @@ PROFILE = [(0.0, 2.0, 270.0), (500.0, 6.0, 250.0), (1500.0, 12.0, 290.0),
            (3000.0, 15.0, 310.0)]
 SAMPLING_HZ = 105.0
 NOZZLE_RADIUS_FRACTION = 0.88
+# Nose shapes whose Barrowman center of pressure RocketPy computes as hpr-mc does (not its
+# LV-Haack, hard-coded at 0.563 L where the volume gives 7/16 L, nor its parabolic).
 NOSE_KINDS = {"conical": "conical", "ogive": "ogive", "von_karman": "vonKarman",
-              "lv_haack": "lvhaack", "elliptical": "elliptical"}
+              "elliptical": "elliptical"}
 
 ROCKETS = {
     "canted_boattail": {
@@ -81,6 +87,13 @@ ROCKETS = {
         "rail": {"length_m": 3.0, "inclination_deg": 85.0, "heading_deg": 40.0},
         "wind": {"from_deg": 250.0, "speed_m_s": 6.0},
         "main_height_m": 250.0,
+    },
+    "four_fin_lug": {
+        "design": "validation/designs/crosscheck-75mm-four-fin-lug.json",
+        # 3.5 m long, 86 deg up, heading 300 deg (toward the west-north-west).
+        "rail": {"length_m": 3.5, "inclination_deg": 86.0, "heading_deg": 300.0},
+        "wind": {"from_deg": 20.0, "speed_m_s": 7.0},
+        "main_height_m": 300.0,
     },
     "reference_design": {
         "design": "validation/designs/synthetic-54mm-three-fin.json",
@@ -122,7 +135,16 @@ def geometry(design, report):
     tails = [c for c in parts if c["type"] == "transition"]
     if any(t["shape"] != "conical" for t in tails):
         raise SystemExit("only conical transitions map to RocketPy's Tail")
-    buttons = [c for c in parts if c["type"] == "rail_button"][:2]
+    # Rail guides as hpr-mc takes them (docs/design-format.md): the first two rail buttons
+    # (their centers) or launch lugs (both ends of each); the fore-most and aft-most points.
+    guides = [c for c in parts if c["type"] in ("rail_button", "launch_lug")][:2]
+    points = []
+    for g in guides:
+        top = placed[g["id"]]["x_top_m"]
+        if g["type"] == "rail_button":
+            points.append(top + g["outer_diameter_m"] / 2)
+        else:
+            points += [top, top + g["length_m"]]
     mount = next(c for c in parts if c["type"] == "inner_tube" and "motor_mount" in c)
     mm = placed[mount["id"]]
     motor = report["motor"]
@@ -157,8 +179,7 @@ def geometry(design, report):
                    "bottom_radius_m": c["aft_diameter_m"] / 2,
                    "length_m": c["length_m"],
                    "position_m": placed[c["id"]]["x_top_m"]} for c in tails],
-        "buttons": [placed[b["id"]]["x_top_m"] + b["outer_diameter_m"] / 2
-                    for b in buttons],
+        "buttons": [min(points), max(points)],
         "drag_power_off": design["drag"]["power_off"],
         "drag_power_on": design["drag"].get("power_on", design["drag"]["power_off"]),
         "canopies": {c["id"]: c["cd"] * math.pi * c["canopy_diameter_m"] ** 2 / 4

@@ -8,6 +8,10 @@
 //!   to 36 rad/s), a conical boattail (its negative normal force and its center of
 //!   pressure), a short hard J350W burn (peak 707 N on 1.26 kg, Mach 1.38), a 3 m rail
 //!   heading north-east, 6 m/s across it;
+//! * `four_fin_lug` (validation/designs/crosscheck-75mm-four-fin-lug.json): a 75 mm rocket
+//!   of 3.66 kg with a conical nose, four fins, a boattail and a launch lug for its rail
+//!   guide (RocketPy's two buttons at the lug's ends), on the K1100T to Mach 1.22, a 3.5 m
+//!   rail heading west-north-west, 7 m/s from the north-north-east;
 //! * `reference_design` (validation/designs/synthetic-54mm-three-fin.json): the moving-mass
 //!   spec's design on its I175 (Mach 0.98), its motor standing 10 mm out of its tube, a 2.5 m
 //!   rail heading south-south-west, 5 m/s from the east-south-east.
@@ -31,20 +35,24 @@
 //! speed of sound made the true one (its own is a chord of sqrt(γRT) between the ISA
 //! layers, 0.13 % low at 2 km): `as_hpr_models`, validation/rocketpy/corrections.py, which is
 //! what hpr models. Measured (release build, default integrator), the largest over the three
-//! winds, canted rocket / reference design:
+//! winds, canted rocket / four-finned rocket / reference design:
 //!
-//! * apogee −0.15 / −0.18 m (−0.006 % / −0.01 %), its time within 0.5 / 1.0 ms, its position
-//!   within 0.11 / 0.16 m;
-//! * rail exit at the same time to 1e-5 s, the airframe's speed there within 0.004 / 0.002 m/s;
-//! * maximum speed within 0.005 / 0.052 m/s, maximum Mach within 1e-4 / 2e-4;
+//! * apogee −0.15 / −0.19 / −0.18 m (−0.01 % at most), its time within 0.5 / 0.9 / 1.0 ms,
+//!   its position within 0.11 / 0.17 / 0.16 m;
+//! * rail exit at the same time to 1e-5 s, the airframe's speed there within 0.004 / 0.008 /
+//!   0.002 m/s;
+//! * maximum speed within 0.005 / 0.055 / 0.052 m/s, maximum Mach within 1e-4 / 2e-4 / 2e-4;
 //! * the canted rocket's roll rate at burnout within 0.0024 rad/s of 36.39 (0.007 %), at
 //!   apogee within 0.005 rad/s;
-//! * drogue open within 7 / 10 ms, main open within 0.014 / 0.019 s, landing within 0.008 /
-//!   0.010 s, descent rate within 0.0001 / 0.0003 m/s;
-//! * landing point within 0.35 / 0.36 m after 1.9 / 1.2 km of drift (in the profile, whose
-//!   shear turns the apogee's 0.15 m of height into 0.0015 m/s of drift for 200 s).
+//! * drogue open within 7 / 6 / 10 ms, main open within 0.014 / 0.014 / 0.019 s, landing
+//!   within 0.008 / 0.011 / 0.010 s, descent rate within 0.0003 m/s;
+//! * landing point within 0.35 / 0.43 / 0.36 m after 1.9 / 1.3 / 1.2 km of drift (in the
+//!   profile, whose shear turns the apogee's 0.15 m of height into 0.0015 m/s of drift for
+//!   200 s; within 0.06 m in the constant wind and in still air).
 //!
-//! The tolerances are about twice these. Four things found on the way, all fixed: a rail
+//! The tolerances are about twice these. (An LV-Haack nose is not flown: RocketPy puts its
+//! center of pressure at 0.563 L, where its volume puts it at 7/16 L; see
+//! `hpr_design::aero::barrowman`.) Four things found on the way, all fixed: a rail
 //! guide's off-axis grams had turned the rocket 2° off its heading in azimuth as it left
 //! the rail (hpr now spreads rail guides round the axis, as OpenRocket and RocketPy keep the
 //! center of mass on it); hpr had read the wind at the center of mass for every surface,
@@ -344,7 +352,7 @@ fn compare(rocket: &str, case: &str) {
         "airframe's rail exit speed, m/s",
         airframe_rail_exit_speed(&sim, &c.flight),
         num(rp, "/rail_exit_speed_m_s"),
-        0.008,
+        0.015,
     ));
     let mut bad = Vec::new();
     for (name, hpr, rp, tol) in rows {
@@ -385,6 +393,27 @@ fn the_canted_boattailed_rocket_flies_as_rocketpy_flies_it_in_a_wind_that_turns_
 #[test]
 fn the_canted_boattailed_rocket_flies_as_rocketpy_flies_it_in_still_air() {
     compare("canted_boattail", "calm");
+}
+
+#[test]
+fn rocketpy_is_handed_hpr_s_own_four_finned_rocket() {
+    handed_over("four_fin_lug");
+}
+
+#[test]
+fn the_four_finned_rocket_on_a_launch_lug_flies_as_rocketpy_flies_it_in_wind() {
+    compare("four_fin_lug", "wind");
+}
+
+#[test]
+fn the_four_finned_rocket_on_a_launch_lug_flies_as_rocketpy_flies_it_in_a_wind_that_turns_with_height(
+) {
+    compare("four_fin_lug", "profile");
+}
+
+#[test]
+fn the_four_finned_rocket_on_a_launch_lug_flies_as_rocketpy_flies_it_in_still_air() {
+    compare("four_fin_lug", "calm");
 }
 
 #[test]
