@@ -229,40 +229,13 @@ impl Wind {
         })
     }
 
-    /// [`Wind::velocity_en`] and its rate of change with height there, `[east, north]` per
-    /// metre (the slope of the table's segment holding the height; zero for a constant wind
-    /// and below or above the table).
-    #[inline]
-    pub fn velocity_and_shear_en(&self, height_agl_m: f64) -> ([f64; 2], [f64; 2]) {
+    /// Where `height_agl_m` falls: on a constant wind or an end row of the table (the
+    /// velocity there), or between two rows (theirs, the fraction of the way and the height
+    /// between them).
+    #[inline(always)]
+    fn locate(&self, height_agl_m: f64) -> Located {
         match &self.profile {
-            Profile::Constant(v) => (*v, [0.0, 0.0]),
-            Profile::Table {
-                heights_m,
-                velocity_en,
-            } => {
-                let i = heights_m.partition_point(|&z| z <= height_agl_m);
-                if i == 0 {
-                    return (velocity_en[0], [0.0, 0.0]);
-                }
-                if i == heights_m.len() {
-                    return (velocity_en[i - 1], [0.0, 0.0]);
-                }
-                let (z0, z1) = (heights_m[i - 1], heights_m[i]);
-                let s = (height_agl_m - z0) / (z1 - z0);
-                let (a, b) = (velocity_en[i - 1], velocity_en[i]);
-                let (de, dn) = (b[0] - a[0], b[1] - a[1]);
-                let dz = z1 - z0;
-                ([a[0] + s * de, a[1] + s * dn], [de / dz, dn / dz])
-            }
-        }
-    }
-
-    /// Air velocity over the ground at `height_agl_m` above the launch site, as
-    /// `[east, north]` m/s.
-    #[inline]
-    pub fn velocity_en(&self, height_agl_m: f64) -> [f64; 2] {
-        match &self.profile {
-            Profile::Constant(v) => *v,
+            Profile::Constant(v) => Located::Flat(*v),
             Profile::Table {
                 heights_m,
                 velocity_en,
@@ -270,18 +243,58 @@ impl Wind {
                 // Number of rows at or below h: 0 → below the table, n → above it.
                 let i = heights_m.partition_point(|&z| z <= height_agl_m);
                 if i == 0 {
-                    return velocity_en[0];
+                    return Located::Flat(velocity_en[0]);
                 }
                 if i == heights_m.len() {
-                    return velocity_en[i - 1];
+                    return Located::Flat(velocity_en[i - 1]);
                 }
                 let (z0, z1) = (heights_m[i - 1], heights_m[i]);
-                let s = (height_agl_m - z0) / (z1 - z0);
-                let (a, b) = (velocity_en[i - 1], velocity_en[i]);
+                Located::Between {
+                    a: velocity_en[i - 1],
+                    b: velocity_en[i],
+                    s: (height_agl_m - z0) / (z1 - z0),
+                    dz: z1 - z0,
+                }
+            }
+        }
+    }
+
+    /// [`Wind::velocity_en`] and its rate of change with height there, `[east, north]` per
+    /// metre (the slope of the table's segment holding the height; zero for a constant wind
+    /// and below or above the table).
+    #[inline(always)]
+    pub fn velocity_and_shear_en(&self, height_agl_m: f64) -> ([f64; 2], [f64; 2]) {
+        match self.locate(height_agl_m) {
+            Located::Flat(v) => (v, [0.0, 0.0]),
+            Located::Between { a, b, s, dz } => {
+                let (de, dn) = (b[0] - a[0], b[1] - a[1]);
+                ([a[0] + s * de, a[1] + s * dn], [de / dz, dn / dz])
+            }
+        }
+    }
+
+    /// Air velocity over the ground at `height_agl_m` above the launch site, as
+    /// `[east, north]` m/s.
+    #[inline(always)]
+    pub fn velocity_en(&self, height_agl_m: f64) -> [f64; 2] {
+        match self.locate(height_agl_m) {
+            Located::Flat(v) => v,
+            Located::Between { a, b, s, .. } => {
                 [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])]
             }
         }
     }
+}
+
+/// Where a height falls in a wind ([`Wind::locate`]).
+enum Located {
+    Flat([f64; 2]),
+    Between {
+        a: [f64; 2],
+        b: [f64; 2],
+        s: f64,
+        dz: f64,
+    },
 }
 
 fn check_speed_direction(row: Option<usize>, speed: f64, from_deg: f64) -> Result<(), WindError> {

@@ -115,13 +115,19 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     }
     #[inline(always)]
     fn wind(&self, h: F64x4) -> V3<F64x4> {
-        let w: [V3<f64>; 4] = std::array::from_fn(|i| self.models[i].wind(h.0[i]));
+        // A plain loop, which the compiler inlines (`array::from_fn` left a call per lane).
+        let mut w = [V3::<f64>::zero(); 4];
+        for (i, w) in w.iter_mut().enumerate() {
+            *w = self.models[i].wind(h.0[i]);
+        }
         crate::lanes::pack_v3([&w[0], &w[1], &w[2], &w[3]])
     }
     #[inline(always)]
     fn wind_and_shear(&self, h: F64x4) -> (V3<F64x4>, V3<F64x4>) {
-        let w: [(V3<f64>, V3<f64>); 4] =
-            std::array::from_fn(|i| self.models[i].wind_and_shear(h.0[i]));
+        let mut w = [(V3::<f64>::zero(), V3::<f64>::zero()); 4];
+        for (i, w) in w.iter_mut().enumerate() {
+            *w = self.models[i].wind_and_shear(h.0[i]);
+        }
         (
             crate::lanes::pack_v3([&w[0].0, &w[1].0, &w[2].0, &w[3].0]),
             crate::lanes::pack_v3([&w[0].1, &w[1].1, &w[2].1, &w[3].1]),
