@@ -91,6 +91,10 @@ struct Crosscheck {
     /// Height and horizontal offset (east, north) of the center of dry mass at the start, m.
     start_height: f64,
     start_en: [f64; 2],
+    /// The airframe's speed at rail exit, m/s: hpr's metric is the center of mass's, which
+    /// drifts forward through the airframe at `r′` while the propellant burns; RocketPy's is
+    /// the center of dry mass's, a point of the airframe.
+    airframe_rail_exit_speed: f64,
 }
 
 /// The reference's wind for `case`: `wind` (constant), `profile` (rows by height above the
@@ -173,10 +177,15 @@ fn fly(r: &Value, case: &str) -> Crosscheck {
         ),
     ];
     let sim = sim.with_parachutes(chutes).expect("parachutes");
+    let flight = sim.run(&mut ()).expect("flies");
+    let m = &flight.metrics;
+    let airframe_rail_exit_speed =
+        m.rail_exit_speed_m_s.unwrap() - mass_at(&sim, m.rail_exit_time_s.unwrap()).r_cm_rate.z;
     Crosscheck {
-        flight: sim.run(&mut ()).expect("flies"),
+        flight,
         start_height,
         start_en,
+        airframe_rail_exit_speed,
     }
 }
 
@@ -229,6 +238,12 @@ fn rows(c: &Crosscheck, rp: &Value) -> Vec<(&'static str, f64, f64, f64)> {
             at("/rail_exit_time_s"),
             2e-4,
         ),
+        (
+            "airframe's rail exit speed, m/s",
+            c.airframe_rail_exit_speed,
+            at("/rail_exit_speed_m_s"),
+            0.015,
+        ),
         ("max speed, m/s", m.max_speed_m_s, at("/max_speed_m_s"), 0.1),
         ("max Mach", m.max_mach, at("/max_mach"), 3e-4),
         (
@@ -275,14 +290,6 @@ fn rows(c: &Crosscheck, rp: &Value) -> Vec<(&'static str, f64, f64, f64)> {
             5e-4,
         ),
     ]
-}
-
-/// The airframe's speed at rail exit: hpr's is the center of mass's, which drifts forward
-/// through the airframe at `r′` while the propellant burns; RocketPy's is the center of dry
-/// mass's, a point of the airframe.
-fn airframe_rail_exit_speed(sim: &Simulation, f: &Flight) -> f64 {
-    let t = f.metrics.rail_exit_time_s.unwrap();
-    f.metrics.rail_exit_speed_m_s.unwrap() - mass_at(sim, t).r_cm_rate.z
 }
 
 fn handed_over(rocket: &str) {
@@ -346,16 +353,8 @@ fn compare(rocket: &str, case: &str) {
     let r = reference(rocket);
     let rp = r.pointer(&format!("/cases/{case}/as_hpr_models")).unwrap();
     let c = fly(&r, case);
-    let sim = simulation(&r, case);
-    let mut rows = rows(&c, rp);
-    rows.push((
-        "airframe's rail exit speed, m/s",
-        airframe_rail_exit_speed(&sim, &c.flight),
-        num(rp, "/rail_exit_speed_m_s"),
-        0.015,
-    ));
     let mut bad = Vec::new();
-    for (name, hpr, rp, tol) in rows {
+    for (name, hpr, rp, tol) in rows(&c, rp) {
         let d = hpr - rp;
         println!(
             "{case:<5} {name:<32} hpr {hpr:12.4}  RocketPy {rp:12.4}  diff {d:+.4}  (tol {tol})"
