@@ -1,8 +1,10 @@
 //! Campaigns end to end on a tiny scenario (10 flights with loose tolerances): the Parquet
 //! files read back with the parquet crate's Arrow reader, determinism whatever the threads and
 //! shards, resumption of an interrupted run, and the exit codes of `hpr-mc`; winds scaled and
-//! turned (`wind`) and `fly --scenario` (`fly`) on a small windy scenario.
+//! turned (`wind`), the site (`site`), canopy shapes (`canopy`) and `fly --scenario` (`fly`) on a
+//! small windy scenario.
 
+mod canopy;
 mod fly;
 mod site;
 mod wind;
@@ -579,4 +581,42 @@ drag_scale = {{ dist = "normal", sigma = 0.05, relative = true }}
 "#,
         design.display()
     )
+}
+
+/// The apogee and landing point of the flight [`windy`] describes, set up by hand as
+/// `Simulation` (its rail, its integrator's time limit) with the given site, parachute and
+/// drag scale.
+fn flown_by_hand(
+    env: hpr_sim::Environment,
+    chute: hpr_sim::Parachute,
+    drag_scale: f64,
+) -> [f64; 4] {
+    let design = hpr_design::Design::load(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("validation/designs/synthetic-54mm-three-fin.json"),
+    )
+    .unwrap();
+    let rail = hpr_sim::Rail {
+        inclination_deg: 85.0,
+        ..hpr_sim::Rail::default()
+    };
+    let f = hpr_sim::Simulation::new(
+        design,
+        hpr_design::motor::find("Cesaroni_I175").unwrap(),
+        env,
+        rail,
+    )
+    .and_then(|s| s.with_parachutes(vec![chute]))
+    .and_then(|s| s.with_drag_scale(drag_scale))
+    .and_then(|s| {
+        s.with_options(hpr_sim::SimOptions {
+            max_time_s: 900.0,
+            ..hpr_sim::SimOptions::default()
+        })
+    })
+    .unwrap()
+    .run(&mut ())
+    .unwrap();
+    let [x, y] = f.metrics.landing_position_m.unwrap();
+    [drag_scale, f.metrics.apogee_m.unwrap(), x, y]
 }

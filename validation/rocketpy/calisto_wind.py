@@ -35,8 +35,8 @@ and the nozzle's positions in its equations of motion (``LEVER_ARM`` below:
 RocketPy issue #1186). Then as hpr-mc models the flight, the lever arm corrected:
 on the turning Earth (``as_hpr_models``, what hpr-mc flies with the site's
 latitude given) and with Coriolis off (``as_hpr_models_inertial``, what it
-flies without a latitude). hpr-mc's canopies carry RocketPy's default added
-mass (a hemisphere of air sized by the open CdS).
+flies without a latitude). hpr-mc's canopies carry RocketPy's added mass: its
+main is RocketPy's less the drogue, in CdS and in air (see NOTES.md, Canopies).
 
 Run from anywhere:  .venv/bin/python validation/rocketpy/calisto_wind.py
 Writes validation/rocketpy/calisto_wind_reference.json next to this file.

@@ -377,30 +377,74 @@ pub fn canopy_added_mass_coefficient(p: f64) -> f64 {
     1.068 * (1.0 - 1.465 * p - 0.25975 * p * p + 1.2626 * p * p * p)
 }
 
-/// `m_a / (ρ CdS^{3/2})` for the open canopies seen as one hemispherical canopy of their total
-/// CdS: radius and height `R = √(CdS / (1.4 π))`, added mass `C_a ρ (2/3) π R² H` (RocketPy
-/// 1.13's `u_dot_parachute` with its default canopy). Checked against the formula in the tests.
-pub const CANOPY_ADDED_MASS_PER_RHO_CDS_1_5: f64 = 0.227_060_450_656_730_7;
+/// An inflated canopy's shape, which sets the air it carries along: RocketPy's hemispheroid of
+/// radius `R` and height `H` (its `Parachute(radius, height, porosity)`). What is not given
+/// takes RocketPy's default: a hemisphere (`H = R`) sized from the canopy's CdS,
+/// `R = √(CdS / (1.4 π))`, of porosity 0.0432.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CanopyShape {
+    /// Radius of the inflated canopy, m (`None`: sized from its CdS).
+    pub radius_m: Option<f64>,
+    /// Height of the inflated canopy (its unique semi-axis), m (`None`: its radius).
+    pub height_m: Option<f64>,
+    /// Geometric porosity: the canopy's open area over its whole area, in [0, 1).
+    pub porosity: f64,
+}
 
-/// Descent under a canopy: the center of mass as a point with the canopy's drag, gravity and
-/// the Coriolis acceleration `−2 Ω × v`, on lanes (one flight, or four side by side). `cds_m2`
-/// is the sum of the open canopies' CdS. The air the canopy carries along, its added mass
-/// `m_a` ([`CANOPY_ADDED_MASS_PER_RHO_CDS_1_5`]), is accelerated with the rocket but has no
-/// weight: `(m + m_a) a = D − m g`. The steady descent is the same; the opening is slower.
-/// State `[x, y, z, vx, vy, vz]` of the center of mass.
+impl Default for CanopyShape {
+    fn default() -> CanopyShape {
+        CanopyShape {
+            radius_m: None,
+            height_m: None,
+            porosity: CANOPY_POROSITY,
+        }
+    }
+}
+
+impl CanopyShape {
+    /// The volume of air an open canopy of drag area `cds_m2` carries along, m³: its added mass
+    /// per unit air density, `C_a (2/3) π R² H` (RocketPy 1.13's `u_dot_parachute`).
+    pub fn added_air_volume_m3(&self, cds_m2: f64) -> f64 {
+        let r = self
+            .radius_m
+            .unwrap_or_else(|| (cds_m2 / (CANOPY_CD * std::f64::consts::PI)).sqrt());
+        let h = self.height_m.unwrap_or(r);
+        canopy_added_mass_coefficient(self.porosity)
+            * (2.0 / 3.0)
+            * std::f64::consts::PI
+            * r
+            * r
+            * h
+    }
+}
+
+/// The open canopies as the descent sees them, on lanes: each canopy drags and carries its own
+/// air, so both add up over the canopies open.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Canopies<S> {
+    /// The sum of the open canopies' CdS, m².
+    pub cds_m2: S,
+    /// The sum of their added air volumes ([`CanopyShape::added_air_volume_m3`]), m³.
+    pub added_air_m3: S,
+}
+
+/// Descent under the open canopies: the center of mass as a point with the canopies' drag,
+/// gravity and the Coriolis acceleration `−2 Ω × v`, on lanes (one flight, or four side by
+/// side). The air the canopies carry along, their added mass `m_a = ρ V_a`, is accelerated
+/// with the rocket but has no weight: `(m + m_a) a = D − m g`. The steady descent is the
+/// same; the opening is slower. State `[x, y, z, vx, vy, vz]` of the center of mass.
 #[inline(always)]
 pub fn descent_derivative<S: Real>(
     y: &[S; N3],
     mass_kg: S,
-    cds_m2: S,
+    canopies: &Canopies<S>,
     at: &Surroundings<S>,
     dy: &mut [S; N3],
 ) {
     let w = &at.wind_n;
     let rel = V3::new(y[3] - w.x, y[4] - w.y, y[5] - w.z);
-    let k = S::splat(-0.5) * at.rho * cds_m2 * rel.norm_squared().sqrt();
-    let added = S::splat(CANOPY_ADDED_MASS_PER_RHO_CDS_1_5) * at.rho * cds_m2 * cds_m2.sqrt();
-    let inertia = mass_kg + added;
+    let k = S::splat(-0.5) * at.rho * canopies.cds_m2 * rel.norm_squared().sqrt();
+    let inertia = mass_kg + at.rho * canopies.added_air_m3;
     dy[0] = y[3];
     dy[1] = y[4];
     dy[2] = y[5];
@@ -427,17 +471,37 @@ mod tests {
         // porosity 0.0432, C_a = 1.068 (1 − 1.465 p − 0.25975 p² + 1.2626 p³) = 0.99999941.
         let c_a = canopy_added_mass_coefficient(CANOPY_POROSITY);
         assert!((c_a - 0.999_999_411_464_476_4).abs() < 1e-15, "{c_a}");
-        let per =
-            c_a * (2.0 / 3.0) * std::f64::consts::PI / (CANOPY_CD * std::f64::consts::PI).powf(1.5);
-        assert!(
-            (per - CANOPY_ADDED_MASS_PER_RHO_CDS_1_5).abs() < 1e-16,
-            "{per}"
-        );
-        // Calisto's main, CdS 10 m²: R = 1.50786 m, 7.18028 kg of air at ρ = 1 kg/m³.
-        let r = (10.0 / (1.4 * std::f64::consts::PI)).sqrt();
-        let by_hand = c_a * (2.0 / 3.0) * std::f64::consts::PI * r * r * r;
-        assert!((by_hand - 7.180_281_906_195).abs() < 1e-9);
-        assert!((CANOPY_ADDED_MASS_PER_RHO_CDS_1_5 * 10f64.powf(1.5) - by_hand).abs() < 1e-12);
+        // Calisto's main, CdS 10 m²: R = 1.50786 m, 7.18028 kg of air at ρ = 1 kg/m³
+        // (RocketPy: C_a (2/3) π R² H = 7.180281906195443).
+        let v = CanopyShape::default().added_air_volume_m3(10.0);
+        assert!((v - 7.180_281_906_195_443).abs() < 1e-12, "{v}");
+    }
+
+    #[test]
+    fn a_canopy_given_its_radius_height_and_porosity_carries_rocketpy_s_air() {
+        // RocketPy 1.13: Parachute(cd_s=2, radius=1.2, height=0.9, porosity=0.1) has
+        // added_mass_coefficient 0.9101123268 and C_a (2/3) π R² H = 2.4703507006413634;
+        // its CdS no longer sizes it.
+        let shape = CanopyShape {
+            radius_m: Some(1.2),
+            height_m: Some(0.9),
+            porosity: 0.1,
+        };
+        assert!((canopy_added_mass_coefficient(0.1) - 0.910_112_326_8).abs() < 1e-12);
+        for cds in [2.0, 5.0] {
+            let v = shape.added_air_volume_m3(cds);
+            assert!((v - 2.470_350_700_641_363_4).abs() < 1e-12, "{v}");
+        }
+        // A radius alone makes a hemisphere: H = R.
+        let hemi = CanopyShape {
+            radius_m: Some(1.2),
+            ..CanopyShape::default()
+        };
+        let by_hand = canopy_added_mass_coefficient(CANOPY_POROSITY)
+            * (2.0 / 3.0)
+            * std::f64::consts::PI
+            * 1.2f64.powi(3);
+        assert!((hemi.added_air_volume_m3(2.0) - by_hand).abs() < 1e-13);
     }
 
     #[test]
@@ -450,22 +514,38 @@ mod tests {
             wind_n: V3::new(0.0, 0.0, 0.0),
             earth_rate_n: None,
         };
-        let m_a = CANOPY_ADDED_MASS_PER_RHO_CDS_1_5 * rho * cds * cds.sqrt();
+        let canopies = Canopies {
+            cds_m2: cds,
+            added_air_m3: CanopyShape::default().added_air_volume_m3(cds),
+        };
+        let m_a = canopies.added_air_m3 * rho;
         // At the terminal speed √(2 m g / (ρ CdS)) drag and weight balance: no acceleration.
         let v_t = (2.0 * m * g / (rho * cds)).sqrt();
         let mut dy = [0.0; N3];
-        descent_derivative(&[0.0, 0.0, 500.0, 0.0, 0.0, -v_t], m, cds, &at, &mut dy);
+        descent_derivative(
+            &[0.0, 0.0, 500.0, 0.0, 0.0, -v_t],
+            m,
+            &canopies,
+            &at,
+            &mut dy,
+        );
         assert!(dy[5].abs() < 1e-13, "{}", dy[5]);
         // Falling at 20 m/s and drifting 3 m/s east: (m + m_a) a = −½ ρ CdS |v| v − m g ẑ.
         let v = [3.0, 0.0, -20.0];
         let speed = (9.0f64 + 400.0).sqrt();
-        descent_derivative(&[0.0, 0.0, 500.0, v[0], v[1], v[2]], m, cds, &at, &mut dy);
+        descent_derivative(
+            &[0.0, 0.0, 500.0, v[0], v[1], v[2]],
+            m,
+            &canopies,
+            &at,
+            &mut dy,
+        );
         let drag = |c: f64| -0.5 * rho * cds * speed * c;
         assert_eq!(&dy[..3], &v);
         assert!((dy[3] - drag(v[0]) / (m + m_a)).abs() < 1e-13);
         assert_eq!(dy[4], 0.0);
         assert!((dy[5] - (drag(v[2]) - m * g) / (m + m_a)).abs() < 1e-12);
-        // 0.22706 × 1.1 × 10^1.5 = 7.8983 kg of air, half the rocket's mass.
+        // 7.18028 m³ × 1.1 kg/m³ = 7.8983 kg of air, half the rocket's mass.
         assert!((m_a - 7.898_310).abs() < 1e-6, "{m_a}");
     }
 }

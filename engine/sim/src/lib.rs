@@ -21,7 +21,7 @@ pub mod wind;
 
 pub use events::EventKind;
 pub use flight::{
-    Environment, Flight, Integrator, Parachute, Rail, SimError, SimOptions, Simulation,
+    CanopyShape, Environment, Flight, Integrator, Parachute, Rail, SimError, SimOptions, Simulation,
 };
 pub use shifts::MassShift;
 pub use trigger::Trigger;

@@ -151,6 +151,7 @@ impl Fixed<'_> {
                             with_trigger_value(&p.trigger, v[2]),
                             v[1],
                         )
+                        .with_canopy(p.canopy)
                     })
                     .collect();
                 c.parachutes(chutes)?;

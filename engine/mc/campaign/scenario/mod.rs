@@ -17,9 +17,9 @@ use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
 use hpr_sim::wind::{Wind, WindError, WindRow};
-use hpr_sim::{Integrator, Trigger};
+use hpr_sim::{CanopyShape, Integrator, Trigger};
 use raw::RawScenario;
-use rules::{check_name, check_param, finite, inputs, integrator, one_line};
+use rules::{canopy_shape, check_name, check_param, finite, inputs, integrator, one_line};
 use std::path::{Path, PathBuf};
 
 /// A scenario file that can't be read or breaks a rule.
@@ -116,6 +116,8 @@ pub struct ParachuteSpec {
     pub cds_m2: f64,
     pub lag_s: f64,
     pub trigger: Trigger,
+    /// The open canopy's shape: the air it carries along.
+    pub canopy: CanopyShape,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -415,6 +417,7 @@ impl Scenario {
                 cds_m2: check_param(&bad, &key("cds_m2"), Param::ParachuteCdsM2(i), p.cds_m2)?,
                 lag_s: check_param(&bad, &key("lag_s"), Param::ParachuteLagS(i), p.lag_s)?,
                 trigger: p.trigger.0,
+                canopy: canopy_shape(&bad, &key, p)?,
             });
         }
         let mut shifts = Vec::new();

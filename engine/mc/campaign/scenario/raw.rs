@@ -77,6 +77,9 @@ pub(super) struct RawParachute {
     #[serde(default)]
     pub(super) lag_s: f64,
     pub(super) trigger: RawTrigger,
+    pub(super) radius_m: Option<f64>,
+    pub(super) height_m: Option<f64>,
+    pub(super) porosity: Option<f64>,
 }
 
 #[derive(Deserialize)]

@@ -1,11 +1,13 @@
 //! The rules of a scenario's values, sweeps and dispersions, each broken rule an error that
 //! names the key path.
 
-use super::raw::{RawDist, RawIntegrator, RawParachuteParams, RawParams, RawShiftParams};
+use super::raw::{
+    RawDist, RawIntegrator, RawParachute, RawParachuteParams, RawParams, RawShiftParams,
+};
 use super::{trigger_field, InputSpec, Scenario, ScenarioError};
 use crate::campaign::params::{Param, GLOBAL};
 use crate::campaign::sample::{Dispersion, Shape};
-use hpr_sim::{Integrator, Trigger};
+use hpr_sim::{CanopyShape, Integrator, Trigger};
 use std::collections::BTreeMap;
 
 /// A TOML error on one line (the crate's messages show the offending line in a box).
@@ -37,6 +39,37 @@ pub(super) fn finite(bad: &Bad, key: &str, v: f64) -> Result<f64, ScenarioError>
 pub(super) fn check_param(bad: &Bad, key: &str, p: Param, v: f64) -> Result<f64, ScenarioError> {
     p.domain().check(v).map_err(|r| bad(key, r))?;
     Ok(v)
+}
+
+/// A parachute's canopy shape: what it gives of RocketPy's radius, height and porosity, the
+/// rest RocketPy's defaults.
+pub(super) fn canopy_shape(
+    bad: &Bad,
+    key: &dyn Fn(&str) -> String,
+    p: &RawParachute,
+) -> Result<CanopyShape, ScenarioError> {
+    let positive = |field: &str, v: Option<f64>| match v {
+        Some(v) if !(v.is_finite() && v > 0.0) => Err(bad(
+            &key(field),
+            format!("must be positive and finite (got {v})"),
+        )),
+        _ => Ok(v),
+    };
+    let shape = CanopyShape {
+        radius_m: positive("radius_m", p.radius_m)?,
+        height_m: positive("height_m", p.height_m)?,
+        porosity: p.porosity.unwrap_or(CanopyShape::default().porosity),
+    };
+    if !(shape.porosity.is_finite() && (0.0..1.0).contains(&shape.porosity)) {
+        return Err(bad(
+            &key("porosity"),
+            format!(
+                "must be at least 0 and below 1: the canopy's open area over its whole area (got {})",
+                shape.porosity
+            ),
+        ));
+    }
+    Ok(shape)
 }
 
 pub(super) fn check_name(bad: &Bad, key: &str, name: &str) -> Result<(), ScenarioError> {

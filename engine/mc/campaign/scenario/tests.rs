@@ -482,3 +482,59 @@ fn a_site_s_latitude_and_its_ellipsoid_s_gravity_are_read_and_their_mistakes_ref
     assert_eq!(key, "environment.gravity");
     assert!(rule.contains("\"somigliana\""), "{rule}");
 }
+
+#[test]
+fn a_parachute_takes_rocketpy_s_canopy_radius_height_and_porosity_or_its_defaults() {
+    let s = parse(
+        r#"
+[[parachutes]]
+name = "drogue"
+cds_m2 = 0.1
+trigger = "apogee"
+radius_m = 0.35
+height_m = 0.2
+porosity = 0.1
+"#,
+    )
+    .expect("parses");
+    assert_eq!(s.parachutes[0].canopy, hpr_sim::CanopyShape::default());
+    assert_eq!(
+        s.parachutes[1].canopy,
+        hpr_sim::CanopyShape {
+            radius_m: Some(0.35),
+            height_m: Some(0.2),
+            porosity: 0.1,
+        }
+    );
+    let chute = |line: &str| {
+        refused(&format!(
+            "[[parachutes]]\nname = \"drogue\"\ncds_m2 = 0.1\ntrigger = \"apogee\"\n{line}\n"
+        ))
+    };
+    for (line, key, rule) in [
+        (
+            "radius_m = 0.0",
+            "parachutes[1].radius_m",
+            "positive and finite",
+        ),
+        (
+            "height_m = -0.2",
+            "parachutes[1].height_m",
+            "positive and finite",
+        ),
+        (
+            "porosity = 1.0",
+            "parachutes[1].porosity",
+            "at least 0 and below 1",
+        ),
+        (
+            "porosity = -0.1",
+            "parachutes[1].porosity",
+            "at least 0 and below 1",
+        ),
+    ] {
+        let (k, r) = chute(line);
+        assert_eq!(k, key, "{line}");
+        assert!(r.contains(rule), "{line}: {r}");
+    }
+}

@@ -7,7 +7,7 @@
 //! bit single flights.
 
 use super::guarded;
-use crate::eom::{pack_mass, MassLanes, N3, N6};
+use crate::eom::{pack_mass, Canopies, MassLanes, N3, N6};
 use crate::flight::driver::{Descending, Paused, PausedPhase, PhaseEnd, StepEnd};
 use crate::flight::model::{
     derivative_6dof_lanes, descent_rates_lanes, end_point_lanes, CenterLanes, FlightModel,
@@ -450,7 +450,10 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
     // The slots' models and, if they share their tables, the four-lane view of them.
     let mut models_four: Option<([&FlightModel; 4], Option<FourModels<'_>>)> = None;
     let mut mass = F64x4::splat(1.0);
-    let mut cds = F64x4::splat(0.0);
+    let mut canopies = Canopies {
+        cds_m2: F64x4::splat(0.0),
+        added_air_m3: F64x4::splat(0.0),
+    };
     let mut filled = [false; 4];
     let outcomes = step_on_lanes::<N3, Descending<'_, ()>>(
         group,
@@ -467,18 +470,24 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
                 }
                 let d = Descending::of(&mut group[slots.lane[l]]);
                 mass.0[l] = models[l].descent_mass(slots.t[l]);
-                cds.0[l] = d.cds();
+                let c = d.canopies();
+                canopies.cds_m2.0[l] = c.cds_m2;
+                canopies.added_air_m3.0[l] = c.added_air_m3;
                 filled[l] = true;
             }
             match four {
-                Some(four) => descent_rates_lanes(four, mass, cds, ys, dy),
+                Some(four) => descent_rates_lanes(four, mass, &canopies, ys, dy),
                 None => {
                     for (l, model) in models.iter().enumerate().take(group.len()) {
                         if !slots.active[l] {
                             continue;
                         }
                         let mut d = [0.0; N3];
-                        descent_rates_lanes(*model, mass.0[l], cds.0[l], &lane_of(ys, l), &mut d);
+                        let one = Canopies {
+                            cds_m2: canopies.cds_m2.0[l],
+                            added_air_m3: canopies.added_air_m3.0[l],
+                        };
+                        descent_rates_lanes(*model, mass.0[l], &one, &lane_of(ys, l), &mut d);
                         for k in 0..N3 {
                             dy[k].0[l] = d[k];
                         }

@@ -2,6 +2,7 @@
 //! the parachutes and the integrator options. Each has a `validate` that says which field
 //! broke which rule.
 
+pub use crate::eom::CanopyShape;
 use crate::gravity::Gravity;
 use crate::trigger::Trigger;
 use crate::wind::Wind;
@@ -75,7 +76,8 @@ impl Default for Rail {
     }
 }
 
-/// A parachute: its drag area, what opens it and how long it takes to open.
+/// A parachute: its drag area, what opens it, how long it takes to open and the shape of its
+/// open canopy (which sets the air it carries along).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Parachute {
     pub name: String,
@@ -84,16 +86,25 @@ pub struct Parachute {
     pub trigger: Trigger,
     /// Time from the trigger to the open canopy, s.
     pub lag_s: f64,
+    /// The open canopy's shape (RocketPy's default hemisphere sized from the CdS unless given).
+    pub canopy: CanopyShape,
 }
 
 impl Parachute {
+    /// A parachute whose open canopy has RocketPy's default shape.
     pub fn new(name: impl Into<String>, cds_m2: f64, trigger: Trigger, lag_s: f64) -> Parachute {
         Parachute {
             name: name.into(),
             cds_m2,
             trigger,
             lag_s,
+            canopy: CanopyShape::default(),
         }
+    }
+
+    /// This parachute with an open canopy of the given shape.
+    pub fn with_canopy(self, canopy: CanopyShape) -> Parachute {
+        Parachute { canopy, ..self }
     }
 }
 

@@ -15,7 +15,7 @@ pub mod model;
 pub mod output;
 
 pub use changes::Changes;
-pub use config::{Environment, Integrator, Parachute, Rail, SimOptions};
+pub use config::{CanopyShape, Environment, Integrator, Parachute, Rail, SimOptions};
 pub use model::FlightModel;
 pub use output::{Flight, Metrics, Observer, Phase, Sample, Warning, LARGE_ALPHA_DEG};
 

@@ -344,12 +344,12 @@ impl FlightModel {
         dy[6..].iter_mut().for_each(|d| *d = 0.0);
     }
 
-    /// Descent under the open canopies (total `cds_m2`): the center of mass as a point.
+    /// Descent under the open `canopies`: the center of mass as a point.
     #[inline]
     pub fn derivative_descent(
         &self,
         starts: &ShiftStarts,
-        cds_m2: f64,
+        canopies: &eom::Canopies<f64>,
         t: f64,
         y: &[f64; N3],
         dy: &mut [f64; N3],
@@ -361,7 +361,7 @@ impl FlightModel {
                 (ms.mass_kg, ms.r_cm.z)
             }
         };
-        let (at, speed_of_sound_m_s) = self.descent_rates(cds_m2, t, y, dy);
+        let (at, speed_of_sound_m_s) = self.descent_rates(canopies, t, y, dy);
         let rel = Vector3::new(y[3], y[4], y[5]) - at.wind_n.to_na();
         let a = Vector3::new(dy[3], dy[4], dy[5] + at.g);
         FlightAux {
@@ -383,13 +383,13 @@ impl FlightModel {
     #[inline]
     pub fn descent_rates(
         &self,
-        cds_m2: f64,
+        canopies: &eom::Canopies<f64>,
         t: f64,
         y: &[f64; N3],
         dy: &mut [f64; N3],
     ) -> (eom::Surroundings<f64>, f64) {
         let (at, speed_of_sound_m_s) = kernels::descent_surroundings(self, y[2]);
-        eom::descent_derivative(y, self.descent_mass(t), cds_m2, &at, dy);
+        eom::descent_derivative(y, self.descent_mass(t), canopies, &at, dy);
         (at, speed_of_sound_m_s)
     }
 

@@ -59,7 +59,7 @@
 use crate::common::*;
 use hpr_design::motor::MotorOptions;
 use hpr_design::Design;
-use hpr_sim::flight::{Environment, Flight, Parachute, Rail, SimOptions, Simulation};
+use hpr_sim::flight::{Environment, Flight, Rail, SimOptions, Simulation};
 use hpr_sim::gravity::Gravity;
 use hpr_sim::wind::Wind;
 use hpr_sim::{EventKind, Trigger};
@@ -329,8 +329,8 @@ fn rocketpy_dry_motor_variant(r: &Value, design: &Design) -> Simulation {
 // * **Against RocketPy with its lever arm's sign corrected and its speed of sound made the
 //   true one** (`as_hpr_models`, below; validation/rocketpy/corrections.py: its own is a chord
 //   0.1 % low): both on the turning Earth at the site's latitude, both canopies carrying the
-//   same added mass (C_a ρ 2/3 π R² H of a hemisphere sized by the open CdS;
-//   `eom::descent_derivative`). What is left is what the still-air test names: the motor's
+//   same added mass (C_a ρ 2/3 π R² H of RocketPy's default hemispheres;
+//   `eom::descent_derivative`, `rocketpy_chutes`). What is left is what the still-air test names: the motor's
 //   mass model (hpr's static margin +0.9 % at rail exit, its transverse inertia −0.8 %
 //   loaded), the point the speeds are of, the initial roll, the integrators. Measured
 //   (release build): apogee within 0.40 m (calm; 0.03 west, 0.18 north-east), its time
@@ -357,7 +357,8 @@ fn rocketpy_dry_motor_variant(r: &Value, design: &Design) -> Simulation {
 //     mass model gives, as the equations of motion v1 define it.
 // * **Inputs mapped, not tuned**: RocketPy's canopies replace one another (after the main
 //   opens the drag and the added mass are its CdS 10 m²'s alone); hpr's add up (a drogue
-//   stays attached), so hpr's main is 9 m². RocketPy's heights are its center of dry mass's, which starts at ground
+//   stays attached), so hpr's main is 9 m² and carries the air of 10 m² less the drogue's
+//   (`rocketpy_chutes`). RocketPy's heights are its center of dry mass's, which starts at ground
 //   level; hpr's are the center of mass's, which starts with the aft end at the rail's foot:
 //   hpr's main opens at 800 m plus that start height (1.257 m), and hpr's positions and
 //   landing are moved to RocketPy's point ([`windy_rows`]). RocketPy samples its triggers at
@@ -397,19 +398,20 @@ fn windy_flight(r: &Value, w: &Value, case: &str, latitude_deg: Option<f64>) -> 
     let incl = num(r, "/inputs/rail/inclination_deg").to_radians();
     let (start_height, start_north) = (d * incl.sin(), d * incl.cos());
     let lag = num(r, "/inputs/parachutes/drogue/lag_s");
-    let drogue_cds = num(r, "/inputs/parachutes/drogue/cd_s_m2");
-    let main_cds = num(r, "/inputs/parachutes/main/cd_s_m2") - drogue_cds;
-    let chutes = vec![
-        Parachute::new("drogue", drogue_cds, Trigger::Apogee, lag),
-        Parachute::new(
-            "main",
-            main_cds,
+    let chutes = rocketpy_chutes(
+        (
+            num(r, "/inputs/parachutes/drogue/cd_s_m2"),
+            Trigger::Apogee,
+            lag,
+        ),
+        (
+            num(r, "/inputs/parachutes/main/cd_s_m2"),
             Trigger::HeightDescending {
                 height_m: 800.0 + start_height,
             },
             lag,
         ),
-    ];
+    );
     let sim = sim.with_parachutes(chutes).expect("parachutes");
     WindyFlight {
         flight: sim.run(&mut ()).expect("flies"),

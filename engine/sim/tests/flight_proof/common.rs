@@ -5,8 +5,11 @@ use hpr_design::motor::Motor;
 use hpr_design::Design;
 use hpr_sim::eom::{MassState, N6};
 use hpr_sim::flight::model::MAX_SHIFTS;
-use hpr_sim::flight::{Environment, Integrator, Sample, SimOptions, Simulation};
+use hpr_sim::flight::{
+    CanopyShape, Environment, Integrator, Parachute, Sample, SimOptions, Simulation,
+};
 use hpr_sim::gravity::Gravity;
+use hpr_sim::Trigger;
 use nalgebra::{Matrix3, Vector3};
 use std::path::{Path, PathBuf};
 
@@ -83,4 +86,24 @@ pub fn rotation(s: &Sample) -> Matrix3<f64> {
 
 pub fn v3(a: [f64; 3]) -> Vector3<f64> {
     Vector3::new(a[0], a[1], a[2])
+}
+
+/// A RocketPy drogue and main (`drogue_cds`, `main_cds` m², RocketPy's default canopies) as
+/// hpr-mc flies them. RocketPy's canopies replace one another, hpr-mc's add up, so hpr-mc's
+/// main is RocketPy's less the drogue: in CdS, and in the air it carries along (a hemisphere
+/// of radius `R` with `R³ = R_main³ − R_drogue³`, each `R = √(CdS / (1.4 π))`). Once the
+/// main is out, both fly the same drag and the same added mass.
+pub fn rocketpy_chutes(drogue: (f64, Trigger, f64), main: (f64, Trigger, f64)) -> Vec<Parachute> {
+    let ((drogue_cds, drogue_trigger, drogue_lag_s), (main_cds, main_trigger, main_lag_s)) =
+        (drogue, main);
+    let r3 = |cds: f64| (cds / (hpr_sim::eom::CANOPY_CD * std::f64::consts::PI)).powf(1.5);
+    vec![
+        Parachute::new("drogue", drogue_cds, drogue_trigger, drogue_lag_s),
+        Parachute::new("main", main_cds - drogue_cds, main_trigger, main_lag_s).with_canopy(
+            CanopyShape {
+                radius_m: Some((r3(main_cds) - r3(drogue_cds)).cbrt()),
+                ..CanopyShape::default()
+            },
+        ),
+    ]
 }

@@ -247,8 +247,12 @@ fn in_air_the_derivative_adds_the_coriolis_acceleration_of_the_center_of_mass() 
     }
     let yd = [30.0, -20.0, 400.0, 6.0, -9.0, -15.0];
     let (mut a, mut b) = ([0.0; N3], [0.0; N3]);
-    still.model().descent_rates(1.2, 30.0, &yd, &mut a);
-    turning.model().descent_rates(1.2, 30.0, &yd, &mut b);
+    let canopies = eom::Canopies {
+        cds_m2: 1.2,
+        added_air_m3: hpr_sim::CanopyShape::default().added_air_volume_m3(1.2),
+    };
+    still.model().descent_rates(&canopies, 30.0, &yd, &mut a);
+    turning.model().descent_rates(&canopies, 30.0, &yd, &mut b);
     let want = -2.0 * omega.cross(&Vector3::new(yd[3], yd[4], yd[5]));
     for k in 0..3 {
         assert_eq!(a[k], b[k]);

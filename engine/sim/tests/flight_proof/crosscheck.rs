@@ -29,7 +29,7 @@
 //! and positions are its center of dry mass's, starting at ground level, hpr's its center of
 //! mass's, which starts with the aft end at the rail's foot, so hpr's are moved to RocketPy's
 //! point; RocketPy's canopies replace one another, hpr's add up, so hpr's main is RocketPy's
-//! less the drogue. RocketPy samples its triggers at 105 Hz (up to 9.5 ms late).
+//! less the drogue, in CdS and in the air it carries (`rocketpy_chutes`). RocketPy samples its triggers at 105 Hz (up to 9.5 ms late).
 //!
 //! Compared against RocketPy with its lever-arm sign corrected (RocketPy issue #1186) and its
 //! speed of sound made the true one (its own is a chord of sqrt(γRT) between the ISA
@@ -64,7 +64,7 @@
 
 use crate::common::*;
 use hpr_design::Design;
-use hpr_sim::flight::{Environment, Flight, Parachute, Rail, SimOptions, Simulation};
+use hpr_sim::flight::{Environment, Flight, Rail, SimOptions, Simulation};
 use hpr_sim::gravity::Gravity;
 use hpr_sim::wind::{Wind, WindRow};
 use hpr_sim::{EventKind, Trigger};
@@ -158,24 +158,20 @@ fn fly(r: &Value, case: &str) -> Crosscheck {
     let heading = num(r, "/inputs/rail/heading_deg").to_radians();
     let (start_height, flat) = (along * incl.sin(), along * incl.cos());
     let start_en = [flat * heading.sin(), flat * heading.cos()];
-    let drogue_cds = num(r, "/inputs/parachutes/drogue/cd_s_m2");
-    let main_cds = num(r, "/inputs/parachutes/main/cd_s_m2") - drogue_cds;
-    let chutes = vec![
-        Parachute::new(
-            "drogue",
-            drogue_cds,
+    let chutes = rocketpy_chutes(
+        (
+            num(r, "/inputs/parachutes/drogue/cd_s_m2"),
             Trigger::Apogee,
             num(r, "/inputs/parachutes/drogue/lag_s"),
         ),
-        Parachute::new(
-            "main",
-            main_cds,
+        (
+            num(r, "/inputs/parachutes/main/cd_s_m2"),
             Trigger::HeightDescending {
                 height_m: num(r, "/inputs/parachutes/main/height_m") + start_height,
             },
             num(r, "/inputs/parachutes/main/lag_s"),
         ),
-    ];
+    );
     let sim = sim.with_parachutes(chutes).expect("parachutes");
     let flight = sim.run(&mut ()).expect("flies");
     let m = &flight.metrics;

@@ -4,7 +4,9 @@
 use crate::common::*;
 use hpr_design::aero::MachTable;
 use hpr_design::motor::Motor;
-use hpr_sim::flight::{driver, Integrator, Parachute, Rail, SimError, SimOptions, Simulation};
+use hpr_sim::flight::{
+    driver, CanopyShape, Integrator, Parachute, Rail, SimError, SimOptions, Simulation,
+};
 use hpr_sim::frames;
 use hpr_sim::trigger::Trigger;
 use hpr_sim::wind::Wind;
@@ -120,6 +122,53 @@ fn a_parachute_without_a_positive_drag_area_is_refused() {
         example().with_parachutes(vec![Parachute::new("drogue", 1.0, Trigger::Apogee, -1.0)]),
         &["\"lag_s\"", "not negative"],
     );
+}
+
+#[test]
+fn a_canopy_without_a_positive_size_or_with_a_porosity_outside_0_to_1_is_refused() {
+    let chute = |canopy: CanopyShape| {
+        vec![Parachute::new("main", 1.0, Trigger::Apogee, 0.0).with_canopy(canopy)]
+    };
+    for bad in [0.0, -0.5, f64::NAN, f64::INFINITY] {
+        let radius = CanopyShape {
+            radius_m: Some(bad),
+            ..CanopyShape::default()
+        };
+        refused(
+            example().with_parachutes(chute(radius)),
+            &[
+                "parachute 0",
+                "\"main\"",
+                "\"radius_m\"",
+                "positive and finite",
+            ],
+        );
+        let height = CanopyShape {
+            height_m: Some(bad),
+            ..CanopyShape::default()
+        };
+        refused(
+            example().with_parachutes(chute(height)),
+            &["\"height_m\"", "positive and finite"],
+        );
+    }
+    for bad in [-0.01, 1.0, 1.5, f64::NAN] {
+        let porous = CanopyShape {
+            porosity: bad,
+            ..CanopyShape::default()
+        };
+        refused(
+            example().with_parachutes(chute(porous)),
+            &["\"porosity\"", "at least 0 and below 1"],
+        );
+    }
+    // The edges that are allowed: a closed canopy, and a given size.
+    let fine = CanopyShape {
+        radius_m: Some(0.4),
+        height_m: Some(0.3),
+        porosity: 0.0,
+    };
+    assert!(example().with_parachutes(chute(fine)).is_ok());
 }
 
 #[test]

@@ -5,9 +5,9 @@
 
 use super::*;
 
-/// A descent between its steps: the canopies' CdS in force.
+/// A descent between its steps: the canopies in force.
 pub(super) struct Descent {
-    cds: f64,
+    canopies: Canopies<f64>,
 }
 
 impl Descent {
@@ -20,13 +20,13 @@ impl Descent {
     ) -> Result<Descent, SimError> {
         let model = run.model;
         let name = Phase::Descent.name();
-        let cds = run.cds();
+        let canopies = run.canopies();
         let starts = run.starts;
         let mut evals = 0u64;
-        each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.descent_rates(cds, t, y, dy); }, t0, y0)).map_err(|e| integ_at(t0, y0, e, name))?;
+        each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.descent_rates(&canopies, t, y, dy); }, t0, y0)).map_err(|e| integ_at(t0, y0, e, name))?;
         run.evaluations += evals;
         let mut dy = [0.0; N3];
-        let aux = model.derivative_descent(&starts, cds, t0, y0, &mut dy);
+        let aux = model.derivative_descent(&starts, &canopies, t0, y0, &mut dy);
         run.record(
             Phase::Descent,
             t0,
@@ -36,13 +36,13 @@ impl Descent {
             [0.0; 3],
             &aux,
         );
-        Ok(Descent { cds })
+        Ok(Descent { canopies })
     }
 
-    /// The canopies' CdS in force, m².
+    /// The canopies in force.
     #[inline(always)]
-    pub(super) fn cds(&self) -> f64 {
-        self.cds
+    pub(super) fn canopies(&self) -> Canopies<f64> {
+        self.canopies
     }
 
     /// The stop time of the next step (which starts where the stepper is).
@@ -58,11 +58,11 @@ impl Descent {
     ) -> Result<Option<PhaseEnd>, SimError> {
         let model = run.model;
         let t_stop = Descent::next_stop(run, stepper);
-        let cds = self.cds;
+        let canopies = self.canopies;
         let mut evals = 0u64;
         let outcome = stepper.checked_step(
             |t, y, dy| {
-                model.descent_rates(cds, t, y, dy);
+                model.descent_rates(&canopies, t, y, dy);
             },
             t_stop,
             Phase::Descent.name(),
@@ -117,7 +117,7 @@ impl Descent {
             None => (each!(stepper, s => s.t()), *each!(stepper, s => s.y())),
         };
         let mut dy = [0.0; N3];
-        let aux = model.derivative_descent(&run.starts, self.cds, t_end, &y_end, &mut dy);
+        let aux = model.derivative_descent(&run.starts, &self.canopies, t_end, &y_end, &mut dy);
         let pos = Vector3::new(y_end[0], y_end[1], y_end[2]);
         let vel = Vector3::new(y_end[3], y_end[4], y_end[5]);
         run.record(
@@ -155,12 +155,15 @@ impl Descent {
             run.push_event(EventKind::TimeLimit, t_end, alt, speed);
             return Ok(Some(PhaseEnd::TimeLimit));
         }
-        let new_cds = run.cds();
-        if found.is_some() || new_cds != self.cds || matches!(outcome, StepOutcome::ReachedStop) {
-            self.cds = new_cds;
-            let cds = new_cds;
+        let new_canopies = run.canopies();
+        if found.is_some()
+            || new_canopies != self.canopies
+            || matches!(outcome, StepOutcome::ReachedStop)
+        {
+            self.canopies = new_canopies;
+            let canopies = new_canopies;
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.descent_rates(cds, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.descent_rates(&canopies, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
         }
         Ok(None)

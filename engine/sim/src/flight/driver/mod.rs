@@ -9,7 +9,7 @@ use super::model::{
 };
 use super::output::{Flight, Metrics, Observer, Phase, Sample};
 use super::SimError;
-use crate::eom::{self, MassLanes, N3, N6};
+use crate::eom::{self, Canopies, MassLanes, N3, N6};
 use crate::events::{Event, EventKind};
 use crate::frames;
 use crate::integrate::{
@@ -306,14 +306,20 @@ impl<'a, O: Observer> Run<'a, O> {
         Ok(opened)
     }
 
-    fn cds(&self) -> f64 {
-        self.model
-            .parachutes
-            .iter()
-            .zip(&self.chute_open)
-            .filter(|(_, &o)| o)
-            .map(|(p, _)| p.cds_m2)
-            .sum()
+    /// The open canopies: their CdS and the air they carry, summed.
+    fn canopies(&self) -> Canopies<f64> {
+        let open = || {
+            self.model
+                .parachutes
+                .iter()
+                .zip(&self.chute_open)
+                .filter(|(_, &o)| o)
+                .map(|(p, _)| p)
+        };
+        Canopies {
+            cds_m2: open().map(|p| p.cds_m2).sum(),
+            added_air_m3: open().map(|p| p.canopy.added_air_volume_m3(p.cds_m2)).sum(),
+        }
     }
 
     #[allow(clippy::too_many_arguments)]

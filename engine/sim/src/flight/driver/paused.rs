@@ -354,10 +354,10 @@ pub(crate) struct Descending<'a, O: Observer> {
 }
 
 impl<O: Observer> Descending<'_, O> {
-    /// The canopies' CdS in force, m².
+    /// The canopies in force.
     #[inline(always)]
-    pub(crate) fn cds(&self) -> f64 {
-        self.descent.cds()
+    pub(crate) fn canopies(&self) -> Canopies<f64> {
+        self.descent.canopies()
     }
 
     /// The flight's record, once its descent has ended.
@@ -383,10 +383,10 @@ impl<'a, O: Observer> PausedPhase<'a, N3> for Descending<'a, O> {
         }
         let t_stop = Descent::next_stop(&mut self.run, &self.s3.stepper);
         let model = self.run.model;
-        let cds = self.descent.cds();
+        let canopies = self.descent.canopies();
         self.s3
             .begin(t_stop, &mut self.run.evaluations, |t, y, dy| {
-                model.descent_rates(cds, t, y, dy);
+                model.descent_rates(&canopies, t, y, dy);
             })?;
         Ok(true)
     }

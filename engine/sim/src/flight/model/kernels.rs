@@ -160,17 +160,17 @@ impl ModelLanes<F64x4> for FourModels<'_> {
 }
 
 /// The descent's derivative on lanes, given each lane's mass ([`FlightModel::descent_mass`])
-/// and canopies' CdS: what [`FlightModel::descent_rates`] computes, four lanes at once.
+/// and canopies: what [`FlightModel::descent_rates`] computes, four lanes at once.
 #[inline(always)]
 pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
     lanes: &L,
     mass_kg: S,
-    cds_m2: S,
+    canopies: &eom::Canopies<S>,
     y: &[S; N3],
     dy: &mut [S; N3],
 ) {
     let (at, _) = descent_surroundings(lanes, y[2]);
-    eom::descent_derivative(y, mass_kg, cds_m2, &at, dy);
+    eom::descent_derivative(y, mass_kg, canopies, &at, dy);
 }
 
 /// What a descending point feels at height `h_agl_m` above the site, and the speed of sound
