@@ -29,6 +29,7 @@ import duckdb
 import polars as pl
 import pyarrow.parquet as pq
 
+WARNING_FLAGS = ["warning_unstable", "warning_large_alpha", "warning_ballistic"]
 FIXED_METRICS = [
     "apogee_m", "apogee_time_s", "max_speed_m_s", "max_mach", "max_accel_m_s2",
     "rail_exit_speed_m_s", "static_margin_liftoff_cal", "static_margin_rail_exit_cal",
@@ -52,7 +53,7 @@ def check_file(path):
         if key not in kv:
             fail(f"{path}: no {key} in the file metadata")
     names = schema.names
-    for col in ["variant_id", "point", "replicate", "status", "error", "warnings"] + FIXED_METRICS:
+    for col in ["variant_id", "point", "replicate", "status", "error", "warnings"] + WARNING_FLAGS + FIXED_METRICS:
         if col not in names:
             fail(f"{path}: no column {col}")
     for field in schema:
@@ -79,6 +80,16 @@ def check_means(variants_path, summary_path):
         nulls = landed[col].null_count()
         if nulls:
             fail(f"{variants_path}: {nulls} landed rows have no {col}")
+    # Each warning flag is true exactly where the warnings text names its key; a landed
+    # variant has every flag, a refused one none.
+    for flag in WARNING_FLAGS:
+        if landed[flag].null_count() or v.filter(pl.col("status") == "refused")[flag].null_count() != (v["status"] == "refused").sum():
+            fail(f"{variants_path}: {flag} is null on a landed row or set on a refused one")
+        flown = v.filter(pl.col(flag).is_not_null())
+        key = flag.removeprefix("warning_")
+        named = flown["warnings"].fill_null("").str.contains(f"(^|; ){key}:")
+        if not (flown[flag] == named).all():
+            fail(f"{variants_path}: {flag} disagrees with the warnings text")
     metrics = s["metric"].unique().to_list()
     means = landed.group_by("point").agg([pl.col(m).mean().alias(m) for m in metrics])
     checked = 0

@@ -9,7 +9,7 @@ mod fly;
 mod site;
 mod wind;
 
-use arrow::array::{Array, Float64Array, StringArray, UInt32Array, UInt64Array};
+use arrow::array::{Array, BooleanArray, Float64Array, StringArray, UInt32Array, UInt64Array};
 use arrow::compute::{concat_batches, sort_to_indices, take_record_batch};
 use arrow::record_batch::RecordBatch;
 use hpr_mc::campaign::sample::fingerprint;
@@ -153,6 +153,9 @@ fn the_variants_file_reads_back_with_its_schema_units_nulls_metadata_and_values(
         "status",
         "error",
         "warnings",
+        "warning_unstable",
+        "warning_large_alpha",
+        "warning_ballistic",
     ];
     expected.extend(hpr_mc::campaign::fly::FIXED_METRICS.iter().map(|m| m.0));
     expected.extend([
@@ -204,6 +207,12 @@ fn the_variants_file_reads_back_with_its_schema_units_nulls_metadata_and_values(
             "row {r}: refused exactly when the lag is negative"
         );
         assert_eq!(error.is_null(r), landed);
+        for key in ["unstable", "large_alpha", "ballistic"] {
+            // Flown: true or false; refused: null.
+            let flag = bools(&b, &format!("warning_{key}"));
+            assert_eq!(flag.is_null(r), !landed, "row {r} warning_{key}");
+            assert!(!landed || !flag.value(r), "row {r} warning_{key}");
+        }
         for m in hpr_mc::campaign::fly::FIXED_METRICS {
             assert_eq!(f64s(&b, m.0).is_null(r), !landed, "row {r} column {}", m.0);
         }
@@ -305,6 +314,14 @@ fn the_summary_s_means_are_the_means_of_the_landed_rows() {
 }
 
 /// The rows of a variants file (all columns), whatever the schema's metadata.
+fn bools<'a>(b: &'a RecordBatch, name: &str) -> &'a BooleanArray {
+    b.column_by_name(name)
+        .unwrap_or_else(|| panic!("no column {name}"))
+        .as_any()
+        .downcast_ref::<BooleanArray>()
+        .unwrap_or_else(|| panic!("{name} is not true/false"))
+}
+
 fn columns(b: &RecordBatch) -> Vec<std::sync::Arc<dyn Array>> {
     b.columns().to_vec()
 }
@@ -533,6 +550,10 @@ fn a_campaign_without_parachutes_marks_every_landing_ballistic_and_counts_it() {
             )
         );
         assert!(speed.value(r) > 50.0, "row {r}: {}", speed.value(r));
+        // ... and its flag, beside the two it did not raise.
+        assert!(bools(&b, "warning_ballistic").value(r));
+        assert!(!bools(&b, "warning_unstable").value(r));
+        assert!(!bools(&b, "warning_large_alpha").value(r));
     }
 }
 

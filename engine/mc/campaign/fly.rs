@@ -27,6 +27,9 @@ use hpr_sim::batch::{Batch, LaneResult};
 use hpr_sim::{SimError, SimOptions, Simulation, Trigger};
 use setup::{Fixed, Setup};
 
+/// How many kinds of warning a flight can raise ([`hpr_sim::Warning::KEYS`]).
+pub const WARNINGS: usize = hpr_sim::Warning::KEYS.len();
+
 /// How a variant ended: the batch lane's status.
 pub use hpr_sim::batch::Status;
 
@@ -39,6 +42,9 @@ pub struct VariantResult {
     pub error: Option<String>,
     /// The flight's warnings ([`hpr_sim::Warning`]), `; `-separated; `None` if it has none.
     pub warnings: Option<String>,
+    /// Whether the flight raised each warning of [`hpr_sim::Warning::KEYS`] (`None` if it
+    /// was not flown).
+    pub warned: Option<[bool; WARNINGS]>,
     pub metrics: Vec<Option<f64>>,
 }
 
@@ -372,6 +378,7 @@ impl Prepared {
                 status,
                 error,
                 warnings: None,
+                warned: None,
                 metrics: vec![None; self.metrics.len()],
             };
         }
@@ -412,11 +419,16 @@ impl Prepared {
             let w: Vec<String> = lane.warnings.iter().map(|w| w.to_string()).collect();
             w.join("; ")
         });
+        let mut warned = [false; WARNINGS];
+        for w in &lane.warnings {
+            warned[w.index()] = true;
+        }
         VariantResult {
             id,
             status,
             error,
             warnings,
+            warned: Some(warned),
             metrics: out
                 .into_iter()
                 .map(|x| x.filter(|v| v.is_finite()))
@@ -481,6 +493,7 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
                 status: Status::Failed,
                 error: Some(format!("internal error: {e}")),
                 warnings: None,
+                warned: None,
                 metrics: vec![None; prepared.metrics.len()],
             };
             return variants.iter().map(failed).collect();
@@ -500,6 +513,7 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
                 status,
                 error: Some(error),
                 warnings: None,
+                warned: None,
                 metrics: vec![None; prepared.metrics.len()],
             }
         })

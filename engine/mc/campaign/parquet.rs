@@ -16,7 +16,7 @@ use super::stats::{PointStats, Table};
 use super::variants::{Shard, Variant};
 use anyhow::{bail, Context};
 use arrow::array::{
-    Array, ArrayRef, Float64Array, StringArray, UInt32Array, UInt64Array, UInt8Array,
+    Array, ArrayRef, BooleanArray, Float64Array, StringArray, UInt32Array, UInt64Array, UInt8Array,
 };
 use arrow::datatypes::{DataType, Field, Schema, SchemaRef};
 use arrow::record_batch::RecordBatch;
@@ -121,7 +121,7 @@ fn sweep_fields(p: &Prepared) -> Vec<Field> {
 }
 
 /// Schema of variants.parquet: ids, the sweep point's values, every input's value, the
-/// status, error and warnings, and every metric.
+/// status, error and warnings (as text, and one true/false column per kind), and every metric.
 pub fn variants_schema(p: &Prepared, meta: &RunMeta) -> SchemaRef {
     let mut fields = vec![
         field("variant_id", DataType::UInt64, false, None),
@@ -138,6 +138,11 @@ pub fn variants_schema(p: &Prepared, meta: &RunMeta) -> SchemaRef {
     fields.push(field("status", DataType::Utf8, false, None));
     fields.push(field("error", DataType::Utf8, true, None));
     fields.push(field("warnings", DataType::Utf8, true, None));
+    fields.extend(
+        hpr_sim::Warning::KEYS
+            .iter()
+            .map(|k| field(&format!("warning_{k}"), DataType::Boolean, true, None)),
+    );
     fields.extend(
         p.metrics
             .iter()
@@ -195,6 +200,14 @@ pub fn variants_batch(
             .map(|r| r.warnings.clone())
             .collect::<Vec<_>>(),
     )));
+    for k in 0..hpr_sim::Warning::KEYS.len() {
+        cols.push(Arc::new(BooleanArray::from(
+            results
+                .iter()
+                .map(|r| r.warned.map(|w| w[k]))
+                .collect::<Vec<_>>(),
+        )));
+    }
     for m in 0..p.metrics.len() {
         cols.push(Arc::new(Float64Array::from(
             results.iter().map(|r| r.metrics[m]).collect::<Vec<_>>(),

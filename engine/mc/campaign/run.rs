@@ -100,8 +100,8 @@ pub struct RunReport {
     pub time_limit: u64,
     pub refused: u64,
     pub failed: u64,
-    /// Flown variants with warnings, per warning kind ([`hpr_sim::Warning::key`]), in
-    /// order of first appearance.
+    /// Flown variants with warnings, per warning kind ([`hpr_sim::Warning::key`]) that
+    /// occurred, in the order of [`hpr_sim::Warning::KEYS`].
     pub warned: Vec<(String, u64)>,
     pub stats: Vec<PointStats>,
     pub elapsed: Duration,
@@ -279,25 +279,31 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
 fn count_outcomes(report: &mut RunReport) -> anyhow::Result<()> {
     let path = report.outputs.variants.clone();
     let (mut t, mut r, mut f) = (0, 0, 0);
-    let mut warned: Vec<(String, u64)> = Vec::new();
-    let strings = |batch: &arrow::record_batch::RecordBatch, name: &str| {
+    let mut warned = [0u64; hpr_sim::Warning::KEYS.len()];
+    let column = |batch: &arrow::record_batch::RecordBatch, name: &str| {
         batch
             .column_by_name(name)
-            .and_then(|c| c.as_any().downcast_ref::<arrow::array::StringArray>())
             .cloned()
-            .with_context(|| format!("{} has no string column {name}", path.display()))
+            .with_context(|| format!("{} has no column {name}", path.display()))
+    };
+    let strings = |batch: &arrow::record_batch::RecordBatch, name: &str| {
+        column(batch, name)?
+            .as_any()
+            .downcast_ref::<arrow::array::StringArray>()
+            .cloned()
+            .with_context(|| format!("{}: column {name} is not text", path.display()))
     };
     for batch in pq::read_batches(&path)? {
         let batch = batch?;
         let status = strings(&batch, "status")?;
-        for w in strings(&batch, "warnings")?.iter().flatten() {
-            // Each warning starts with its key: "unstable: ...; ballistic: ...".
-            for key in w.split("; ").filter_map(|x| x.split(':').next()) {
-                match warned.iter_mut().find(|(k, _)| k == key) {
-                    Some((_, n)) => *n += 1,
-                    None => warned.push((key.to_string(), 1)),
-                }
-            }
+        for (k, key) in hpr_sim::Warning::KEYS.iter().enumerate() {
+            let name = format!("warning_{key}");
+            let flags = column(&batch, &name)?;
+            let flags = flags
+                .as_any()
+                .downcast_ref::<arrow::array::BooleanArray>()
+                .with_context(|| format!("{}: column {name} is not true/false", path.display()))?;
+            warned[k] += flags.true_count() as u64;
         }
         for s in status.iter().flatten() {
             if s == Status::TimeLimit.name() {
@@ -310,7 +316,12 @@ fn count_outcomes(report: &mut RunReport) -> anyhow::Result<()> {
         }
     }
     (report.time_limit, report.refused, report.failed) = (t, r, f);
-    report.warned = warned;
+    report.warned = hpr_sim::Warning::KEYS
+        .iter()
+        .zip(warned)
+        .filter(|(_, n)| *n > 0)
+        .map(|(k, n)| (k.to_string(), n))
+        .collect();
     Ok(())
 }
 

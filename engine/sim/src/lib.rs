@@ -21,7 +21,8 @@ pub mod wind;
 
 pub use events::EventKind;
 pub use flight::{
-    CanopyShape, Environment, Flight, Integrator, Parachute, Rail, SimError, SimOptions, Simulation,
+    CanopyShape, Environment, Flight, Integrator, Parachute, Rail, SimError, SimOptions,
+    Simulation, Warning,
 };
 pub use shifts::MassShift;
 pub use trigger::Trigger;

@@ -160,13 +160,21 @@ impl Warning {
         w
     }
 
+    /// Every warning's key, in the order of [`Warning::index`].
+    pub const KEYS: [&'static str; 3] = ["unstable", "large_alpha", "ballistic"];
+
+    /// This warning's place in [`Warning::KEYS`].
+    pub fn index(&self) -> usize {
+        match self {
+            Warning::NegativeStaticMargin { .. } => 0,
+            Warning::LargeAngleOfAttack { .. } => 1,
+            Warning::NoCanopyAtLanding { .. } => 2,
+        }
+    }
+
     /// A short name for counting and filtering (`unstable`, `large_alpha`, `ballistic`).
     pub fn key(&self) -> &'static str {
-        match self {
-            Warning::NegativeStaticMargin { .. } => "unstable",
-            Warning::LargeAngleOfAttack { .. } => "large_alpha",
-            Warning::NoCanopyAtLanding { .. } => "ballistic",
-        }
+        Warning::KEYS[self.index()]
     }
 }
 
