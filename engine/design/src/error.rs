@@ -59,6 +59,8 @@ pub enum Rule {
     PowerOnWithoutPowerOff,
     /// A shape parameter given to a shape that takes none.
     ShapeTakesNoParameter { shape: &'static str },
+    /// A fin dimension given to a planform that has no such dimension.
+    NotForPlanform { planform: &'static str },
     /// An empty id.
     EmptyId,
     /// An id used twice (stages and components share one namespace).
@@ -139,6 +141,9 @@ impl fmt::Display for Rule {
             ),
             Rule::ShapeTakesNoParameter { shape } => {
                 write!(f, "shape \"{shape}\" takes no shape_parameter")
+            }
+            Rule::NotForPlanform { planform } => {
+                write!(f, "does not apply to a fin of planform \"{planform}\"")
             }
             Rule::EmptyId => write!(f, "must not be empty"),
             Rule::DuplicateId { first } => write!(f, "is already the id of {first}"),

@@ -38,7 +38,7 @@
 //! At Mach 0 this equals RocketPy's Diederich-based slope exactly (see [`super::mach`]).
 
 use super::profile::Section;
-use crate::design::NoseShape;
+use crate::design::{FinPlanform, FinSet, NoseShape};
 use std::f64::consts::PI;
 
 /// Normal-force slope (per radian, on the reference area) and center of pressure of one
@@ -81,22 +81,21 @@ pub fn nose_cone_lift(
     body_section_lift(&Section::nose(shape, length_m, base_radius_m), ref_area_m2)
 }
 
-/// A set of identical trapezoidal fins.
+/// A set of identical fins of one planform.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TrapezoidalFins {
+pub struct Fins {
     pub count: u32,
     pub root_chord_m: f64,
-    pub tip_chord_m: f64,
     /// Semi-span from the body surface.
     pub span_m: f64,
-    /// Axial distance from the root's leading edge to the tip's leading edge.
-    pub sweep_m: f64,
+    pub planform: FinPlanform,
     /// Body radius at the fins.
     pub body_radius_m: f64,
     pub cant_rad: f64,
 }
 
-/// Derived planform numbers of a fin (the names of RocketPy's `_TrapezoidalGeometry`).
+/// Derived planform numbers of a fin (the names of RocketPy's `_TrapezoidalGeometry` and
+/// `_EllipticalGeometry`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FinGeometry {
     /// Area of one fin, m² (`Af`).
@@ -107,12 +106,15 @@ pub struct FinGeometry {
     pub mid_chord_sweep_rad: f64,
     /// Length of the mid-chord line, m (`l_m = s / cos γc`).
     pub mid_chord_length_m: f64,
-    /// Leading-edge sweep angle, rad.
+    /// Leading-edge sweep angle, rad: of the straight edge, or for a curved one the angle
+    /// whose cosine is the edge's mean over the span (OpenRocket's `cosGammaLead`).
     pub leading_edge_sweep_rad: f64,
     /// Span-wise position of the mean aerodynamic chord from the root, m (`Yma`).
     pub y_mac_m: f64,
     /// Length of the mean aerodynamic chord, m.
     pub mac_length_m: f64,
+    /// Axial position of the mean aerodynamic chord's leading edge aft of the root's, m.
+    pub mac_leading_edge_m: f64,
     /// `τ = (s + r)/r`.
     pub tau: f64,
     /// Body interference factor on lift `K_fb = 1 + 1/τ = 1 + r/(s + r)`.
@@ -121,72 +123,167 @@ pub struct FinGeometry {
     pub roll_forcing_interference: f64,
     /// Roll damping interference factor `K_d`.
     pub roll_damping_interference: f64,
-    /// Roll geometric constant `G = [(C_r + 3C_t) s³ + 4 (C_r + 2C_t) r s² + 6 (C_r + C_t) s r²]/12`, m⁴.
+    /// Roll geometric constant `G = ∫ c(y) (r + y)² dy` over the span, m⁴: for a trapezoid
+    /// `[(C_r + 3C_t) s³ + 4 (C_r + 2C_t) r s² + 6 (C_r + C_t) s r²]/12`, for an ellipse
+    /// `C_r s (3π s² + 32 r s + 12π r²)/48`.
     pub roll_geometric_constant_m4: f64,
 }
 
-impl TrapezoidalFins {
-    /// The planform numbers (RocketPy `_TrapezoidalGeometry.evaluate_geometrical_parameters`).
-    pub fn geometry(&self) -> FinGeometry {
-        let (cr, ct, s, xr, r) = (
-            self.root_chord_m,
-            self.tip_chord_m,
-            self.span_m,
-            self.sweep_m,
-            self.body_radius_m,
-        );
-        let area = (cr + ct) * s / 2.0;
-        let gamma_c = ((xr + 0.5 * ct - 0.5 * cr) / s).atan();
-        let tau = (s + r) / r;
-        let lambda = ct / cr;
-        let asin_term = ((tau * tau - 1.0) / (tau * tau + 1.0)).asin();
-        let t2 = tau * tau;
-        let tm1 = tau - 1.0;
-        let kf = (1.0 / (PI * PI))
-            * ((PI * PI / 4.0) * ((tau + 1.0).powi(2) / t2)
-                + (PI * (t2 + 1.0).powi(2) / (t2 * tm1 * tm1)) * asin_term
-                - (2.0 * PI * (tau + 1.0)) / (tau * tm1)
-                + ((t2 + 1.0).powi(2) / (t2 * tm1 * tm1)) * asin_term * asin_term
-                - (4.0 * (tau + 1.0)) / (tau * tm1) * asin_term
-                + (8.0 / (tm1 * tm1)) * ((t2 + 1.0) / (2.0 * tau)).ln());
-        let kd = 1.0
-            + (((tau - lambda) / tau) - ((1.0 - lambda) / tm1) * tau.ln())
-                / (((tau + 1.0) * (tau - lambda)) / 2.0
-                    - ((1.0 - lambda) * (tau.powi(3) - 1.0)) / (3.0 * tm1));
-        let g = ((cr + 3.0 * ct) * s.powi(3)
-            + 4.0 * (cr + 2.0 * ct) * r * s * s
-            + 6.0 * (cr + ct) * s * r * r)
-            / 12.0;
-        FinGeometry {
-            area_m2: area,
-            aspect_ratio: 2.0 * s * s / area,
-            mid_chord_sweep_rad: gamma_c,
-            mid_chord_length_m: s / gamma_c.cos(),
-            leading_edge_sweep_rad: (xr / s).atan(),
-            y_mac_m: (s / 3.0) * (cr + 2.0 * ct) / (cr + ct),
-            mac_length_m: (2.0 / 3.0) * (cr + ct - cr * ct / (cr + ct)),
-            tau,
-            lift_interference: 1.0 + 1.0 / tau,
-            roll_forcing_interference: kf,
-            roll_damping_interference: kd,
-            roll_geometric_constant_m4: g,
+/// Barrowman's roll forcing interference factor `K_f(τ)` (RocketPy's form; the same for
+/// every planform).
+fn roll_forcing_interference(tau: f64) -> f64 {
+    let t2 = tau * tau;
+    let tm1 = tau - 1.0;
+    let asin_term = ((t2 - 1.0) / (t2 + 1.0)).asin();
+    (1.0 / (PI * PI))
+        * ((PI * PI / 4.0) * ((tau + 1.0).powi(2) / t2)
+            + (PI * (t2 + 1.0).powi(2) / (t2 * tm1 * tm1)) * asin_term
+            - (2.0 * PI * (tau + 1.0)) / (tau * tm1)
+            + ((t2 + 1.0).powi(2) / (t2 * tm1 * tm1)) * asin_term * asin_term
+            - (4.0 * (tau + 1.0)) / (tau * tm1) * asin_term
+            + (8.0 / (tm1 * tm1)) * ((t2 + 1.0) / (2.0 * tau)).ln())
+}
+
+/// The roll damping interference factor `K_d` of an elliptical fin of span `s` on a body of
+/// radius `r` (RocketPy's `_EllipticalGeometry`, its three cases).
+fn elliptical_roll_damping_interference(s: f64, r: f64) -> f64 {
+    if s > r {
+        let q = (s * s - r * r).sqrt();
+        1.0 + r * r
+            * (2.0 * r * r * q * ((2.0 * s * q + 2.0 * s * s) / r).ln()
+                - 2.0 * r * r * q * (2.0 * s).ln()
+                + 2.0 * s.powi(3)
+                - PI * r * s * s
+                - 2.0 * r * r * s
+                + PI * r.powi(3))
+            / (2.0 * s * s * (s / 3.0 + PI * r / 4.0) * (s * s - r * r))
+    } else if s < r {
+        let q = (r * r - s * s).sqrt();
+        1.0 - r * r
+            * (2.0 * s.powi(3) - PI * s * s * r - 2.0 * s * r * r
+                + PI * r.powi(3)
+                + 2.0 * r * r * q * (s / q).atan()
+                - PI * r * r * q)
+            / (2.0 * s * (r * r - s * s) * (s * s / 3.0 + PI * s * r / 4.0))
+    } else {
+        (28.0 - 3.0 * PI) / (4.0 + 3.0 * PI)
+    }
+}
+
+/// The mean over the span of the cosine of an elliptical fin's leading-edge slope, its
+/// semi-axes `a` along the body and `b` along the span: with `y = b sin θ`,
+/// `∫₀^{π/2} cos²θ / √(1 − (1 − (a/b)²) sin²θ) dθ`, by Simpson's rule on 256 panels (the
+/// integrand is smooth and periodic-like: the rule's error is far below 1e-12).
+fn elliptical_mean_leading_edge_cos(a: f64, b: f64) -> f64 {
+    let e = 1.0 - (a / b).powi(2);
+    let f = |t: f64| t.cos().powi(2) / (1.0 - e * t.sin().powi(2)).sqrt();
+    let n = 256;
+    let h = 0.5 * PI / n as f64;
+    let inner: f64 = (1..n)
+        .map(|i| if i % 2 == 1 { 4.0 } else { 2.0 } * f(i as f64 * h))
+        .sum();
+    (f(0.0) + inner + f(0.5 * PI)) * h / 3.0
+}
+
+impl Fins {
+    /// The aerodynamic view of a design's fin set.
+    pub fn of(f: &FinSet) -> Fins {
+        Fins {
+            count: f.count,
+            root_chord_m: f.root_chord_m,
+            span_m: f.span_m,
+            planform: f.planform,
+            body_radius_m: f.body_radius_m,
+            cant_rad: f.cant_deg.to_radians(),
         }
     }
 
-    /// Center of pressure, m aft of the root's leading edge.
-    pub fn x_cp_m(&self) -> f64 {
-        let (cr, ct, xr) = (self.root_chord_m, self.tip_chord_m, self.sweep_m);
-        xr * (cr + 2.0 * ct) / (3.0 * (cr + ct)) + (cr + ct - cr * ct / (cr + ct)) / 6.0
+    /// The planform numbers (RocketPy `_TrapezoidalGeometry` / `_EllipticalGeometry`
+    /// `.evaluate_geometrical_parameters`).
+    pub fn geometry(&self) -> FinGeometry {
+        let (cr, s, r) = (self.root_chord_m, self.span_m, self.body_radius_m);
+        let tau = (s + r) / r;
+        let kf = roll_forcing_interference(tau);
+        match self.planform {
+            FinPlanform::Trapezoidal {
+                tip_chord_m: ct,
+                sweep_m: xr,
+            } => {
+                let area = self.planform.area_m2(cr, s);
+                let gamma_c = ((xr + 0.5 * ct - 0.5 * cr) / s).atan();
+                let lambda = ct / cr;
+                let tm1 = tau - 1.0;
+                let kd = 1.0
+                    + (((tau - lambda) / tau) - ((1.0 - lambda) / tm1) * tau.ln())
+                        / (((tau + 1.0) * (tau - lambda)) / 2.0
+                            - ((1.0 - lambda) * (tau.powi(3) - 1.0)) / (3.0 * tm1));
+                let g = ((cr + 3.0 * ct) * s.powi(3)
+                    + 4.0 * (cr + 2.0 * ct) * r * s * s
+                    + 6.0 * (cr + ct) * s * r * r)
+                    / 12.0;
+                let y_mac = (s / 3.0) * (cr + 2.0 * ct) / (cr + ct);
+                FinGeometry {
+                    area_m2: area,
+                    aspect_ratio: 2.0 * s * s / area,
+                    mid_chord_sweep_rad: gamma_c,
+                    mid_chord_length_m: s / gamma_c.cos(),
+                    leading_edge_sweep_rad: (xr / s).atan(),
+                    y_mac_m: y_mac,
+                    mac_length_m: (2.0 / 3.0) * (cr + ct - cr * ct / (cr + ct)),
+                    mac_leading_edge_m: xr * y_mac / s,
+                    tau,
+                    lift_interference: 1.0 + 1.0 / tau,
+                    roll_forcing_interference: kf,
+                    roll_damping_interference: kd,
+                    roll_geometric_constant_m4: g,
+                }
+            }
+            FinPlanform::Elliptical => {
+                // Chord c(y) = C_r √(1 − (y/s)²), leading edge (C_r/2)(1 − √(1 − (y/s)²)).
+                let area = self.planform.area_m2(cr, s);
+                let y_mac = s / (3.0 * PI) * (9.0 * PI * PI - 64.0).sqrt();
+                let mac = 8.0 * cr / (3.0 * PI);
+                FinGeometry {
+                    area_m2: area,
+                    aspect_ratio: 2.0 * s * s / area,
+                    mid_chord_sweep_rad: 0.0,
+                    mid_chord_length_m: s,
+                    leading_edge_sweep_rad: elliptical_mean_leading_edge_cos(cr / 2.0, s).acos(),
+                    y_mac_m: y_mac,
+                    mac_length_m: mac,
+                    // At Yma, √(1 − (Yma/s)²) = 8/(3π): the leading edge is (C_r/2)(1 − 8/(3π)).
+                    mac_leading_edge_m: 0.5 * cr - 0.5 * mac,
+                    tau,
+                    lift_interference: 1.0 + 1.0 / tau,
+                    roll_forcing_interference: kf,
+                    roll_damping_interference: elliptical_roll_damping_interference(s, r),
+                    roll_geometric_constant_m4: cr
+                        * s
+                        * (3.0 * PI * s * s + 32.0 * r * s + 12.0 * PI * r * r)
+                        / 48.0,
+                }
+            }
+        }
     }
 
-    /// Barrowman's normal-force slope of the whole set at Mach 0, on the area of `ref_diameter_m`.
+    /// Center of pressure, m aft of the root's leading edge: the quarter point of the mean
+    /// aerodynamic chord. For a trapezoid this is Barrowman's
+    /// `X_r (C_r + 2C_t)/(3 (C_r + C_t)) + (C_r + C_t − C_r C_t/(C_r + C_t))/6`; for an
+    /// ellipse `C_r (1/2 − 2/(3π)) = 0.2878 C_r` (RocketPy rounds it to `0.288 C_r`).
+    pub fn x_cp_m(&self) -> f64 {
+        let g = self.geometry();
+        g.mac_leading_edge_m + 0.25 * g.mac_length_m
+    }
+
+    /// Barrowman's normal-force slope of the whole set at Mach 0, on the area of
+    /// `ref_diameter_m`: `K_fb F(N) 2π AR (A_f/A_ref) / (2 + √(4 + (AR/cos γc)²))`, which for a
+    /// trapezoid is `K_fb F(N) 8 (s/d)² / (1 + √(1 + (2 l_m/(C_r + C_t))²))`.
     pub fn cn_alpha_mach0(&self, ref_diameter_m: f64) -> f64 {
-        let (cr, ct, s) = (self.root_chord_m, self.tip_chord_m, self.span_m);
-        let lm = self.geometry().mid_chord_length_m;
-        let k_fb = 1.0 + self.body_radius_m / (s + self.body_radius_m);
-        let per_half_pair = 8.0 * (s / ref_diameter_m).powi(2)
-            / (1.0 + (1.0 + (2.0 * lm / (cr + ct)).powi(2)).sqrt());
-        k_fb * fin_count_factor(self.count) * per_half_pair
+        let g = self.geometry();
+        let a_ref = PI * ref_diameter_m * ref_diameter_m / 4.0;
+        let one = 2.0 * PI * g.aspect_ratio * (g.area_m2 / a_ref)
+            / (2.0 + (4.0 + (g.aspect_ratio / g.mid_chord_sweep_rad.cos()).powi(2)).sqrt());
+        g.lift_interference * fin_count_factor(self.count) * one
     }
 
     /// Lift of the set at Mach 0.
@@ -369,13 +466,15 @@ mod tests {
     }
 
     /// The example fin set of docs/design-format (3 fins, 54 mm body).
-    fn example_fins() -> TrapezoidalFins {
-        TrapezoidalFins {
+    fn example_fins() -> Fins {
+        Fins {
             count: 3,
             root_chord_m: 0.12,
-            tip_chord_m: 0.05,
             span_m: 0.07,
-            sweep_m: 0.06,
+            planform: FinPlanform::Trapezoidal {
+                tip_chord_m: 0.05,
+                sweep_m: 0.06,
+            },
             body_radius_m: 0.0563 / 2.0,
             cant_rad: 0.0,
         }
@@ -407,8 +506,8 @@ mod tests {
     #[test]
     fn four_fins_lift_four_thirds_as_much_as_three_and_five_follow_rocketpys_reduced_factor() {
         let three = example_fins();
-        let four = TrapezoidalFins { count: 4, ..three };
-        let five = TrapezoidalFins { count: 5, ..three };
+        let four = Fins { count: 4, ..three };
+        let five = Fins { count: 5, ..three };
         let ratio = four.cn_alpha_mach0(0.0563) / three.cn_alpha_mach0(0.0563);
         assert!((ratio - 4.0 / 3.0).abs() < 1e-12);
         let ratio5 = five.cn_alpha_mach0(0.0563) / three.cn_alpha_mach0(0.0563);
@@ -418,12 +517,14 @@ mod tests {
     #[test]
     fn the_fin_geometry_matches_rocketpys_definitions_for_calisto() {
         // Calisto fins: C_r 0.12, C_t 0.04, s 0.1, X_r = C_r − C_t = 0.08, r = 0.0635.
-        let f = TrapezoidalFins {
+        let f = Fins {
             count: 4,
             root_chord_m: 0.12,
-            tip_chord_m: 0.04,
             span_m: 0.1,
-            sweep_m: 0.08,
+            planform: FinPlanform::Trapezoidal {
+                tip_chord_m: 0.04,
+                sweep_m: 0.08,
+            },
             body_radius_m: 0.0635,
             cant_rad: 0.0,
         };

@@ -34,6 +34,7 @@ use super::drag_formulas::{
 };
 use super::nose_drag::NosePressureDrag;
 use super::profile::{nose_shape_of, Section};
+use super::barrowman::Fins;
 use super::table::MachTable;
 use crate::design::{ComponentKind, Design, FinCrossSection};
 use std::f64::consts::PI;
@@ -110,14 +111,14 @@ impl DragGeometry {
                     },
                 )),
                 ComponentKind::FinSet(f) => {
-                    let (cr, ct, s) = (f.root_chord_m, f.tip_chord_m, f.span_m);
+                    let g = Fins::of(f).geometry();
                     fins.push(FinDrag {
                         count: f.count,
-                        area_m2: (cr + ct) * s / 2.0,
-                        span_m: s,
+                        area_m2: g.area_m2,
+                        span_m: f.span_m,
                         thickness_m: f.thickness_m,
-                        mac_m: (2.0 / 3.0) * (cr + ct - cr * ct / (cr + ct)),
-                        leading_edge_sweep_rad: (f.sweep_m / s).atan(),
+                        mac_m: g.mac_length_m,
+                        leading_edge_sweep_rad: g.leading_edge_sweep_rad,
                         cross_section: f.cross_section,
                     })
                 }

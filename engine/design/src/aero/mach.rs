@@ -27,7 +27,7 @@
 //!   [`super::FinRoll`]). The damping expression is RocketPy's; Barrowman's uses a 2-D
 //!   sectional slope instead of `(CNα)₁`.
 
-use super::barrowman::{fin_count_factor, FinGeometry, TrapezoidalFins};
+use super::barrowman::{fin_count_factor, FinGeometry, Fins};
 use std::f64::consts::PI;
 
 /// RocketPy's compressibility factor `β(M)`.
@@ -50,7 +50,7 @@ pub fn single_fin_cn_alpha(g: &FinGeometry, mach: f64, ref_area_m2: f64) -> f64 
 
 /// Slope of a fin set at `mach`, on the reference area `ref_area_m2`.
 pub fn fin_set_cn_alpha(
-    fins: &TrapezoidalFins,
+    fins: &Fins,
     g: &FinGeometry,
     mach: f64,
     ref_area_m2: f64,
@@ -60,7 +60,7 @@ pub fn fin_set_cn_alpha(
 
 /// Roll forcing coefficient per radian of cant, `C_lf,δ(M)`, on `A_ref` and `d_ref`.
 pub fn roll_forcing_per_cant(
-    fins: &TrapezoidalFins,
+    fins: &Fins,
     g: &FinGeometry,
     mach: f64,
     ref_area_m2: f64,
@@ -76,7 +76,7 @@ pub fn roll_forcing_per_cant(
 /// Roll damping coefficient `C_ld,ω(M)`, on `A_ref` and `d_ref` (RocketPy's expression with
 /// the single-fin slope referenced to the body area at the fins).
 pub fn roll_damping(
-    fins: &TrapezoidalFins,
+    fins: &Fins,
     g: &FinGeometry,
     mach: f64,
     ref_area_m2: f64,
@@ -95,13 +95,15 @@ pub fn roll_damping(
 mod tests {
     use super::*;
 
-    fn calisto_fins() -> TrapezoidalFins {
-        TrapezoidalFins {
+    fn calisto_fins() -> Fins {
+        Fins {
             count: 4,
             root_chord_m: 0.12,
-            tip_chord_m: 0.04,
             span_m: 0.1,
-            sweep_m: 0.08,
+            planform: crate::design::FinPlanform::Trapezoidal {
+                tip_chord_m: 0.04,
+                sweep_m: 0.08,
+            },
             body_radius_m: 0.0635,
             cant_rad: 0.0,
         }
@@ -153,7 +155,7 @@ mod tests {
     #[test]
     fn roll_damping_is_reduced_by_the_cosine_of_the_cant() {
         let f = calisto_fins();
-        let canted = TrapezoidalFins { cant_rad: 0.1, ..f };
+        let canted = Fins { cant_rad: 0.1, ..f };
         let a = PI * 0.0635f64.powi(2);
         let r0 = roll_damping(&f, &f.geometry(), 0.3, a, 0.127);
         let r1 = roll_damping(&canted, &canted.geometry(), 0.3, a, 0.127);

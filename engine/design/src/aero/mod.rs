@@ -24,11 +24,11 @@ pub mod table;
 #[cfg(test)]
 mod tests;
 
-pub use barrowman::{FinGeometry, Lift, TrapezoidalFins};
+pub use barrowman::{FinGeometry, Fins, Lift};
 pub use profile::Section;
 pub use table::{Curve, MachTable};
 
-use crate::design::{ComponentIdx, ComponentKind, Design, DragSpec};
+use crate::design::{ComponentIdx, ComponentKind, Design, DragSpec, FinPlanform};
 use std::f64::consts::PI;
 
 /// Static margin in calibres: `(x_cp − x_cg)/d`, positive when the CP is aft of the CG.
@@ -251,28 +251,26 @@ impl AeroModel {
                     positive("root_chord_m", f.root_chord_m)?;
                     positive("span_m", f.span_m)?;
                     positive("body_radius_m", f.body_radius_m)?;
-                    if !(f.tip_chord_m.is_finite() && f.tip_chord_m >= 0.0) {
-                        return Err(bad(
-                            "tip_chord_m",
-                            f.tip_chord_m,
-                            "must be finite and non-negative",
-                        ));
-                    }
-                    if !f.sweep_m.is_finite() {
-                        return Err(bad("sweep_m", f.sweep_m, "must be finite"));
+                    if let FinPlanform::Trapezoidal {
+                        tip_chord_m,
+                        sweep_m,
+                    } = f.planform
+                    {
+                        if !(tip_chord_m.is_finite() && tip_chord_m >= 0.0) {
+                            return Err(bad(
+                                "tip_chord_m",
+                                tip_chord_m,
+                                "must be finite and non-negative",
+                            ));
+                        }
+                        if !sweep_m.is_finite() {
+                            return Err(bad("sweep_m", sweep_m, "must be finite"));
+                        }
                     }
                     if f.count == 0 {
                         return Err(bad("count", 0.0, "a fin set needs at least one fin"));
                     }
-                    let fins = TrapezoidalFins {
-                        count: f.count,
-                        root_chord_m: f.root_chord_m,
-                        tip_chord_m: f.tip_chord_m,
-                        span_m: f.span_m,
-                        sweep_m: f.sweep_m,
-                        body_radius_m: f.body_radius_m,
-                        cant_rad: f.cant_deg.to_radians(),
-                    };
+                    let fins = Fins::of(f);
                     let g = fins.geometry();
                     let cn_alpha =
                         MachTable::from_fn(|m| mach::fin_set_cn_alpha(&fins, &g, m, a_ref));

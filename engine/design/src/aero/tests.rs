@@ -5,7 +5,7 @@
 
 use super::*;
 use crate::design::{
-    BodyTube, Component, ComponentKind, Design, DragSpec, FinCrossSection, FinSet, InnerTube,
+    BodyTube, Component, ComponentKind, Design, DragSpec, FinCrossSection, FinPlanform, FinSet, InnerTube,
     MassSpec, MotorMount, NoseCone, NoseShape, Overrides, Stage, Transition, TransitionShape,
 };
 
@@ -97,9 +97,11 @@ fn fins(
         ComponentKind::FinSet(FinSet {
             count,
             root_chord_m: cr,
-            tip_chord_m: ct,
             span_m: s,
-            sweep_m: sweep,
+            planform: FinPlanform::Trapezoidal {
+                tip_chord_m: ct,
+                sweep_m: sweep,
+            },
             thickness_m: 0.003,
             cant_deg: 0.0,
             body_radius_m: body_r,
@@ -236,12 +238,14 @@ fn fin_sets_agree_with_rocketpy_on_lift_cp_and_roll_coefficients() {
         let f = &r[key];
         let rr = num(f, &["rocket_radius_m"]);
         let cr = num(f, &["root_chord_m"]);
-        let set = TrapezoidalFins {
+        let set = Fins {
             count: num(f, &["n"]) as u32,
             root_chord_m: cr,
-            tip_chord_m: num(f, &["tip_chord_m"]),
             span_m: num(f, &["span_m"]),
-            sweep_m: num(f, &["sweep_length_used_m"]),
+            planform: FinPlanform::Trapezoidal {
+                tip_chord_m: num(f, &["tip_chord_m"]),
+                sweep_m: num(f, &["sweep_length_used_m"]),
+            },
             body_radius_m: rr,
             cant_rad: 0.0,
         };

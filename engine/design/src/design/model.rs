@@ -208,15 +208,51 @@ pub struct Transition {
     pub aft_shoulder: Option<Shoulder>,
 }
 
+/// The outline of one fin, in its plane: the root along the body from its leading edge
+/// (`x = 0`, aft positive) to `root_chord_m`, the span outward from the body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FinPlanform {
+    /// Straight edges: a tip chord parallel to the root, its leading edge `sweep_m` aft of
+    /// the root's.
+    Trapezoidal {
+        tip_chord_m: f64,
+        /// Axial distance from the root's leading edge to the tip's leading edge, m.
+        sweep_m: f64,
+    },
+    /// Half an ellipse on the root: semi-axes half the root chord (along the body) and the
+    /// span, its tip a point above the root's mid-chord (RocketPy's `EllipticalFins`,
+    /// OpenRocket's elliptical fin set).
+    Elliptical,
+}
+
+impl FinPlanform {
+    /// Area of one fin of this planform on a root of `root_chord_m` and a span of `span_m`,
+    /// m²: `(C_r + C_t) s / 2`, or `π C_r s / 4` for the half ellipse.
+    pub fn area_m2(&self, root_chord_m: f64, span_m: f64) -> f64 {
+        match self {
+            FinPlanform::Trapezoidal { tip_chord_m, .. } => {
+                (root_chord_m + tip_chord_m) * span_m / 2.0
+            }
+            FinPlanform::Elliptical => std::f64::consts::PI * root_chord_m * span_m / 4.0,
+        }
+    }
+
+    /// The name the design format gives it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            FinPlanform::Trapezoidal { .. } => "trapezoidal",
+            FinPlanform::Elliptical => "elliptical",
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FinSet {
     pub count: u32,
     pub root_chord_m: f64,
-    pub tip_chord_m: f64,
     /// Semi-span: from the body surface to the tip, m.
     pub span_m: f64,
-    /// Axial distance from the root's leading edge to the tip's leading edge, m.
-    pub sweep_m: f64,
+    pub planform: FinPlanform,
     pub thickness_m: f64,
     pub cant_deg: f64,
     /// Radius of the body where the fins attach, m.

@@ -134,6 +134,14 @@ pub enum RawNoseShape {
 
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
+pub enum RawFinPlanform {
+    #[default]
+    Trapezoidal,
+    Elliptical,
+}
+
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum RawCrossSection {
     #[default]
     Square,
@@ -226,11 +234,14 @@ component_struct!(RawTransition {
 
 component_struct!(RawFinSet {
     count: u32,
+    #[serde(default)]
+    planform: RawFinPlanform,
     root_chord_m: f64,
-    tip_chord_m: f64,
+    #[serde(default)]
+    tip_chord_m: Option<f64>,
     span_m: f64,
     #[serde(default)]
-    sweep_m: f64,
+    sweep_m: Option<f64>,
     thickness_m: f64,
     #[serde(default)]
     cant_deg: f64,

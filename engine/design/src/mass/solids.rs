@@ -11,7 +11,7 @@
 //! the cylinders, cone, cube and plate; the others are derived in their docs.
 
 use super::MassProps;
-use crate::design::model::FinSet;
+use crate::design::model::{FinPlanform, FinSet};
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::PI;
 
@@ -141,37 +141,54 @@ pub fn revolution(profile: impl Fn(f64) -> f64, length_m: f64, wall_m: Option<f6
     }
 }
 
-/// One flat trapezoidal fin of mass `mass_kg`, in its own frame: `x` along the root chord
-/// from its leading edge (aft), `y` from the root toward the tip (span), `z` through the
-/// thickness. Root chord `root` on `y = 0` from `x = 0`; tip chord `tip` on `y = span` from
-/// `x = sweep`. The plate's second moments come from integrating across the span with
-/// three-point Gauss–Legendre (exact: the integrands are cubics), the thickness adds `t²/12`
-/// through it.
+/// One flat fin of mass `mass_kg`, in its own frame: `x` along the root chord from its
+/// leading edge (aft), `y` from the root toward the tip (span), `z` through the thickness.
+/// The root is on `y = 0` from `x = 0` to `root`. A trapezoid's tip chord is on `y = span`
+/// from `x = sweep`; its second moments come from integrating across the span with
+/// three-point Gauss–Legendre (exact: the integrands are cubics). A half ellipse has
+/// semi-axes `a = root/2` and `b = span` about `(a, 0)`; its moments are closed forms
+/// (`∫ dA = π a b/2`, `∫ y dA = 2 a b²/3`, `∫ (x − a)² dA = π a³ b/8`, `∫ y² dA = π a b³/8`,
+/// `∫ (x − a) y dA = 0`). The thickness adds `t²/12` through it.
 pub fn fin_plate(
     mass_kg: f64,
     root: f64,
-    tip: f64,
     span: f64,
-    sweep: f64,
+    planform: &FinPlanform,
     thickness: f64,
 ) -> MassProps {
-    let g = (0.6f64).sqrt();
-    let nodes = [-g, 0.0, g];
-    let weights = [5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0];
     // ∫ over the plate of 1, x, y, x², y², x y (per unit thickness).
     let (mut a, mut ax, mut ay, mut axx, mut ayy, mut axy) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    for (n, w) in nodes.iter().zip(weights) {
-        let y = span * (1.0 + n) / 2.0;
-        let w = w * span / 2.0;
-        let xl = sweep * y / span;
-        let c = root + (tip - root) * y / span;
-        let xr = xl + c;
-        a += w * c;
-        ax += w * (xr * xr - xl * xl) / 2.0;
-        ay += w * y * c;
-        axx += w * (xr.powi(3) - xl.powi(3)) / 3.0;
-        ayy += w * y * y * c;
-        axy += w * y * (xr * xr - xl * xl) / 2.0;
+    match *planform {
+        FinPlanform::Trapezoidal {
+            tip_chord_m: tip,
+            sweep_m: sweep,
+        } => {
+            let g = (0.6f64).sqrt();
+            let nodes = [-g, 0.0, g];
+            let weights = [5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0];
+            for (n, w) in nodes.iter().zip(weights) {
+                let y = span * (1.0 + n) / 2.0;
+                let w = w * span / 2.0;
+                let xl = sweep * y / span;
+                let c = root + (tip - root) * y / span;
+                let xr = xl + c;
+                a += w * c;
+                ax += w * (xr * xr - xl * xl) / 2.0;
+                ay += w * y * c;
+                axx += w * (xr.powi(3) - xl.powi(3)) / 3.0;
+                ayy += w * y * y * c;
+                axy += w * y * (xr * xr - xl * xl) / 2.0;
+            }
+        }
+        FinPlanform::Elliptical => {
+            let (h, b) = (root / 2.0, span);
+            a = PI * h * b / 2.0;
+            ax = h * a;
+            ay = 2.0 * h * b * b / 3.0;
+            axx = PI * h.powi(3) * b / 8.0 + h * h * a;
+            ayy = PI * h * b.powi(3) / 8.0;
+            axy = h * ay;
+        }
     }
     if a <= 0.0 {
         return MassProps::ZERO;
@@ -193,7 +210,7 @@ pub fn fin_plate(
 
 /// Area of one fin's planform, m².
 pub fn fin_area(fins: &FinSet) -> f64 {
-    (fins.root_chord_m + fins.tip_chord_m) / 2.0 * fins.span_m
+    fins.planform.area_m2(fins.root_chord_m, fins.span_m)
 }
 
 /// A fin set of total mass `mass_kg` (shared equally), roots at `body_radius_m` from the
@@ -207,9 +224,8 @@ pub fn fin_set(mass_kg: f64, fins: &FinSet) -> MassProps {
     let plate = fin_plate(
         mass_kg / n as f64,
         fins.root_chord_m,
-        fins.tip_chord_m,
         fins.span_m,
-        fins.sweep_m,
+        &fins.planform,
         fins.thickness_m,
     );
     // Cant: turn about the plate's y axis through (root/2, 0, 0).
@@ -348,7 +364,7 @@ mod tests {
         // c × s × t plate: about its chord line m (s² + t²)/12, across the span
         // m (c² + t²)/12, through the thickness m (c² + s²)/12.
         let (m, c, s, t) = (0.1, 0.12, 0.07, 0.003);
-        let p = fin_plate(m, c, c, s, 0.0, t);
+        let p = fin_plate(m, c, s, &trapezoid(c, 0.0), t);
         assert!((p.cg_m - Vector3::new(0.06, 0.035, 0.0)).amax() < 1e-16);
         let i = p.inertia_cg;
         assert!(rel(i[(0, 0)], m * (s * s + t * t) / 12.0) < 1e-13);
@@ -383,7 +399,7 @@ mod tests {
         let (root, tip, span, sweep, t) = (0.15, 0.05, 0.08, 0.09, 0.004);
         let area = (root + tip) / 2.0 * span;
         let sigma = 2.0; // kg/m² (any)
-        let plate = fin_plate(sigma * area, root, tip, span, sweep, t);
+        let plate = fin_plate(sigma * area, root, span, &trapezoid(tip, sweep), t);
         // Split along the diagonal from the root's trailing edge to the tip's leading edge.
         let a1 = root * span / 2.0;
         let a2 = tip * span / 2.0;
@@ -400,13 +416,67 @@ mod tests {
         assert!(d.amax() < 1e-12 * sum.inertia_cg.amax(), "{d}");
     }
 
+    fn trapezoid(tip_chord_m: f64, sweep_m: f64) -> FinPlanform {
+        FinPlanform::Trapezoidal {
+            tip_chord_m,
+            sweep_m,
+        }
+    }
+
+    #[test]
+    fn an_elliptical_fin_matches_its_moments_integrated_across_the_span() {
+        // Independent of the closed forms: with y = s sin θ the chord is C_r cos θ between
+        // x = (C_r/2)(1 ∓ cos θ), dy = s cos θ dθ, and every integrand is smooth in θ
+        // (Simpson, 2000 panels).
+        let (m, root, span, t) = (0.04, 0.15, 0.09, 0.003);
+        let (h, n) = (root / 2.0, 2000);
+        let dt = 0.5 * PI / n as f64;
+        let mut sums = [0.0f64; 6];
+        for i in 0..=n {
+            let th = i as f64 * dt;
+            let w = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            } * dt
+                / 3.0;
+            let (y, dy) = (span * th.sin(), span * th.cos());
+            let (xl, xr) = (h * (1.0 - th.cos()), h * (1.0 + th.cos()));
+            let terms = [
+                xr - xl,
+                (xr * xr - xl * xl) / 2.0,
+                y * (xr - xl),
+                (xr.powi(3) - xl.powi(3)) / 3.0,
+                y * y * (xr - xl),
+                y * (xr * xr - xl * xl) / 2.0,
+            ];
+            for k in 0..6 {
+                sums[k] += w * dy * terms[k];
+            }
+        }
+        let [a, ax, ay, axx, ayy, axy] = sums;
+        assert!(rel(a, PI * root * span / 4.0) < 1e-12, "area {a}");
+        let (xc, yc) = (ax / a, ay / a);
+        let (sxx, syy, sxy) = (axx / a - xc * xc, ayy / a - yc * yc, axy / a - xc * yc);
+        let p = fin_plate(m, root, span, &FinPlanform::Elliptical, t);
+        assert!((p.cg_m - Vector3::new(xc, yc, 0.0)).amax() < 1e-14);
+        // The center: mid-chord, 4 s/(3π) out.
+        assert!((p.cg_m.y - 4.0 * span / (3.0 * PI)).abs() < 1e-15);
+        let i = p.inertia_cg;
+        assert!(rel(i[(0, 0)], m * (syy + t * t / 12.0)) < 1e-11);
+        assert!(rel(i[(1, 1)], m * (sxx + t * t / 12.0)) < 1e-11);
+        assert!(rel(i[(2, 2)], m * (sxx + syy)) < 1e-11);
+        assert!((i[(0, 1)] + m * sxy).abs() < 1e-11 * i[(2, 2)]);
+    }
+
     fn four_fins(rotation_deg: f64, count: u32) -> FinSet {
         FinSet {
             count,
             root_chord_m: 0.12,
-            tip_chord_m: 0.12,
             span_m: 0.07,
-            sweep_m: 0.0,
+            planform: trapezoid(0.12, 0.0),
             thickness_m: 0.003,
             cant_deg: 0.0,
             body_radius_m: 0.04,
@@ -434,8 +504,7 @@ mod tests {
     fn three_or_more_evenly_spaced_fins_have_an_isotropic_transverse_inertia() {
         for count in [3u32, 5, 7] {
             let mut fins = four_fins(17.0, count);
-            fins.tip_chord_m = 0.05;
-            fins.sweep_m = 0.06;
+            fins.planform = trapezoid(0.05, 0.06);
             fins.cant_deg = 2.0;
             let set = fin_set(0.3, &fins);
             let i = set.inertia_cg;

@@ -102,32 +102,65 @@ impl Builder<'_> {
                         },
                     ));
                 }
-                let tip = self.non_negative(&at, "tip_chord_m", f.tip_chord_m)?;
+                let planform = match f.planform {
+                    RawFinPlanform::Trapezoidal => {
+                        let tip = match f.tip_chord_m {
+                            Some(t) => self.non_negative(&at, "tip_chord_m", t)?,
+                            None => {
+                                return Err(self.invalid(
+                                    &at,
+                                    Some("tip_chord_m"),
+                                    Rule::Required {
+                                        when: "for a trapezoidal fin (the default planform)",
+                                    },
+                                ))
+                            }
+                        };
+                        let sweep = self.finite(&at, "sweep_m", f.sweep_m.unwrap_or(0.0))?;
+                        FinPlanform::Trapezoidal {
+                            tip_chord_m: tip,
+                            sweep_m: sweep,
+                        }
+                    }
+                    RawFinPlanform::Elliptical => {
+                        for (field, v) in [("tip_chord_m", f.tip_chord_m), ("sweep_m", f.sweep_m)] {
+                            if v.is_some() {
+                                return Err(self.invalid(
+                                    &at,
+                                    Some(field),
+                                    Rule::NotForPlanform {
+                                        planform: "elliptical",
+                                    },
+                                ));
+                            }
+                        }
+                        FinPlanform::Elliptical
+                    }
+                };
                 if !(f.root_chord_m > 0.0 && f.root_chord_m.is_finite()) {
-                    let rule = if tip > 0.0 {
-                        Rule::FinRootChord {
-                            root_m: f.root_chord_m,
-                            tip_m: tip,
+                    let rule = match planform {
+                        FinPlanform::Trapezoidal { tip_chord_m, .. } if tip_chord_m > 0.0 => {
+                            Rule::FinRootChord {
+                                root_m: f.root_chord_m,
+                                tip_m: tip_chord_m,
+                            }
                         }
-                    } else {
-                        Rule::NotPositive {
+                        _ => Rule::NotPositive {
                             got: f.root_chord_m,
-                        }
+                        },
                     };
                     return Err(self.invalid(&at, Some("root_chord_m"), rule));
                 }
                 let root = f.root_chord_m;
                 let span = self.positive(&at, "span_m", f.span_m)?;
-                let sweep = self.finite(&at, "sweep_m", f.sweep_m)?;
                 let thickness = self.positive(&at, "thickness_m", f.thickness_m)?;
                 let cant = self.within(&at, "cant_deg", f.cant_deg, -MAX_CANT_DEG, MAX_CANT_DEG)?;
                 let rotation = self.finite(&at, "rotation_deg", f.rotation_deg)?;
                 let fins = FinSet {
                     count: f.count,
                     root_chord_m: root,
-                    tip_chord_m: tip,
                     span_m: span,
-                    sweep_m: sweep,
+                    planform,
                     thickness_m: thickness,
                     cant_deg: cant,
                     body_radius_m: 0.0, // set once placed
