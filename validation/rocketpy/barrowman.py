@@ -1,7 +1,8 @@
 """Pure-geometry Barrowman reference numbers from RocketPy.
 
-For each component (nose cones of every kind RocketPy knows, a boattail, two
-trapezoidal fin sets) this computes with RocketPy's own classes:
+For each component (nose cones of every kind RocketPy knows, a boattail, three
+trapezoidal fin sets, three elliptical ones: span above, below and equal to the
+body radius, RocketPy's three cases of the roll damping factor) this computes with RocketPy's own classes:
 
 * the normal-force slope CN_alpha (per rad) as a function of Mach, referenced
   to the area pi * r_ref^2 of the component's ``rocket_radius``;
@@ -26,7 +27,7 @@ import os
 import warnings
 
 import numpy as np
-from rocketpy import NoseCone, Rocket, Tail, TrapezoidalFins
+from rocketpy import EllipticalFins, NoseCone, Rocket, Tail, TrapezoidalFins
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "barrowman_reference.json")
@@ -68,6 +69,17 @@ DOCS_FINS = {"n": 4, "root_chord_m": 0.12, "tip_chord_m": 0.06,
              "note": "docs/user/first_simulation.rst fin set (NACA 0012 "
                      "table, 0.5 deg cant): shows the airfoil lift slope "
                      "and the roll coefficients"}
+ELLIPTICAL_FINS = {
+    "fins_elliptical_n3_span_above_radius": {
+        "n": 3, "root_chord_m": 0.12, "span_m": 0.07,
+        "rocket_radius_m": BODY_RADIUS, "cant_angle_deg": 0.5},
+    "fins_elliptical_n4_span_below_radius": {
+        "n": 4, "root_chord_m": 0.10, "span_m": 0.04,
+        "rocket_radius_m": 0.0635, "cant_angle_deg": 0.0},
+    "fins_elliptical_n4_span_equal_radius": {
+        "n": 4, "root_chord_m": 0.10, "span_m": 0.05,
+        "rocket_radius_m": 0.05, "cant_angle_deg": 1.0},
+}
 COMPOSITE = {
     "radius_m": BODY_RADIUS,
     "mass_kg": 1.0,
@@ -200,6 +212,40 @@ def fin_record(spec):
     return rec
 
 
+def elliptical_fin_record(spec):
+    fins = EllipticalFins(n=spec["n"], root_chord=spec["root_chord_m"],
+                          span=spec["span_m"],
+                          rocket_radius=spec["rocket_radius_m"],
+                          cant_angle=spec["cant_angle_deg"], name="fins")
+    rec = dict(spec)
+    rec.update(surface_record(fins, spec["rocket_radius_m"]))
+    clf_delta, cld_omega, cant = fins.roll_parameters
+    rec.update({
+        "single_fin_clalpha_per_rad": curve(fins.clalpha_single_fin, MACHS),
+        "geometry": {
+            "Af_single_fin_area_m2": f(fins.Af),
+            "AR_aspect_ratio_2s2_over_Af": f(fins.AR),
+            "gamma_c_midchord_sweep_rad": f(fins.gamma_c),
+            "Yma_mean_aerodynamic_chord_span_position_m": f(fins.Yma),
+            "tau_(s+r)/r": f(fins.tau),
+            "lift_interference_factor_1+1/tau": f(
+                fins.lift_interference_factor),
+            "roll_forcing_interference_factor": f(
+                fins.roll_forcing_interference_factor),
+            "roll_damping_interference_factor": f(
+                fins.roll_damping_interference_factor),
+            "roll_geometrical_constant_m4": f(fins.roll_geometrical_constant),
+        },
+        "roll_forcing_clf_delta_per_rad": curve(clf_delta, MACHS),
+        "roll_damping_cld_omega": curve(cld_omega, MACHS),
+        "cant_angle_rad": f(cant),
+        "note": "RocketPy puts the CP at 0.288 root chords (rounded); the "
+                "quarter point of the mean aerodynamic chord is "
+                "C_r (1/2 - 2/(3 pi)) = 0.28779 C_r",
+    })
+    return rec
+
+
 def composite_record():
     c = COMPOSITE
     with warnings.catch_warnings():
@@ -249,6 +295,7 @@ def main():
         "fins_n3": fin_record(FINS3),
         "fins_calisto_n4": fin_record(CALISTO_FINS),
         "fins_calisto_docs_naca0012_cant": fin_record(DOCS_FINS),
+        **{k: elliptical_fin_record(v) for k, v in ELLIPTICAL_FINS.items()},
         "composite_rocket": composite_record(),
     }
     with open(OUT, "w", encoding="utf-8") as fh:
@@ -261,7 +308,8 @@ def main():
     t = out["tail"]
     print(f"tail CNa {t['clalpha_per_rad']['0.0']:.5f} "
           f"cp {t['cp_aft_of_leading_edge_m']:.5f}")
-    for key in ("fins_n3", "fins_calisto_n4", "fins_calisto_docs_naca0012_cant"):
+    for key in ("fins_n3", "fins_calisto_n4", "fins_calisto_docs_naca0012_cant",
+                *ELLIPTICAL_FINS):
         r = out[key]
         print(f"{key} CNa(M) {[round(v, 4) for v in r['clalpha_per_rad'].values()]}"
               f" cp {r['cp_aft_of_leading_edge_m']:.5f}")

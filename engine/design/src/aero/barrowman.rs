@@ -36,6 +36,13 @@
 //! `X_f + X_r (C_r + 2C_t)/(3 (C_r + C_t)) + (C_r + C_t − C_r C_t/(C_r + C_t))/6`
 //! aft of the root's leading edge `X_f`.
 //! At Mach 0 this equals RocketPy's Diederich-based slope exactly (see [`super::mach`]).
+//!
+//! **Elliptical fin sets** (half an ellipse on the root, semi-axes `C_r/2` and `s`): the same
+//! slope in its general form `2π AR (A_f/A_ref)/(2 + sqrt(4 + (AR/cos γc)²))` per fin with
+//! `A_f = π C_r s/4`, `γc = 0`, and RocketPy's `_EllipticalGeometry` for `Y_ma`, `K_d` and
+//! `G`. The CP is the quarter point of the mean aerodynamic chord `8 C_r/(3π)` at `Y_ma`,
+//! `C_r (1/2 − 2/(3π)) = 0.2878 C_r` aft of the root's leading edge; RocketPy rounds it to
+//! `0.288 C_r` (2.1e-4 `C_r` further aft).
 
 use super::profile::Section;
 use crate::design::{FinPlanform, FinSet, NoseShape};
@@ -149,7 +156,8 @@ fn roll_forcing_interference(tau: f64) -> f64 {
 fn elliptical_roll_damping_interference(s: f64, r: f64) -> f64 {
     if s > r {
         let q = (s * s - r * r).sqrt();
-        1.0 + r * r
+        1.0 + r
+            * r
             * (2.0 * r * r * q * ((2.0 * s * q + 2.0 * s * s) / r).ln()
                 - 2.0 * r * r * q * (2.0 * s).ln()
                 + 2.0 * s.powi(3)
@@ -159,7 +167,8 @@ fn elliptical_roll_damping_interference(s: f64, r: f64) -> f64 {
             / (2.0 * s * s * (s / 3.0 + PI * r / 4.0) * (s * s - r * r))
     } else if s < r {
         let q = (r * r - s * s).sqrt();
-        1.0 - r * r
+        1.0 - r
+            * r
             * (2.0 * s.powi(3) - PI * s * s * r - 2.0 * s * r * r
                 + PI * r.powi(3)
                 + 2.0 * r * r * q * (s / q).atan()
@@ -536,5 +545,40 @@ mod tests {
         // Yma = 0.1/3 · 0.2/0.16 = 0.0416666..
         assert!((g.y_mac_m - 0.1 / 3.0 * 0.2 / 0.16).abs() < 1e-15);
         assert!((g.tau - 0.1635 / 0.0635).abs() < 1e-12);
+    }
+
+    #[test]
+    fn an_elliptical_fin_s_leading_edge_sweep_is_the_span_mean_of_its_slope_s_cosine() {
+        // Semi-axes equal (a circle's quarter): the mean of cos over the span is π/4.
+        assert!((elliptical_mean_leading_edge_cos(0.05, 0.05) - PI / 4.0).abs() < 1e-13);
+        // Otherwise against the mean taken directly over y (midpoint rule, 10⁶ strips; the
+        // slope x'(y) = a (y/b²)/√(1 − (y/b)²), cos = 1/√(1 + x'²)).
+        let (a, b) = (0.06, 0.09);
+        let n = 1_000_000;
+        let direct = (0..n)
+            .map(|i| {
+                let y = (i as f64 + 0.5) / n as f64 * b;
+                let u = y / b;
+                let slope = a * (y / (b * b)) / (1.0 - u * u).sqrt();
+                1.0 / (1.0 + slope * slope).sqrt()
+            })
+            .sum::<f64>()
+            / n as f64;
+        let simpson = elliptical_mean_leading_edge_cos(a, b);
+        assert!((simpson - direct).abs() < 1e-8, "{simpson} vs {direct}");
+        // The fin's sweep angle is its arccosine (a 0.12 m root on a 0.09 m span).
+        let fins = Fins {
+            count: 3,
+            root_chord_m: 0.12,
+            span_m: 0.09,
+            planform: FinPlanform::Elliptical,
+            body_radius_m: 0.03,
+            cant_rad: 0.0,
+        };
+        assert_eq!(fins.geometry().leading_edge_sweep_rad, simpson.acos());
+        // The mean aerodynamic chord 8 C_r/(3π) at Yma, its quarter point the CP.
+        let g = fins.geometry();
+        assert!((g.mac_length_m - 0.32 / PI).abs() < 1e-15);
+        assert!((fins.x_cp_m() - 0.12 * (0.5 - 2.0 / (3.0 * PI))).abs() < 1e-15);
     }
 }

@@ -49,12 +49,7 @@ pub fn single_fin_cn_alpha(g: &FinGeometry, mach: f64, ref_area_m2: f64) -> f64 
 }
 
 /// Slope of a fin set at `mach`, on the reference area `ref_area_m2`.
-pub fn fin_set_cn_alpha(
-    fins: &Fins,
-    g: &FinGeometry,
-    mach: f64,
-    ref_area_m2: f64,
-) -> f64 {
+pub fn fin_set_cn_alpha(fins: &Fins, g: &FinGeometry, mach: f64, ref_area_m2: f64) -> f64 {
     fin_count_factor(fins.count) * g.lift_interference * single_fin_cn_alpha(g, mach, ref_area_m2)
 }
 

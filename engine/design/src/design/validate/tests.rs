@@ -702,3 +702,66 @@ fn a_single_launch_lug_gives_its_two_ends_as_the_rail_guides() {
     let lug = d.component("lug").unwrap();
     assert!(close(lug.radial_offset_m[0], 0.0563 / 2.0 + 0.005));
 }
+
+#[test]
+fn an_elliptical_fin_set_takes_no_tip_chord_or_sweep_and_a_trapezoidal_one_needs_its_tip() {
+    // The example's fins made elliptical: root and span kept, tip and sweep removed.
+    let elliptical = |v: &mut Value| {
+        let fins = at(v, FINS).as_object_mut().expect("fins");
+        fins.insert("planform".into(), json!("elliptical"));
+        fins.remove("tip_chord_m");
+        fins.remove("sweep_m");
+    };
+    let d = with(elliptical).expect("an elliptical fin set is valid");
+    match &d.component("fins").expect("fins").kind {
+        ComponentKind::FinSet(f) => {
+            assert_eq!(f.planform, FinPlanform::Elliptical);
+            assert_eq!(f.root_chord_m, 0.12);
+        }
+        other => panic!("{other:?}"),
+    }
+    for (field, value) in [("tip_chord_m", 0.05), ("sweep_m", 0.0)] {
+        let (rule, loc, got) = invalid(with(|v| {
+            elliptical(v);
+            at(v, FINS)
+                .as_object_mut()
+                .unwrap()
+                .insert(field.into(), json!(value));
+        }));
+        assert_eq!(
+            rule,
+            Rule::NotForPlanform {
+                planform: "elliptical"
+            }
+        );
+        assert_eq!((loc, got.as_deref()), (comp("fins"), Some(field)));
+    }
+    let (rule, loc, field) = invalid(with(|v| {
+        at(v, FINS).as_object_mut().unwrap().remove("tip_chord_m");
+    }));
+    assert!(matches!(rule, Rule::Required { .. }), "{rule:?}");
+    assert_eq!((loc, field.as_deref()), (comp("fins"), Some("tip_chord_m")));
+    let e = with(|v| {
+        elliptical(v);
+        at(v, FINS)
+            .as_object_mut()
+            .unwrap()
+            .insert("sweep_m".into(), json!(0.02));
+    })
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("\"fins\"") && e.contains("sweep_m") && e.contains("\"elliptical\""),
+        "{e}"
+    );
+    // An unknown planform is refused by name.
+    let e = with(|v| {
+        at(v, FINS)
+            .as_object_mut()
+            .unwrap()
+            .insert("planform".into(), json!("freeform"));
+    })
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("freeform") && e.contains("elliptical"), "{e}");
+}
