@@ -12,7 +12,11 @@ is compared:
   rocket with a conical nose, four fins, a launch lug for its rail guide and a boattail, on
   the AeroTech K1100T (3.6 kg at liftoff, Mach 1.2);
 * ``reference_design`` (``validation/designs/synthetic-54mm-three-fin.json``): the moving-mass
-  specification's 54 mm design, ogive nose, three plain fins, on its Cesaroni I175.
+  specification's 54 mm design, ogive nose, three plain fins, on its Cesaroni I175;
+* ``elliptical_fins`` (``validation/designs/crosscheck-102mm-elliptical-fins.json``): a 102 mm
+  rocket with an elliptical nose and three elliptical fins (RocketPy's ``EllipticalFins``,
+  whose center of pressure it rounds to 0.288 root chords where hpr-mc's quarter-MAC point is
+  0.2878), on the Cesaroni L1115 (9.7 kg at liftoff).
 
 Each is flown in a constant wind across its rail, in a wind profile that turns and grows
 with height, and in still air, with a drogue at apogee and a main lower down.
@@ -102,6 +106,13 @@ ROCKETS = {
         "wind": {"from_deg": 120.0, "speed_m_s": 5.0},
         "main_height_m": 200.0,
     },
+    "elliptical_fins": {
+        "design": "validation/designs/crosscheck-102mm-elliptical-fins.json",
+        # 5.2 m long, 85 deg up, heading 130 deg (toward the south-east).
+        "rail": {"length_m": 5.2, "inclination_deg": 85.0, "heading_deg": 130.0},
+        "wind": {"from_deg": 300.0, "speed_m_s": 8.0},
+        "main_height_m": 350.0,
+    },
 }
 
 
@@ -170,8 +181,9 @@ def geometry(design, report):
         },
         "nose": {"length_m": nose["length_m"], "kind": NOSE_KINDS[nose["shape"]],
                  "position_m": placed[nose["id"]]["x_top_m"]},
-        "fins": [{"n": c["count"], "root_chord_m": c["root_chord_m"],
-                  "tip_chord_m": c["tip_chord_m"], "span_m": c["span_m"],
+        "fins": [{"n": c["count"], "planform": c.get("planform", "trapezoidal"),
+                  "root_chord_m": c["root_chord_m"],
+                  "tip_chord_m": c.get("tip_chord_m"), "span_m": c["span_m"],
                   "sweep_length_m": c.get("sweep_m", 0.0),
                   "cant_angle_deg": c.get("cant_deg", 0.0),
                   "position_m": placed[c["id"]]["x_top_m"]} for c in fins],
@@ -230,10 +242,15 @@ def build(spec, geo, wind="wind", lever_arm=False, sound=False):
     n = geo["nose"]
     rocket.add_nose(length=n["length_m"], kind=n["kind"], position=n["position_m"])
     for k in geo["fins"]:
-        rocket.add_trapezoidal_fins(
-            n=k["n"], root_chord=k["root_chord_m"], tip_chord=k["tip_chord_m"],
-            span=k["span_m"], position=k["position_m"], cant_angle=k["cant_angle_deg"],
-            sweep_length=k["sweep_length_m"])
+        if k["planform"] == "elliptical":
+            rocket.add_elliptical_fins(
+                n=k["n"], root_chord=k["root_chord_m"], span=k["span_m"],
+                position=k["position_m"], cant_angle=k["cant_angle_deg"])
+        else:
+            rocket.add_trapezoidal_fins(
+                n=k["n"], root_chord=k["root_chord_m"], tip_chord=k["tip_chord_m"],
+                span=k["span_m"], position=k["position_m"], cant_angle=k["cant_angle_deg"],
+                sweep_length=k["sweep_length_m"])
     for t in geo["tails"]:
         rocket.add_tail(top_radius=t["top_radius_m"], bottom_radius=t["bottom_radius_m"],
                         length=t["length_m"], position=t["position_m"])
