@@ -49,7 +49,7 @@ pub struct FlyArgs {
     #[arg(long, value_name = "SCENARIO", conflicts_with_all = [
         "design", "motor", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
         "latitude_deg", "gravity", "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2",
-        "main_height_m", "lag_s",
+        "main_height_m", "lag_s", "temperature_k", "pressure_pa",
     ])]
     pub scenario: Option<PathBuf>,
     /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary;
@@ -85,6 +85,14 @@ pub struct FlyArgs {
     /// ellipsoid's at --latitude-deg, RocketPy's default).
     #[arg(long, value_enum, default_value_t = GravityModel::Standard)]
     pub gravity: GravityModel,
+    /// The air's temperature at the site, K: with --pressure-pa, the atmosphere runs from the
+    /// site's measured air to the standard 216.65 K at 11 km (OpenRocket's custom launch
+    /// conditions); either alone takes the standard's other. Default: the standard atmosphere.
+    #[arg(long)]
+    pub temperature_k: Option<f64>,
+    /// The air's pressure at the site, Pa (see --temperature-k).
+    #[arg(long)]
+    pub pressure_pa: Option<f64>,
     /// Constant wind speed, m/s.
     #[arg(long, default_value_t = 0.0)]
     pub wind_m_s: f64,
@@ -248,11 +256,14 @@ fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
         .gravity
         .at_site(a.latitude_deg, a.elevation_m, "--latitude-deg")
         .map_err(|e| anyhow!("--gravity: {e}"))?;
+    let air = hpr_sim::AirModel::site(a.elevation_m, a.temperature_k, a.pressure_pa)
+        .map_err(|e| anyhow!("--temperature-k/--pressure-pa: {e}"))?;
     let env = Environment {
         elevation_m: a.elevation_m,
         wind,
         gravity,
         latitude_deg: a.latitude_deg,
+        air,
         ..Environment::default()
     };
     let rail = Rail {

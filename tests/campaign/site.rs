@@ -1,12 +1,12 @@
-//! The launch site's latitude and its gravity through a whole campaign: the rows are the flights
-//! `Simulation` flies with the same site set up by hand.
+//! The launch site's latitude, its gravity and its air through a whole campaign: the rows are
+//! the flights `Simulation` flies with the same site set up by hand.
 
 use super::*;
 use hpr_sim::gravity::Gravity;
 use hpr_sim::wind::Wind;
-use hpr_sim::{Environment, Parachute, Trigger};
+use hpr_sim::{AirModel, Environment, Parachute, Trigger};
 
-const SITE: &str = "elevation_m = 1200.0\nlatitude_deg = 40.0\ngravity = \"somigliana\"\nwind_speed_m_s = 4.0\nwind_from_deg = 250.0";
+const SITE: &str = "elevation_m = 1200.0\nlatitude_deg = 40.0\ngravity = \"somigliana\"\nwind_speed_m_s = 4.0\nwind_from_deg = 250.0\ntemperature_k = 305.0\npressure_pa = 86500.0";
 
 /// Every row's drag scale, apogee and landing point.
 fn rows(text: &str) -> Vec<[f64; 4]> {
@@ -17,7 +17,7 @@ fn rows(text: &str) -> Vec<[f64; 4]> {
 }
 
 #[test]
-fn a_scenario_s_latitude_and_ellipsoid_gravity_fly_as_the_simulator_set_up_by_hand() {
+fn a_scenario_s_latitude_ellipsoid_gravity_and_measured_air_fly_as_the_simulator_set_up_by_hand() {
     let campaign = rows(&windy(SITE, "drag_scale = [1.0]"));
     let env = Environment {
         elevation_m: 1200.0,
@@ -25,6 +25,7 @@ fn a_scenario_s_latitude_and_ellipsoid_gravity_fly_as_the_simulator_set_up_by_ha
         gravity: Gravity::somigliana(40.0, 1200.0).unwrap(),
         latitude_deg: Some(40.0),
         vacuum: false,
+        air: AirModel::site(1200.0, Some(305.0), Some(86_500.0)).unwrap(),
     };
     for row in &campaign {
         let by_hand = flown_by_hand(
@@ -56,4 +57,15 @@ fn a_scenario_s_latitude_and_ellipsoid_gravity_fly_as_the_simulator_set_up_by_ha
     );
     assert!(moved > 0.3, "{moved} m");
     assert!((campaign[0][1] - still[0][1]).abs() > 0.5);
+    // The site's air, 305 K at 86.5 kPa (0.988 kg/m³) against the standard's 280.35 K at
+    // 87.7 kPa (1.090 kg/m³) at 1200 m: the thinner air drags less, the rocket climbs higher.
+    let standard_air = rows(&windy(
+        &SITE.replace("\ntemperature_k = 305.0\npressure_pa = 86500.0", ""),
+        "drag_scale = [1.0]",
+    ));
+    eprintln!(
+        "the site's air: apogee {:.3} m against {:.3} m in the standard atmosphere",
+        campaign[0][1], standard_air[0][1]
+    );
+    assert!(campaign[0][1] > standard_air[0][1] + 10.0);
 }

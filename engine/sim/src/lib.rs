@@ -21,7 +21,7 @@ pub mod wind;
 
 pub use events::EventKind;
 pub use flight::{
-    CanopyShape, Environment, Flight, Integrator, Parachute, Rail, SimError, SimOptions,
+    AirModel, CanopyShape, Environment, Flight, Integrator, Parachute, Rail, SimError, SimOptions,
     Simulation, Warning,
 };
 pub use shifts::MassShift;

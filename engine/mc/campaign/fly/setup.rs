@@ -123,6 +123,7 @@ impl Fixed<'_> {
             gravity,
             vacuum: false,
             latitude_deg: self.scenario.environment.latitude_deg,
+            air: self.scenario.environment.air,
         };
         let rail = Rail {
             length_m: s.rail[0],

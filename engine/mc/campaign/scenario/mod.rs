@@ -15,6 +15,7 @@ mod tests;
 
 use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
+use hpr_sim::atmosphere::{AirModel, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
 use hpr_sim::wind::{Wind, WindError, WindRow};
 use hpr_sim::{CanopyShape, Integrator, Trigger};
@@ -62,6 +63,9 @@ pub struct EnvironmentSpec {
     /// The site's latitude, degrees north: given, the flights feel the Earth's rotation
     /// (Coriolis), and `gravity = "somigliana"` needs it.
     pub latitude_deg: Option<f64>,
+    /// The atmosphere: the standard one, or the site's measured air (`temperature_k`,
+    /// `pressure_pa` at the nominal `elevation_m`, built once: every variant flies it).
+    pub air: AirModel,
 }
 
 /// `environment.gravity` (and `fly --gravity`).
@@ -334,7 +338,7 @@ impl Scenario {
                 Some(table)
             }
         };
-        let environment = EnvironmentSpec {
+        let mut environment = EnvironmentSpec {
             elevation_m: finite(
                 &bad,
                 "environment.elevation_m",
@@ -372,7 +376,19 @@ impl Scenario {
                 }
                 l => l,
             },
+            air: AirModel::Standard,
         };
+        environment.air =
+            AirModel::site(environment.elevation_m, env.temperature_k, env.pressure_pa).map_err(
+                |e| {
+                    let key = match e {
+                        AtmosphereError::SiteTemperature { .. } => "environment.temperature_k",
+                        AtmosphereError::SitePressure { .. } => "environment.pressure_pa",
+                        _ => "environment.elevation_m",
+                    };
+                    bad(key, e.to_string().replace("atmosphere: ", ""))
+                },
+            )?;
         // The site's gravity can be had (Somigliana's needs the latitude).
         environment
             .gravity

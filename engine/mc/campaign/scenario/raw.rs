@@ -50,6 +50,8 @@ pub(super) struct RawEnvironment {
     pub(super) wind_profile: Option<Vec<RawWindRow>>,
     pub(super) gravity: Option<String>,
     pub(super) latitude_deg: Option<f64>,
+    pub(super) temperature_k: Option<f64>,
+    pub(super) pressure_pa: Option<f64>,
 }
 
 /// A row of `environment.wind_profile`.

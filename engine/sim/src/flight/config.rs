@@ -2,6 +2,7 @@
 //! the parachutes and the integrator options. Each has a `validate` that says which field
 //! broke which rule.
 
+pub use crate::atmosphere::AirModel;
 pub use crate::eom::CanopyShape;
 use crate::gravity::Gravity;
 use crate::trigger::Trigger;
@@ -23,6 +24,9 @@ pub struct Environment {
     /// default) keeps the launch frame inertial. It does not choose the gravity: see
     /// [`Gravity::somigliana`].
     pub latitude_deg: Option<f64>,
+    /// The atmosphere: the standard one (the default), or one from the site's measured
+    /// temperature and pressure ([`AirModel::site`]).
+    pub air: AirModel,
 }
 
 impl Default for Environment {
@@ -33,6 +37,7 @@ impl Default for Environment {
             gravity: Gravity::default(),
             vacuum: false,
             latitude_deg: None,
+            air: AirModel::Standard,
         }
     }
 }
@@ -47,6 +52,7 @@ impl Environment {
     /// Checks the latitude.
     pub fn validate(&self) -> Result<(), String> {
         use crate::gravity::{is_latitude, LATITUDE_RULE};
+        self.air.check().map_err(|e| format!("environment: {e}"))?;
         match self.latitude_deg {
             Some(l) if !is_latitude(l) => Err(format!(
                 "environment: field \"latitude_deg\" {LATITUDE_RULE} (got {l})"

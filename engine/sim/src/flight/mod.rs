@@ -15,7 +15,7 @@ pub mod model;
 pub mod output;
 
 pub use changes::Changes;
-pub use config::{CanopyShape, Environment, Integrator, Parachute, Rail, SimOptions};
+pub use config::{AirModel, CanopyShape, Environment, Integrator, Parachute, Rail, SimOptions};
 pub use model::FlightModel;
 pub use output::{Flight, Metrics, Observer, Phase, Sample, Warning, LARGE_ALPHA_DEG};
 
@@ -174,6 +174,7 @@ impl Simulation {
             part_of_shift: vec![],
         };
         let tables = Arc::new(DesignTables::new(&design)?);
+        let air = air_table(&env, None)?;
         let model = build_model(
             &design,
             &motor,
@@ -188,6 +189,7 @@ impl Simulation {
             &MassAdjustment::default(),
             &[],
             &tables,
+            air,
         )?;
         Ok(Simulation {
             design,
@@ -208,6 +210,7 @@ impl Simulation {
     }
 
     fn rebuild(mut self) -> Result<Simulation, SimError> {
+        let air = air_table(&self.env, Some(&self.model.air))?;
         self.model = build_model(
             &self.design,
             &self.motor,
@@ -222,6 +225,7 @@ impl Simulation {
             &self.mass_adjustment,
             &self.part_masses,
             &self.tables,
+            air,
         )?;
         Ok(self)
     }
@@ -386,7 +390,19 @@ impl DesignTables {
     }
 }
 
-/// Build every table of a flight once.
+/// The air table of `env`'s atmosphere: `previous` again if it holds the same one (variants
+/// made from one flight share it), else the standard's or a new one.
+fn air_table(
+    env: &Environment,
+    previous: Option<&Arc<AirTable>>,
+) -> Result<Arc<AirTable>, SimError> {
+    match previous {
+        Some(air) if *air.model() == env.air => Ok(air.clone()),
+        _ => AirTable::new(&env.air).map_err(|e| SimError::Setup(format!("environment: {e}"))),
+    }
+}
+
+/// Build every table of a flight once (`air`: the table of `env`'s atmosphere).
 #[allow(clippy::too_many_arguments)]
 pub fn build_model(
     design: &Design,
@@ -402,6 +418,7 @@ pub fn build_model(
     adjustment: &MassAdjustment,
     part_masses: &[(usize, f64)],
     tables: &DesignTables,
+    air: Arc<AirTable>,
 ) -> Result<FlightModel, SimError> {
     let mount = design.motor_mount.ok_or_else(|| {
         SimError::Setup(format!(
@@ -470,7 +487,7 @@ pub fn build_model(
         nozzle,
         aero: tables.aero.clone(),
         drag_scale,
-        air: AirTable::standard(),
+        air,
         env: env.clone(),
         earth_rate_n: env.earth_rate_n(),
         rail: rail_geo,

@@ -57,8 +57,9 @@ pub struct FlightModel {
     pub aero: std::sync::Arc<AeroTables>,
     /// Multiplies the drag coefficient (a dispersion; 1 by default).
     pub drag_scale: f64,
-    /// The standard atmosphere, tabulated (see [`AirTable`]), shared by every flight.
-    pub air: &'static AirTable,
+    /// The atmosphere, tabulated (see [`AirTable`]): the standard one shared by every flight,
+    /// a site's by every variant made from one flight.
+    pub air: std::sync::Arc<AirTable>,
     pub env: Environment,
     /// The Earth's rotation in the launch frame, rad/s ([`Environment::earth_rate_n`]: `None`
     /// without a latitude), computed once.

@@ -86,7 +86,8 @@ impl<'a> FourModels<'a> {
     /// `None` unless the four share their aerodynamic tables and their air table.
     pub fn new(models: [&'a FlightModel; 4]) -> Option<FourModels<'a>> {
         let same = models.iter().all(|m| {
-            std::sync::Arc::ptr_eq(&m.aero, &models[0].aero) && std::ptr::eq(m.air, models[0].air)
+            std::sync::Arc::ptr_eq(&m.aero, &models[0].aero)
+                && std::sync::Arc::ptr_eq(&m.air, &models[0].air)
         });
         let n = models.map(|m| m.nozzle.lanes());
         same.then(|| FourModels {

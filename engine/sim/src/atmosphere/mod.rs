@@ -1,0 +1,361 @@
+//! The standard atmosphere: temperature, pressure, density, speed of sound and viscosity of the
+//! air as a function of height, for drag and Mach/Reynolds numbers.
+//!
+//! Model: U.S. Standard Atmosphere 1976 (identical to the ICAO/ISO International Standard
+//! Atmosphere below 32 km), the seven lower layers of linear molecular-scale temperature in
+//! *geopotential* altitude, from sea level to 86 km geometric. Source: COESA, *U.S. Standard
+//! Atmosphere, 1976*, NOAA-S/T 76-1562, U.S. Government Printing Office, 1976 (equations 18,
+//! 23, 33a/b, 50, 51 and table 4).
+//!
+//! Constants (all from that document):
+//! - `g0` = 9.80665 m/s², sea-level gravity used to define geopotential altitude;
+//! - `R` = R*/M0 = 8314.32 / 28.9644 ≈ 287.05287 J/(kg·K), specific gas constant of air;
+//! - `r0` = 6 356 766 m, the Earth radius of the geometric → geopotential conversion
+//!   `H = r0·Z / (r0 + Z)`;
+//! - sea level: 288.15 K, 101 325 Pa; ratio of specific heats γ = 1.4;
+//! - Sutherland's law μ = β T^{3/2} / (T + S), β = 1.458e-6 kg/(m·s·K^½), S = 110.4 K.
+//!
+//! Layer bases (geopotential m) and lapse rates (K/km): 0 / −6.5, 11 000 / 0, 20 000 / +1.0,
+//! 32 000 / +2.8, 47 000 / 0, 51 000 / −2.8, 71 000 / −2.0, top 84 852 (= 86 km geometric).
+//! Base temperatures and pressures are computed once, in [`Atmosphere::standard`], from the
+//! layer chain (they reproduce the published 22 632.06 Pa, 5 474.889 Pa, … to 7 digits).
+//!
+//! **A launch site's measured air** ([`AirModel::Site`], OpenRocket's `ExtendedISAModel`
+//! with a custom altitude, temperature and pressure): the first layer starts at the site with
+//! its temperature and pressure and its temperature runs linearly to the standard 216.65 K at
+//! 11 km (geopotential); the layers above are the standard's, their base pressures carried up
+//! from the site's. A hot day is less dense all the way up; a site at the standard's own
+//! temperature and pressure gives the standard atmosphere. hpr evaluates it, as the standard,
+//! in geopotential altitude (OpenRocket in geometric: 0.05 % apart in pressure at 3 km).
+//!
+//! Conventions and edges:
+//! - [`Atmosphere::at`] takes the height **above the launch site (ground)**; the site's
+//!   elevation above mean sea level, given once to [`Atmosphere::standard`], is added inside.
+//!   [`Atmosphere::at_msl`] takes the geometric altitude above mean sea level directly.
+//! - Below −5 km geometric the altitude is **clamped** to −5 km (the air there is returned).
+//! - Above 86 km the atmosphere is **extrapolated isothermally** at the 86 km temperature
+//!   (186.946 K): pressure and density keep falling exponentially (scale height ≈ 5.5 km),
+//!   which stays close to the real upper atmosphere to ~100 km and never goes negative or NaN.
+//! - The temperature returned is the molecular-scale temperature `T_M`. It equals the kinetic
+//!   temperature below 80 km; between 80 and 86 km the kinetic one is lower by at most 0.04 %
+//!   (186.87 vs 186.946 K at 86 km). Pressure and density are exact (ρ = P / (R·T_M)).
+//!
+//! [`Atmosphere::at`] is pure, allocation-free and branch-light: it is called per derivative
+//! evaluation.
+
+use thiserror::Error;
+
+/// Standard gravity used by the geopotential definition, m/s².
+pub const G0_M_S2: f64 = 9.80665;
+/// Specific gas constant of air, R*/M0 = 8314.32 / 28.9644 ≈ 287.05287 J/(kg·K).
+pub const R_AIR_J_KG_K: f64 = 8314.32 / 28.9644;
+/// Earth radius of the geometric ↔ geopotential conversion, m.
+pub const R0_GEOPOTENTIAL_M: f64 = 6_356_766.0;
+/// Ratio of specific heats of air.
+pub const GAMMA_AIR: f64 = 1.4;
+/// Sea-level standard temperature, K.
+pub const T0_K: f64 = 288.15;
+/// Sea-level standard pressure, Pa.
+pub const P0_PA: f64 = 101_325.0;
+/// Sutherland's constant β, kg/(m·s·K^½).
+pub const SUTHERLAND_BETA: f64 = 1.458e-6;
+/// Sutherland's temperature S, K.
+pub const SUTHERLAND_S_K: f64 = 110.4;
+/// Lowest geometric altitude above mean sea level of the model (clamped below), m.
+pub const MIN_ALTITUDE_MSL_M: f64 = -5_000.0;
+/// Top of the tabulated model (isothermal extrapolation above), geometric m.
+pub const MAX_ALTITUDE_MSL_M: f64 = 86_000.0;
+
+/// Layer bases in geopotential metres; the last entry is the top of the table (86 km geometric).
+const LAYER_BASE_M: [f64; 8] = [
+    0.0, 11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0, 84_852.0,
+];
+/// Lapse rates dT/dH of the layers starting at `LAYER_BASE_M[i]`, K/m. The last one (above
+/// 86 km) is the isothermal extrapolation.
+const LAPSE_K_M: [f64; 8] = [-6.5e-3, 0.0, 1.0e-3, 2.8e-3, 0.0, -2.8e-3, -2.0e-3, 0.0];
+
+/// State of the air at one height.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AirState {
+    /// Molecular-scale temperature (= kinetic below 80 km), K.
+    pub temperature_k: f64,
+    /// Static pressure, Pa.
+    pub pressure_pa: f64,
+    /// Density, kg/m³.
+    pub density_kg_m3: f64,
+    /// Speed of sound √(γ R T), m/s.
+    pub speed_of_sound_m_s: f64,
+    /// Dynamic viscosity from Sutherland's law, Pa·s.
+    pub dynamic_viscosity_pa_s: f64,
+}
+
+/// Which atmosphere a flight flies through.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum AirModel {
+    /// The US 1976 standard atmosphere.
+    #[default]
+    Standard,
+    /// The standard atmosphere's layers above 11 km, and below them one layer from a site's
+    /// measured air: `temperature_k` and `pressure_pa` at `elevation_m` above mean sea level
+    /// (see the module docs).
+    Site {
+        elevation_m: f64,
+        temperature_k: f64,
+        pressure_pa: f64,
+    },
+}
+
+/// The range of a site's temperature, K (−123 °C to 77 °C: any air a rocket launches into).
+pub const SITE_TEMPERATURE_RANGE_K: (f64, f64) = (150.0, 350.0);
+/// The range of a site's pressure, Pa.
+pub const SITE_PRESSURE_RANGE_PA: (f64, f64) = (10_000.0, 120_000.0);
+
+impl AirModel {
+    /// The model whose air at `elevation_m` has the standard atmosphere's temperature or
+    /// pressure where `temperature_k` or `pressure_pa` is not given; the standard itself when
+    /// neither is.
+    pub fn site(
+        elevation_m: f64,
+        temperature_k: Option<f64>,
+        pressure_pa: Option<f64>,
+    ) -> Result<AirModel, AtmosphereError> {
+        if temperature_k.is_none() && pressure_pa.is_none() {
+            return Ok(AirModel::Standard);
+        }
+        let standard = Atmosphere::standard(0.0)?.at_msl(elevation_m);
+        let model = AirModel::Site {
+            elevation_m,
+            temperature_k: temperature_k.unwrap_or(standard.temperature_k),
+            pressure_pa: pressure_pa.unwrap_or(standard.pressure_pa),
+        };
+        model.check()?;
+        Ok(model)
+    }
+
+    /// Check a site's numbers: a finite elevation below the 11 km layer, a temperature and a
+    /// pressure within [`SITE_TEMPERATURE_RANGE_K`] and [`SITE_PRESSURE_RANGE_PA`].
+    pub fn check(&self) -> Result<(), AtmosphereError> {
+        if let AirModel::Site {
+            elevation_m,
+            temperature_k,
+            pressure_pa,
+        } = *self
+        {
+            let within = |v: f64, (lo, hi): (f64, f64)| v.is_finite() && (lo..=hi).contains(&v);
+            if !(elevation_m.is_finite()
+                && (MIN_ALTITUDE_MSL_M..=MAX_SITE_ELEVATION_M).contains(&elevation_m))
+            {
+                return Err(AtmosphereError::SiteElevation { value: elevation_m });
+            }
+            if !within(temperature_k, SITE_TEMPERATURE_RANGE_K) {
+                return Err(AtmosphereError::SiteTemperature {
+                    value: temperature_k,
+                });
+            }
+            if !within(pressure_pa, SITE_PRESSURE_RANGE_PA) {
+                return Err(AtmosphereError::SitePressure { value: pressure_pa });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The highest site whose air can be given: 10 km, below the 11 km layer that the site's
+/// first layer runs to.
+pub const MAX_SITE_ELEVATION_M: f64 = 10_000.0;
+
+/// Invalid atmosphere settings.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum AtmosphereError {
+    /// The launch-site elevation is not a finite number within the model's range.
+    #[error(
+        "atmosphere: `launch_elevation_m` = {value} m: must be finite and within \
+         [{MIN_ALTITUDE_MSL_M}, {MAX_ALTITUDE_MSL_M}] m above mean sea level"
+    )]
+    LaunchElevation {
+        /// The rejected value, m.
+        value: f64,
+    },
+    /// A site's air given at an elevation outside −5 km to 10 km.
+    #[error(
+        "atmosphere: the site's air is given at {value} m: the elevation must be finite and \
+         within [{MIN_ALTITUDE_MSL_M}, {MAX_SITE_ELEVATION_M}] m above mean sea level (below \
+         the 11 km layer)"
+    )]
+    SiteElevation { value: f64 },
+    /// A site temperature outside [`SITE_TEMPERATURE_RANGE_K`].
+    #[error(
+        "atmosphere: field \"temperature_k\" = {value}: the site's temperature must be \
+         finite and within [{}, {}] K", SITE_TEMPERATURE_RANGE_K.0, SITE_TEMPERATURE_RANGE_K.1
+    )]
+    SiteTemperature { value: f64 },
+    /// A site pressure outside [`SITE_PRESSURE_RANGE_PA`].
+    #[error(
+        "atmosphere: field \"pressure_pa\" = {value}: the site's pressure must be finite \
+         and within [{}, {}] Pa", SITE_PRESSURE_RANGE_PA.0, SITE_PRESSURE_RANGE_PA.1
+    )]
+    SitePressure { value: f64 },
+}
+
+/// One layer of the model, precomputed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Layer {
+    base_m: f64,
+    lapse_k_m: f64,
+    t_base_k: f64,
+    p_base_pa: f64,
+    /// `g0 / (R L)` for a gradient layer, `g0 / (R T_b)` for an isothermal one.
+    exponent: f64,
+}
+
+/// The standard atmosphere seen from one launch site.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Atmosphere {
+    launch_elevation_m: f64,
+    layers: [Layer; 8],
+}
+
+impl Atmosphere {
+    /// The US 1976 standard atmosphere over a site `launch_elevation_m` above mean sea level.
+    pub fn standard(launch_elevation_m: f64) -> Result<Self, AtmosphereError> {
+        Atmosphere::new(launch_elevation_m, &AirModel::Standard)
+    }
+
+    /// The atmosphere `model` over a site `launch_elevation_m` above mean sea level.
+    pub fn new(launch_elevation_m: f64, model: &AirModel) -> Result<Self, AtmosphereError> {
+        if !launch_elevation_m.is_finite()
+            || !(MIN_ALTITUDE_MSL_M..=MAX_ALTITUDE_MSL_M).contains(&launch_elevation_m)
+        {
+            return Err(AtmosphereError::LaunchElevation {
+                value: launch_elevation_m,
+            });
+        }
+        model.check()?;
+        // The first layer: the standard's from sea level, or the site's to 11 km.
+        let (base0, t0, p0, lapse0) = match *model {
+            AirModel::Standard => (LAYER_BASE_M[0], T0_K, P0_PA, LAPSE_K_M[0]),
+            AirModel::Site {
+                elevation_m,
+                temperature_k,
+                pressure_pa,
+            } => {
+                let base = geopotential_altitude_m(elevation_m);
+                let t11 = T0_K + LAPSE_K_M[0] * LAYER_BASE_M[1];
+                let lapse = (t11 - temperature_k) / (LAYER_BASE_M[1] - base);
+                // A lapse this small is isothermal (its power would lose its digits).
+                let lapse = if lapse.abs() < 1e-9 { 0.0 } else { lapse };
+                (base, temperature_k, pressure_pa, lapse)
+            }
+        };
+        let mut layers = [Layer {
+            base_m: 0.0,
+            lapse_k_m: 0.0,
+            t_base_k: t0,
+            p_base_pa: p0,
+            exponent: 0.0,
+        }; 8];
+        let mut t_b = t0;
+        let mut p_b = p0;
+        for i in 0..8 {
+            let (base, lapse) = match i {
+                0 => (base0, lapse0),
+                _ => (LAYER_BASE_M[i], LAPSE_K_M[i]),
+            };
+            let exponent = if lapse == 0.0 {
+                G0_M_S2 / (R_AIR_J_KG_K * t_b)
+            } else {
+                G0_M_S2 / (R_AIR_J_KG_K * lapse)
+            };
+            layers[i] = Layer {
+                base_m: base,
+                lapse_k_m: lapse,
+                t_base_k: t_b,
+                p_base_pa: p_b,
+                exponent,
+            };
+            if i + 1 < 8 {
+                let dh = LAYER_BASE_M[i + 1] - base;
+                let (t_top, p_top) = layers[i].temperature_pressure(dh);
+                t_b = t_top;
+                p_b = p_top;
+            }
+        }
+        Ok(Self {
+            launch_elevation_m,
+            layers,
+        })
+    }
+
+    /// Elevation of the launch site above mean sea level, m.
+    pub fn launch_elevation_m(&self) -> f64 {
+        self.launch_elevation_m
+    }
+
+    /// The air at `altitude_above_ground_m` metres above the launch site (the site elevation
+    /// is added here). See the module docs for the behaviour outside −5 km … 86 km MSL.
+    #[inline]
+    pub fn at(&self, altitude_above_ground_m: f64) -> AirState {
+        self.at_msl(self.launch_elevation_m + altitude_above_ground_m)
+    }
+
+    /// The air at geometric altitude `altitude_msl_m` above mean sea level.
+    #[inline]
+    pub fn at_msl(&self, altitude_msl_m: f64) -> AirState {
+        let z = altitude_msl_m.max(MIN_ALTITUDE_MSL_M);
+        let h = geopotential_altitude_m(z);
+        // Seven bases above 0: find the last layer whose base is below h (layer 0 below 0 m).
+        let mut i = 7;
+        while i > 0 && h < self.layers[i].base_m {
+            i -= 1;
+        }
+        let layer = &self.layers[i];
+        let (t, p) = layer.temperature_pressure(h - layer.base_m);
+        air_state(t, p)
+    }
+}
+
+impl Layer {
+    /// Temperature and pressure `dh` geopotential metres above this layer's base.
+    #[inline]
+    fn temperature_pressure(&self, dh: f64) -> (f64, f64) {
+        if self.lapse_k_m == 0.0 {
+            (self.t_base_k, self.p_base_pa * (-self.exponent * dh).exp())
+        } else {
+            let t = self.t_base_k + self.lapse_k_m * dh;
+            (t, self.p_base_pa * (self.t_base_k / t).powf(self.exponent))
+        }
+    }
+}
+
+/// Geopotential altitude (m') of geometric altitude `z_m` above mean sea level:
+/// `H = r0 Z / (r0 + Z)`.
+#[inline]
+pub fn geopotential_altitude_m(z_m: f64) -> f64 {
+    R0_GEOPOTENTIAL_M * z_m / (R0_GEOPOTENTIAL_M + z_m)
+}
+
+/// Geometric altitude of geopotential altitude `h_m`: `Z = r0 H / (r0 − H)`.
+#[inline]
+pub fn geometric_altitude_m(h_m: f64) -> f64 {
+    R0_GEOPOTENTIAL_M * h_m / (R0_GEOPOTENTIAL_M - h_m)
+}
+
+/// Derived quantities of air at temperature `t` K and pressure `p` Pa.
+#[inline]
+fn air_state(t: f64, p: f64) -> AirState {
+    AirState {
+        temperature_k: t,
+        pressure_pa: p,
+        density_kg_m3: p / (R_AIR_J_KG_K * t),
+        speed_of_sound_m_s: (GAMMA_AIR * R_AIR_J_KG_K * t).sqrt(),
+        dynamic_viscosity_pa_s: SUTHERLAND_BETA * t * t.sqrt() / (t + SUTHERLAND_S_K),
+    }
+}
+
+mod table;
+pub use table::{Air, AirTable, AIR_TABLE_STEP_M};
+
+#[cfg(test)]
+mod site_tests;
+#[cfg(test)]
+mod tests;
