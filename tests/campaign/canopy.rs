@@ -5,14 +5,6 @@ use super::*;
 use hpr_sim::wind::Wind;
 use hpr_sim::{CanopyShape, Environment, Parachute, Trigger};
 
-/// Every row's drag scale, apogee and landing point.
-fn rows(text: &str) -> Vec<[f64; 4]> {
-    landed_rows(
-        text,
-        ["drag_scale", "apogee_m", "landing_x_m", "landing_y_m"],
-    )
-}
-
 #[test]
 fn a_scenario_s_canopy_radius_height_and_porosity_fly_as_the_simulator_set_up_by_hand() {
     let wind = "wind_speed_m_s = 4.0\nwind_from_deg = 250.0";
@@ -22,7 +14,7 @@ fn a_scenario_s_canopy_radius_height_and_porosity_fly_as_the_simulator_set_up_by
         "trigger = \"apogee\"\nradius_m = 1.1\nheight_m = 0.6\nporosity = 0.2\n",
     );
     assert_ne!(plain, shaped);
-    let campaign = rows(&shaped);
+    let campaign = drag_apogee_landing(&shaped);
     let env = Environment {
         wind: Wind::constant(4.0, 250.0).unwrap(),
         ..Environment::default()
@@ -32,22 +24,11 @@ fn a_scenario_s_canopy_radius_height_and_porosity_fly_as_the_simulator_set_up_by
         height_m: Some(0.6),
         porosity: 0.2,
     };
-    for row in &campaign {
-        let chute = Parachute::new("main", 0.9, Trigger::Apogee, 1.0).with_canopy(canopy);
-        let by_hand = flown_by_hand(env.clone(), chute, row[0]);
-        for k in 1..4 {
-            // The same flight: equal to rounding.
-            assert!(
-                (row[k] - by_hand[k]).abs() <= 1e-9 * by_hand[k].abs().max(1.0),
-                "figure {k}: campaign {} against by hand {}",
-                row[k],
-                by_hand[k]
-            );
-        }
-    }
+    let chute = Parachute::new("main", 0.9, Trigger::Apogee, 1.0).with_canopy(canopy);
+    assert_rows_flown_by_hand(&campaign, &env, &chute);
     // The default canopy of 0.9 m² (R = 0.452 m) carries 0.194 m³ of air, this one 1.148 m³
     // (C_a = 0.7548): the heavier canopy opens more slowly and the landing moves.
-    let default = rows(&plain);
+    let default = drag_apogee_landing(&plain);
     let moved = (campaign[0][2] - default[0][2]).hypot(campaign[0][3] - default[0][3]);
     eprintln!("canopy of 1.1 m × 0.6 m, porosity 0.2: landing moved {moved:.4} m");
     assert!(moved > 1e-3, "{moved} m");

@@ -604,14 +604,22 @@ drag_scale = {{ dist = "normal", sigma = 0.05, relative = true }}
     )
 }
 
-/// The apogee and landing point of the flight [`windy`] describes, set up by hand as
-/// `Simulation` (its rail, its integrator's time limit) with the given site, parachute and
-/// drag scale.
-fn flown_by_hand(
-    env: hpr_sim::Environment,
-    chute: hpr_sim::Parachute,
-    drag_scale: f64,
-) -> [f64; 4] {
+/// Every row's drag scale, apogee and landing point, of a [`windy`] campaign.
+fn drag_apogee_landing(text: &str) -> Vec<[f64; 4]> {
+    landed_rows(
+        text,
+        ["drag_scale", "apogee_m", "landing_x_m", "landing_y_m"],
+    )
+}
+
+/// Each row of a [`windy`] campaign ([`drag_apogee_landing`]) is the flight set up by hand as
+/// `Simulation` (its rail, its integrator's time limit) with `env`, `chute` and the row's
+/// drag scale: equal to rounding (the drag scale is read back from its column exactly).
+fn assert_rows_flown_by_hand(
+    campaign: &[[f64; 4]],
+    env: &hpr_sim::Environment,
+    chute: &hpr_sim::Parachute,
+) {
     let design = hpr_design::Design::load(
         Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("validation/designs/synthetic-54mm-three-fin.json"),
@@ -621,23 +629,33 @@ fn flown_by_hand(
         inclination_deg: 85.0,
         ..hpr_sim::Rail::default()
     };
-    let f = hpr_sim::Simulation::new(
-        design,
-        hpr_design::motor::find("Cesaroni_I175").unwrap(),
-        env,
-        rail,
-    )
-    .and_then(|s| s.with_parachutes(vec![chute]))
-    .and_then(|s| s.with_drag_scale(drag_scale))
-    .and_then(|s| {
-        s.with_options(hpr_sim::SimOptions {
-            max_time_s: 900.0,
-            ..hpr_sim::SimOptions::default()
+    for row in campaign {
+        let f = hpr_sim::Simulation::new(
+            design.clone(),
+            hpr_design::motor::find("Cesaroni_I175").unwrap(),
+            env.clone(),
+            rail,
+        )
+        .and_then(|s| s.with_parachutes(vec![chute.clone()]))
+        .and_then(|s| s.with_drag_scale(row[0]))
+        .and_then(|s| {
+            s.with_options(hpr_sim::SimOptions {
+                max_time_s: 900.0,
+                ..hpr_sim::SimOptions::default()
+            })
         })
-    })
-    .unwrap()
-    .run(&mut ())
-    .unwrap();
-    let [x, y] = f.metrics.landing_position_m.unwrap();
-    [drag_scale, f.metrics.apogee_m.unwrap(), x, y]
+        .unwrap()
+        .run(&mut ())
+        .unwrap();
+        let [x, y] = f.metrics.landing_position_m.unwrap();
+        let by_hand = [row[0], f.metrics.apogee_m.unwrap(), x, y];
+        for k in 1..4 {
+            assert!(
+                (row[k] - by_hand[k]).abs() <= 1e-9 * by_hand[k].abs().max(1.0),
+                "figure {k}: campaign {} against by hand {}",
+                row[k],
+                by_hand[k]
+            );
+        }
+    }
 }

@@ -8,17 +8,9 @@ use hpr_sim::{AirModel, Environment, Parachute, Trigger};
 
 const SITE: &str = "elevation_m = 1200.0\nlatitude_deg = 40.0\ngravity = \"somigliana\"\nwind_speed_m_s = 4.0\nwind_from_deg = 250.0\ntemperature_k = 305.0\npressure_pa = 86500.0";
 
-/// Every row's drag scale, apogee and landing point.
-fn rows(text: &str) -> Vec<[f64; 4]> {
-    landed_rows(
-        text,
-        ["drag_scale", "apogee_m", "landing_x_m", "landing_y_m"],
-    )
-}
-
 #[test]
 fn a_scenario_s_latitude_ellipsoid_gravity_and_measured_air_fly_as_the_simulator_set_up_by_hand() {
-    let campaign = rows(&windy(SITE, "drag_scale = [1.0]"));
+    let campaign = drag_apogee_landing(&windy(SITE, "drag_scale = [1.0]"));
     let env = Environment {
         elevation_m: 1200.0,
         wind: Wind::constant(4.0, 250.0).unwrap(),
@@ -27,26 +19,11 @@ fn a_scenario_s_latitude_ellipsoid_gravity_and_measured_air_fly_as_the_simulator
         vacuum: false,
         air: AirModel::site(1200.0, Some(305.0), Some(86_500.0)).unwrap(),
     };
-    for row in &campaign {
-        let by_hand = flown_by_hand(
-            env.clone(),
-            Parachute::new("main", 0.9, Trigger::Apogee, 1.0),
-            row[0],
-        );
-        for k in 1..4 {
-            // The same flight: equal to rounding (the campaign's drag scale is read back from
-            // its column exactly).
-            assert!(
-                (row[k] - by_hand[k]).abs() <= 1e-9 * by_hand[k].abs().max(1.0),
-                "figure {k}: campaign {} against by hand {}",
-                row[k],
-                by_hand[k]
-            );
-        }
-    }
+    let chute = Parachute::new("main", 0.9, Trigger::Apogee, 1.0);
+    assert_rows_flown_by_hand(&campaign, &env, &chute);
     // Without the latitude the Earth stands still: the same rows land elsewhere (Coriolis
     // moves a 1 km flight by metres) and, with standard gravity, climb differently.
-    let still = rows(&windy(
+    let still = drag_apogee_landing(&windy(
         &SITE.replace("latitude_deg = 40.0\ngravity = \"somigliana\"\n", ""),
         "drag_scale = [1.0]",
     ));
@@ -59,7 +36,7 @@ fn a_scenario_s_latitude_ellipsoid_gravity_and_measured_air_fly_as_the_simulator
     assert!((campaign[0][1] - still[0][1]).abs() > 0.5);
     // The site's air, 305 K at 86.5 kPa (0.988 kg/m³) against the standard's 280.35 K at
     // 87.7 kPa (1.090 kg/m³) at 1200 m: the thinner air drags less, the rocket climbs higher.
-    let standard_air = rows(&windy(
+    let standard_air = drag_apogee_landing(&windy(
         &SITE.replace("\ntemperature_k = 305.0\npressure_pa = 86500.0", ""),
         "drag_scale = [1.0]",
     ));

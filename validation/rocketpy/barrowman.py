@@ -171,6 +171,23 @@ def make_fins(spec, use_sweep_angle=False):
         **kwargs)
 
 
+def fin_geometry(fins):
+    """The planform numbers RocketPy derives for a fin set (any planform)."""
+    return {
+        "Af_single_fin_area_m2": f(fins.Af),
+        "AR_aspect_ratio_2s2_over_Af": f(fins.AR),
+        "gamma_c_midchord_sweep_rad": f(fins.gamma_c),
+        "Yma_mean_aerodynamic_chord_span_position_m": f(fins.Yma),
+        "tau_(s+r)/r": f(fins.tau),
+        "lift_interference_factor_1+1/tau": f(fins.lift_interference_factor),
+        "roll_forcing_interference_factor": f(
+            fins.roll_forcing_interference_factor),
+        "roll_damping_interference_factor": f(
+            fins.roll_damping_interference_factor),
+        "roll_geometrical_constant_m4": f(fins.roll_geometrical_constant),
+    }
+
+
 def fin_record(spec):
     fins = make_fins(spec)
     rec = dict(spec)
@@ -180,20 +197,7 @@ def fin_record(spec):
         "sweep_length_used_m": f(fins.sweep_length),
         "single_fin_clalpha_per_rad": curve(fins.clalpha_single_fin, MACHS),
         "fin_number_factor": f(fins.fin_num_correction(fins.n)),
-        "geometry": {
-            "Af_single_fin_area_m2": f(fins.Af),
-            "AR_aspect_ratio_2s2_over_Af": f(fins.AR),
-            "gamma_c_midchord_sweep_rad": f(fins.gamma_c),
-            "Yma_mean_aerodynamic_chord_span_position_m": f(fins.Yma),
-            "tau_(s+r)/r": f(fins.tau),
-            "lift_interference_factor_1+1/tau": f(
-                fins.lift_interference_factor),
-            "roll_forcing_interference_factor": f(
-                fins.roll_forcing_interference_factor),
-            "roll_damping_interference_factor": f(
-                fins.roll_damping_interference_factor),
-            "roll_geometrical_constant_m4": f(fins.roll_geometrical_constant),
-        },
+        "geometry": fin_geometry(fins),
         "airfoil_2d_lift_slope_per_rad": (
             f(fins.airfoil_cl.differentiate(x=1e-3, dx=1e-3))
             if spec["airfoil"] else 2 * math.pi),
@@ -222,20 +226,7 @@ def elliptical_fin_record(spec):
     clf_delta, cld_omega, cant = fins.roll_parameters
     rec.update({
         "single_fin_clalpha_per_rad": curve(fins.clalpha_single_fin, MACHS),
-        "geometry": {
-            "Af_single_fin_area_m2": f(fins.Af),
-            "AR_aspect_ratio_2s2_over_Af": f(fins.AR),
-            "gamma_c_midchord_sweep_rad": f(fins.gamma_c),
-            "Yma_mean_aerodynamic_chord_span_position_m": f(fins.Yma),
-            "tau_(s+r)/r": f(fins.tau),
-            "lift_interference_factor_1+1/tau": f(
-                fins.lift_interference_factor),
-            "roll_forcing_interference_factor": f(
-                fins.roll_forcing_interference_factor),
-            "roll_damping_interference_factor": f(
-                fins.roll_damping_interference_factor),
-            "roll_geometrical_constant_m4": f(fins.roll_geometrical_constant),
-        },
+        "geometry": fin_geometry(fins),
         "roll_forcing_clf_delta_per_rad": curve(clf_delta, MACHS),
         "roll_damping_cld_omega": curve(cld_omega, MACHS),
         "cant_angle_rad": f(cant),
