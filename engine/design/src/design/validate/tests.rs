@@ -6,6 +6,8 @@ use crate::error::{DesignError, Location, Rule};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
+mod parts;
+
 pub(crate) fn example_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../validation/designs/example-minimal.json")
 }
@@ -397,79 +399,6 @@ fn a_part_wider_than_its_parent_is_refused() {
 }
 
 #[test]
-fn fins_with_a_tip_chord_need_a_root_chord() {
-    let (rule, loc, field) = invalid(with(|v| {
-        *at(v, &format!("{FINS}/root_chord_m")) = json!(0.0)
-    }));
-    assert_eq!(
-        rule,
-        Rule::FinRootChord {
-            root_m: 0.0,
-            tip_m: 0.05
-        }
-    );
-    assert_eq!(
-        (loc, field.as_deref()),
-        (comp("fins"), Some("root_chord_m"))
-    );
-    let (rule, ..) = invalid(with(|v| *at(v, &format!("{FINS}/count")) = json!(0)));
-    assert_eq!(
-        rule,
-        Rule::FinCount {
-            got: 0,
-            max: super::MAX_FINS
-        }
-    );
-}
-
-#[test]
-fn a_design_has_one_motor_mount_holding_one_motor_on_the_axis() {
-    let (rule, loc, _) = invalid(with(|v| {
-        let mut second = children(v)[1].clone();
-        second["id"] = json!("mmt2");
-        children(v).push(second);
-    }));
-    assert_eq!(
-        rule,
-        Rule::TwoMotorMounts {
-            first: "mmt".into()
-        }
-    );
-    assert_eq!(loc, comp("mmt2"));
-    let (rule, ..) = invalid(with(|v| {
-        children(v)[1]["cluster"] = json!([[0.0, 0.01], [0.0, -0.01]]);
-    }));
-    assert_eq!(rule, Rule::ClusteredMotorMount { tubes: 2 });
-    let (rule, ..) = invalid(with(|v| children(v)[1]["radial_offset_m"] = json!(0.005)));
-    assert!(
-        matches!(rule, Rule::MotorMountOffAxis { offset_m } if close(offset_m, 0.005)),
-        "{rule:?}"
-    );
-}
-
-#[test]
-fn a_cluster_s_offsets_are_resolved_about_the_rocket_s_axis() {
-    let d = with(|v| {
-        children(v).push(json!({"id": "pods", "type": "inner_tube", "length_m": 0.1, "outer_diameter_m": 0.01,
-            "wall_thickness_m": 0.001, "mass_kg": 0.01, "radial_offset_m": 0.005, "radial_angle_deg": 90.0,
-            "cluster": [[0.01, 0.0], [-0.01, 0.0]]}));
-    })
-    .expect("valid");
-    let ComponentKind::InnerTube(t) = &d.component("pods").unwrap().kind else {
-        panic!()
-    };
-    let o = &t.cluster_offsets_m;
-    assert_eq!(o.len(), 2);
-    assert!(
-        close(o[0][0], 0.01)
-            && close(o[0][1], 0.005)
-            && close(o[1][0], -0.01)
-            && close(o[1][1], 0.005),
-        "{o:?}"
-    );
-}
-
-#[test]
 fn drag_tables_must_have_mach_strictly_increasing() {
     let (rule, loc, field) = invalid(with(|v| *at(v, "/drag/power_off/2/0") = json!(0.3)));
     assert_eq!(
@@ -656,112 +585,4 @@ fn shapes_take_only_their_own_parameter() {
             max: 1.0
         }
     );
-}
-
-#[test]
-fn a_motor_must_fit_its_mount_and_the_error_says_which_is_too_big() {
-    let d = Design::load(example_path()).unwrap();
-    // The I175: 38 mm, 245 mm in a 38 mm × 0.3 m mount with 0.01 m overhang.
-    d.motor_fits(0.038, 0.245).expect("the I175 fits");
-    let e = d.motor_fits(0.054, 0.2).unwrap_err();
-    assert!(
-        matches!(e.rule(), Some(Rule::MotorTooWide { motor_diameter_m, .. }) if *motor_diameter_m == 0.054),
-        "{e}"
-    );
-    assert!(e.to_string().contains("too wide"), "{e}");
-    let e = d.motor_fits(0.038, 0.4).unwrap_err();
-    assert!(
-        matches!(e.rule(), Some(Rule::MotorTooLong { room_m, .. }) if close(*room_m, 0.31)),
-        "{e}"
-    );
-    assert!(e.to_string().contains("too long"), "{e}");
-    let no_mount = with(|v| {
-        children(v)[1]
-            .as_object_mut()
-            .unwrap()
-            .remove("motor_mount");
-    })
-    .unwrap();
-    assert_eq!(
-        no_mount.motor_fits(0.038, 0.245).unwrap_err().rule(),
-        Some(&Rule::NoMotorMount)
-    );
-}
-
-#[test]
-fn a_single_launch_lug_gives_its_two_ends_as_the_rail_guides() {
-    let d = with(|v| {
-        let c = children(v);
-        c.retain(|p| p["type"] != "rail_button");
-        c.push(json!({"id": "lug", "type": "launch_lug", "length_m": 0.1, "outer_diameter_m": 0.01,
-            "wall_thickness_m": 0.001, "mass_kg": 0.003, "position": {"from": "top", "offset_m": 0.5}}));
-    })
-    .unwrap();
-    let (a, b) = d.rail_guides_m.unwrap();
-    assert!(close(a, 0.75) && close(b, 0.85), "{a} {b}");
-    let lug = d.component("lug").unwrap();
-    assert!(close(lug.radial_offset_m[0], 0.0563 / 2.0 + 0.005));
-}
-
-#[test]
-fn an_elliptical_fin_set_takes_no_tip_chord_or_sweep_and_a_trapezoidal_one_needs_its_tip() {
-    // The example's fins made elliptical: root and span kept, tip and sweep removed.
-    let elliptical = |v: &mut Value| {
-        let fins = at(v, FINS).as_object_mut().expect("fins");
-        fins.insert("planform".into(), json!("elliptical"));
-        fins.remove("tip_chord_m");
-        fins.remove("sweep_m");
-    };
-    let d = with(elliptical).expect("an elliptical fin set is valid");
-    match &d.component("fins").expect("fins").kind {
-        ComponentKind::FinSet(f) => {
-            assert_eq!(f.planform, FinPlanform::Elliptical);
-            assert_eq!(f.root_chord_m, 0.12);
-        }
-        other => panic!("{other:?}"),
-    }
-    for (field, value) in [("tip_chord_m", 0.05), ("sweep_m", 0.0)] {
-        let (rule, loc, got) = invalid(with(|v| {
-            elliptical(v);
-            at(v, FINS)
-                .as_object_mut()
-                .unwrap()
-                .insert(field.into(), json!(value));
-        }));
-        assert_eq!(
-            rule,
-            Rule::NotForPlanform {
-                planform: "elliptical"
-            }
-        );
-        assert_eq!((loc, got.as_deref()), (comp("fins"), Some(field)));
-    }
-    let (rule, loc, field) = invalid(with(|v| {
-        at(v, FINS).as_object_mut().unwrap().remove("tip_chord_m");
-    }));
-    assert!(matches!(rule, Rule::Required { .. }), "{rule:?}");
-    assert_eq!((loc, field.as_deref()), (comp("fins"), Some("tip_chord_m")));
-    let e = with(|v| {
-        elliptical(v);
-        at(v, FINS)
-            .as_object_mut()
-            .unwrap()
-            .insert("sweep_m".into(), json!(0.02));
-    })
-    .unwrap_err()
-    .to_string();
-    assert!(
-        e.contains("\"fins\"") && e.contains("sweep_m") && e.contains("\"elliptical\""),
-        "{e}"
-    );
-    // An unknown planform is refused by name.
-    let e = with(|v| {
-        at(v, FINS)
-            .as_object_mut()
-            .unwrap()
-            .insert("planform".into(), json!("freeform"));
-    })
-    .unwrap_err()
-    .to_string();
-    assert!(e.contains("freeform") && e.contains("elliptical"), "{e}");
 }
