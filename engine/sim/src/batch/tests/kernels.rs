@@ -1,0 +1,139 @@
+//! The four-lane kernels and steppers against the single lane's, bit for bit.
+
+use super::*;
+
+#[test]
+fn the_four_lane_kernel_is_bit_for_bit_four_single_lane_kernels() {
+    // Four different variants' models, states and instants, evaluated together and alone.
+    let c = columns(8, 7);
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let sims: Vec<Simulation> = (0..8)
+        .filter_map(|r| batch.variant(&c, r).ok())
+        .take(4)
+        .collect();
+    assert_eq!(sims.len(), 4);
+    let models: [&FlightModel; 4] = std::array::from_fn(|l| sims[l].model());
+    let four = FourModels::new(models).expect("variants share the design's aerodynamic tables");
+    let mut rng = Rng(99);
+    let mut ms = pack_mass([&MassLanes::ZERO; 4]);
+    let mut thrust = F64x4::splat(0.0);
+    let mut y = [F64x4::splat(0.0); N6];
+    let mut singles = Vec::new();
+    for (l, model) in models.iter().enumerate() {
+        // Burning (t < 2 s) or coasting with the ballast on its way (t in 5..6 s).
+        let t = [0.7, 1.9, 5.3, 5.8][l];
+        let mut starts = [f64::INFINITY; crate::flight::model::MAX_SHIFTS];
+        starts[0] = 5.0;
+        let inst = model.instant(&starts, t);
+        let m = MassLanes::of(&inst.mass);
+        let q: [f64; 4] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
+        let yi: [f64; N6] = [
+            rng.uniform(-50.0, 50.0),
+            rng.uniform(-50.0, 50.0),
+            rng.uniform(0.0, 1500.0),
+            rng.uniform(-30.0, 30.0),
+            rng.uniform(-30.0, 30.0),
+            rng.uniform(-50.0, 300.0),
+            q[0],
+            q[1],
+            q[2],
+            q[3],
+            rng.uniform(-2.0, 2.0),
+            rng.uniform(-2.0, 2.0),
+            rng.uniform(-20.0, 20.0),
+        ];
+        ms.set_lane(l, &m);
+        thrust.0[l] = inst.motor.thrust_n;
+        for k in 0..N6 {
+            y[k].0[l] = yi[k];
+        }
+        let mut d = [0.0; N6];
+        model.derivative_6dof(&starts, t, &yi, &mut d);
+        singles.push(d);
+    }
+    let mut dy = [F64x4::splat(0.0); N6];
+    eval_four(&four, &ms, thrust, &y, &mut dy);
+    let mut generic = [F64x4::splat(0.0); N6];
+    derivative_6dof_lanes(&four, &ms, thrust, &y, &mut generic);
+    for (l, single) in singles.iter().enumerate() {
+        for k in 0..N6 {
+            assert!(single[k].is_finite());
+            assert_eq!(
+                dy[k].0[l].to_bits(),
+                single[k].to_bits(),
+                "lane {l}, state {k}"
+            );
+            assert_eq!(
+                generic[k].0[l].to_bits(),
+                single[k].to_bits(),
+                "lane {l}, state {k}"
+            );
+        }
+    }
+}
+
+#[test]
+fn fixed_step_lanes_equal_their_single_flights_too() {
+    // RK4 steps whole, so its lanes take their free-flight steps alone, inside the same loop.
+    let rk4 = SimOptions {
+        keep_samples: false,
+        integrator: crate::flight::Integrator::Rk4 { step_s: 0.01 },
+        ..SimOptions::default()
+    };
+    let batch = Batch::new(base().with_options(rk4).unwrap(), Some("ballast")).unwrap();
+    let n = 10;
+    let c = columns(n, 5);
+    let mut results = Vec::new();
+    batch.run_columns(&c, 8, 2, |r| results.push(r)).unwrap();
+    let mut flown = 0;
+    for (i, lane) in results.iter().enumerate() {
+        let Ok(sim) = batch.variant(&c, i) else {
+            assert_eq!(lane.status, Status::Refused);
+            continue;
+        };
+        let f = sim.run(&mut ()).unwrap();
+        let bits = |m: &Metrics| -> Vec<Option<u64>> {
+            metric_list(m).iter().map(|v| v.map(f64::to_bits)).collect()
+        };
+        assert_eq!(bits(&lane.metrics), bits(&f.metrics), "variant {i}");
+        assert_eq!(lane.derivative_evaluations, f.derivative_evaluations);
+        assert_eq!(lane.warnings, f.warnings(), "variant {i}");
+        for (k, chute) in lane.parachutes.iter().enumerate() {
+            let d = f.deploy(k);
+            assert_eq!(chute.deploy_time_s, d.map(|d| d.0), "variant {i}");
+            assert_eq!(chute.deploy_speed_m_s, d.map(|d| d.1), "variant {i}");
+        }
+        flown += 1;
+    }
+    assert!(flown >= 8, "{flown}");
+}
+
+#[test]
+fn the_kept_mass_state_is_the_one_instant_gives_wherever_the_mass_is_settled() {
+    let sim = base();
+    let model = sim.model();
+    let mut starts = [f64::INFINITY; crate::flight::model::MAX_SHIFTS];
+    // Before its shift: settled from burnout on.
+    let burn = model.motor.burn_time_s();
+    assert!(!model.mass_settled(&starts, burn - 1e-9));
+    let at =
+        |s: &crate::flight::model::ShiftStarts, t: f64| MassLanes::of(&model.instant(s, t).mass);
+    let still = at(&starts, burn);
+    for t in [burn, burn + 0.1, 4.0, 9.0] {
+        assert!(model.mass_settled(&starts, t));
+        assert_eq!(at(&starts, t), still, "t = {t}");
+    }
+    // The ballast moves from 5 s for 1 s: not settled while it moves, settled (elsewhere)
+    // after.
+    starts[0] = 5.0;
+    assert!(model.mass_settled(&starts, 5.0));
+    for t in [5.0 + 1e-9, 5.5, 6.0 - 1e-9] {
+        assert!(!model.mass_settled(&starts, t), "t = {t}");
+    }
+    let moved = at(&starts, 6.0);
+    assert_ne!(moved, still);
+    for t in [6.0, 6.5, 20.0] {
+        assert!(model.mass_settled(&starts, t));
+        assert_eq!(at(&starts, t), moved, "t = {t}");
+    }
+}
