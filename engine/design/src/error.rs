@@ -61,6 +61,8 @@ pub enum Rule {
     ShapeTakesNoParameter { shape: &'static str },
     /// A fin dimension given to a planform that has no such dimension.
     NotForPlanform { planform: &'static str },
+    /// A free-form fin's outline that is not one: `point` (0-based) breaks `why`.
+    FinOutline { point: usize, why: &'static str },
     /// An empty id.
     EmptyId,
     /// An id used twice (stages and components share one namespace).
@@ -145,6 +147,7 @@ impl fmt::Display for Rule {
             Rule::NotForPlanform { planform } => {
                 write!(f, "does not apply to a fin of planform \"{planform}\"")
             }
+            Rule::FinOutline { point, why } => write!(f, "point {point}: {why}"),
             Rule::EmptyId => write!(f, "must not be empty"),
             Rule::DuplicateId { first } => write!(f, "is already the id of {first}"),
             Rule::BodyInsideComponent { kind } => write!(

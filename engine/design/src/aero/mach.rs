@@ -150,7 +150,10 @@ mod tests {
     #[test]
     fn roll_damping_is_reduced_by_the_cosine_of_the_cant() {
         let f = calisto_fins();
-        let canted = Fins { cant_rad: 0.1, ..f };
+        let canted = Fins {
+            cant_rad: 0.1,
+            ..f.clone()
+        };
         let a = PI * 0.0635f64.powi(2);
         let r0 = roll_damping(&f, &f.geometry(), 0.3, a, 0.127);
         let r1 = roll_damping(&canted, &canted.geometry(), 0.3, a, 0.127);

@@ -210,7 +210,7 @@ pub struct Transition {
 
 /// The outline of one fin, in its plane: the root along the body from its leading edge
 /// (`x = 0`, aft positive) to `root_chord_m`, the span outward from the body.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum FinPlanform {
     /// Straight edges: a tip chord parallel to the root, its leading edge `sweep_m` aft of
     /// the root's.
@@ -223,6 +223,11 @@ pub enum FinPlanform {
     /// span, its tip a point above the root's mid-chord (RocketPy's `EllipticalFins`,
     /// OpenRocket's elliptical fin set).
     Elliptical,
+    /// Any outline of straight edges (RocketPy's `FreeFormFins`, OpenRocket's free-form fin
+    /// set): its corners `(x, y)`, `x` aft of the root's leading edge and `y` out from the
+    /// body, in order from the root's leading edge `(0, 0)` to its trailing edge
+    /// `(root chord, 0)`; the root closes it.
+    FreeForm { points_m: Vec<[f64; 2]> },
 }
 
 impl FinPlanform {
@@ -234,6 +239,7 @@ impl FinPlanform {
                 (root_chord_m + tip_chord_m) * span_m / 2.0
             }
             FinPlanform::Elliptical => std::f64::consts::PI * root_chord_m * span_m / 4.0,
+            FinPlanform::FreeForm { points_m } => polygon_area_m2(points_m),
         }
     }
 
@@ -242,11 +248,24 @@ impl FinPlanform {
         match self {
             FinPlanform::Trapezoidal { .. } => "trapezoidal",
             FinPlanform::Elliptical => "elliptical",
+            FinPlanform::FreeForm { .. } => "free_form",
         }
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The area of the polygon `points` closed back to its first point (the shoelace formula), m².
+pub fn polygon_area_m2(points: &[[f64; 2]]) -> f64 {
+    let n = points.len();
+    let twice: f64 = (0..n)
+        .map(|i| {
+            let (a, b) = (points[i], points[(i + 1) % n]);
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum();
+    0.5 * twice.abs()
+}
+
+#[derive(Debug, Clone, PartialEq)]
 pub struct FinSet {
     pub count: u32,
     pub root_chord_m: f64,

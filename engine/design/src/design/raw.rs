@@ -138,6 +138,7 @@ pub enum RawFinPlanform {
     #[default]
     Trapezoidal,
     Elliptical,
+    FreeForm,
 }
 
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
@@ -236,12 +237,16 @@ component_struct!(RawFinSet {
     count: u32,
     #[serde(default)]
     planform: RawFinPlanform,
-    root_chord_m: f64,
+    #[serde(default)]
+    root_chord_m: Option<f64>,
     #[serde(default)]
     tip_chord_m: Option<f64>,
-    span_m: f64,
+    #[serde(default)]
+    span_m: Option<f64>,
     #[serde(default)]
     sweep_m: Option<f64>,
+    #[serde(default)]
+    points_m: Option<Vec<[f64; 2]>>,
     thickness_m: f64,
     #[serde(default)]
     cant_deg: f64,

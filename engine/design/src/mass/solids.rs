@@ -148,7 +148,8 @@ pub fn revolution(profile: impl Fn(f64) -> f64, length_m: f64, wall_m: Option<f6
 /// three-point Gauss–Legendre (exact: the integrands are cubics). A half ellipse has
 /// semi-axes `a = root/2` and `b = span` about `(a, 0)`; its moments are closed forms
 /// (`∫ dA = π a b/2`, `∫ y dA = 2 a b²/3`, `∫ (x − a)² dA = π a³ b/8`, `∫ y² dA = π a b³/8`,
-/// `∫ (x − a) y dA = 0`). The thickness adds `t²/12` through it.
+/// `∫ (x − a) y dA = 0`). A free-form outline's are Green's theorem's sums over its edges.
+/// The thickness adds `t²/12` through it.
 pub fn fin_plate(
     mass_kg: f64,
     root: f64,
@@ -158,8 +159,8 @@ pub fn fin_plate(
 ) -> MassProps {
     // ∫ over the plate of 1, x, y, x², y², x y (per unit thickness).
     let (mut a, mut ax, mut ay, mut axx, mut ayy, mut axy) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    match *planform {
-        FinPlanform::Trapezoidal {
+    match planform {
+        &FinPlanform::Trapezoidal {
             tip_chord_m: tip,
             sweep_m: sweep,
         } => {
@@ -188,6 +189,28 @@ pub fn fin_plate(
             axx = PI * h.powi(3) * b / 8.0 + h * h * a;
             ayy = PI * h * b.powi(3) / 8.0;
             axy = h * ay;
+        }
+        FinPlanform::FreeForm { points_m } => {
+            // Green's theorem over the closed outline (exact for straight edges), oriented
+            // counter-clockwise so that the integrals come out positive.
+            let n = points_m.len();
+            let signed: f64 = (0..n)
+                .map(|i| {
+                    let (p, q) = (points_m[i], points_m[(i + 1) % n]);
+                    p[0] * q[1] - q[0] * p[1]
+                })
+                .sum();
+            let sign = signed.signum();
+            for i in 0..n {
+                let ([x0, y0], [x1, y1]) = (points_m[i], points_m[(i + 1) % n]);
+                let cross = sign * (x0 * y1 - x1 * y0);
+                a += cross / 2.0;
+                ax += cross * (x0 + x1) / 6.0;
+                ay += cross * (y0 + y1) / 6.0;
+                axx += cross * (x0 * x0 + x0 * x1 + x1 * x1) / 12.0;
+                ayy += cross * (y0 * y0 + y0 * y1 + y1 * y1) / 12.0;
+                axy += cross * (x0 * y1 + 2.0 * x0 * y0 + 2.0 * x1 * y1 + x1 * y0) / 24.0;
+            }
         }
     }
     if a <= 0.0 {

@@ -8,6 +8,66 @@ use crate::design::raw::*;
 use crate::design::shapes;
 use crate::error::{DesignError, Location, Rule};
 
+/// A free-form fin's outline checked: at least three corners, every one finite and none below
+/// the root (`y >= 0`), the first the root's leading edge `(0, 0)`, the last its trailing edge
+/// `(root chord > 0, 0)`, some corner off the root, no corner twice in a row, and no two edges
+/// crossing (the root, from the last corner back to the first, is an edge too). The error is
+/// the corner and the rule.
+fn fin_outline(points: &[[f64; 2]]) -> Result<(), (usize, &'static str)> {
+    let n = points.len();
+    if n < 3 {
+        return Err((n, "an outline needs at least three corners"));
+    }
+    for (i, p) in points.iter().enumerate() {
+        if !(p[0].is_finite() && p[1].is_finite()) {
+            return Err((i, "must be finite"));
+        }
+        if p[1] < 0.0 {
+            return Err((i, "must not be below the root (y >= 0)"));
+        }
+        if i > 0 && *p == points[i - 1] {
+            return Err((i, "repeats the corner before it"));
+        }
+    }
+    if points[0] != [0.0, 0.0] {
+        return Err((0, "must be the root's leading edge, [0, 0]"));
+    }
+    let last = points[n - 1];
+    if !(last[1] == 0.0 && last[0] > 0.0) {
+        return Err((
+            n - 1,
+            "must be the root's trailing edge, [root chord > 0, 0]",
+        ));
+    }
+    if points.iter().all(|p| p[1] == 0.0) {
+        return Err((1, "the outline must leave the root (some y > 0)"));
+    }
+    // Edges i: points[i] → points[i + 1 mod n]; adjacent edges share a corner.
+    let edge = |i: usize| (points[i], points[(i + 1) % n]);
+    let orient = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    };
+    for i in 0..n {
+        for j in i + 1..n {
+            if j == i + 1 || (i == 0 && j == n - 1) {
+                continue;
+            }
+            let ((a, b), (c, d)) = (edge(i), edge(j));
+            let (d1, d2) = (orient(a, b, c), orient(a, b, d));
+            let (d3, d4) = (orient(c, d, a), orient(c, d, b));
+            let straddle = d1 * d2 <= 0.0 && d3 * d4 <= 0.0;
+            // Four zeros: the edges lie on one line and meet only if their extents overlap.
+            let collinear = d1 == 0.0 && d2 == 0.0 && d3 == 0.0 && d4 == 0.0;
+            let overlap =
+                |k: usize| a[k].min(b[k]).max(c[k].min(d[k])) <= a[k].max(b[k]).min(c[k].max(d[k]));
+            if straddle && (!collinear || (overlap(0) && overlap(1))) {
+                return Err((j, "its edge crosses another edge of the outline"));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// A radial offset `(y, z)` from a distance and an angle from +y toward +z, degrees.
 fn polar(distance_m: f64, angle_deg: f64) -> [f64; 2] {
     let a = angle_deg.to_radians();
@@ -102,57 +162,109 @@ impl Builder<'_> {
                         },
                     ));
                 }
-                let planform = match f.planform {
-                    RawFinPlanform::Trapezoidal => {
-                        let tip = match f.tip_chord_m {
-                            Some(t) => self.non_negative(&at, "tip_chord_m", t)?,
-                            None => {
-                                return Err(self.invalid(
-                                    &at,
-                                    Some("tip_chord_m"),
-                                    Rule::Required {
-                                        when: "for a trapezoidal fin (the default planform)",
-                                    },
-                                ))
+                let not_for = |planform: &'static str, given: &[(&'static str, bool)]| match given
+                    .iter()
+                    .find(|(_, g)| *g)
+                {
+                    Some((field, _)) => {
+                        Err(self.invalid(&at, Some(field), Rule::NotForPlanform { planform }))
+                    }
+                    None => Ok(()),
+                };
+                let (planform, root, span) = match f.planform {
+                    RawFinPlanform::FreeForm => {
+                        not_for(
+                            "free_form",
+                            &[
+                                ("root_chord_m", f.root_chord_m.is_some()),
+                                ("tip_chord_m", f.tip_chord_m.is_some()),
+                                ("span_m", f.span_m.is_some()),
+                                ("sweep_m", f.sweep_m.is_some()),
+                            ],
+                        )?;
+                        let points = f.points_m.clone().ok_or_else(|| {
+                            self.invalid(
+                                &at,
+                                Some("points_m"),
+                                Rule::Required {
+                                    when: "for a free_form fin",
+                                },
+                            )
+                        })?;
+                        fin_outline(&points).map_err(|(point, why)| {
+                            self.invalid(&at, Some("points_m"), Rule::FinOutline { point, why })
+                        })?;
+                        let root = points[points.len() - 1][0];
+                        let span = points.iter().map(|p| p[1]).fold(0.0, f64::max);
+                        (FinPlanform::FreeForm { points_m: points }, root, span)
+                    }
+                    planform => {
+                        not_for(
+                            if planform == RawFinPlanform::Elliptical {
+                                "elliptical"
+                            } else {
+                                "trapezoidal"
+                            },
+                            &[("points_m", f.points_m.is_some())],
+                        )?;
+                        let shape = if planform == RawFinPlanform::Elliptical {
+                            not_for(
+                                "elliptical",
+                                &[
+                                    ("tip_chord_m", f.tip_chord_m.is_some()),
+                                    ("sweep_m", f.sweep_m.is_some()),
+                                ],
+                            )?;
+                            FinPlanform::Elliptical
+                        } else {
+                            let tip = match f.tip_chord_m {
+                                Some(t) => self.non_negative(&at, "tip_chord_m", t)?,
+                                None => {
+                                    return Err(self.invalid(
+                                        &at,
+                                        Some("tip_chord_m"),
+                                        Rule::Required {
+                                            when: "for a trapezoidal fin (the default planform)",
+                                        },
+                                    ))
+                                }
+                            };
+                            let sweep = self.finite(&at, "sweep_m", f.sweep_m.unwrap_or(0.0))?;
+                            FinPlanform::Trapezoidal {
+                                tip_chord_m: tip,
+                                sweep_m: sweep,
                             }
                         };
-                        let sweep = self.finite(&at, "sweep_m", f.sweep_m.unwrap_or(0.0))?;
-                        FinPlanform::Trapezoidal {
-                            tip_chord_m: tip,
-                            sweep_m: sweep,
-                        }
-                    }
-                    RawFinPlanform::Elliptical => {
-                        for (field, v) in [("tip_chord_m", f.tip_chord_m), ("sweep_m", f.sweep_m)] {
-                            if v.is_some() {
-                                return Err(self.invalid(
+                        let required = |field: &'static str, v: Option<f64>| {
+                            v.ok_or_else(|| {
+                                self.invalid(
                                     &at,
                                     Some(field),
-                                    Rule::NotForPlanform {
-                                        planform: "elliptical",
+                                    Rule::Required {
+                                        when: "unless the planform is free_form",
                                     },
-                                ));
-                            }
+                                )
+                            })
+                        };
+                        let root = required("root_chord_m", f.root_chord_m)?;
+                        if !(root > 0.0 && root.is_finite()) {
+                            let rule = match shape {
+                                FinPlanform::Trapezoidal { tip_chord_m, .. }
+                                    if tip_chord_m > 0.0 =>
+                                {
+                                    Rule::FinRootChord {
+                                        root_m: root,
+                                        tip_m: tip_chord_m,
+                                    }
+                                }
+                                _ => Rule::NotPositive { got: root },
+                            };
+                            return Err(self.invalid(&at, Some("root_chord_m"), rule));
                         }
-                        FinPlanform::Elliptical
+                        let span = self.positive(&at, "span_m", required("span_m", f.span_m)?)?;
+                        (shape, root, span)
                     }
                 };
-                if !(f.root_chord_m > 0.0 && f.root_chord_m.is_finite()) {
-                    let rule = match planform {
-                        FinPlanform::Trapezoidal { tip_chord_m, .. } if tip_chord_m > 0.0 => {
-                            Rule::FinRootChord {
-                                root_m: f.root_chord_m,
-                                tip_m: tip_chord_m,
-                            }
-                        }
-                        _ => Rule::NotPositive {
-                            got: f.root_chord_m,
-                        },
-                    };
-                    return Err(self.invalid(&at, Some("root_chord_m"), rule));
-                }
-                let root = f.root_chord_m;
-                let span = self.positive(&at, "span_m", f.span_m)?;
                 let thickness = self.positive(&at, "thickness_m", f.thickness_m)?;
                 let cant = self.within(&at, "cant_deg", f.cant_deg, -MAX_CANT_DEG, MAX_CANT_DEG)?;
                 let rotation = self.finite(&at, "rotation_deg", f.rotation_deg)?;
