@@ -657,4 +657,128 @@ mod tests {
         assert!((g.mac_length_m - 0.32 / PI).abs() < 1e-15);
         assert!((fins.x_cp_m() - 0.12 * (0.5 - 2.0 / (3.0 * PI))).abs() < 1e-15);
     }
+
+    #[test]
+    fn a_free_form_outline_of_a_trapezoid_has_the_trapezoid_s_numbers() {
+        // The example fin's corners: root 0.12, tip 0.05 swept 0.06, span 0.07.
+        let trapezoid = example_fins();
+        let outline = Fins {
+            planform: FinPlanform::FreeForm {
+                points_m: vec![[0.0, 0.0], [0.06, 0.07], [0.11, 0.07], [0.12, 0.0]],
+            },
+            ..trapezoid.clone()
+        };
+        let (t, f) = (trapezoid.geometry(), outline.geometry());
+        let close = |a: f64, b: f64, tol: f64, what: &str| {
+            assert!((a / b - 1.0).abs() < tol, "{what}: {a} vs {b}")
+        };
+        // The area, the sweep and the factors of τ alone are exact; the span integrals carry
+        // the midpoint rule's error on 4000 lines (under 1e-7).
+        close(f.area_m2, t.area_m2, 1e-15, "A_f");
+        close(f.aspect_ratio, t.aspect_ratio, 1e-15, "AR");
+        close(f.mid_chord_sweep_rad, t.mid_chord_sweep_rad, 1e-12, "γc");
+        close(
+            f.leading_edge_sweep_rad,
+            t.leading_edge_sweep_rad,
+            1e-12,
+            "Λ",
+        );
+        close(
+            f.roll_forcing_interference,
+            t.roll_forcing_interference,
+            1e-15,
+            "K_f",
+        );
+        close(f.y_mac_m, t.y_mac_m, 1e-7, "Yma");
+        close(f.mac_length_m, t.mac_length_m, 1e-7, "MAC");
+        close(
+            f.mac_leading_edge_m,
+            t.mac_leading_edge_m,
+            1e-7,
+            "MAC's leading edge",
+        );
+        close(
+            f.roll_geometric_constant_m4,
+            t.roll_geometric_constant_m4,
+            1e-7,
+            "G",
+        );
+        // K_d's integral form is the trapezoid's closed form.
+        close(
+            f.roll_damping_interference,
+            t.roll_damping_interference,
+            1e-7,
+            "K_d",
+        );
+        close(outline.x_cp_m(), trapezoid.x_cp_m(), 1e-7, "CP");
+        close(
+            outline.cn_alpha_mach0(0.0563),
+            trapezoid.cn_alpha_mach0(0.0563),
+            1e-12,
+            "CNα",
+        );
+    }
+
+    #[test]
+    fn a_free_form_outline_of_many_corners_on_an_ellipse_tends_to_the_elliptical_fin() {
+        // 200 corners on the half ellipse (semi-axes 0.06 and 0.09): a polygon inside it, its
+        // area short by 1 − sin(π/n)/(π/n) = 4.1e-5 of the ellipse's, its other numbers
+        // within a few 1e-4.
+        let n = 200;
+        let points: Vec<[f64; 2]> = (0..=n)
+            .map(|k| {
+                let t = PI * (1.0 - k as f64 / n as f64);
+                [0.06 + 0.06 * t.cos(), 0.09 * t.sin()]
+            })
+            .map(|[x, y]| [if x.abs() < 1e-15 { 0.0 } else { x }, y.max(0.0)])
+            .collect();
+        let ellipse = Fins {
+            count: 3,
+            root_chord_m: 0.12,
+            span_m: 0.09,
+            planform: FinPlanform::Elliptical,
+            body_radius_m: 0.03,
+            cant_rad: 0.0,
+        };
+        let polygon = Fins {
+            planform: FinPlanform::FreeForm { points_m: points },
+            ..ellipse.clone()
+        };
+        let (e, p) = (ellipse.geometry(), polygon.geometry());
+        let close = |a: f64, b: f64, tol: f64, what: &str| {
+            assert!((a / b - 1.0).abs() < tol, "{what}: {a} vs {b}")
+        };
+        let shortfall = 1.0 - (PI / n as f64).sin() / (PI / n as f64);
+        close(p.area_m2, e.area_m2 * (1.0 - shortfall), 1e-12, "A_f");
+        // A free-form Yma is the chord-weighted mean span, the area's centroid (OpenRocket's
+        // and RocketPy's free-form `mac_span`), 4s/(3π) for the ellipse; RocketPy's elliptical
+        // Yma is where the chord equals the MAC, s √(9π² − 64)/(3π). The two CPs agree: the
+        // leading edge there is the chord-weighted mean leading edge.
+        close(p.y_mac_m, 4.0 * 0.09 / (3.0 * PI), 5e-4, "Yma");
+        close(p.mac_length_m, e.mac_length_m, 5e-4, "MAC");
+        close(
+            p.roll_geometric_constant_m4,
+            e.roll_geometric_constant_m4,
+            5e-4,
+            "G",
+        );
+        close(
+            p.roll_damping_interference,
+            e.roll_damping_interference,
+            5e-4,
+            "K_d",
+        );
+        close(polygon.x_cp_m(), ellipse.x_cp_m(), 5e-4, "CP");
+        close(
+            p.leading_edge_sweep_rad,
+            e.leading_edge_sweep_rad,
+            5e-3,
+            "Λ",
+        );
+        assert!(
+            p.mid_chord_sweep_rad.abs() < 1e-6,
+            "γc {}",
+            p.mid_chord_sweep_rad
+        );
+    }
 }

@@ -494,6 +494,39 @@ mod tests {
         assert!((i[(0, 1)] + m * sxy).abs() < 1e-11 * i[(2, 2)]);
     }
 
+    #[test]
+    fn a_free_form_outline_weighs_as_the_planform_it_traces() {
+        // Green's theorem on the corners against the trapezoid's own integration, and a
+        // clockwise outline (the same corners reversed, root last) the same.
+        let (m, t) = (0.05, 0.004);
+        let trapezoid = fin_plate(m, 0.15, 0.08, &trapezoid(0.05, 0.09), t);
+        let corners = vec![[0.0, 0.0], [0.09, 0.08], [0.14, 0.08], [0.15, 0.0]];
+        let outline = fin_plate(
+            m,
+            0.15,
+            0.08,
+            &FinPlanform::FreeForm { points_m: corners },
+            t,
+        );
+        assert!((outline.cg_m - trapezoid.cg_m).amax() < 1e-15);
+        let d = outline.inertia_cg - trapezoid.inertia_cg;
+        assert!(d.amax() < 1e-13 * trapezoid.inertia_cg.amax(), "{d}");
+        let mirrored = fin_plate(
+            m,
+            0.15,
+            0.08,
+            &FinPlanform::FreeForm {
+                points_m: vec![[0.0, 0.0], [0.15, 0.0], [0.14, 0.08], [0.09, 0.08]],
+            },
+            t,
+        );
+        assert!((mirrored.cg_m - trapezoid.cg_m).amax() < 1e-15);
+        assert!(
+            (mirrored.inertia_cg - trapezoid.inertia_cg).amax()
+                < 1e-13 * trapezoid.inertia_cg.amax()
+        );
+    }
+
     fn four_fins(rotation_deg: f64, count: u32) -> FinSet {
         FinSet {
             count,

@@ -182,3 +182,113 @@ fn an_elliptical_fin_set_takes_no_tip_chord_or_sweep_and_a_trapezoidal_one_needs
     .to_string();
     assert!(e.contains("freeform") && e.contains("elliptical"), "{e}");
 }
+
+#[test]
+fn a_free_form_fin_set_is_its_outline_and_an_outline_that_is_not_one_is_refused_by_its_corner() {
+    // The example's fins as a free-form outline: a clipped delta with a notch.
+    let outline = |points: Value| {
+        move |v: &mut Value| {
+            let fins = at(v, FINS).as_object_mut().expect("fins");
+            for field in ["root_chord_m", "tip_chord_m", "span_m", "sweep_m"] {
+                fins.remove(field);
+            }
+            fins.insert("planform".into(), json!("free_form"));
+            fins.insert("points_m".into(), points);
+        }
+    };
+    let good = json!([
+        [0.0, 0.0],
+        [0.06, 0.07],
+        [0.09, 0.07],
+        [0.1, 0.04],
+        [0.12, 0.0]
+    ]);
+    let d = with(outline(good.clone())).expect("a free-form fin set is valid");
+    match &d.component("fins").expect("fins").kind {
+        ComponentKind::FinSet(f) => {
+            assert_eq!((f.root_chord_m, f.span_m), (0.12, 0.07));
+            assert!(
+                matches!(&f.planform, FinPlanform::FreeForm { points_m } if points_m.len() == 5)
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    for (points, corner, why) in [
+        (json!([[0.0, 0.0], [0.12, 0.0]]), 2, "at least three"),
+        (
+            json!([[0.01, 0.0], [0.06, 0.07], [0.12, 0.0]]),
+            0,
+            "leading edge",
+        ),
+        (
+            json!([[0.0, 0.0], [0.06, 0.07], [0.12, 0.01]]),
+            2,
+            "trailing edge",
+        ),
+        (
+            json!([[0.0, 0.0], [0.06, -0.01], [0.12, 0.0]]),
+            1,
+            "below the root",
+        ),
+        (
+            json!([[0.0, 0.0], [0.06, 0.07], [0.06, 0.07], [0.12, 0.0]]),
+            2,
+            "repeats",
+        ),
+        (
+            json!([[0.0, 0.0], [0.06, 0.0], [0.12, 0.0]]),
+            1,
+            "leave the root",
+        ),
+        // A bow tie: the third edge crosses the first.
+        (
+            json!([[0.0, 0.0], [0.1, 0.06], [0.02, 0.06], [0.12, 0.0]]),
+            2,
+            "crosses",
+        ),
+    ] {
+        let (rule, loc, field) = invalid(with(outline(points.clone())));
+        match rule {
+            Rule::FinOutline { point, why: got } => {
+                assert_eq!(point, corner, "{points}: {got}");
+                assert!(got.contains(why), "{points}: {got}");
+            }
+            other => panic!("{points}: {other:?}"),
+        }
+        assert_eq!((loc, field.as_deref()), (comp("fins"), Some("points_m")));
+    }
+    // A free-form fin takes its sizes from its corners; a trapezoidal one takes no corners.
+    let (rule, _, field) = invalid(with(|v| {
+        outline(good.clone())(v);
+        at(v, FINS)
+            .as_object_mut()
+            .unwrap()
+            .insert("span_m".into(), json!(0.07));
+    }));
+    assert_eq!(
+        rule,
+        Rule::NotForPlanform {
+            planform: "free_form"
+        }
+    );
+    assert_eq!(field.as_deref(), Some("span_m"));
+    let (rule, _, field) = invalid(with(|v| {
+        at(v, FINS)
+            .as_object_mut()
+            .unwrap()
+            .insert("points_m".into(), good.clone());
+    }));
+    assert_eq!(
+        rule,
+        Rule::NotForPlanform {
+            planform: "trapezoidal"
+        }
+    );
+    assert_eq!(field.as_deref(), Some("points_m"));
+    let (rule, _, field) = invalid(with(|v| {
+        outline(good.clone())(v);
+        at(v, FINS).as_object_mut().unwrap().remove("points_m");
+    }));
+    assert!(matches!(rule, Rule::Required { .. }));
+    assert_eq!(field.as_deref(), Some("points_m"));
+}
