@@ -199,6 +199,16 @@ def fin_geometry(fins):
     }
 
 
+def roll_record(fins):
+    """RocketPy's roll coefficients of a fin set against Mach, and its cant."""
+    clf_delta, cld_omega, cant = fins.roll_parameters
+    return {
+        "roll_forcing_clf_delta_per_rad": curve(clf_delta, MACHS),
+        "roll_damping_cld_omega": curve(cld_omega, MACHS),
+        "cant_angle_rad": f(cant),
+    }
+
+
 def fin_record(spec):
     fins = make_fins(spec)
     rec = dict(spec)
@@ -234,13 +244,10 @@ def elliptical_fin_record(spec):
                           cant_angle=spec["cant_angle_deg"], name="fins")
     rec = dict(spec)
     rec.update(surface_record(fins, spec["rocket_radius_m"]))
-    clf_delta, cld_omega, cant = fins.roll_parameters
+    rec.update(roll_record(fins))
     rec.update({
         "single_fin_clalpha_per_rad": curve(fins.clalpha_single_fin, MACHS),
         "geometry": fin_geometry(fins),
-        "roll_forcing_clf_delta_per_rad": curve(clf_delta, MACHS),
-        "roll_damping_cld_omega": curve(cld_omega, MACHS),
-        "cant_angle_rad": f(cant),
         "note": "RocketPy puts the CP at 0.288 root chords (rounded); the "
                 "quarter point of the mean aerodynamic chord is "
                 "C_r (1/2 - 2/(3 pi)) = 0.28779 C_r",
@@ -257,15 +264,12 @@ def free_form_fin_record(spec):
                             cant_angle=spec["cant_angle_deg"], name="fins")
     rec = dict(spec)
     rec.update(surface_record(fins, spec["rocket_radius_m"]))
-    clf_delta, cld_omega, cant = fins.roll_parameters
+    rec.update(roll_record(fins))
     rec.update({
         "root_chord_m": f(fins.root_chord),
         "span_m": f(fins.span),
         "geometry": dict(fin_geometry(fins), mac_length_m=f(fins.mac_length),
                          mac_lead_m=f(fins.mac_lead)),
-        "roll_forcing_clf_delta_per_rad": curve(clf_delta, MACHS),
-        "roll_damping_cld_omega": curve(cld_omega, MACHS),
-        "cant_angle_rad": f(cant),
         "note": "RocketPy samples the outline on 40 lines across the span "
                 "(rectangle rule); hpr on 4000 (midpoint rule)",
     })

@@ -29,10 +29,10 @@
 //! Not modelled: fin–body interference drag, fin-tip vortices, the angle of attack (the flight
 //! applies its own correction if any), and the nozzle's own base drag.
 
-use super::barrowman::Fins;
 use super::drag_formulas::{
     base_cd, boattail_cd, fin_pressure_cd, launch_guide_area_m2, launch_guide_cd, skin_friction,
 };
+use super::fins::Fins;
 use super::nose_drag::NosePressureDrag;
 use super::profile::{nose_shape_of, Section};
 use super::table::MachTable;

@@ -15,7 +15,7 @@
 //!   same expression above Mach 1.1 with `β = sqrt(M² − 1)`; hpr follows it (it is
 //!   RocketPy's choice, not supersonic thin-airfoil theory, and it keeps the two codes in
 //!   step).
-//! - fin set: `CNα = F(N) K_fb (CNα)₁` (see [`super::barrowman::fin_count_factor`]).
+//! - fin set: `CNα = F(N) K_fb (CNα)₁` (see [`super::fins::fin_count_factor`]).
 //! - noses and transitions: constant `CNα` (slender-body theory has no Mach dependence;
 //!   RocketPy's `NoseCone`/`Tail` `clalpha` are constant too).
 //! - roll forcing per radian of cant: `C_lf,δ = K_f N (Y_ma + r) (CNα)₁ / d`;
@@ -27,7 +27,7 @@
 //!   [`super::FinRoll`]). The damping expression is RocketPy's; Barrowman's uses a 2-D
 //!   sectional slope instead of `(CNα)₁`.
 
-use super::barrowman::{fin_count_factor, FinGeometry, Fins};
+use super::fins::{fin_count_factor, FinGeometry, Fins};
 use std::f64::consts::PI;
 
 /// RocketPy's compressibility factor `β(M)`.

@@ -17,6 +17,7 @@
 pub mod barrowman;
 pub mod drag_estimate;
 pub mod drag_formulas;
+pub mod fins;
 pub mod mach;
 pub mod nose_drag;
 pub mod profile;
@@ -24,7 +25,8 @@ pub mod table;
 #[cfg(test)]
 mod tests;
 
-pub use barrowman::{FinGeometry, Fins, Lift};
+pub use barrowman::Lift;
+pub use fins::{FinGeometry, Fins};
 pub use profile::Section;
 pub use table::{Curve, MachTable};
 

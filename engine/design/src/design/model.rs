@@ -253,8 +253,9 @@ impl FinPlanform {
     }
 }
 
-/// The area of the polygon `points` closed back to its first point (the shoelace formula), m².
-pub fn polygon_area_m2(points: &[[f64; 2]]) -> f64 {
+/// The signed area of the polygon `points` closed back to its first point (the shoelace
+/// formula: positive counter-clockwise), m².
+pub fn polygon_signed_area_m2(points: &[[f64; 2]]) -> f64 {
     let n = points.len();
     let twice: f64 = (0..n)
         .map(|i| {
@@ -262,7 +263,12 @@ pub fn polygon_area_m2(points: &[[f64; 2]]) -> f64 {
             a[0] * b[1] - b[0] * a[1]
         })
         .sum();
-    0.5 * twice.abs()
+    0.5 * twice
+}
+
+/// The area of the polygon `points` closed back to its first point, m².
+pub fn polygon_area_m2(points: &[[f64; 2]]) -> f64 {
+    polygon_signed_area_m2(points).abs()
 }
 
 #[derive(Debug, Clone, PartialEq)]

@@ -11,7 +11,7 @@
 //! the cylinders, cone, cube and plate; the others are derived in their docs.
 
 use super::MassProps;
-use crate::design::model::{FinPlanform, FinSet};
+use crate::design::model::{polygon_signed_area_m2, FinPlanform, FinSet};
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::PI;
 
@@ -194,13 +194,7 @@ pub fn fin_plate(
             // Green's theorem over the closed outline (exact for straight edges), oriented
             // counter-clockwise so that the integrals come out positive.
             let n = points_m.len();
-            let signed: f64 = (0..n)
-                .map(|i| {
-                    let (p, q) = (points_m[i], points_m[(i + 1) % n]);
-                    p[0] * q[1] - q[0] * p[1]
-                })
-                .sum();
-            let sign = signed.signum();
+            let sign = polygon_signed_area_m2(points_m).signum();
             for i in 0..n {
                 let ([x0, y0], [x1, y1]) = (points_m[i], points_m[(i + 1) % n]);
                 let cross = sign * (x0 * y1 - x1 * y0);
