@@ -182,9 +182,10 @@ def geometry(design, report):
         "nose": {"length_m": nose["length_m"], "kind": NOSE_KINDS[nose["shape"]],
                  "position_m": placed[nose["id"]]["x_top_m"]},
         "fins": [{"n": c["count"], "planform": c.get("planform", "trapezoidal"),
-                  "root_chord_m": c["root_chord_m"],
-                  "tip_chord_m": c.get("tip_chord_m"), "span_m": c["span_m"],
+                  "root_chord_m": c.get("root_chord_m"),
+                  "tip_chord_m": c.get("tip_chord_m"), "span_m": c.get("span_m"),
                   "sweep_length_m": c.get("sweep_m", 0.0),
+                  "points_m": c.get("points_m"),
                   "cant_angle_deg": c.get("cant_deg", 0.0),
                   "position_m": placed[c["id"]]["x_top_m"]} for c in fins],
         "tails": [{"top_radius_m": c["fore_diameter_m"] / 2,
@@ -245,6 +246,11 @@ def build(spec, geo, wind="wind", lever_arm=False, sound=False):
         if k["planform"] == "elliptical":
             rocket.add_elliptical_fins(
                 n=k["n"], root_chord=k["root_chord_m"], span=k["span_m"],
+                position=k["position_m"], cant_angle=k["cant_angle_deg"])
+        elif k["planform"] == "free_form":
+            # RocketPy samples the outline on 40 lines (see barrowman.py's free-form records).
+            rocket.add_free_form_fins(
+                shape_points=[tuple(p) for p in k["points_m"]], n=k["n"],
                 position=k["position_m"], cant_angle=k["cant_angle_deg"])
         else:
             rocket.add_trapezoidal_fins(
