@@ -103,6 +103,27 @@ fn inspect_prints_the_reference_design_s_mass_properties_and_margin() {
         "0.8188 0.6681 0.09556 4.297"
     );
     assert_eq!(v["motor"]["designation"], "411-I175-WH-14A");
+    // Each lifting surface's slope and center of pressure: the nose's slender-body 2/rad, and
+    // the rocket's CP their slope-weighted mean (to rounding).
+    let surfaces = v["lifting_surfaces"].as_array().unwrap();
+    let kinds: Vec<&str> = surfaces
+        .iter()
+        .map(|l| l["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["nose_cone", "fin_set"]);
+    let slope = |l: &serde_json::Value| l["cn_alpha_mach0_per_rad"].as_f64().unwrap();
+    assert!((slope(&surfaces[0]) - 2.0).abs() < 1e-12);
+    let total: f64 = surfaces.iter().map(slope).sum();
+    let moment: f64 = surfaces
+        .iter()
+        .map(|l| slope(l) * l["x_cp_m"].as_f64().unwrap())
+        .sum();
+    let cp = v["center_of_pressure_m"].as_f64().unwrap();
+    assert!(
+        (moment / total - cp).abs() < 1e-12,
+        "{} vs {cp}",
+        moment / total
+    );
     // The text form says the same.
     let text = hpr_mc(&["inspect", REFERENCE]);
     let line = text

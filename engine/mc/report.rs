@@ -20,6 +20,10 @@ pub struct Inspection {
     pub cp_m: f64,
     pub ref_diameter_m: f64,
     pub components: Vec<Value>,
+    /// Each nose, transition and fin set's normal-force slope at Mach 0 (1/rad, on the
+    /// reference area) and center of pressure (m aft of the nose tip), as OpenRocket's
+    /// component analysis lists them.
+    pub surfaces: Vec<Value>,
 }
 
 fn mass_json(sim: &Simulation, t: f64) -> Value {
@@ -65,6 +69,24 @@ impl Inspection {
             cp_m: sim.model().cp_mach0_m,
             ref_diameter_m: sim.model().ref_diameter_m,
             components,
+            // The simulation was built from this design, whose aerodynamics therefore build.
+            surfaces: hpr_design::aero::AeroModel::from_design(d)
+                .map(|a| {
+                    a.surfaces
+                        .iter()
+                        .map(|l| {
+                            json!({
+                                "id": l.id, "kind": match l.kind {
+                                    hpr_design::aero::SurfaceKind::NoseCone => "nose_cone",
+                                    hpr_design::aero::SurfaceKind::Transition => "transition",
+                                    hpr_design::aero::SurfaceKind::FinSet => "fin_set",
+                                },
+                                "cn_alpha_mach0_per_rad": l.cn_alpha(0.0), "x_cp_m": l.x_cp_m,
+                            })
+                        })
+                        .collect()
+                })
+                .unwrap_or_default(),
         }
     }
 
@@ -72,6 +94,7 @@ impl Inspection {
         json!({
             "design": self.design, "motor": self.motor, "liftoff": self.liftoff, "after_burnout": self.burnout,
             "center_of_pressure_m": self.cp_m, "reference_diameter_m": self.ref_diameter_m, "components": self.components,
+            "lifting_surfaces": self.surfaces,
         })
     }
 
@@ -98,6 +121,15 @@ impl Inspection {
             "reference diameter {:.4} m; center of pressure (Mach 0) {:.4} m aft of the nose tip",
             self.ref_diameter_m, self.cp_m
         );
+        for l in &self.surfaces {
+            let _ = writeln!(
+                s,
+                "  {:<26} CNα {:>8.4} /rad at Mach 0, center of pressure {:.4} m",
+                l["id"].as_str().unwrap_or(""),
+                l["cn_alpha_mach0_per_rad"].as_f64().unwrap_or(f64::NAN),
+                l["x_cp_m"].as_f64().unwrap_or(f64::NAN),
+            );
+        }
         let _ = writeln!(
             s,
             "\n{:<15} {:>9} {:>10} {:>9} {:>12} {:>16} {:>14}",
