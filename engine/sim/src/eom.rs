@@ -402,6 +402,26 @@ impl Default for CanopyShape {
 }
 
 impl CanopyShape {
+    /// Check the numbers: a given radius and height positive and finite, the porosity at least
+    /// 0 and below 1. The error is the field and the rule it breaks.
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        for (field, v) in [("radius_m", self.radius_m), ("height_m", self.height_m)] {
+            if let Some(v) = v.filter(|v| !(v.is_finite() && *v > 0.0)) {
+                return Err((field, format!("must be positive and finite (got {v})")));
+            }
+        }
+        if !(self.porosity.is_finite() && (0.0..1.0).contains(&self.porosity)) {
+            return Err((
+                "porosity",
+                format!(
+                    "must be at least 0 and below 1: the canopy's open area over its whole area (got {})",
+                    self.porosity
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The volume of air an open canopy of drag area `cds_m2` carries along, m³: its added mass
     /// per unit air density, `C_a (2/3) π R² H` (RocketPy 1.13's `u_dot_parachute`).
     pub fn added_air_volume_m3(&self, cds_m2: f64) -> f64 {

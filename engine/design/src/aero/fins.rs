@@ -413,6 +413,18 @@ mod tests {
         assert!((g.tau - 0.1635 / 0.0635).abs() < 1e-12);
     }
 
+    /// Three elliptical fins, 0.12 m root on a 0.09 m span, on a 60 mm body.
+    fn elliptical_fins() -> Fins {
+        Fins {
+            count: 3,
+            root_chord_m: 0.12,
+            span_m: 0.09,
+            planform: FinPlanform::Elliptical,
+            body_radius_m: 0.03,
+            cant_rad: 0.0,
+        }
+    }
+
     #[test]
     fn an_elliptical_fin_s_leading_edge_sweep_is_the_span_mean_of_its_slope_s_cosine() {
         // Semi-axes equal (a circle's quarter): the mean of cos over the span is π/4.
@@ -433,14 +445,7 @@ mod tests {
         let simpson = elliptical_mean_leading_edge_cos(a, b);
         assert!((simpson - direct).abs() < 1e-8, "{simpson} vs {direct}");
         // The fin's sweep angle is its arccosine (a 0.12 m root on a 0.09 m span).
-        let fins = Fins {
-            count: 3,
-            root_chord_m: 0.12,
-            span_m: 0.09,
-            planform: FinPlanform::Elliptical,
-            body_radius_m: 0.03,
-            cant_rad: 0.0,
-        };
+        let fins = elliptical_fins();
         assert_eq!(fins.geometry().leading_edge_sweep_rad, simpson.acos());
         // The mean aerodynamic chord 8 C_r/(3π) at Yma, its quarter point the CP.
         let g = fins.geometry();
@@ -522,14 +527,7 @@ mod tests {
             })
             .map(|[x, y]| [if x.abs() < 1e-15 { 0.0 } else { x }, y.max(0.0)])
             .collect();
-        let ellipse = Fins {
-            count: 3,
-            root_chord_m: 0.12,
-            span_m: 0.09,
-            planform: FinPlanform::Elliptical,
-            body_radius_m: 0.03,
-            cant_rad: 0.0,
-        };
+        let ellipse = elliptical_fins();
         let polygon = Fins {
             planform: FinPlanform::FreeForm { points_m: points },
             ..ellipse.clone()

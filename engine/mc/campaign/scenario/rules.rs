@@ -48,27 +48,14 @@ pub(super) fn canopy_shape(
     key: &dyn Fn(&str) -> String,
     p: &RawParachute,
 ) -> Result<CanopyShape, ScenarioError> {
-    let positive = |field: &str, v: Option<f64>| match v {
-        Some(v) if !(v.is_finite() && v > 0.0) => Err(bad(
-            &key(field),
-            format!("must be positive and finite (got {v})"),
-        )),
-        _ => Ok(v),
-    };
     let shape = CanopyShape {
-        radius_m: positive("radius_m", p.radius_m)?,
-        height_m: positive("height_m", p.height_m)?,
+        radius_m: p.radius_m,
+        height_m: p.height_m,
         porosity: p.porosity.unwrap_or(CanopyShape::default().porosity),
     };
-    if !(shape.porosity.is_finite() && (0.0..1.0).contains(&shape.porosity)) {
-        return Err(bad(
-            &key("porosity"),
-            format!(
-                "must be at least 0 and below 1: the canopy's open area over its whole area (got {})",
-                shape.porosity
-            ),
-        ));
-    }
+    shape
+        .check()
+        .map_err(|(field, rule)| bad(&key(field), rule))?;
     Ok(shape)
 }
 

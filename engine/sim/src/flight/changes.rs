@@ -57,20 +57,9 @@ impl Changes<'_> {
                     p.lag_s
                 )));
             }
-            let c = &p.canopy;
-            for (field, v) in [("radius_m", c.radius_m), ("height_m", c.height_m)] {
-                if let Some(v) = v.filter(|v| !(v.is_finite() && *v > 0.0)) {
-                    return Err(SimError::Setup(format!(
-                        "{what}: canopy field \"{field}\" must be positive and finite (got {v})"
-                    )));
-                }
-            }
-            if !(c.porosity.is_finite() && (0.0..1.0).contains(&c.porosity)) {
-                return Err(SimError::Setup(format!(
-                    "{what}: canopy field \"porosity\" must be at least 0 and below 1 (got {})",
-                    c.porosity
-                )));
-            }
+            p.canopy.check().map_err(|(field, rule)| {
+                SimError::Setup(format!("{what}: canopy field \"{field}\" {rule}"))
+            })?;
             p.trigger
                 .validate()
                 .map_err(|e| SimError::Setup(format!("{what}: {e}")))?;

@@ -21,7 +21,7 @@ pub use output::{Flight, Metrics, Observer, Phase, Sample, Warning, LARGE_ALPHA_
 
 use crate::aero_loads::{AeroTables, SurfaceTable};
 use crate::atmosphere::{AirTable, Atmosphere};
-use crate::eom::Nozzle;
+use crate::eom::{self, Nozzle};
 use crate::integrate::IntegratorError;
 use crate::massprops::MassModel;
 use crate::shifts::{MassShift, ShiftPlan, ShiftRefusal};
@@ -492,6 +492,13 @@ pub fn build_model(
         earth_rate_n: env.earth_rate_n(),
         rail: rail_geo,
         parachutes: parachutes.to_vec(),
+        canopies: parachutes
+            .iter()
+            .map(|p| eom::Canopies {
+                cds_m2: p.cds_m2,
+                added_air_m3: p.canopy.added_air_volume_m3(p.cds_m2),
+            })
+            .collect(),
         shifts: model::shift_specs(shifts, plan),
         options: *options,
         burnout_s: burnout,

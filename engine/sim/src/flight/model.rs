@@ -66,6 +66,9 @@ pub struct FlightModel {
     pub earth_rate_n: Option<[f64; 3]>,
     pub rail: RailGeometry,
     pub parachutes: Vec<Parachute>,
+    /// Each parachute's drag area and the air its open canopy carries, in `parachutes`'
+    /// order, computed once ([`eom::CanopyShape::added_air_volume_m3`]).
+    pub canopies: Vec<eom::Canopies<f64>>,
     pub shifts: Vec<ShiftSpec>,
     pub options: SimOptions,
     /// Motor's burnout time (last thrust point), s.

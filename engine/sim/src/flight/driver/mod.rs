@@ -308,18 +308,21 @@ impl<'a, O: Observer> Run<'a, O> {
 
     /// The open canopies: their CdS and the air they carry, summed.
     fn canopies(&self) -> Canopies<f64> {
-        let open = || {
-            self.model
-                .parachutes
-                .iter()
-                .zip(&self.chute_open)
-                .filter(|(_, &o)| o)
-                .map(|(p, _)| p)
+        let mut sum = Canopies {
+            cds_m2: 0.0,
+            added_air_m3: 0.0,
         };
-        Canopies {
-            cds_m2: open().map(|p| p.cds_m2).sum(),
-            added_air_m3: open().map(|p| p.canopy.added_air_volume_m3(p.cds_m2)).sum(),
+        for (c, _) in self
+            .model
+            .canopies
+            .iter()
+            .zip(&self.chute_open)
+            .filter(|(_, &o)| o)
+        {
+            sum.cds_m2 += c.cds_m2;
+            sum.added_air_m3 += c.added_air_m3;
         }
+        sum
     }
 
     #[allow(clippy::too_many_arguments)]
