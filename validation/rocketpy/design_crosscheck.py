@@ -42,8 +42,13 @@ sticks out), so RocketPy's rail is shorter by their distance; RocketPy's canopie
 main is RocketPy's less the drogue.
 
 Each case is flown as RocketPy 1.13 flies it (``outputs``), with its lever-arm sign
-corrected (``lever_arm_corrected``; RocketPy issue #1186) and with its speed of sound made
-the true one as well (``as_hpr_models``, what hpr-mc models; see corrections.py).
+corrected (``lever_arm_corrected``; RocketPy issue #1186) and with its standard atmosphere
+made the true one as well (temperature, pressure, density and speed of sound of the U.S.
+Standard Atmosphere 1976: ``as_hpr_models``, what hpr-mc models; see corrections.py).
+
+RocketPy starts the center of dry mass at ground level, where hpr-mc's rocket stands on its
+rail with its aft end at the rail's foot, so RocketPy's rocket reads the air and the wind
+that much lower than it is; the Rust side (crosscheck.rs) hands hpr-mc the same surroundings.
 
 Run from the repository root after ``cargo build --release``:
     .venv/bin/python validation/rocketpy/design_crosscheck.py
@@ -62,7 +67,7 @@ from rocketpy import Environment, Flight, Function, GenericMotor, Rocket
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-import corrections  # noqa: E402  (the lever arm and the speed of sound corrected)
+import corrections  # noqa: E402  (the lever arm and the standard air corrected)
 import figures  # noqa: E402  (what each flight records)
 from figures import f  # noqa: E402
 
@@ -205,9 +210,9 @@ def linear(points, name):
                     interpolation="linear", extrapolation="constant")
 
 
-def build(spec, geo, wind="wind", lever_arm=False, sound=False):
-    """The rocket in `wind` ("wind", "profile" or "calm"), RocketPy's lever arm and speed of
-    sound corrected or not."""
+def build(spec, geo, wind="wind", lever_arm=False, air=False):
+    """The rocket in `wind` ("wind", "profile" or "calm"), RocketPy's lever arm and standard
+    air corrected or not."""
     env = Environment(latitude=SITE["latitude_deg"], longitude=SITE["longitude_deg"],
                       elevation=SITE["elevation_m"])
     if wind == "wind":
@@ -219,8 +224,8 @@ def build(spec, geo, wind="wind", lever_arm=False, sound=False):
     else:
         u, v = 0.0, 0.0
     env.set_atmospheric_model(type="custom_atmosphere", wind_u=u, wind_v=v)
-    if sound:
-        corrections.true_speed_of_sound(env)
+    if air:
+        corrections.true_standard_air(env)
     m = geo["motor"]
     half = 0.5 * m["length_m"]
     eng = os.path.join(REPO, "engine", "design", "motors", m["file"] + ".eng")
@@ -316,7 +321,7 @@ def one(name, spec):
         cases[wind] = {
             "outputs": case(spec, geo, wind=wind),
             "lever_arm_corrected": case(spec, geo, wind=wind, lever_arm=True),
-            "as_hpr_models": case(spec, geo, wind=wind, lever_arm=True, sound=True),
+            "as_hpr_models": case(spec, geo, wind=wind, lever_arm=True, air=True),
         }
         h = cases[wind]["as_hpr_models"]
         print(f"{name} {wind}: apogee {h['apogee_agl_m']:.2f} m at {h['apogee_time_s']:.3f} s"

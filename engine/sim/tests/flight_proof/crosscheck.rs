@@ -38,40 +38,44 @@
 //! less the drogue, in CdS and in the air it carries (`rocketpy_chutes`). RocketPy samples its triggers at 105 Hz (up to 9.5 ms late).
 //!
 //! Compared against RocketPy with its lever-arm sign corrected (RocketPy issue #1186) and its
-//! speed of sound made the true one (its own is a chord of sqrt(γRT) between the ISA
-//! layers, 0.13 % low at 2 km): `as_hpr_models`, validation/rocketpy/corrections.py, which is
-//! what hpr models. Measured (release build, default integrator), the largest over the three
-//! winds, canted rocket / four-finned rocket / reference design (the elliptical-finned
-//! rocket's in brackets after each):
+//! standard atmosphere made the true one (its temperature is a chord between the layers'
+//! bases in geometric height, its pressure a spline through samples 808 m apart, its speed
+//! of sound a chord of sqrt(γRT): density 6e-5 to 1.2e-4 low and sound 0.13 % low at 2 km):
+//! `as_hpr_models`, validation/rocketpy/corrections.py, which is what hpr models. RocketPy's
+//! rocket starts with its center of dry mass at ground level, so it reads the air, the wind
+//! and gravity that much lower than it is; hpr is handed the same surroundings ([`fly`]).
+//! Measured (release build, default integrator), the largest over the three winds, canted
+//! rocket / four-finned rocket / reference design (the elliptical-finned rocket's in
+//! brackets after each):
 //!
-//! * apogee −0.15 / −0.19 / −0.18 m (−0.01 % at most; [−0.26 m]), its time within 0.5 / 0.9 /
-//!   1.0 ms [1.1 ms], its position within 0.11 / 0.17 / 0.16 m [0.51 m, in the turning wind;
-//!   0.04 m in the others];
+//! * apogee −0.11 / −0.14 / −0.15 m (−0.008 % at most; [−0.25 m]), its time within 0.3 / 0.5
+//!   / 0.9 ms [1.0 ms], its horizontal position within 0.047 / 0.017 / 0.030 m [0.036 m];
 //! * rail exit at the same time to 1e-5 s, the airframe's speed there within 0.004 / 0.008 /
-//!   0.002 m/s [0.009];
-//! * maximum speed within 0.005 / 0.055 / 0.052 m/s [0.006], maximum Mach within 1e-4 / 2e-4 /
-//!   2e-4 [1e-4];
-//! * the canted rocket's roll rate at burnout within 0.0024 rad/s of 36.39 (0.007 %), at
+//!   0.002 m/s [0.0095];
+//! * maximum speed within 0.002 / 0.059 / 0.045 m/s [0.019], maximum Mach within 1e-5 /
+//!   2.5e-4 / 2e-4 [1e-4];
+//! * the canted rocket's roll rate at burnout within 0.0028 rad/s of 36.39 (0.008 %), at
 //!   apogee within 0.005 rad/s;
-//! * drogue open within 7 / 6 / 10 ms [10 ms], main open within 0.014 / 0.014 / 0.019 s
-//!   [0.010 s], landing within 0.008 / 0.011 / 0.010 s [0.020 s], descent rate within
-//!   0.0003 m/s [0.0004];
-//! * landing point within 0.35 / 0.43 / 0.36 m [0.51 m] after 1.9 / 1.3 / 1.2 km [2.8 km] of
-//!   drift (in the profile, whose shear turns the apogee's 0.15 m of height into 0.0015 m/s
-//!   of drift for 200 s; within 0.06 m [0.12 m] in the constant wind and in still air).
+//! * drogue open within 7 / 7 / 6 ms [10.5 ms], main open within 0.019 / 0.017 / 0.012 s
+//!   [0.022 s], landing within 0.019 / 0.026 / 0.012 s [0.029 s], descent rate within
+//!   0.0003 m/s;
+//! * landing point within 0.12 / 0.19 / 0.094 m [0.19 m] after 1.2 to 2.8 km of drift.
 //!
-//! The tolerances are about twice these (the apogee's position 1.5e-4 of its height: 1.1 to
-//! 3.2 times the largest difference). (An LV-Haack nose is not flown: RocketPy puts its
+//! The tolerances are about twice these (the landing time 0.05 s: a main opened up to two
+//! 105 Hz samples before RocketPy's is slowed that much higher up). (An LV-Haack nose is not flown: RocketPy puts its
 //! center of pressure at 0.563 L, where its volume puts it at 7/16 L; see
-//! `hpr_design::aero::barrowman`.) Four things found on the way, all fixed: a rail
+//! `hpr_design::aero::barrowman`.) Five things found on the way, all fixed: a rail
 //! guide's off-axis grams had turned the rocket 2° off its heading in azimuth as it left
 //! the rail (hpr now spreads rail guides round the axis, as OpenRocket and RocketPy keep the
 //! center of mass on it); hpr had read the wind at the center of mass for every surface,
 //! where RocketPy reads it at each surface's height (in the profile's shear, 1 m on the
-//! apogee's position); the first correction of RocketPy's lever arm had flipped the one term
-//! RocketPy wrote for the arm as it is (its translational `− r_CM × ω̇`), which had put 2.5 m
-//! between the apogees in wind; and RocketPy reads a bare list of drag points as a cubic
-//! spline (1.4 m on the apogee), so the script hands it hpr's linear interpolation.
+//! apogee's position); the first correction of RocketPy's lever arm had flipped the one
+//! term RocketPy wrote for the arm as it is (its translational `− r_CM × ω̇`), which had put
+//! 2.5 m between the apogees in wind; RocketPy reads a bare list of drag points as a cubic
+//! spline (1.4 m on the apogee), so the script hands it hpr's linear interpolation; and
+//! this harness had handed hpr the wind profile where its rocket is, where RocketPy's reads
+//! it a metre or two lower (its center of dry mass starts at ground level): in the profile's
+//! shear that had put the apogees up to 0.51 m apart sideways and the landings 0.57 m.
 
 use crate::common::*;
 use hpr_design::Design;
@@ -109,8 +113,8 @@ struct Crosscheck {
 }
 
 /// The reference's wind for `case`: `wind` (constant), `profile` (rows by height above the
-/// site) or `calm`.
-fn wind_of(r: &Value, case: &str) -> Wind {
+/// site, read `below_m` lower than the rocket is: each row `below_m` higher) or `calm`.
+fn wind_of(r: &Value, case: &str, below_m: f64) -> Wind {
     match case {
         "wind" => Wind::constant(
             num(r, "/inputs/wind/speed_m_s"),
@@ -123,7 +127,7 @@ fn wind_of(r: &Value, case: &str) -> Wind {
                 .expect("wind profile")
                 .iter()
                 .map(|row| WindRow {
-                    height_agl_m: num(row, "/height_agl_m"),
+                    height_agl_m: num(row, "/height_agl_m") + below_m,
                     speed_m_s: num(row, "/speed_m_s"),
                     from_deg: num(row, "/from_deg"),
                 })
@@ -134,10 +138,13 @@ fn wind_of(r: &Value, case: &str) -> Wind {
     }
 }
 
-fn simulation(r: &Value, case: &str) -> Simulation {
+/// hpr's simulation of the reference's rocket in `case`, its air, wind and gravity read
+/// `below_m` lower than the rocket is (RocketPy's, whose center of dry mass starts at ground
+/// level: see [`fly`]).
+fn simulation(r: &Value, case: &str, below_m: f64) -> Simulation {
     let lat = num(r, "/inputs/site/latitude_deg");
-    let elevation = num(r, "/inputs/site/elevation_m");
-    let wind = wind_of(r, case);
+    let elevation = num(r, "/inputs/site/elevation_m") - below_m;
+    let wind = wind_of(r, case, below_m);
     let env = Environment {
         elevation_m: elevation,
         gravity: Gravity::somigliana(lat, elevation).unwrap(),
@@ -159,16 +166,20 @@ fn simulation(r: &Value, case: &str) -> Simulation {
 }
 
 fn fly(r: &Value, case: &str) -> Crosscheck {
-    let sim = simulation(r, case);
     // RocketPy's state is the center of dry mass, starting at ground level; hpr's center of
     // mass starts with the aft end at the rail's foot, and is the center of dry mass once the
     // motor is out, `aft − x_dry` up the rail.
-    let x_dry = sim.mass_properties_at(100.0).cg_m.x;
+    let x_dry = simulation(r, case, 0.0).mass_properties_at(100.0).cg_m.x;
     let along = num(r, "/inputs/rocket_after_burnout/aft_end_m") - x_dry;
     let incl = num(r, "/inputs/rail/inclination_deg").to_radians();
     let heading = num(r, "/inputs/rail/heading_deg").to_radians();
     let (start_height, flat) = (along * incl.sin(), along * incl.cos());
     let start_en = [flat * heading.sin(), flat * heading.cos()];
+    // So RocketPy's rocket reads the air, the wind and gravity `start_height` lower than it
+    // is (at liftoff, at the ground's): hpr is handed the same surroundings. Read where the
+    // rocket is, the wind profile's shear (0.0084 m/s per m near the ground) had put the
+    // apogees 0.11 to 0.51 m apart sideways and the landings up to 0.57 m.
+    let sim = simulation(r, case, start_height);
     let chutes = rocketpy_chutes(
         (
             num(r, "/inputs/parachutes/drogue/cd_s_m2"),
@@ -219,11 +230,9 @@ fn rows(c: &Crosscheck, rp: &Value) -> Vec<(&'static str, f64, f64, f64)> {
     let [east, north] = m.landing_position_m.unwrap();
     let deploy = |i: usize| f.event(EventKind::ParachuteDeploy(i)).unwrap().time_s;
     let ev = |i: usize, field: &str| at(&format!("/parachute_events/{i}/{field}"));
-    // The apogee's horizontal position: 1.5e-4 of its height (0.28 to 0.58 m). The largest
-    // differences are all in the wind that turns with height: 4.6e-5, 6.6e-5, 8.6e-5 and
-    // 1.35e-4 of the height for the four rockets (0.11 to 0.51 m; at most 0.04 m in the
-    // constant wind and in still air), the largest the 3.85 km elliptical-finned rocket.
-    let apogee_position_tol = 1.5e-4 * at("/apogee_agl_m");
+    // The apogee's horizontal position: 0.1 m (the largest difference 0.047 m, in still air;
+    // 0.017 m in the wind that turns with height, since both rockets read it at one height).
+    let apogee_position_tol = 0.1;
     vec![
         (
             "apogee above ground, m",
@@ -278,23 +287,24 @@ fn rows(c: &Crosscheck, rp: &Value) -> Vec<(&'static str, f64, f64, f64)> {
         ),
         ("main open, s", deploy(1), ev(1, "inflation_time_s"), 0.03),
         (
-            // Each canopy's trigger may be sampled up to 9.5 ms late (105 Hz): 19 ms, and 0.01 s.
+            // RocketPy samples each trigger at 105 Hz: a main that opens up to 19 ms before
+            // RocketPy's, at the drogue's speed, is slowed higher up and lands later.
             "landing time, s",
             landing_t - dt,
             at("/impact_time_s"),
-            0.03,
+            0.05,
         ),
         (
             "landing east, m",
             east - v[0] * dt - c.start_en[0],
             at("/impact_x_m"),
-            0.8,
+            0.4,
         ),
         (
             "landing north, m",
             north - v[1] * dt - c.start_en[1],
             at("/impact_y_m"),
-            0.8,
+            0.4,
         ),
         (
             "landing vertical speed, m/s",
@@ -311,7 +321,7 @@ fn rows(c: &Crosscheck, rp: &Value) -> Vec<(&'static str, f64, f64, f64)> {
 /// point hpr takes; the set's share of the lift scales that on the whole rocket).
 fn handed_over(rocket: &str, cp_rounding_m: f64) {
     let r = reference(rocket);
-    let sim = simulation(&r, "wind");
+    let sim = simulation(&r, "wind", 0.0);
     let liftoff = sim.mass_properties_at(0.0);
     let dry = sim.mass_properties_at(100.0);
     let model = sim.model();
