@@ -11,6 +11,7 @@ mod calisto;
 mod common;
 mod coriolis;
 mod crosscheck;
+mod drag;
 mod events;
 mod exact;
 mod inputs;
