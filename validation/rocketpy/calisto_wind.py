@@ -54,7 +54,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import calisto  # noqa: E402  (the shared set-up: rocket, motor, chutes, site, rail)
-import corrections  # noqa: E402  (the lever arm and the speed of sound corrected)
+import corrections  # noqa: E402  (the lever arm and the standard air corrected)
 import figures  # noqa: E402  (what each flight records)
 
 OUT = os.path.join(HERE, "calisto_wind_reference.json")
@@ -76,18 +76,18 @@ def components(speed, from_deg):
 
 
 def fly(u, v, coriolis=True, added_mass=True, lever_arm_corrected=False,
-        sound_corrected=False):
+        air_corrected=False):
     """One flight in wind (u, v). The options switch off, one by one, what
     hpr-mc does not model: Coriolis, the canopies' added mass, RocketPy
     1.13's sign of r_CM and r_NOZ in Flight.u_dot_generalized (see
-    LEVER_ARM below) and its speed of sound, a chord of the true one
-    (corrections.py)."""
+    LEVER_ARM below) and its standard atmosphere, whose temperature, pressure
+    and speed of sound are chords or splines of the true ones (corrections.py)."""
     env, _, rocket, flight = calisto.build(wind_u=u, wind_v=v,
                                            coriolis=coriolis)
-    if added_mass and not lever_arm_corrected and not sound_corrected:
+    if added_mass and not lever_arm_corrected and not air_corrected:
         return env, rocket, flight
-    if sound_corrected:
-        corrections.true_speed_of_sound(env)
+    if air_corrected:
+        corrections.true_standard_air(env)
     if not added_mass:
         for chute in rocket.parachutes:
             chute.added_mass_coefficient = 0.0
@@ -167,10 +167,10 @@ def main():
                 *fly(u, v, lever_arm_corrected=True)[::2]),
             "as_hpr_models": outputs(
                 *fly(u, v, lever_arm_corrected=True,
-                     sound_corrected=True)[::2]),
+                     air_corrected=True)[::2]),
             "as_hpr_models_inertial": outputs(
                 *fly(u, v, coriolis=False, lever_arm_corrected=True,
-                     sound_corrected=True)[::2]),
+                     air_corrected=True)[::2]),
         }
         print(f"{name}: u {u:+.4f} v {v:+.4f}; "
               f"apogee {cases[name]['outputs']['apogee_agl_m']:.3f} m at "
@@ -233,10 +233,10 @@ def main():
                 "added_mass_coefficient = 0 (its worth)",
             "lever_arm_corrected": "r_CM and r_NOZ with the sign the "
                 "equations of motion v1 define (see lever_arm_note)",
-            "as_hpr_models": "lever arm and speed of sound corrected: the "
+            "as_hpr_models": "lever arm and standard air corrected: the "
                              "physics hpr-mc models, with the site's "
                              "latitude",
-            "as_hpr_models_inertial": "lever arm and speed of sound "
+            "as_hpr_models_inertial": "lever arm and standard air "
                                       "corrected, Coriolis off: hpr-mc "
                                       "without a latitude",
         },
