@@ -620,6 +620,16 @@ fn assert_rows_flown_by_hand(
     env: &hpr_sim::Environment,
     chute: &hpr_sim::Parachute,
 ) {
+    let envs = vec![env.clone(); campaign.len()];
+    assert_rows_flown_by_hand_in(campaign, &envs, chute);
+}
+
+/// [`assert_rows_flown_by_hand`], each row in its own environment.
+fn assert_rows_flown_by_hand_in(
+    campaign: &[[f64; 4]],
+    envs: &[hpr_sim::Environment],
+    chute: &hpr_sim::Parachute,
+) {
     let design = hpr_design::Design::load(
         Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("validation/designs/synthetic-54mm-three-fin.json"),
@@ -629,7 +639,7 @@ fn assert_rows_flown_by_hand(
         inclination_deg: 85.0,
         ..hpr_sim::Rail::default()
     };
-    for row in campaign {
+    for (row, env) in campaign.iter().zip(envs) {
         let f = hpr_sim::Simulation::new(
             design.clone(),
             hpr_design::motor::find("Cesaroni_I175").unwrap(),

@@ -46,3 +46,71 @@ fn a_scenario_s_latitude_ellipsoid_gravity_and_measured_air_fly_as_the_simulator
     );
     assert!(campaign[0][1] > standard_air[0][1] + 10.0);
 }
+
+#[test]
+fn a_swept_site_temperature_and_a_dispersed_site_pressure_fly_each_row_in_its_own_air() {
+    // The standard atmosphere at 1200 m (280.35 K, 87.7 kPa), its temperature swept over a
+    // cold and a hot day and its pressure dispersed: each row is the simulator set up by hand
+    // in the air of that site at the row's temperature and pressure, to rounding, and the
+    // hot day's thinner air lets the rocket climb higher.
+    let text = windy(
+        "elevation_m = 1200.0\nwind_speed_m_s = 4.0\nwind_from_deg = 250.0",
+        "temperature_k = [263.15, 308.15]",
+    )
+    .replace(
+        "[dispersions]\n",
+        "[dispersions]\npressure_pa = { dist = \"normal\", sigma = 800.0 }\n",
+    );
+    let rows = landed_rows(
+        &text,
+        [
+            "temperature_k",
+            "pressure_pa",
+            "drag_scale",
+            "apogee_m",
+            "landing_x_m",
+            "landing_y_m",
+        ],
+    );
+    assert_eq!(rows.len(), 8, "two temperatures, four variants each");
+    let envs: Vec<Environment> = rows
+        .iter()
+        .map(|r| Environment {
+            elevation_m: 1200.0,
+            wind: Wind::constant(4.0, 250.0).unwrap(),
+            air: AirModel::site(1200.0, Some(r[0]), Some(r[1])).unwrap(),
+            ..Environment::default()
+        })
+        .collect();
+    let flown: Vec<[f64; 4]> = rows.iter().map(|r| [r[2], r[3], r[4], r[5]]).collect();
+    let chute = Parachute::new("main", 0.9, Trigger::Apogee, 1.0);
+    assert_rows_flown_by_hand_in(&flown, &envs, &chute);
+    let pressures: Vec<f64> = rows.iter().map(|r| r[1]).collect();
+    assert!(
+        pressures.windows(2).any(|w| w[0] != w[1]),
+        "the pressure is dispersed: {pressures:?}"
+    );
+    let mean = |t: f64| {
+        let a: Vec<f64> = rows.iter().filter(|r| r[0] == t).map(|r| r[3]).collect();
+        assert_eq!(a.len(), 4);
+        a.iter().sum::<f64>() / 4.0
+    };
+    let (cold, hot) = (mean(263.15), mean(308.15));
+    eprintln!("apogee at 263.15 K: {cold:.2} m, at 308.15 K: {hot:.2} m");
+    // Density falls as 1/T at one pressure: 15 % thinner on the hot day.
+    assert!(hot > cold + 20.0, "{hot} against {cold}");
+}
+
+#[test]
+fn a_site_temperature_outside_the_air_s_range_is_refused_naming_the_sweep() {
+    let text = windy(
+        "elevation_m = 1200.0\nwind_speed_m_s = 4.0\nwind_from_deg = 250.0",
+        "temperature_k = [288.15, 400.0]",
+    );
+    let (dir, file) = setup(&text);
+    let err = run_campaign(&file, &config(&dir.path().join("out")))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("sweep.temperature_k"), "{err}");
+    assert!(err.contains("must be from 150 to 350"), "{err}");
+}

@@ -2,6 +2,8 @@
 //! them under `[sweep]` and `[dispersions]`), their column names in the output, their units
 //! and the range of values a flight accepts.
 
+use hpr_sim::atmosphere::{SITE_PRESSURE_RANGE_PA, SITE_TEMPERATURE_RANGE_K};
+
 /// One input of a flight that a scenario may sweep or disperse. Parachutes and shifts are
 /// numbered in the order the scenario lists them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -20,6 +22,11 @@ pub enum Param {
     DragScale,
     /// Launch site elevation above sea level, m.
     ElevationM,
+    /// The site's air temperature, K (nominal: `environment.temperature_k`, or the standard
+    /// atmosphere's at the site).
+    TemperatureK,
+    /// The site's air pressure, Pa (nominal: `environment.pressure_pa`, or the standard's).
+    PressurePa,
     WindSpeedMS,
     /// Direction the wind blows from, degrees clockwise from north.
     WindFromDeg,
@@ -42,7 +49,7 @@ pub enum Param {
 
 /// The global inputs, in their canonical order (the order of the output's columns and of the
 /// sweep's axes), with their key and unit.
-pub const GLOBAL: [(Param, &str, &str); 14] = [
+pub const GLOBAL: [(Param, &str, &str); 16] = [
     (Param::StructureMassKg, "structure_mass_kg", "kg"),
     (Param::StructureCgM, "structure_cg_m", "m"),
     (Param::BallastKg, "ballast_kg", "kg"),
@@ -50,6 +57,8 @@ pub const GLOBAL: [(Param, &str, &str); 14] = [
     (Param::MotorBurnTimeS, "motor_burn_time_s", "s"),
     (Param::DragScale, "drag_scale", "1"),
     (Param::ElevationM, "elevation_m", "m"),
+    (Param::TemperatureK, "temperature_k", "K"),
+    (Param::PressurePa, "pressure_pa", "Pa"),
     (Param::WindSpeedMS, "wind_speed_m_s", "m/s"),
     (Param::WindFromDeg, "wind_from_deg", "deg"),
     (Param::WindScale, "wind_scale", "1"),
@@ -69,6 +78,8 @@ pub enum Domain {
     AtLeast(f64),
     /// Above `lo` and at most `hi`.
     Within(f64, f64),
+    /// From `lo` to `hi`, both included.
+    Between(f64, f64),
 }
 
 impl Domain {
@@ -81,6 +92,7 @@ impl Domain {
                 Domain::NonNegative => v >= 0.0,
                 Domain::AtLeast(lo) => v >= lo,
                 Domain::Within(lo, hi) => v > lo && v <= hi,
+                Domain::Between(lo, hi) => (lo..=hi).contains(&v),
             };
         if ok {
             Ok(())
@@ -91,6 +103,7 @@ impl Domain {
                 Domain::NonNegative => format!("must be finite and not negative (got {v})"),
                 Domain::AtLeast(lo) => format!("must be at least {lo} (got {v})"),
                 Domain::Within(lo, hi) => format!("must be above {lo} and at most {hi} (got {v})"),
+                Domain::Between(lo, hi) => format!("must be from {lo} to {hi} (got {v})"),
             })
         }
     }
@@ -127,6 +140,13 @@ impl Param {
             | Param::RailHeadingDeg
             | Param::ShiftTravelM(_) => Domain::Finite,
             Param::RailInclinationDeg => Domain::Within(0.0, 90.0),
+            // The site's air, as `environment.temperature_k` and `pressure_pa` take it.
+            Param::TemperatureK => {
+                Domain::Between(SITE_TEMPERATURE_RANGE_K.0, SITE_TEMPERATURE_RANGE_K.1)
+            }
+            Param::PressurePa => {
+                Domain::Between(SITE_PRESSURE_RANGE_PA.0, SITE_PRESSURE_RANGE_PA.1)
+            }
             Param::ShiftDurationS(_) => Domain::AtLeast(0.01),
             Param::ParachuteTrigger(_) => Domain::NonNegative,
             Param::ShiftTrigger(_) => Domain::NonNegative,
@@ -169,6 +189,8 @@ mod tests {
                 "s" => "_s",
                 "m/s" => "_m_s",
                 "deg" => "_deg",
+                "K" => "_k",
+                "Pa" => "_pa",
                 _ => "",
             };
             assert!(key.ends_with(suffix), "{key} should end in {suffix}");
@@ -192,5 +214,12 @@ mod tests {
             Param::BallastKg.domain().check(0.0),
             Err("must be positive and finite (got 0)".into())
         );
+        assert!(Param::TemperatureK.domain().check(150.0).is_ok());
+        assert!(Param::TemperatureK.domain().check(350.0).is_ok());
+        assert_eq!(
+            Param::TemperatureK.domain().check(400.0),
+            Err("must be from 150 to 350 (got 400)".into())
+        );
+        assert!(Param::PressurePa.domain().check(9_999.0).is_err());
     }
 }

@@ -20,6 +20,9 @@ pub(super) struct Setup {
     pub(super) burn_time_s: f64,
     pub(super) drag_scale: f64,
     pub(super) elevation_m: f64,
+    /// The site's air temperature, K, and pressure, Pa.
+    pub(super) temperature_k: f64,
+    pub(super) pressure_pa: f64,
     pub(super) wind_speed_m_s: f64,
     pub(super) wind_from_deg: f64,
     pub(super) wind_scale: f64,
@@ -41,6 +44,8 @@ impl Setup {
             Param::MotorBurnTimeS => self.burn_time_s,
             Param::DragScale => self.drag_scale,
             Param::ElevationM => self.elevation_m,
+            Param::TemperatureK => self.temperature_k,
+            Param::PressurePa => self.pressure_pa,
             Param::WindSpeedMS => self.wind_speed_m_s,
             Param::WindFromDeg => self.wind_from_deg,
             Param::WindScale => self.wind_scale,
@@ -66,6 +71,8 @@ impl Setup {
             Param::MotorBurnTimeS => &mut self.burn_time_s,
             Param::DragScale => &mut self.drag_scale,
             Param::ElevationM => &mut self.elevation_m,
+            Param::TemperatureK => &mut self.temperature_k,
+            Param::PressurePa => &mut self.pressure_pa,
             Param::WindSpeedMS => &mut self.wind_speed_m_s,
             Param::WindFromDeg => &mut self.wind_from_deg,
             Param::WindScale => &mut self.wind_scale,
@@ -117,7 +124,7 @@ impl Fixed<'_> {
             .gravity
             .at_site(site.latitude_deg, s.elevation_m, "environment.latitude_deg")
             .map_err(|e| err(&e))?;
-        let env = Environment {
+        let mut env = Environment {
             elevation_m: s.elevation_m,
             wind: self.wind(s).map_err(|e| err(&e))?,
             gravity,
@@ -125,6 +132,18 @@ impl Fixed<'_> {
             latitude_deg: self.scenario.environment.latitude_deg,
             air: self.scenario.environment.air,
         };
+        if (s.temperature_k, s.pressure_pa)
+            != (self.nominal.temperature_k, self.nominal.pressure_pa)
+        {
+            // The air of the scenario's site (at its nominal elevation), at this setup's
+            // temperature and pressure.
+            env.elevation_m = self.nominal.elevation_m;
+            let air = env
+                .with_site_air(Some(s.temperature_k), Some(s.pressure_pa))
+                .map_err(|e| err(&e))?;
+            env.elevation_m = s.elevation_m;
+            env.air = air;
+        }
         let rail = Rail {
             length_m: s.rail[0],
             inclination_deg: s.rail[1],
@@ -239,6 +258,7 @@ impl Fixed<'_> {
         // A profile's rows are the scenario's own: only its scale and turn vary.
         let constant_wind = wind && self.scenario.environment.wind_profile.is_none();
         let rail = any(&[RailLengthM, RailInclinationDeg, RailHeadingDeg]);
+        let air = any(&[TemperatureK, PressurePa]);
         let per = |count: usize, p: fn(usize) -> Param, f: fn(&Setup, usize) -> f64| {
             (0..count)
                 .map(|k| col(has(p(k)), &|s| f(s, k)))
@@ -254,6 +274,8 @@ impl Fixed<'_> {
             time_scale: col(motor, &|s| self.motor_scales(s).time_scale),
             drag_scale: col(has(DragScale), &|s| s.drag_scale),
             elevation_m: col(has(ElevationM), &|s| s.elevation_m),
+            temperature_k: col(air, &|s| s.temperature_k),
+            pressure_pa: col(air, &|s| s.pressure_pa),
             wind_speed_m_s: col(constant_wind, &|s| s.wind_speed_m_s),
             wind_from_deg: col(constant_wind, &|s| s.wind_from_deg),
             wind_scale: col(wind, &|s| s.wind_scale),

@@ -167,6 +167,8 @@ pub(super) struct RawParams<T> {
     pub(super) motor_burn_time_s: Option<T>,
     pub(super) drag_scale: Option<T>,
     pub(super) elevation_m: Option<T>,
+    pub(super) temperature_k: Option<T>,
+    pub(super) pressure_pa: Option<T>,
     pub(super) wind_speed_m_s: Option<T>,
     pub(super) wind_from_deg: Option<T>,
     pub(super) wind_scale: Option<T>,
@@ -182,7 +184,7 @@ pub(super) struct RawParams<T> {
 
 impl<T> RawParams<T> {
     /// The global entries in [`GLOBAL`] order.
-    pub(super) fn globals(&mut self) -> [Option<T>; 14] {
+    pub(super) fn globals(&mut self) -> [Option<T>; 16] {
         [
             self.structure_mass_kg.take(),
             self.structure_cg_m.take(),
@@ -191,6 +193,8 @@ impl<T> RawParams<T> {
             self.motor_burn_time_s.take(),
             self.drag_scale.take(),
             self.elevation_m.take(),
+            self.temperature_k.take(),
+            self.pressure_pa.take(),
             self.wind_speed_m_s.take(),
             self.wind_from_deg.take(),
             self.wind_scale.take(),

@@ -396,7 +396,7 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
             match four {
                 Some(four) => eval_four(four, &ms, thrust, ys, dy),
                 None => {
-                    // Lanes that do not share their aerodynamic and air tables: one at a time.
+                    // Lanes that do not share their aerodynamic tables: one at a time.
                     for (l, lane) in group.iter_mut().enumerate() {
                         if !slots.active[l] {
                             continue;

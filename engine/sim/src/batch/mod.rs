@@ -68,6 +68,10 @@ pub struct Columns {
     pub time_scale: Vec<f64>,
     pub drag_scale: Vec<f64>,
     pub elevation_m: Vec<f64>,
+    /// The site's air temperature, K, and pressure, Pa, at the site the base's air names
+    /// ([`crate::Environment::with_site_air`]).
+    pub temperature_k: Vec<f64>,
+    pub pressure_pa: Vec<f64>,
     pub wind_speed_m_s: Vec<f64>,
     /// Direction the wind blows from, degrees clockwise from north (with the speed: a
     /// constant wind's as given).
@@ -170,6 +174,8 @@ impl Columns {
             time_scale: flat(&self.time_scale),
             drag_scale: flat(&self.drag_scale),
             elevation_m: flat(&self.elevation_m),
+            temperature_k: flat(&self.temperature_k),
+            pressure_pa: flat(&self.pressure_pa),
             wind_speed_m_s: flat(&self.wind_speed_m_s),
             wind_from_deg: flat(&self.wind_from_deg),
             wind_scale: flat(&self.wind_scale),
@@ -244,7 +250,7 @@ impl Batch {
     /// nested one empty or one column per parachute (shift) of the base, each empty or full.
     pub fn check(&self, columns: &Columns) -> Result<(), String> {
         let n = columns.len;
-        let flat: [(&str, &Vec<f64>); 14] = [
+        let flat: [(&str, &Vec<f64>); 16] = [
             ("structure_delta_mass_kg", &columns.structure_delta_mass_kg),
             ("structure_delta_cg_m", &columns.structure_delta_cg_m),
             ("part_mass_kg", &columns.part_mass_kg),
@@ -252,6 +258,8 @@ impl Batch {
             ("time_scale", &columns.time_scale),
             ("drag_scale", &columns.drag_scale),
             ("elevation_m", &columns.elevation_m),
+            ("temperature_k", &columns.temperature_k),
+            ("pressure_pa", &columns.pressure_pa),
             ("wind_speed_m_s", &columns.wind_speed_m_s),
             ("wind_from_deg", &columns.wind_from_deg),
             ("wind_scale", &columns.wind_scale),
@@ -310,7 +318,10 @@ impl Batch {
         let base = &self.base;
         let setup = SimError::Setup;
         let changed = base.clone().with_changes(|ch| {
+            let (temperature, pressure) = (get(&c.temperature_k), get(&c.pressure_pa));
             if get(&c.elevation_m).is_some()
+                || temperature.is_some()
+                || pressure.is_some()
                 || get(&c.wind_speed_m_s).is_some()
                 || get(&c.wind_from_deg).is_some()
                 || get(&c.wind_scale).is_some()
@@ -320,6 +331,11 @@ impl Batch {
                 || get(&c.rail_heading_deg).is_some()
             {
                 let mut env = base.environment().clone();
+                if temperature.is_some() || pressure.is_some() {
+                    env.air = env
+                        .with_site_air(temperature, pressure)
+                        .map_err(|e| setup(format!("environment: {e}")))?;
+                }
                 if let Some(v) = get(&c.elevation_m) {
                     env.elevation_m = v;
                     env.gravity = env

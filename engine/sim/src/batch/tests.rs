@@ -4,7 +4,7 @@
 use super::*;
 use crate::eom::{pack_mass, MassLanes, N6};
 use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
-use crate::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
+use crate::flight::{AirModel, Environment, Parachute, Rail, SimOptions, Simulation};
 use crate::lanes::{F64x4, Real};
 use crate::MassShift;
 use hpr_design::motor::{self, MotorOptions};
@@ -126,6 +126,8 @@ fn columns_of(rows: std::ops::Range<usize>, seed: u64) -> Columns {
         c.shift_trigger[0].push(r.uniform(3.0, 8.0));
         c.wind_scale.push(r.uniform(0.5, 1.5));
         c.wind_rotation_deg.push(r.uniform(-30.0, 30.0));
+        c.temperature_k.push(r.uniform(263.0, 313.0));
+        c.pressure_pa.push(r.uniform(95_000.0, 104_000.0));
     }
     c
 }
@@ -140,8 +142,12 @@ fn single(c: &Columns, i: usize) -> Result<Simulation, String> {
     let wind = Wind::constant(c.wind_speed_m_s[i], c.wind_from_deg[i])
         .and_then(|w| w.transformed(c.wind_scale[i], c.wind_rotation_deg[i]))
         .map_err(|e| e.to_string())?;
+    // The base's site is at sea level in the standard atmosphere: a site's air there.
+    let air = AirModel::site(0.0, Some(c.temperature_k[i]), Some(c.pressure_pa[i]))
+        .map_err(|e| e.to_string())?;
     let env = Environment {
         wind,
+        air,
         ..site(c.elevation_m[i])
     };
     let rail = Rail {

@@ -71,7 +71,7 @@ impl ModelLanes<f64> for FlightModel {
     }
 }
 
-/// Four flights' models side by side (their aerodynamic and air tables must be one and the same:
+/// Four flights' models side by side (their aerodynamic tables must be one and the same:
 /// [`FourModels::new`] checks), with what the kernel reads of them packed once.
 #[derive(Clone, Copy)]
 pub struct FourModels<'a> {
@@ -80,15 +80,17 @@ pub struct FourModels<'a> {
     drag_scale: F64x4,
     turning: bool,
     sheared: bool,
+    /// Whether the four read one air table (else each its own: a site's air swept or
+    /// dispersed).
+    one_air: bool,
 }
 
 impl<'a> FourModels<'a> {
-    /// `None` unless the four share their aerodynamic tables and their air table.
+    /// `None` unless the four share their aerodynamic tables.
     pub fn new(models: [&'a FlightModel; 4]) -> Option<FourModels<'a>> {
-        let same = models.iter().all(|m| {
-            std::sync::Arc::ptr_eq(&m.aero, &models[0].aero)
-                && std::sync::Arc::ptr_eq(&m.air, &models[0].air)
-        });
+        let same = models
+            .iter()
+            .all(|m| std::sync::Arc::ptr_eq(&m.aero, &models[0].aero));
         let n = models.map(|m| m.nozzle.lanes());
         same.then(|| FourModels {
             models,
@@ -96,6 +98,9 @@ impl<'a> FourModels<'a> {
             drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
             turning: models.iter().any(|m| m.earth_rate_n.is_some()),
             sheared: models.iter().any(|m| m.wind_sheared()),
+            one_air: models
+                .iter()
+                .all(|m| std::sync::Arc::ptr_eq(&m.air, &models[0].air)),
         })
     }
 }
@@ -109,8 +114,13 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     fn air(&self, h: F64x4) -> (F64x4, F64x4) {
         // What `FlightModel::air` does, the four lanes' look-ups side by side in their one table.
         let m = &self.models;
-        let z = std::array::from_fn(|i| h.0[i] + m[i].env.elevation_m);
-        let (rho, sound) = m[0].air.at_msl_four(z);
+        let z: [f64; 4] = std::array::from_fn(|i| h.0[i] + m[i].env.elevation_m);
+        let (rho, sound) = if self.one_air {
+            m[0].air.at_msl_four(z)
+        } else {
+            let a: [_; 4] = std::array::from_fn(|i| m[i].air.at_msl(z[i]));
+            (a.map(|a| a.density_kg_m3), a.map(|a| a.speed_of_sound_m_s))
+        };
         let rho = F64x4::from_fn(|i| if m[i].env.vacuum { 0.0 } else { rho[i] });
         (rho, F64x4(sound))
     }
