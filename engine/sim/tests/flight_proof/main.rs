@@ -15,6 +15,7 @@ mod drag;
 mod events;
 mod exact;
 mod inputs;
+mod jet_damping;
 mod large_angles;
 mod rocket_equation;
 mod warnings;
