@@ -10,8 +10,8 @@
 //! is the angle between `u` and `−b3`; its normal force is `½ ρ |u|² A_ref CNα(M) α` along the
 //! part of `u` across the axis. Drag is `½ ρ V² A_ref Cd(M)` along `−b3`, with `V` the speed
 //! through the air of the airframe's point at the center of mass (not of the center itself,
-//! which drifts through the airframe while the motor burns). Tables are built once ([`AeroTables`]); a call allocates
-//! nothing.
+//! which drifts through the airframe while the motor burns). Tables are built once
+//! ([`AeroTables`]); a call allocates nothing.
 //!
 //! Past what RocketPy models, for a rocket that tumbles or flies tail first (an unstable
 //! design): beyond 90° a surface's normal force is that of the supplementary angle `π − α`,
@@ -88,8 +88,8 @@ impl AeroTables {
 
 /// Aerodynamic loads about O in body axes, in air that moves the same at every surface.
 /// `v_o_air_b` is O's velocity relative to the air and `v_cm_air_b` that of the airframe's
-/// point at the center of mass, both in body axes; `drag_scale` multiplies the drag coefficient (a dispersion, 1 by
-/// default).
+/// point at the center of mass, both in body axes; `drag_scale` multiplies the drag
+/// coefficient (a dispersion, 1 by default).
 #[inline]
 pub fn aero_loads(
     t: &AeroTables,
@@ -120,8 +120,8 @@ pub fn aero_loads(
 /// [`aero_loads`] on lanes (the one copy of these equations): force and moment about O, body
 /// axes. `v_o_b` is O's velocity over the ground and `wind_b_at(x)` the wind, both in body
 /// axes, at the surface whose center of pressure is `x` m aft of the tip; `v_cm_air_b` is the
-/// velocity through the air of the airframe's point at the center of mass. The tables are shared by every lane; look-ups
-/// and `atan2` run lane by lane.
+/// velocity through the air of the airframe's point at the center of mass. The tables are
+/// shared by every lane; look-ups and `atan2` run lane by lane.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn loads<S: Real>(

@@ -338,22 +338,22 @@ fn rocketpy_dry_motor_variant(r: &Value, design: &Design) -> Simulation {
 //
 // Two comparisons per figure:
 //
-// * **Against RocketPy with its lever arm's sign corrected and its standard air made the
-//   true one** (`as_hpr_models`, below; validation/rocketpy/corrections.py: its speed of
-//   sound is a chord 0.1 % low, its density 1e-4 low), hpr reading the air where RocketPy's
-//   rocket, its center of dry mass started at ground level, reads it: both on the turning Earth at the site's latitude, both canopies carrying the
-//   same added mass (C_a ρ 2/3 π R² H of RocketPy's default hemispheres;
-//   `eom::descent_derivative`, `rocketpy_chutes`). What is left is what the still-air test names: the motor's
-//   mass model (hpr's static margin +0.9 % at rail exit, its transverse inertia −0.8 %
-//   loaded), the point the speeds are of, the initial roll, the integrators. Measured
-//   (release build): apogee within 0.42 m (calm; 0.08 west, 0.09 north-east), its time
-//   within 2.2 ms, maximum Mach within 1e-4, the apogee's and the landing's horizontal
-//   position within 3.3 m (1 % of the west wind's 333 m weathercocking, which is set in the
-//   second after rail exit, where the margin and the inertia differ most), the landing time
-//   within 0.035 s (RocketPy samples its triggers at 105 Hz), the descent rate within
-//   0.0004 m/s, the parachute events within 0.02 s. The tolerances ([`tolerances`]) are
-//   about 1.5× these. (Before `corrections.py` also put
-//   back the one term RocketPy wrote for the arm as it is, the positions were 4.5 m apart.)
+// * **Against RocketPy with its lever arm's sign corrected and its standard air made the true
+//   one** (`as_hpr_models`, below; validation/rocketpy/corrections.py: its speed of sound is a
+//   chord 0.1 % low, its density 1e-4 low), hpr reading the air where RocketPy's rocket, its
+//   center of dry mass started at ground level, reads it: both on the turning Earth at the site's
+//   latitude, both canopies carrying the same added mass (C_a ρ 2/3 π R² H of RocketPy's default
+//   hemispheres; `eom::descent_derivative`, `rocketpy_chutes`). What is left is what the still-air
+//   test names: the motor's mass model (hpr's static margin +0.9 % at rail exit, its transverse
+//   inertia −0.8 % loaded), the point the speeds are of, the initial roll, the integrators.
+//   Measured (release build): apogee within 0.42 m (calm; 0.08 west, 0.09 north-east), its time
+//   within 2.2 ms, maximum Mach within 1e-4, the apogee's and the landing's horizontal position
+//   within 3.3 m (1 % of the west wind's 333 m weathercocking, which is set in the second after
+//   rail exit, where the margin and the inertia differ most), the landing time within 0.035 s
+//   (RocketPy samples its triggers at 105 Hz), the descent rate within 0.0004 m/s, the parachute
+//   events within 0.02 s. The tolerances ([`tolerances`]) are about 1.5× these. (Before
+//   `corrections.py` also put back the one term RocketPy wrote for the arm as it is, the positions
+//   were 4.5 m apart.)
 // * **Against RocketPy 1.13 as it is** (`outputs`, the reference): the same tolerance plus
 //   |as it is − as hpr models|, RocketPy's own measure of the two things hpr does not share
 //   (its speed of sound, a chord of the true one, is worth 0.0015 on the maximum Mach and

@@ -62,23 +62,22 @@
 //!   0.0003 m/s;
 //! * landing point within 0.17 / 0.22 / 0.061 m [0.23 m] after 1.2 to 2.8 km of drift.
 //!
-//! The tolerances are about twice these (the landing time 0.05 s: a main opened up to two
-//! 105 Hz samples before RocketPy's is slowed that much higher up). (An LV-Haack nose is not flown: RocketPy puts its
-//! center of pressure at 0.563 L, where its volume puts it at 7/16 L; see
-//! `hpr_design::aero::barrowman`.) Six things found on the way, all fixed: a rail
-//! guide's off-axis grams had turned the rocket 2° off its heading in azimuth as it left
-//! the rail (hpr now spreads rail guides round the axis, as OpenRocket and RocketPy keep the
-//! center of mass on it); hpr had read the wind at the center of mass for every surface,
-//! where RocketPy reads it at each surface's height (in the profile's shear, 1 m on the
-//! apogee's position); the first correction of RocketPy's lever arm had flipped the one
-//! term RocketPy wrote for the arm as it is (its translational `− r_CM × ω̇`), which had put
-//! 2.5 m between the apogees in wind; RocketPy reads a bare list of drag points as a cubic
-//! spline (1.4 m on the apogee), so the script hands it hpr's linear interpolation; and
-//! this harness had handed hpr the wind profile where its rocket is, where RocketPy's reads
-//! it a metre or two lower (its center of dry mass starts at ground level): in the profile's
-//! shear that had put the apogees up to 0.51 m apart sideways and the landings 0.57 m; and
-//! hpr's drag had read the center of mass's speed through the air, which while the motor
-//! burns includes the center's drift through the airframe (a few cm/s), where the air meets
+//! The tolerances are about twice these (the landing time 0.05 s: a main opened up to two 105 Hz
+//! samples before RocketPy's is slowed that much higher up). (An LV-Haack nose is not flown:
+//! RocketPy puts its center of pressure at 0.563 L, where its volume puts it at 7/16 L; see
+//! `hpr_design::aero::barrowman`.) Six things found on the way, all fixed: a rail guide's off-axis
+//! grams had turned the rocket 2° off its heading in azimuth as it left the rail (hpr now spreads
+//! rail guides round the axis, as OpenRocket and RocketPy keep the center of mass on it); hpr had
+//! read the wind at the center of mass for every surface, where RocketPy reads it at each surface's
+//! height (in the profile's shear, 1 m on the apogee's position); the first correction of
+//! RocketPy's lever arm had flipped the one term RocketPy wrote for the arm as it is (its
+//! translational `− r_CM × ω̇`), which had put 2.5 m between the apogees in wind; RocketPy reads a
+//! bare list of drag points as a cubic spline (1.4 m on the apogee), so the script hands it hpr's
+//! linear interpolation; this harness had handed hpr the wind profile where its rocket is,
+//! where RocketPy's reads it a metre or two lower (its center of dry mass starts at ground level):
+//! in the profile's shear that had put the apogees up to 0.51 m apart sideways and the landings
+//! 0.57 m; and hpr's drag had read the center of mass's speed through the air, which while the
+//! motor burns includes the center's drift through the airframe (a few cm/s), where the air meets
 //! the airframe: every apogee had come out 0.08 to 0.16 m low.
 
 use crate::common::*;
