@@ -209,12 +209,18 @@ def roll_record(fins):
     }
 
 
-def fin_record(spec):
-    fins = make_fins(spec)
+def fin_set_record(fins, spec, *parts):
+    """A fin set's record: its spec, its surface's numbers, then `parts` in order."""
     rec = dict(spec)
     rec.update(surface_record(fins, spec["rocket_radius_m"]))
-    clf_delta, cld_omega, cant = fins.roll_parameters
-    rec.update({
+    for part in parts:
+        rec.update(part)
+    return rec
+
+
+def fin_record(spec):
+    fins = make_fins(spec)
+    rec = fin_set_record(fins, spec, {
         "sweep_length_used_m": f(fins.sweep_length),
         "single_fin_clalpha_per_rad": curve(fins.clalpha_single_fin, MACHS),
         "fin_number_factor": f(fins.fin_num_correction(fins.n)),
@@ -222,10 +228,7 @@ def fin_record(spec):
         "airfoil_2d_lift_slope_per_rad": (
             f(fins.airfoil_cl.differentiate(x=1e-3, dx=1e-3))
             if spec["airfoil"] else 2 * math.pi),
-        "roll_forcing_clf_delta_per_rad": curve(clf_delta, MACHS),
-        "roll_damping_cld_omega": curve(cld_omega, MACHS),
-        "cant_angle_rad": f(cant),
-    })
+    }, roll_record(fins))
     if spec["sweep_length_m"] is not None:
         by_angle = make_fins(spec, use_sweep_angle=True)
         rec["same_fins_given_sweep_angle"] = {
@@ -242,17 +245,13 @@ def elliptical_fin_record(spec):
                           span=spec["span_m"],
                           rocket_radius=spec["rocket_radius_m"],
                           cant_angle=spec["cant_angle_deg"], name="fins")
-    rec = dict(spec)
-    rec.update(surface_record(fins, spec["rocket_radius_m"]))
-    rec.update(roll_record(fins))
-    rec.update({
+    return fin_set_record(fins, spec, roll_record(fins), {
         "single_fin_clalpha_per_rad": curve(fins.clalpha_single_fin, MACHS),
         "geometry": fin_geometry(fins),
         "note": "RocketPy puts the CP at 0.288 root chords (rounded); the "
                 "quarter point of the mean aerodynamic chord is "
                 "C_r (1/2 - 2/(3 pi)) = 0.28779 C_r",
     })
-    return rec
 
 
 def free_form_fin_record(spec):
@@ -262,10 +261,7 @@ def free_form_fin_record(spec):
                             shape_points=[tuple(p) for p in spec["points_m"]],
                             rocket_radius=spec["rocket_radius_m"],
                             cant_angle=spec["cant_angle_deg"], name="fins")
-    rec = dict(spec)
-    rec.update(surface_record(fins, spec["rocket_radius_m"]))
-    rec.update(roll_record(fins))
-    rec.update({
+    return fin_set_record(fins, spec, roll_record(fins), {
         "root_chord_m": f(fins.root_chord),
         "span_m": f(fins.span),
         "geometry": dict(fin_geometry(fins), mac_length_m=f(fins.mac_length),
@@ -273,7 +269,6 @@ def free_form_fin_record(spec):
         "note": "RocketPy samples the outline on 40 lines across the span "
                 "(rectangle rule); hpr on 4000 (midpoint rule)",
     })
-    return rec
 
 
 def composite_record():

@@ -185,12 +185,10 @@ impl Prepared {
             ]);
         }
         // The site's air as the scenario gives it (the standard's at the site if it does not).
-        let site_air = hpr_sim::Environment {
-            elevation_m: scenario.environment.elevation_m,
-            air: scenario.environment.air,
-            ..hpr_sim::Environment::default()
-        }
-        .site_air();
+        let (_, temperature_k, pressure_pa) = scenario
+            .environment
+            .air
+            .site_values(scenario.environment.elevation_m);
         let nominal = Setup {
             structure_mass_kg: dry.mass_kg,
             structure_cg_m: dry.cg_m.x,
@@ -199,8 +197,8 @@ impl Prepared {
             burn_time_s: motor.burn_time_s(),
             drag_scale: 1.0,
             elevation_m: scenario.environment.elevation_m,
-            temperature_k: site_air.1,
-            pressure_pa: site_air.2,
+            temperature_k,
+            pressure_pa,
             wind_speed_m_s: scenario.environment.wind_speed_m_s,
             wind_from_deg: scenario.environment.wind_from_deg,
             wind_scale: 1.0,

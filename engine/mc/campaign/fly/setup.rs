@@ -124,26 +124,24 @@ impl Fixed<'_> {
             .gravity
             .at_site(site.latitude_deg, s.elevation_m, "environment.latitude_deg")
             .map_err(|e| err(&e))?;
-        let mut env = Environment {
+        let air = if (s.temperature_k, s.pressure_pa)
+            == (self.nominal.temperature_k, self.nominal.pressure_pa)
+        {
+            site.air
+        } else {
+            // The air of the scenario's site, at this setup's temperature and pressure.
+            site.air
+                .with_site_values(site.elevation_m, Some(s.temperature_k), Some(s.pressure_pa))
+                .map_err(|e| err(&e))?
+        };
+        let env = Environment {
             elevation_m: s.elevation_m,
             wind: self.wind(s).map_err(|e| err(&e))?,
             gravity,
             vacuum: false,
             latitude_deg: self.scenario.environment.latitude_deg,
-            air: self.scenario.environment.air,
+            air,
         };
-        if (s.temperature_k, s.pressure_pa)
-            != (self.nominal.temperature_k, self.nominal.pressure_pa)
-        {
-            // The air of the scenario's site (at its nominal elevation), at this setup's
-            // temperature and pressure.
-            env.elevation_m = self.nominal.elevation_m;
-            let air = env
-                .with_site_air(Some(s.temperature_k), Some(s.pressure_pa))
-                .map_err(|e| err(&e))?;
-            env.elevation_m = s.elevation_m;
-            env.air = air;
-        }
         let rail = Rail {
             length_m: s.rail[0],
             inclination_deg: s.rail[1],

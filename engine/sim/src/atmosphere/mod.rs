@@ -132,6 +132,40 @@ impl AirModel {
         Ok(model)
     }
 
+    /// The site's elevation, temperature and pressure this air names, for a launch at
+    /// `launch_elevation_m`: a site's own, or the standard's at the launch elevation.
+    pub fn site_values(&self, launch_elevation_m: f64) -> (f64, f64, f64) {
+        match *self {
+            AirModel::Site {
+                elevation_m,
+                temperature_k,
+                pressure_pa,
+            } => (elevation_m, temperature_k, pressure_pa),
+            AirModel::Standard => {
+                let a = Atmosphere::standard(0.0)
+                    .expect("the standard atmosphere is valid")
+                    .at_msl(launch_elevation_m);
+                (launch_elevation_m, a.temperature_k, a.pressure_pa)
+            }
+        }
+    }
+
+    /// This air with its site's temperature or pressure changed (a sweep's or a dispersion's):
+    /// the air of [`AirModel::site_values`]'s site, the numbers not given kept.
+    pub fn with_site_values(
+        &self,
+        launch_elevation_m: f64,
+        temperature_k: Option<f64>,
+        pressure_pa: Option<f64>,
+    ) -> Result<AirModel, AtmosphereError> {
+        let (elevation_m, t, p) = self.site_values(launch_elevation_m);
+        AirModel::site(
+            elevation_m,
+            Some(temperature_k.unwrap_or(t)),
+            Some(pressure_pa.unwrap_or(p)),
+        )
+    }
+
     /// Check a site's numbers: a finite elevation below the 11 km layer, a temperature and a
     /// pressure within [`SITE_TEMPERATURE_RANGE_K`] and [`SITE_PRESSURE_RANGE_PA`].
     pub fn check(&self) -> Result<(), AtmosphereError> {

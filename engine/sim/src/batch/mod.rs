@@ -69,7 +69,7 @@ pub struct Columns {
     pub drag_scale: Vec<f64>,
     pub elevation_m: Vec<f64>,
     /// The site's air temperature, K, and pressure, Pa, at the site the base's air names
-    /// ([`crate::Environment::with_site_air`]).
+    /// ([`crate::atmosphere::AirModel::with_site_values`]).
     pub temperature_k: Vec<f64>,
     pub pressure_pa: Vec<f64>,
     pub wind_speed_m_s: Vec<f64>,
@@ -333,7 +333,8 @@ impl Batch {
                 let mut env = base.environment().clone();
                 if temperature.is_some() || pressure.is_some() {
                     env.air = env
-                        .with_site_air(temperature, pressure)
+                        .air
+                        .with_site_values(env.elevation_m, temperature, pressure)
                         .map_err(|e| setup(format!("environment: {e}")))?;
                 }
                 if let Some(v) = get(&c.elevation_m) {

@@ -3,7 +3,6 @@
 //! broke which rule.
 
 pub use crate::atmosphere::AirModel;
-use crate::atmosphere::{Atmosphere, AtmosphereError};
 pub use crate::eom::CanopyShape;
 use crate::gravity::Gravity;
 use crate::trigger::Trigger;
@@ -48,40 +47,6 @@ impl Environment {
     /// without a latitude (an inertial launch frame).
     pub fn earth_rate_n(&self) -> Option<[f64; 3]> {
         self.latitude_deg.map(crate::gravity::earth_rate_n)
-    }
-
-    /// The site's elevation, temperature and pressure this environment's air names: a site's
-    /// air's own, or the standard's at the launch elevation.
-    pub fn site_air(&self) -> (f64, f64, f64) {
-        match self.air {
-            AirModel::Site {
-                elevation_m,
-                temperature_k,
-                pressure_pa,
-            } => (elevation_m, temperature_k, pressure_pa),
-            AirModel::Standard => {
-                let a = Atmosphere::standard(0.0)
-                    .expect("the standard atmosphere is valid")
-                    .at_msl(self.elevation_m);
-                (self.elevation_m, a.temperature_k, a.pressure_pa)
-            }
-        }
-    }
-
-    /// This environment's air with the site's temperature or pressure changed (a sweep's or
-    /// a dispersion's): the air of [`Environment::site_air`]'s site, with the numbers not
-    /// given kept.
-    pub fn with_site_air(
-        &self,
-        temperature_k: Option<f64>,
-        pressure_pa: Option<f64>,
-    ) -> Result<AirModel, AtmosphereError> {
-        let (elevation_m, t, p) = self.site_air();
-        AirModel::site(
-            elevation_m,
-            Some(temperature_k.unwrap_or(t)),
-            Some(pressure_pa.unwrap_or(p)),
-        )
     }
 
     /// Checks the latitude.
