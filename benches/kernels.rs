@@ -1,12 +1,14 @@
 //! The kernels every flight and every batch lane calls, timed alone: the cycloid, the
 //! mass-property kernel and the 6-DOF derivative (one lane at a time, as a single flight calls
 //! it, and four at a time, as the batch engine does), over 1,024 lanes of different instants
-//! (reported by criterion as elements per second: lanes or evaluations per second).
+//! (reported by criterion as elements per second: lanes or evaluations per second); and the
+//! one set-up a variant can pay on its own, a site's air table.
 //!
 //! `cargo bench --bench kernels`
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use hpr_design::{motor, Design};
+use hpr_sim::atmosphere::{AirModel, AirTable};
 use hpr_sim::batch::eval_four;
 use hpr_sim::cycloid;
 use hpr_sim::eom::{pack_mass, MassLanes};
@@ -122,6 +124,20 @@ fn kernels(c: &mut Criterion) {
             )
         },
     );
+    g.finish();
+
+    // What a variant whose site air is swept or dispersed pays before it flies: its own air
+    // table (a hot, low site's; the standard's is built once per process).
+    let mut g = c.benchmark_group("set-up");
+    g.throughput(Throughput::Elements(1));
+    let site = AirModel::Site {
+        elevation_m: 1400.0,
+        temperature_k: 308.15,
+        pressure_pa: 85_600.0,
+    };
+    g.bench_function("a site's air table (tables)", |b| {
+        b.iter(|| AirTable::new(black_box(&site)).unwrap())
+    });
     g.finish();
 }
 

@@ -1,6 +1,9 @@
 //! The atmosphere tabulated for the derivative: density and speed of sound every 10 m.
 
-use super::{AirModel, Atmosphere, AtmosphereError, MAX_ALTITUDE_MSL_M, MIN_ALTITUDE_MSL_M};
+use super::{
+    geopotential_altitude_m, AirModel, Atmosphere, AtmosphereError, MAX_ALTITUDE_MSL_M,
+    MIN_ALTITUDE_MSL_M,
+};
 
 /// Spacing of [`AirTable`], m.
 pub const AIR_TABLE_STEP_M: f64 = 10.0;
@@ -56,12 +59,34 @@ impl AirTable {
     fn build(model: AirModel) -> Result<AirTable, AtmosphereError> {
         let exact = Atmosphere::new(0.0, &model)?;
         let n = ((MAX_ALTITUDE_MSL_M - MIN_ALTITUDE_MSL_M) / AIR_TABLE_STEP_M) as usize + 1;
-        let nodes = (0..n)
-            .map(|i| {
-                let a = exact.at_msl(MIN_ALTITUDE_MSL_M + i as f64 * AIR_TABLE_STEP_M);
-                (a.density_kg_m3, a.speed_of_sound_m_s)
-            })
-            .collect();
+        let altitude = |i: usize| MIN_ALTITUDE_MSL_M + i as f64 * AIR_TABLE_STEP_M;
+        let exact_node = |i: usize| {
+            let a = exact.at_msl(altitude(i));
+            (a.density_kg_m3, a.speed_of_sound_m_s)
+        };
+        let nodes = match model {
+            AirModel::Standard => (0..n).map(exact_node).collect(),
+            // A site's layers above 11 km are the standard's temperatures, so its pressure
+            // and density there are the standard's times one ratio, that of the pressures at
+            // 11 km: the standard's nodes scaled, not 7,500 powers and exponentials again
+            // (a variant whose site air is swept or dispersed builds its table before it
+            // flies). The scaled nodes are the exact model's to a few units in the last place.
+            AirModel::Site { .. } => {
+                let standard = AirTable::standard();
+                let (site_11km, standard_11km) = (&exact.layers[1], &standard.exact.layers[1]);
+                let ratio = site_11km.p_base_pa / standard_11km.p_base_pa;
+                (0..n)
+                    .map(|i| {
+                        if geopotential_altitude_m(altitude(i)) >= site_11km.base_m {
+                            let (rho, sound) = standard.nodes[i];
+                            (rho * ratio, sound)
+                        } else {
+                            exact_node(i)
+                        }
+                    })
+                    .collect()
+            }
+        };
         Ok(AirTable {
             model,
             exact,
@@ -182,6 +207,44 @@ mod tests {
                 table.at_msl(1000.0 + elevation).density_kg_m3,
                 atm.at(1000.0).density_kg_m3
             );
+        }
+    }
+
+    #[test]
+    fn a_site_s_nodes_above_11_km_are_the_standard_s_scaled_and_equal_its_exact_model() {
+        // Hot and low, cold and high, and the standard's own air given as a site's.
+        for (elevation_m, temperature_k, pressure_pa) in [
+            (1400.0, 308.15, 85_600.0),
+            (4200.0, 250.0, 60_000.0),
+            (0.0, 288.15, 101_325.0),
+        ] {
+            let model = AirModel::Site {
+                elevation_m,
+                temperature_k,
+                pressure_pa,
+            };
+            let table = AirTable::new(&model).unwrap();
+            let exact = Atmosphere::new(0.0, &model).unwrap();
+            let (mut worst_rho, mut worst_sound, mut scaled) = (0.0f64, 0.0f64, 0);
+            for (i, &(rho, sound)) in table.nodes.iter().enumerate() {
+                let z = MIN_ALTITUDE_MSL_M + i as f64 * AIR_TABLE_STEP_M;
+                let a = exact.at_msl(z);
+                if geopotential_altitude_m(z) >= 11_000.0 {
+                    scaled += 1;
+                } else {
+                    // Below 11 km every node is the site's exact air.
+                    assert_eq!((rho, sound), (a.density_kg_m3, a.speed_of_sound_m_s));
+                }
+                worst_rho = worst_rho.max((rho - a.density_kg_m3).abs() / a.density_kg_m3);
+                worst_sound =
+                    worst_sound.max((sound - a.speed_of_sound_m_s).abs() / a.speed_of_sound_m_s);
+            }
+            eprintln!("{model:?}: {scaled} nodes scaled, density within {worst_rho:.1e}, sound within {worst_sound:.1e}");
+            // 11 km geopotential is 11,019.07 m geometric: the nodes 11,020, 11,030, ... 86,000 m.
+            assert_eq!(scaled, (86_000 - 11_020) / 10 + 1);
+            // A few units in the last place (2.2e-16 each).
+            assert!(worst_rho < 4e-15, "{worst_rho:e}");
+            assert!(worst_sound < 1e-15, "{worst_sound:e}");
         }
     }
 }
