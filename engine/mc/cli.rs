@@ -49,7 +49,7 @@ pub struct FlyArgs {
     #[arg(long, value_name = "SCENARIO", conflicts_with_all = [
         "design", "motor", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
         "latitude_deg", "gravity", "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2",
-        "main_height_m", "lag_s", "temperature_k", "pressure_pa",
+        "main_height_m", "lag_s", "sampling_rate_hz", "temperature_k", "pressure_pa",
     ])]
     pub scenario: Option<PathBuf>,
     /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary;
@@ -111,6 +111,11 @@ pub struct FlyArgs {
     /// Time from a trigger to an open canopy, s.
     #[arg(long, default_value_t = 1.0)]
     pub lag_s: f64,
+    /// The sampling rate of the flight computer that fires both parachutes, Hz: a trigger
+    /// fires at its first sample at or after the moment its condition is met (default:
+    /// watched continuously).
+    #[arg(long)]
+    pub sampling_rate_hz: Option<f64>,
 }
 
 /// The design and its motor (the `--motor` choice, else the design's own).
@@ -277,7 +282,13 @@ fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
         a.main_cds_m2,
         a.main_height_m,
         a.lag_s,
-    );
+    )
+    .into_iter()
+    .map(|p| Parachute {
+        sampling_rate_hz: a.sampling_rate_hz,
+        ..p
+    })
+    .collect();
     Simulation::new(design, motor, env, rail)
         .and_then(|s| s.with_parachutes(chutes))
         .and_then(|s| s.with_options(SimOptions::default()))

@@ -37,3 +37,41 @@ fn a_scenario_s_canopy_radius_height_and_porosity_fly_as_the_simulator_set_up_by
         "the apogee comes before any canopy"
     );
 }
+
+#[test]
+fn a_scenario_s_sampling_rate_fires_its_parachute_as_the_simulator_set_up_by_hand() {
+    let wind = "wind_speed_m_s = 4.0\nwind_from_deg = 250.0";
+    let plain = windy(wind, "drag_scale = [1.0]");
+    let sampled = plain.replace(
+        "trigger = \"apogee\"\n",
+        "trigger = \"apogee\"\nsampling_rate_hz = 20.0\n",
+    );
+    assert_ne!(plain, sampled);
+    let campaign = drag_apogee_landing(&sampled);
+    let env = Environment {
+        wind: Wind::constant(4.0, 250.0).unwrap(),
+        ..Environment::default()
+    };
+    let chute = Parachute::new("main", 0.9, Trigger::Apogee, 1.0).with_sampling_rate(20.0);
+    assert_rows_flown_by_hand(&campaign, &env, &chute);
+    // The canopy opens up to 50 ms later than the continuous one's: the landing moves.
+    let watched = drag_apogee_landing(&plain);
+    let moved = (campaign[0][2] - watched[0][2]).hypot(campaign[0][3] - watched[0][3]);
+    eprintln!("a 20 Hz altimeter: landing moved {moved:.4} m");
+    assert!(moved > 1e-3, "{moved} m");
+    assert_eq!(campaign[0][1], watched[0][1], "the same apogee");
+}
+
+#[test]
+fn a_sampling_rate_that_is_not_positive_is_refused_naming_its_parachute_s_key() {
+    let text = windy("wind_speed_m_s = 4.0", "drag_scale = [1.0]").replace(
+        "trigger = \"apogee\"\n",
+        "trigger = \"apogee\"\nsampling_rate_hz = 0.0\n",
+    );
+    let (dir, file) = setup(&text);
+    let err = run_campaign(&file, &config(&dir.path().join("out")))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("parachutes[0].sampling_rate_hz"), "{err}");
+    assert!(err.contains("must be positive and finite"), "{err}");
+}

@@ -162,8 +162,9 @@ impl Fixed<'_> {
                     .parachutes
                     .iter()
                     .zip(&s.parachutes)
-                    .map(|(p, v)| {
-                        Parachute::new(
+                    .map(|(p, v)| Parachute {
+                        sampling_rate_hz: p.sampling_rate_hz,
+                        ..Parachute::new(
                             p.name.clone(),
                             v[0],
                             with_trigger_value(&p.trigger, v[2]),

@@ -122,6 +122,8 @@ pub struct ParachuteSpec {
     pub trigger: Trigger,
     /// The open canopy's shape: the air it carries along.
     pub canopy: CanopyShape,
+    /// The sampling rate of the flight computer that fires it, Hz (`None`: continuous).
+    pub sampling_rate_hz: Option<f64>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -434,6 +436,15 @@ impl Scenario {
                 lag_s: check_param(&bad, &key("lag_s"), Param::ParachuteLagS(i), p.lag_s)?,
                 trigger: p.trigger.0,
                 canopy: canopy_shape(&bad, &key, p)?,
+                sampling_rate_hz: match p.sampling_rate_hz {
+                    Some(r) if !(r.is_finite() && r > 0.0) => {
+                        return Err(bad(
+                            &key("sampling_rate_hz"),
+                            format!("must be positive and finite, in Hz (got {r})"),
+                        ))
+                    }
+                    r => r,
+                },
             });
         }
         let mut shifts = Vec::new();

@@ -82,6 +82,7 @@ pub(super) struct RawParachute {
     pub(super) radius_m: Option<f64>,
     pub(super) height_m: Option<f64>,
     pub(super) porosity: Option<f64>,
+    pub(super) sampling_rate_hz: Option<f64>,
 }
 
 #[derive(Deserialize)]

@@ -32,6 +32,8 @@ impl Rng {
     }
 }
 
+/// A drogue watched continuously and a main fired by an altimeter sampling at 20 Hz (its
+/// trigger fires at a stop time of its own, after the crossing).
 fn chutes() -> Vec<Parachute> {
     vec![
         Parachute::new("drogue", 0.1, Trigger::Apogee, 1.0),
@@ -40,7 +42,8 @@ fn chutes() -> Vec<Parachute> {
             0.9,
             Trigger::HeightDescending { height_m: 300.0 },
             1.0,
-        ),
+        )
+        .with_sampling_rate(20.0),
     ]
 }
 

@@ -57,6 +57,13 @@ impl Changes<'_> {
                     p.lag_s
                 )));
             }
+            if let Some(rate) = p.sampling_rate_hz {
+                if !(rate.is_finite() && rate > 0.0) {
+                    return Err(SimError::Setup(format!(
+                        "{what}: field \"sampling_rate_hz\" must be positive and finite (got {rate})"
+                    )));
+                }
+            }
             p.canopy.check().map_err(|(field, rule)| {
                 SimError::Setup(format!("{what}: canopy field \"{field}\" {rule}"))
             })?;

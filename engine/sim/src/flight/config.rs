@@ -94,6 +94,12 @@ pub struct Parachute {
     pub lag_s: f64,
     /// The open canopy's shape (RocketPy's default hemisphere sized from the CdS unless given).
     pub canopy: CanopyShape,
+    /// How often the flight computer that fires it reads its sensors, Hz, from launch (its
+    /// samples are at k / rate s); `None` (the default) watches continuously. A sampled
+    /// trigger fires at the first sample at or after the moment its condition became true
+    /// (RocketPy's `sampling_rate`; an altimeter reading at 20 Hz sees an apogee up to 50 ms
+    /// late).
+    pub sampling_rate_hz: Option<f64>,
 }
 
 impl Parachute {
@@ -105,6 +111,26 @@ impl Parachute {
             trigger,
             lag_s,
             canopy: CanopyShape::default(),
+            sampling_rate_hz: None,
+        }
+    }
+
+    /// This parachute fired by a flight computer sampling at `rate_hz` (see
+    /// [`Parachute::sampling_rate_hz`]).
+    pub fn with_sampling_rate(self, rate_hz: f64) -> Parachute {
+        Parachute {
+            sampling_rate_hz: Some(rate_hz),
+            ..self
+        }
+    }
+
+    /// The moment a trigger whose condition became true at `t` fires: `t` itself when the
+    /// parachute watches continuously, else its first sample at or after `t`.
+    pub fn fires_at(&self, t: f64) -> f64 {
+        match self.sampling_rate_hz {
+            None => t,
+            // k / rate rounds to the nearest double; a sample that rounds below `t` is `t`.
+            Some(rate) => ((t * rate).ceil() / rate).max(t),
         }
     }
 

@@ -18,4 +18,5 @@ mod inputs;
 mod jet_damping;
 mod large_angles;
 mod rocket_equation;
+mod sampling;
 mod warnings;

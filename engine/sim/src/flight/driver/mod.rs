@@ -167,8 +167,11 @@ struct Run<'a, O: Observer> {
     evaluations: u64,
     steps: u64,
     apogee_done: bool,
-    /// Per parachute: trigger time once it has fired.
+    /// Per parachute: the time its trigger fires, once its condition has been met (a sampled
+    /// trigger's may still be ahead, at its next sample).
     chute_triggered: Vec<Option<f64>>,
+    /// Per parachute: whether its trigger has fired (its event recorded).
+    chute_fired: Vec<bool>,
     chute_open: Vec<bool>,
     /// Per trigger owner: whether a height-on-the-way-down trigger has fired (chutes, then shifts).
     rail_exit_done: bool,
@@ -251,10 +254,19 @@ impl<'a, O: Observer> Run<'a, O> {
         Ok(())
     }
 
+    /// Parachute `i`'s trigger condition became true at `t`: it fires now, or, sampled, at
+    /// its next sample (a stop time, where [`Run::at_stop`] fires it); it opens `lag_s` after.
     fn trigger_chute(&mut self, i: usize, t: f64, altitude_m: f64, speed_m_s: f64) {
-        self.chute_triggered[i] = Some(t);
-        self.push_event(EventKind::ParachuteTrigger(i), t, altitude_m, speed_m_s);
-        self.stops.push(t + self.model.parachutes[i].lag_s);
+        let chute = &self.model.parachutes[i];
+        let (fires, lag) = (chute.fires_at(t), chute.lag_s);
+        self.chute_triggered[i] = Some(fires);
+        if fires == t {
+            self.chute_fired[i] = true;
+            self.push_event(EventKind::ParachuteTrigger(i), t, altitude_m, speed_m_s);
+        } else {
+            self.stops.push(fires);
+        }
+        self.stops.push(fires + lag);
     }
 
     /// Fire every trigger of kind `matches` that has not fired yet, at `t`.
@@ -293,6 +305,14 @@ impl<'a, O: Observer> Run<'a, O> {
         self.fire(t, altitude_m, speed_m_s, |tr| {
             tr.fixed_time(burnout, delay).is_some_and(|ft| ft <= t)
         })?;
+        for i in 0..m.parachutes.len() {
+            if let (Some(tt), false) = (self.chute_triggered[i], self.chute_fired[i]) {
+                if tt <= t {
+                    self.chute_fired[i] = true;
+                    self.push_event(EventKind::ParachuteTrigger(i), tt, altitude_m, speed_m_s);
+                }
+            }
+        }
         let mut opened = false;
         for i in 0..m.parachutes.len() {
             if let Some(tt) = self.chute_triggered[i] {

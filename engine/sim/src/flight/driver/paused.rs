@@ -224,6 +224,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         steps: 0,
         apogee_done: false,
         chute_triggered: vec![None; n_chutes],
+        chute_fired: vec![false; n_chutes],
         chute_open: vec![false; n_chutes],
         rail_exit_done: false,
         burnout_done: false,
