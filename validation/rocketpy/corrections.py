@@ -12,7 +12,8 @@ measures its worth (the scripts fly every case as RocketPy is, too):
   1400 m) and its pressure is a spline through 100 samples 808 m apart (5 Pa low at 1400 m),
   so its density is 6e-5 to 1.2e-4 below the U.S. Standard Atmosphere 1976 between 1.4 and
   5.4 km. This gives ``env`` the standard's temperature, pressure, density and speed of sound,
-  in geopotential height, as hpr-mc has them (``hpr_sim::atmosphere``).
+  in geopotential height, as hpr-mc has them (``hpr_sim::atmosphere``), and the barometric
+  height a parachute's trigger reads as that pressure's exact inverse.
 * ``correct(rocket)``: the lever arm's sign (RocketPy issue #1186), below.
 
 The lever arm.
@@ -111,7 +112,23 @@ def true_standard_air(env):
     env.density = Function(density, height, "Air Density (kg/m³)")
     env.speed_of_sound = Function(
         lambda z: (1.4 * _R_AIR * standard_air(z)[0]) ** 0.5, height, "Speed of Sound (m/s)")
+    # A parachute's height trigger reads the height of its (noise-free) pressure: the
+    # pressure's own inverse, not RocketPy's, which inverts its former pressure through 100
+    # samples and puts the main's trigger a few centimetres off.
+    env.barometric_height = Function(standard_height, "Pressure (Pa)", height)
     return env
+
+
+def standard_height(p_pa):
+    """Geometric height above sea level (m) of the 1976 standard's pressure p_pa (the inverse
+    of ``standard_air``'s pressure, below 47 km geopotential)."""
+    h0, lapse, t0, p0 = [b for b in _BASES if b[3] >= p_pa][-1] if p_pa <= _BASES[0][3] \
+        else _BASES[0]
+    if lapse == 0.0:
+        h = h0 - _R_AIR * t0 / _G0 * math.log(p_pa / p0)
+    else:
+        h = h0 + (t0 * (p_pa / p0) ** (-_R_AIR * lapse / _G0) - t0) / lapse
+    return _R0 * h / (_R0 - h)
 
 
 def correct(rocket):

@@ -93,17 +93,22 @@ pub fn v3(a: [f64; 3]) -> Vector3<f64> {
 /// main is RocketPy's less the drogue: in CdS, and in the air it carries along (a hemisphere
 /// of radius `R` with `R³ = R_main³ − R_drogue³`, each `R = √(CdS / (1.4 π))`). Once the
 /// main is out, both fly the same drag and the same added mass.
-pub fn rocketpy_chutes(drogue: (f64, Trigger, f64), main: (f64, Trigger, f64)) -> Vec<Parachute> {
+pub fn rocketpy_chutes(
+    drogue: (f64, Trigger, f64),
+    main: (f64, Trigger, f64),
+    sampling_rate_hz: f64,
+) -> Vec<Parachute> {
     let ((drogue_cds, drogue_trigger, drogue_lag_s), (main_cds, main_trigger, main_lag_s)) =
         (drogue, main);
     let r3 = |cds: f64| (cds / (hpr_sim::eom::CANOPY_CD * std::f64::consts::PI)).powf(1.5);
     vec![
-        Parachute::new("drogue", drogue_cds, drogue_trigger, drogue_lag_s),
-        Parachute::new("main", main_cds - drogue_cds, main_trigger, main_lag_s).with_canopy(
-            CanopyShape {
+        Parachute::new("drogue", drogue_cds, drogue_trigger, drogue_lag_s)
+            .with_sampling_rate(sampling_rate_hz),
+        Parachute::new("main", main_cds - drogue_cds, main_trigger, main_lag_s)
+            .with_canopy(CanopyShape {
                 radius_m: Some((r3(main_cds) - r3(drogue_cds)).cbrt()),
                 ..CanopyShape::default()
-            },
-        ),
+            })
+            .with_sampling_rate(sampling_rate_hz),
     ]
 }
