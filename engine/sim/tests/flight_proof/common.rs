@@ -112,3 +112,26 @@ pub fn rocketpy_chutes(
             .with_sampling_rate(sampling_rate_hz),
     ]
 }
+
+/// The reference design (the synthetic 54 mm rocket) on its I175 off the default rail in a
+/// constant wind of `speed_m_s` from `from_deg`, flown to the ground under `chutes`.
+pub fn reference_flight_in_wind(
+    speed_m_s: f64,
+    from_deg: f64,
+    chutes: Vec<Parachute>,
+) -> hpr_sim::flight::Flight {
+    let env = Environment {
+        wind: hpr_sim::wind::Wind::constant(speed_m_s, from_deg).unwrap(),
+        ..Environment::default()
+    };
+    hpr_sim::flight::Simulation::new(
+        design("synthetic-54mm-three-fin.json"),
+        motor("Cesaroni_I175"),
+        env,
+        hpr_sim::flight::Rail::default(),
+    )
+    .and_then(|s| s.with_parachutes(chutes))
+    .expect("set up")
+    .run(&mut ())
+    .expect("flies")
+}

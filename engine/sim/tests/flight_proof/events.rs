@@ -125,23 +125,7 @@ fn two_open_canopies_drag_and_carry_air_as_one_canopy_of_their_summed_cds_and_ai
     // R_k = √(CdS_k / (1.4 π)). Each drags and carries its own air, so the pair flies as one
     // canopy of CdS 1.0 m² whose hemisphere holds both airs: R³ = R_1³ + R_2³. The two
     // flights differ only in the rounding of the sums (tolerance: 1e-9 relative).
-    let fly = |chutes: Vec<Parachute>| {
-        let env = Environment {
-            wind: Wind::constant(6.0, 200.0).unwrap(),
-            ..Environment::default()
-        };
-        Simulation::new(
-            design("synthetic-54mm-three-fin.json"),
-            motor("Cesaroni_I175"),
-            env,
-            Rail::default(),
-        )
-        .and_then(|s| s.with_parachutes(chutes))
-        .expect("set up")
-        .run(&mut ())
-        .expect("flies")
-        .metrics
-    };
+    let fly = |chutes: Vec<Parachute>| reference_flight_in_wind(6.0, 200.0, chutes).metrics;
     let r = |cds: f64| (cds / (1.4 * std::f64::consts::PI)).sqrt();
     let pair = fly(vec![
         Parachute::new("a", 0.3, Trigger::Apogee, 1.0),

@@ -5,7 +5,6 @@ use crate::common::*;
 use hpr_sim::events::EventKind;
 use hpr_sim::flight::{Environment, Flight, Parachute, Rail, Simulation};
 use hpr_sim::trigger::Trigger;
-use hpr_sim::wind::Wind;
 
 /// The synthetic rocket on its I175 in a 4 m/s wind: drogue at apogee, main at 300 m on the
 /// way down, each opening 1 s after its trigger, read continuously or at `rate_hz`.
@@ -23,20 +22,7 @@ fn fly(rate_hz: Option<f64>) -> Flight {
             1.0,
         )),
     ];
-    let env = Environment {
-        wind: Wind::constant(4.0, 250.0).unwrap(),
-        ..Environment::default()
-    };
-    Simulation::new(
-        design("synthetic-54mm-three-fin.json"),
-        motor("Cesaroni_I175"),
-        env,
-        Rail::default(),
-    )
-    .and_then(|s| s.with_parachutes(chutes))
-    .expect("set up")
-    .run(&mut ())
-    .expect("flies")
+    reference_flight_in_wind(4.0, 250.0, chutes)
 }
 
 fn time(f: &Flight, kind: EventKind) -> f64 {
