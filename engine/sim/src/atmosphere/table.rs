@@ -1,5 +1,7 @@
 //! The atmosphere tabulated for the derivative: density and speed of sound every 10 m.
 
+use crate::lanes::four;
+
 use super::{
     geopotential_altitude_m, AirModel, Atmosphere, AtmosphereError, MAX_ALTITUDE_MSL_M,
     MIN_ALTITUDE_MSL_M,
@@ -126,14 +128,15 @@ impl AirTable {
     #[inline(always)]
     pub fn at_msl_four(&self, altitude_msl_m: [f64; 4]) -> ([f64; 4], [f64; 4]) {
         let cells = self.nodes.len() - 1;
-        let x = altitude_msl_m.map(|z| (z - MIN_ALTITUDE_MSL_M) / AIR_TABLE_STEP_M);
+        let z = altitude_msl_m;
+        let x = four!(l => (z[l] - MIN_ALTITUDE_MSL_M) / AIR_TABLE_STEP_M);
         if x.iter().all(|&x| x >= 0.0 && x < cells as f64) {
             let (i, f) = crate::lanes::grid_cells(x, cells);
-            let a: [(f64, f64); 4] = std::array::from_fn(|l| self.nodes[i[l]]);
-            let b: [(f64, f64); 4] = std::array::from_fn(|l| self.nodes[i[l] + 1]);
+            let a: [(f64, f64); 4] = four!(l => self.nodes[i[l]]);
+            let b: [(f64, f64); 4] = four!(l => self.nodes[i[l] + 1]);
             (
-                std::array::from_fn(|l| a[l].0 + f[l] * (b[l].0 - a[l].0)),
-                std::array::from_fn(|l| a[l].1 + f[l] * (b[l].1 - a[l].1)),
+                four!(l => a[l].0 + f[l] * (b[l].0 - a[l].0)),
+                four!(l => a[l].1 + f[l] * (b[l].1 - a[l].1)),
             )
         } else {
             let air = altitude_msl_m.map(|z| self.at_msl(z));
