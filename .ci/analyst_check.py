@@ -31,7 +31,7 @@ import pyarrow.parquet as pq
 
 WARNING_FLAGS = ["warning_unstable", "warning_large_alpha", "warning_ballistic"]
 FIXED_METRICS = [
-    "apogee_m", "apogee_time_s", "max_speed_m_s", "max_mach", "max_accel_m_s2",
+    "apogee_m", "apogee_time_s", "max_speed_m_s", "max_mach", "max_accel_m_s2", "max_dynamic_pressure_pa",
     "rail_exit_speed_m_s", "static_margin_liftoff_cal", "static_margin_rail_exit_cal",
     "static_margin_burnout_cal", "static_margin_min_cal", "flight_margin_min_cal",
     "max_alpha_deg", "landing_time_s", "landing_x_m", "landing_y_m", "landing_distance_m", "landing_speed_m_s",

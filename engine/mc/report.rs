@@ -190,6 +190,7 @@ pub fn flight_json(sim: &Simulation, f: &Flight) -> Value {
         "metrics": {
             "apogee_m": opt(m.apogee_m), "apogee_time_s": opt(m.apogee_time_s),
             "max_speed_m_s": m.max_speed_m_s, "max_mach": m.max_mach, "max_accel_m_s2": m.max_accel_m_s2,
+            "max_dynamic_pressure_pa": m.max_dynamic_pressure_pa,
             "liftoff_time_s": opt(m.liftoff_time_s), "rail_exit_time_s": opt(m.rail_exit_time_s), "rail_exit_speed_m_s": opt(m.rail_exit_speed_m_s),
             "burnout_time_s": opt(m.burnout_time_s),
             "static_margin_liftoff_cal": opt(m.static_margin_liftoff_cal), "static_margin_rail_exit_cal": opt(m.static_margin_rail_exit_cal),
@@ -226,6 +227,11 @@ pub fn flight_text(sim: &Simulation, f: &Flight) -> String {
         m.max_speed_m_s, m.max_mach
     );
     let _ = writeln!(s, "max acceleration    {:.1} m/s²", m.max_accel_m_s2);
+    let _ = writeln!(
+        s,
+        "max dynamic press.  {:.1} kPa",
+        m.max_dynamic_pressure_pa / 1000.0
+    );
     let _ = writeln!(
         s,
         "rail exit           {} at {}",

@@ -56,12 +56,13 @@ pub struct Column {
 }
 
 /// The metrics every flight has, in output order.
-pub const FIXED_METRICS: [(&str, &str); 17] = [
+pub const FIXED_METRICS: [(&str, &str); 18] = [
     ("apogee_m", "m"),
     ("apogee_time_s", "s"),
     ("max_speed_m_s", "m/s"),
     ("max_mach", "1"),
     ("max_accel_m_s2", "m/s²"),
+    ("max_dynamic_pressure_pa", "Pa"),
     ("rail_exit_speed_m_s", "m/s"),
     ("static_margin_liftoff_cal", "cal"),
     ("static_margin_rail_exit_cal", "cal"),
@@ -77,7 +78,7 @@ pub const FIXED_METRICS: [(&str, &str); 17] = [
 ];
 
 /// Indices of the landing point's east (x) and north (y) in the metrics.
-pub const LANDING_XY: (usize, usize) = (13, 14);
+pub const LANDING_XY: (usize, usize) = (14, 15);
 
 /// A scenario ready to fly: the design and motor loaded, the nominals resolved, the plan of
 /// the variants built, and every sweep point's nominal flight checked.
@@ -397,6 +398,7 @@ impl Prepared {
             Some(m.max_speed_m_s),
             Some(m.max_mach),
             Some(m.max_accel_m_s2),
+            Some(m.max_dynamic_pressure_pa),
             m.rail_exit_speed_m_s,
             m.static_margin_liftoff_cal,
             m.static_margin_rail_exit_cal,

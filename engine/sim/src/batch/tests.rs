@@ -203,6 +203,7 @@ fn metric_list(m: &Metrics) -> Vec<Option<f64>> {
         Some(m.max_speed_m_s),
         Some(m.max_mach),
         Some(m.max_accel_m_s2),
+        Some(m.max_dynamic_pressure_pa),
         m.liftoff_time_s,
         m.rail_exit_time_s,
         m.rail_exit_speed_m_s,

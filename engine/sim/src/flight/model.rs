@@ -373,6 +373,7 @@ impl FlightModel {
             r_cm_z_m,
             air_speed_m_s: rel.norm(),
             speed_of_sound_m_s,
+            density_kg_m3: at.rho,
             accel_cm_m_s2: a.norm(),
             air_velocity_b: Vector3::repeat(f64::NAN),
         }
@@ -422,13 +423,14 @@ impl FlightModel {
         let r = frames::body_to_inertial(&self.rail.attitude);
         let pos = eom::center_of_mass_position(y, ms, &r);
         let vel = eom::center_of_mass_velocity(y, ms, &r);
-        let air = self.air.at_msl(pos.z + self.env.elevation_m);
+        let air = self.air_at(&self.air.at_msl(pos.z + self.env.elevation_m));
         let v_air_n = vel - self.wind_n(pos.z);
         let aux = FlightAux {
             mass_kg: ms.mass_kg,
             r_cm_z_m: ms.r_cm.z,
             air_speed_m_s: v_air_n.norm(),
             speed_of_sound_m_s: air.speed_of_sound_m_s,
+            density_kg_m3: air.density_kg_m3,
             accel_cm_m_s2: Vector3::new(dy[3], dy[4], dy[5]).norm(),
             air_velocity_b: Vector3::zeros(),
         };
@@ -448,6 +450,8 @@ pub struct FlightAux {
     pub r_cm_z_m: f64,
     pub air_speed_m_s: f64,
     pub speed_of_sound_m_s: f64,
+    /// The air's density there, kg/m³.
+    pub density_kg_m3: f64,
     /// Magnitude of the center of mass's inertial acceleration, m/s².
     pub accel_cm_m_s2: f64,
     /// The air's velocity relative to the rocket in body axes, m/s (zero on the rail, where

@@ -65,6 +65,10 @@ pub struct Metrics {
     pub max_speed_m_s: f64,
     pub max_mach: f64,
     pub max_accel_m_s2: f64,
+    /// Largest dynamic pressure the airframe met, ½ ρ v² of its speed through the air at the
+    /// center of mass (what the drag reads), Pa: the load a fin's flutter and the airframe's
+    /// strength are judged at ("max Q"), over every step's end and event.
+    pub max_dynamic_pressure_pa: f64,
     pub liftoff_time_s: Option<f64>,
     pub rail_exit_time_s: Option<f64>,
     pub rail_exit_speed_m_s: Option<f64>,

@@ -62,3 +62,57 @@ fn an_airframe_at_rest_in_still_air_feels_no_drag_while_its_center_of_mass_drift
         );
     }
 }
+
+#[test]
+fn the_largest_dynamic_pressure_is_half_gamma_p_mach_squared_at_its_sample() {
+    // ½ ρ v² = ½ ρ a² M² = (γ/2) p M², with ρ a² = γ p: the metric, from the flight's air
+    // table's density and its airspeed, against the exact standard atmosphere's pressure at
+    // each sample's height and the sample's Mach number (a sample is recorded wherever the
+    // metric is taken: every step's end and every event). The table's interpolation holds
+    // ρ and a to 5e-7 each: 2e-6 of q.
+    let wind = hpr_sim::wind::Wind::constant(5.0, 300.0).unwrap();
+    let env = Environment {
+        wind,
+        ..Environment::default()
+    };
+    let f = Simulation::new(
+        design("synthetic-54mm-three-fin.json"),
+        motor("Cesaroni_I175"),
+        env,
+        Rail::default(),
+    )
+    .and_then(|s| {
+        s.with_parachutes(vec![hpr_sim::Parachute::new(
+            "main",
+            0.9,
+            hpr_sim::Trigger::Apogee,
+            1.0,
+        )])
+    })
+    .expect("set up")
+    .run(&mut ())
+    .expect("flies");
+    let atm = hpr_sim::atmosphere::Atmosphere::standard(0.0).unwrap();
+    let (mut q_max, mut at) = (0.0f64, 0.0);
+    for s in &f.samples {
+        let q = 0.5
+            * hpr_sim::atmosphere::GAMMA_AIR
+            * atm.at(s.altitude_m).pressure_pa
+            * s.mach
+            * s.mach;
+        if q > q_max {
+            (q_max, at) = (q, s.t_s);
+        }
+    }
+    let m = &f.metrics;
+    let rel = (m.max_dynamic_pressure_pa - q_max).abs() / q_max;
+    eprintln!(
+        "max Q {:.1} Pa, (γ/2) p M² {q_max:.1} Pa at {at:.4} s (relative {rel:.1e}); max speed {:.2} m/s",
+        m.max_dynamic_pressure_pa, m.max_speed_m_s
+    );
+    assert!(rel <= 2e-6, "{rel:e}");
+    // By hand: about ½ · 1.18 kg/m³ · (321 m/s)² ≈ 61 kPa, low down and fast, as the thrust
+    // tails off before burnout at 2.5 s.
+    assert!((2.0..3.0).contains(&at), "max Q at {at} s");
+    assert!((55e3..65e3).contains(&m.max_dynamic_pressure_pa));
+}

@@ -367,6 +367,10 @@ impl<'a, O: Observer> Run<'a, O> {
         if aux.accel_cm_m_s2.is_finite() {
             mt.max_accel_m_s2 = mt.max_accel_m_s2.max(aux.accel_cm_m_s2);
         }
+        let dynamic_pressure = 0.5 * aux.density_kg_m3 * aux.air_speed_m_s * aux.air_speed_m_s;
+        if dynamic_pressure.is_finite() {
+            mt.max_dynamic_pressure_pa = mt.max_dynamic_pressure_pa.max(dynamic_pressure);
+        }
         // The margins count until apogee, outside the descent (the flight margin in free
         // flight only).
         let margins = phase != Phase::Descent && !self.apogee_done;

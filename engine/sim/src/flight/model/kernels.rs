@@ -240,6 +240,7 @@ pub struct EndLanes<S> {
     /// The airframe's speed through the air at the center of mass (what the drag reads).
     pub air_speed_m_s: S,
     pub speed_of_sound_m_s: S,
+    pub density_kg_m3: S,
     /// Magnitude of the center of mass's inertial acceleration.
     pub accel_cm_m_s2: S,
     /// The air's velocity relative to the airframe at the center of mass, body axes.
@@ -255,6 +256,7 @@ impl EndLanes<f64> {
             r_cm_z_m,
             air_speed_m_s: self.air_speed_m_s,
             speed_of_sound_m_s: self.speed_of_sound_m_s,
+            density_kg_m3: self.density_kg_m3,
             accel_cm_m_s2: self.accel_cm_m_s2,
             air_velocity_b: self.air_velocity_b.to_na(),
         };
@@ -272,6 +274,7 @@ impl EndLanes<F64x4> {
             vel: v(&self.vel),
             air_speed_m_s: self.air_speed_m_s.0[l],
             speed_of_sound_m_s: self.speed_of_sound_m_s.0[l],
+            density_kg_m3: self.density_kg_m3.0[l],
             accel_cm_m_s2: self.accel_cm_m_s2.0[l],
             air_velocity_b: v(&self.air_velocity_b),
         }
@@ -295,7 +298,7 @@ pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
     // through the airframe at `r′`): the air meets the first, the trajectory is the second's.
     let v_frame = V3::new(y[3], y[4], y[5]) + r.mul_v(&omega.cross(&c.r));
     let vel = v_frame + r.mul_v(&c.r_rate);
-    let (_, speed_of_sound_m_s) = lanes.air(pos.z);
+    let (density_kg_m3, speed_of_sound_m_s) = lanes.air(pos.z);
     let v_air_n = v_frame - lanes.wind(pos.z);
     let a_o_n = V3::new(dy[3], dy[4], dy[5]);
     let w_dot = V3::new(dy[10], dy[11], dy[12]);
@@ -308,6 +311,7 @@ pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
         vel,
         air_speed_m_s: v_air_n.norm_squared().sqrt(),
         speed_of_sound_m_s,
+        density_kg_m3,
         accel_cm_m_s2: (a_o_n + r.mul_v(&rel)).norm_squared().sqrt(),
         air_velocity_b: r.tr_mul_v(&v_air_n),
     }
