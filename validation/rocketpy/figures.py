@@ -1,7 +1,7 @@
 """The figures every RocketPy cross-check records of a flight, in one place.
 
 ``flight_figures(env, flight)``: apogee (height above the site, time, position), rail exit,
-maximum speed and Mach, landing (time, position, vertical speed) and each parachute's
+maximum speed, Mach and dynamic pressure, landing (time, position, vertical speed) and each parachute's
 trigger and inflation (time, height, position), as floats for JSON. Heights are above the
 site; positions and heights are RocketPy's center of dry mass's.
 """
@@ -35,6 +35,8 @@ def flight_figures(env, flight):
         "max_speed_m_s": f(flight.max_speed),
         "max_speed_time_s": f(flight.max_speed_time),
         "max_mach": f(flight.max_mach_number),
+        "max_dynamic_pressure_pa": f(flight.max_dynamic_pressure),
+        "max_dynamic_pressure_time_s": f(flight.max_dynamic_pressure_time),
         "impact_time_s": f(flight.t_final),
         "impact_x_m": f(flight.x_impact),
         "impact_y_m": f(flight.y_impact),
