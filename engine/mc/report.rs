@@ -297,7 +297,7 @@ pub fn flight_text(sim: &Simulation, f: &Flight) -> String {
 }
 
 /// Column names (with units) and values of a sample, shared by the CSV and Parquet writers.
-const COLUMNS: [&str; 20] = [
+const COLUMNS: [&str; 21] = [
     "time_s",
     "x_m",
     "y_m",
@@ -307,6 +307,7 @@ const COLUMNS: [&str; 20] = [
     "vz_m_s",
     "speed_m_s",
     "mach",
+    "dynamic_pressure_pa",
     "alpha_deg",
     "accel_m_s2",
     "thrust_n",
@@ -321,12 +322,12 @@ const COLUMNS: [&str; 20] = [
 ];
 
 /// The unit of each of [`COLUMNS`], as the campaign's files give it in the field metadata.
-const UNITS: [&str; 20] = [
-    "s", "m", "m", "m", "m/s", "m/s", "m/s", "m/s", "1", "deg", "m/s²", "N", "kg", "m", "cal",
-    "cal", "1", "1", "1", "1",
+const UNITS: [&str; 21] = [
+    "s", "m", "m", "m", "m/s", "m/s", "m/s", "m/s", "1", "Pa", "deg", "m/s²", "N", "kg", "m",
+    "cal", "cal", "1", "1", "1", "1",
 ];
 
-fn row(s: &hpr_sim::flight::Sample) -> [f64; 20] {
+fn row(s: &hpr_sim::flight::Sample) -> [f64; 21] {
     [
         s.t_s,
         s.position_m[0],
@@ -337,6 +338,7 @@ fn row(s: &hpr_sim::flight::Sample) -> [f64; 20] {
         s.velocity_m_s[2],
         s.speed_m_s,
         s.mach,
+        s.dynamic_pressure_pa,
         s.alpha_deg,
         s.accel_m_s2,
         s.thrust_n,
@@ -432,6 +434,7 @@ mod tests {
                 ("_deg", "deg"),
                 ("_cal", "cal"),
                 ("_kg", "kg"),
+                ("_pa", "Pa"),
                 ("_n", "N"),
                 ("_s", "s"),
                 ("_m", "m"),

@@ -42,6 +42,8 @@ pub struct Sample {
     pub speed_m_s: f64,
     /// Speed through the air over the speed of sound.
     pub mach: f64,
+    /// Dynamic pressure, ½ ρ v² of the speed through the air, Pa.
+    pub dynamic_pressure_pa: f64,
     /// Angle of attack of the center of mass, degrees (NaN in the descent phase).
     pub alpha_deg: f64,
     /// Inertial acceleration of the center of mass, m/s².

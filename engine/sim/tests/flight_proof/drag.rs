@@ -94,6 +94,7 @@ fn the_largest_dynamic_pressure_is_half_gamma_p_mach_squared_at_its_sample() {
     .expect("flies");
     let atm = hpr_sim::atmosphere::Atmosphere::standard(0.0).unwrap();
     let (mut q_max, mut at) = (0.0f64, 0.0);
+    let mut worst_sample = 0.0f64;
     for s in &f.samples {
         let q = 0.5
             * hpr_sim::atmosphere::GAMMA_AIR
@@ -103,7 +104,15 @@ fn the_largest_dynamic_pressure_is_half_gamma_p_mach_squared_at_its_sample() {
         if q > q_max {
             (q_max, at) = (q, s.t_s);
         }
+        // Each sample's own dynamic pressure is the same (in the air, where q ≥ 1 Pa).
+        if q >= 1.0 {
+            worst_sample = worst_sample.max((s.dynamic_pressure_pa - q).abs() / q);
+        }
     }
+    assert!(
+        worst_sample <= 2e-6,
+        "a sample's dynamic pressure {worst_sample:e} off"
+    );
     let m = &f.metrics;
     let rel = (m.max_dynamic_pressure_pa - q_max).abs() / q_max;
     eprintln!(

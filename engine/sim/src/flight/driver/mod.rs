@@ -367,9 +367,9 @@ impl<'a, O: Observer> Run<'a, O> {
         if aux.accel_cm_m_s2.is_finite() {
             mt.max_accel_m_s2 = mt.max_accel_m_s2.max(aux.accel_cm_m_s2);
         }
-        let dynamic_pressure = 0.5 * aux.density_kg_m3 * aux.air_speed_m_s * aux.air_speed_m_s;
-        if dynamic_pressure.is_finite() {
-            mt.max_dynamic_pressure_pa = mt.max_dynamic_pressure_pa.max(dynamic_pressure);
+        let dynamic_pressure_pa = 0.5 * aux.density_kg_m3 * aux.air_speed_m_s * aux.air_speed_m_s;
+        if dynamic_pressure_pa.is_finite() {
+            mt.max_dynamic_pressure_pa = mt.max_dynamic_pressure_pa.max(dynamic_pressure_pa);
         }
         // The margins count until apogee, outside the descent (the flight margin in free
         // flight only).
@@ -420,6 +420,7 @@ impl<'a, O: Observer> Run<'a, O> {
             altitude_m: pos.z,
             speed_m_s: speed,
             mach,
+            dynamic_pressure_pa,
             alpha_deg: aux.alpha_rad().to_degrees(),
             accel_m_s2: aux.accel_cm_m_s2,
             thrust_n: m.motor.eval(t).thrust_n,
