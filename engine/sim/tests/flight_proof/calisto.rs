@@ -347,8 +347,9 @@ fn rocketpy_dry_motor_variant(r: &Value, design: &Design) -> Simulation {
 //   test names: the motor's mass model (hpr's static margin +0.9 % at rail exit, its transverse
 //   inertia −0.8 % loaded), the point the speeds are of, the initial roll, the integrators.
 //   Measured (release build): apogee within 0.42 m (calm; 0.08 west, 0.09 north-east), its time
-//   within 2.2 ms, maximum Mach within 1e-4, max Q within 7.7 Pa of 41.7 kPa, the apogee's and the landing's horizontal position
-//   within 3.3 m (1 % of the west wind's 333 m weathercocking, which is set in the second after
+//   within 2.2 ms, maximum Mach within 1e-4, max Q within 7.7 Pa of 41.7 kPa, the apogee's and
+//   the landing's horizontal position within 3.3 m (1 % of the west wind's 333 m
+//   weathercocking, which is set in the second after
 //   rail exit, where the margin and the inertia differ most), the landing time within 0.025 s,
 //   the descent rate within 0.0004 m/s, the parachute events on the same 105 Hz sample or the
 //   next (two samples for the main). The tolerances ([`tolerances`]) are about 1.5× these. (Before
