@@ -68,10 +68,7 @@ fn a_sampling_rate_that_is_not_positive_is_refused_naming_its_parachute_s_key() 
         "trigger = \"apogee\"\n",
         "trigger = \"apogee\"\nsampling_rate_hz = 0.0\n",
     );
-    let (dir, file) = setup(&text);
-    let err = run_campaign(&file, &config(&dir.path().join("out")))
-        .unwrap_err()
-        .to_string();
+    let err = refusal(&text);
     assert!(err.contains("parachutes[0].sampling_rate_hz"), "{err}");
     assert!(err.contains("must be positive and finite"), "{err}");
 }

@@ -66,6 +66,14 @@ parachutes.main.lag_s = {{ dist = "uniform", min = -2.5, max = 0.5 }}
     )
 }
 
+/// The error a run of the scenario `text` stops with (it must stop with one).
+fn refusal(text: &str) -> String {
+    let (dir, file) = setup(text);
+    run_campaign(&file, &config(&dir.path().join("out")))
+        .unwrap_err()
+        .to_string()
+}
+
 /// A temporary directory holding `tiny.toml`.
 fn setup(text: &str) -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();

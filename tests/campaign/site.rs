@@ -107,10 +107,7 @@ fn a_site_temperature_outside_the_air_s_range_is_refused_naming_the_sweep() {
         "elevation_m = 1200.0\nwind_speed_m_s = 4.0\nwind_from_deg = 250.0",
         "temperature_k = [288.15, 400.0]",
     );
-    let (dir, file) = setup(&text);
-    let err = run_campaign(&file, &config(&dir.path().join("out")))
-        .unwrap_err()
-        .to_string();
+    let err = refusal(&text);
     assert!(err.contains("sweep.temperature_k"), "{err}");
     assert!(err.contains("must be from 150 to 350"), "{err}");
 }

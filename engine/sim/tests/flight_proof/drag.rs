@@ -70,28 +70,16 @@ fn the_largest_dynamic_pressure_is_half_gamma_p_mach_squared_at_its_sample() {
     // each sample's height and the sample's Mach number (a sample is recorded wherever the
     // metric is taken: every step's end and every event). The table's interpolation holds
     // ρ and a to 5e-7 each: 2e-6 of q.
-    let wind = hpr_sim::wind::Wind::constant(5.0, 300.0).unwrap();
-    let env = Environment {
-        wind,
-        ..Environment::default()
-    };
-    let f = Simulation::new(
-        design("synthetic-54mm-three-fin.json"),
-        motor("Cesaroni_I175"),
-        env,
-        Rail::default(),
-    )
-    .and_then(|s| {
-        s.with_parachutes(vec![hpr_sim::Parachute::new(
+    let f = reference_flight_in_wind(
+        5.0,
+        300.0,
+        vec![hpr_sim::Parachute::new(
             "main",
             0.9,
             hpr_sim::Trigger::Apogee,
             1.0,
-        )])
-    })
-    .expect("set up")
-    .run(&mut ())
-    .expect("flies");
+        )],
+    );
     let atm = hpr_sim::atmosphere::Atmosphere::standard(0.0).unwrap();
     let (mut q_max, mut at) = (0.0f64, 0.0);
     let mut worst_sample = 0.0f64;

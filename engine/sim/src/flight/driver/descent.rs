@@ -101,7 +101,7 @@ impl Descent {
             consider(locate_event(&**s, |_t, y: &[f64; N3]| y[2], Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::Landing);
             if run.apogee_done {
                 for (i, p) in model.parachutes.iter().enumerate() {
-                    if let (Trigger::HeightDescending { height_m }, None) = (p.trigger, run.chute_triggered[i]) {
+                    if let (Trigger::HeightDescending { height_m }, true) = (p.trigger, run.chute_armed(i)) {
                         consider(locate_event(&**s, |_t, y: &[f64; N3]| y[2] - height_m, Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::ParachuteTrigger(i));
                     }
                 }

@@ -167,12 +167,8 @@ struct Run<'a, O: Observer> {
     evaluations: u64,
     steps: u64,
     apogee_done: bool,
-    /// Per parachute: the time its trigger fires, once its condition has been met (a sampled
-    /// trigger's may still be ahead, at its next sample).
-    chute_triggered: Vec<Option<f64>>,
-    /// Per parachute: whether its trigger has fired (its event recorded).
-    chute_fired: Vec<bool>,
-    chute_open: Vec<bool>,
+    /// Per parachute: where it is between armed and open.
+    chutes: Vec<Chute>,
     /// Per trigger owner: whether a height-on-the-way-down trigger has fired (chutes, then shifts).
     rail_exit_done: bool,
     burnout_done: bool,
@@ -182,6 +178,22 @@ struct Run<'a, O: Observer> {
     /// [`FlightAux::alpha_rad`]'s `atan2` (crossflow speed ≥ 0, axial air velocity): angles in
     /// [0, π] compare by a cross product, and the one `atan2` is taken when the flight ends.
     steepest: Option<(f64, f64)>,
+}
+
+/// Where a parachute is between its trigger and its open canopy.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Chute {
+    /// Its trigger's condition is not met yet.
+    Armed,
+    /// Met; the trigger fires at `fires_s` (a sampled trigger's next sample, a stop time).
+    Pending {
+        fires_s: f64,
+    },
+    /// The trigger fired at `fires_s`; the canopy opens `lag_s` later (a stop time).
+    Fired {
+        fires_s: f64,
+    },
+    Open,
 }
 
 /// Pending stop times, latest first (the next one is at the end); NaN is never a stop.
@@ -258,15 +270,15 @@ impl<'a, O: Observer> Run<'a, O> {
     /// its next sample (a stop time, where [`Run::at_stop`] fires it); it opens `lag_s` after.
     fn trigger_chute(&mut self, i: usize, t: f64, altitude_m: f64, speed_m_s: f64) {
         let chute = &self.model.parachutes[i];
-        let (fires, lag) = (chute.fires_at(t), chute.lag_s);
-        self.chute_triggered[i] = Some(fires);
-        if fires == t {
-            self.chute_fired[i] = true;
+        let (fires_s, lag) = (chute.fires_at(t), chute.lag_s);
+        if fires_s == t {
+            self.chutes[i] = Chute::Fired { fires_s };
             self.push_event(EventKind::ParachuteTrigger(i), t, altitude_m, speed_m_s);
         } else {
-            self.stops.push(fires);
+            self.chutes[i] = Chute::Pending { fires_s };
+            self.stops.push(fires_s);
         }
-        self.stops.push(fires + lag);
+        self.stops.push(fires_s + lag);
     }
 
     /// Fire every trigger of kind `matches` that has not fired yet, at `t`.
@@ -278,7 +290,7 @@ impl<'a, O: Observer> Run<'a, O> {
         matches: impl Fn(&Trigger) -> bool,
     ) -> Result<(), SimError> {
         for i in 0..self.model.parachutes.len() {
-            if self.chute_triggered[i].is_none() && matches(&self.model.parachutes[i].trigger) {
+            if self.chute_armed(i) && matches(&self.model.parachutes[i].trigger) {
                 self.trigger_chute(i, t, altitude_m, speed_m_s);
             }
         }
@@ -305,25 +317,36 @@ impl<'a, O: Observer> Run<'a, O> {
         self.fire(t, altitude_m, speed_m_s, |tr| {
             tr.fixed_time(burnout, delay).is_some_and(|ft| ft <= t)
         })?;
+        // Sampled triggers that fire here, then the canopies that open here.
         for i in 0..m.parachutes.len() {
-            if let (Some(tt), false) = (self.chute_triggered[i], self.chute_fired[i]) {
-                if tt <= t {
-                    self.chute_fired[i] = true;
-                    self.push_event(EventKind::ParachuteTrigger(i), tt, altitude_m, speed_m_s);
+            if let Chute::Pending { fires_s } = self.chutes[i] {
+                if fires_s <= t {
+                    self.chutes[i] = Chute::Fired { fires_s };
+                    self.push_event(
+                        EventKind::ParachuteTrigger(i),
+                        fires_s,
+                        altitude_m,
+                        speed_m_s,
+                    );
                 }
             }
         }
         let mut opened = false;
         for i in 0..m.parachutes.len() {
-            if let Some(tt) = self.chute_triggered[i] {
-                if !self.chute_open[i] && tt + m.parachutes[i].lag_s <= t {
-                    self.chute_open[i] = true;
+            if let Chute::Fired { fires_s } = self.chutes[i] {
+                if fires_s + m.parachutes[i].lag_s <= t {
+                    self.chutes[i] = Chute::Open;
                     self.push_event(EventKind::ParachuteDeploy(i), t, altitude_m, speed_m_s);
                     opened = true;
                 }
             }
         }
         Ok(opened)
+    }
+
+    /// Whether parachute `i`'s trigger still watches for its condition.
+    fn chute_armed(&self, i: usize) -> bool {
+        self.chutes[i] == Chute::Armed
     }
 
     /// The open canopies: their CdS and the air they carry, summed.
@@ -336,8 +359,8 @@ impl<'a, O: Observer> Run<'a, O> {
             .model
             .canopies
             .iter()
-            .zip(&self.chute_open)
-            .filter(|(_, &o)| o)
+            .zip(&self.chutes)
+            .filter(|(_, &c)| c == Chute::Open)
         {
             sum.cds_m2 += c.cds_m2;
             sum.added_air_m3 += c.added_air_m3;

@@ -188,8 +188,8 @@ impl SixDof {
         } else {
             events.push((EventKind::Landing, G::Height(0.0)));
             for (i, p) in model.parachutes.iter().enumerate() {
-                if let (Trigger::HeightDescending { height_m }, None) =
-                    (p.trigger, run.chute_triggered[i])
+                if let (Trigger::HeightDescending { height_m }, true) =
+                    (p.trigger, run.chute_armed(i))
                 {
                     events.push((EventKind::ParachuteTrigger(i), G::Height(height_m)));
                 }
