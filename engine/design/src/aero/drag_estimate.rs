@@ -1,36 +1,50 @@
 //! Zero-lift drag coefficient against Mach estimated from the geometry, for designs that give
 //! no drag curves: OpenRocket's method (S. Niskanen, *Development of an Open Source model
-//! rocket simulation software*, 2009, §3.4), referenced to the area of the reference diameter.
+//! rocket simulation software*, 2009, §3.4) as OpenRocket's code computes it
+//! (`BarrowmanCalculator`, `SymmetricComponentCalc`, `FinSetCalc`, `TubeCalc`,
+//! `RailButtonCalc`), where that differs from the thesis, referenced to the area of the
+//! reference diameter.
 //!
 //! `C_D(M) = C_D,friction + Σ (A_part/A_ref) C_D•,part`, summing (formulas in
 //! [`super::drag_formulas`] and [`super::nose_drag`]):
-//! - skin friction (eq. 3.85): `C_fc [(1 + 1/(2 f_B)) A_wet,body + (1 + 2t/c̄) A_wet,fins]/A_ref`,
-//!   with `C_fc` the fully turbulent / roughness-limited coefficient with its compressibility
-//!   correction, `f_B = L/d` the rocket's fineness, `t` the fin thickness, `c̄` the mean
-//!   aerodynamic chord, and `A_wet,fins` both sides of every fin;
-//! - nose and shoulder pressure drag on `π (r_aft² − r_fore²)`; boattail pressure drag on
+//! - skin friction: `C_f [(1 + 1/(2 f_B)) A_wet,body + (1 + 2t/c̄) A_wet,fins]/A_ref`, with
+//!   `C_f` the larger of the smooth turbulent and the roughness-limited coefficients, each with
+//!   its compressibility correction (blended over Mach 0.9–1.1), `f_B` the body's length over
+//!   its largest *radius* (OpenRocket's code; the thesis writes the diameter), `t` the fin
+//!   thickness, `c̄` the mean aerodynamic chord, and `A_wet,fins` both sides of every fin;
+//! - nose and shoulder pressure drag on `π (r_aft² − r_fore²)` (a tangent ogive has none
+//!   below Mach 1: it meets the body at no angle); boattail pressure drag on
 //!   `π (r_fore² − r_aft²)`;
+//! - stagnation drag on every step up in radius between body components (and a blunt fore
+//!   end), base drag (eq. 3.94) on every step down and on the aft end;
 //! - fin pressure drag (leading and trailing edge by cross-section) on `N t s`;
-//! - launch lugs (eqs. 3.95, 3.96) and rail buttons (treated, as the thesis suggests, as a lug
-//!   of the button's frontal area `diameter × height` and length equal to its diameter);
-//! - base drag (eq. 3.94) on every step down in radius between body components and on the
-//!   aft end. Power on, the aft end's base area is reduced by the motor's cross-section
-//!   (§3.4.5, "subtracting the area of the thrusting motors"), taken as the motor mount's inner
-//!   diameter times the number of tubes of its cluster; the steps keep their base drag.
+//! - launch lugs: the bore's pipe friction (Swamee–Jain) and `0.7 (C_stag + C_base)` on the
+//!   wall's ring; rail buttons: a cylinder standing in the boundary layer, meeting the air at
+//!   its mean speed over its height (its drag a few per cent of the thesis' lug of the same
+//!   frontal area).
+//!
+//! **Power on.** OpenRocket flies the same coefficient with the motor burning (its base drag
+//! is not reduced for the exhaust), and so does the estimate: `power_on` is `power_off`. A
+//! team with a power-on curve (RASAero's, a wind tunnel's) gives the curves instead.
 //!
 //! **Air properties.** The flight uses these tables at any altitude; the Reynolds number of
 //! each Mach row is the sea-level one of the International Standard Atmosphere:
 //! `Re/L = M a₀/ν₀`, `a₀ = 340.294 m/s`, `ν₀ = μ₀/ρ₀ = 1.7894e-5/1.225 = 1.46073e-5 m²/s`,
-//! on the rocket's length `L`. (The Mach-0 row, a rocket at rest, takes the Reynolds number of
-//! the Mach-0.01 row so that the table does not jump to the `R < 10⁴` value.) Skin friction at
-//! altitude is somewhat higher than this (lower Reynolds number); the effect on `C_D` is a few
-//! per cent.
+//! on the rocket's length `L` (OpenRocket takes the flight's speed and the air where it
+//! flies). (The Mach-0 row, a rocket at rest, takes the Reynolds number of the Mach-0.01 row
+//! so that the table does not jump to the `R < 10⁴` value.) With the default 60 µm finish
+//! the friction of a high-power rocket is roughness-limited above about 12 m/s, where the
+//! Reynolds number does not enter; for a polished rocket at altitude the skin friction is a
+//! few per cent higher than this.
 //!
-//! Not modelled: fin–body interference drag, fin-tip vortices, the angle of attack (the flight
-//! applies its own correction if any), and the nozzle's own base drag.
+//! Not modelled: OpenRocket's "perfect finish" (partly laminar) friction, fin–body
+//! interference drag, fin-tip vortices, the angle of attack (OpenRocket multiplies the axial
+//! coefficient by up to 1.3 at 17°; the flight, as RocketPy's, reads the table as it is),
+//! and the nozzle's own base drag.
 
 use super::drag_formulas::{
-    base_cd, boattail_cd, fin_pressure_cd, launch_guide_area_m2, launch_guide_cd, skin_friction,
+    base_cd, boattail_cd, fin_pressure_cd, launch_lug_cd, rail_button_cd, skin_friction,
+    stagnation_cd,
 };
 use super::fins::Fins;
 use super::nose_drag::NosePressureDrag;
@@ -59,10 +73,25 @@ pub struct DragGeometry {
     /// Body sections fore to aft.
     pub sections: Vec<Section>,
     pub fins: Vec<FinDrag>,
-    /// Launch guides: (length, outer diameter, inner diameter), m.
-    pub guides: Vec<(f64, f64, f64)>,
-    /// Motor cross-section subtracted from the aft base area with the motor burning, m².
-    pub motor_area_m2: f64,
+    /// Launch guides.
+    pub guides: Vec<Guide>,
+}
+
+/// What drag needs of a launch guide.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Guide {
+    /// A launch lug: length, outer and inner (bore) diameter, m.
+    Lug {
+        length_m: f64,
+        outer_diameter_m: f64,
+        inner_diameter_m: f64,
+    },
+    /// A rail button: its center's station aft of the tip, its diameter and height, m.
+    Button {
+        station_m: f64,
+        outer_diameter_m: f64,
+        height_m: f64,
+    },
 }
 
 /// What drag needs of a fin set.
@@ -122,27 +151,21 @@ impl DragGeometry {
                         cross_section: f.cross_section,
                     })
                 }
-                ComponentKind::LaunchLug(l) => guides.push((
-                    c.length_m,
-                    l.outer_diameter_m,
-                    l.outer_diameter_m - 2.0 * l.wall_thickness_m,
-                )),
-                ComponentKind::RailButton(b) => {
-                    // A pin of frontal area D·h, as a solid lug of that area and length D.
-                    let d_eq = (4.0 * b.outer_diameter_m * b.height_m / PI).sqrt();
-                    guides.push((d_eq, d_eq, 0.0))
-                }
+                ComponentKind::LaunchLug(l) => guides.push(Guide::Lug {
+                    length_m: c.length_m,
+                    outer_diameter_m: l.outer_diameter_m,
+                    inner_diameter_m: l.outer_diameter_m - 2.0 * l.wall_thickness_m,
+                }),
+                // Its length along the axis is its diameter.
+                ComponentKind::RailButton(b) => guides.push(Guide::Button {
+                    station_m: c.x_top_m + b.outer_diameter_m / 2.0,
+                    outer_diameter_m: b.outer_diameter_m,
+                    height_m: b.height_m,
+                }),
                 _ => {}
             }
         }
         bodies.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let motor_area_m2 = design.motor_mount.as_ref().map_or(0.0, |m| {
-            let tubes = match &design.components.get(m.component).map(|c| &c.kind) {
-                Some(ComponentKind::InnerTube(t)) => t.cluster_offsets_m.len().max(1),
-                _ => 1,
-            };
-            tubes as f64 * PI * m.inner_diameter_m * m.inner_diameter_m / 4.0
-        });
         DragGeometry {
             ref_area_m2: PI * d * d / 4.0,
             length_m: design.length_m,
@@ -151,14 +174,21 @@ impl DragGeometry {
             sections: bodies.into_iter().map(|b| b.1).collect(),
             fins,
             guides,
-            motor_area_m2,
         }
     }
 
-    /// Builds the power-off and power-on tables.
+    /// Builds the power-off and power-on tables (the same: OpenRocket keeps the base drag
+    /// with the motor burning).
     pub fn estimate(&self) -> DragEstimate {
         let a_ref = self.ref_area_m2;
-        let fineness = self.length_m / self.ref_diameter_m;
+        // OpenRocket's body fineness: the body's length (plus 0.1 mm) over its largest
+        // *radius* (the thesis writes L/d; the code, which its users fly, L/r).
+        let max_r = self
+            .sections
+            .iter()
+            .map(|s| s.fore_radius_m.max(s.aft_radius_m))
+            .fold(0.0, f64::max);
+        let fineness = (self.length_m + 1e-4) / max_r;
         let body_wet: f64 = self.sections.iter().map(Section::wetted_area_m2).sum();
         let fin_wet: f64 = self
             .fins
@@ -188,23 +218,21 @@ impl DragGeometry {
                 pressure.push(Pressure::Boattail(gamma, PI * (r1 * r1 - r2 * r2) / a_ref));
             }
         }
-        // Steps down between consecutive sections, and the aft base.
-        let steps: f64 = self
-            .sections
-            .windows(2)
-            .map(|w| {
-                let (a, b) = (w[0].aft_radius_m, w[1].fore_radius_m);
-                if b < a {
-                    PI * (a * a - b * b)
-                } else {
-                    0.0
-                }
-            })
-            .sum::<f64>()
-            / a_ref;
-        let aft_r = self.sections.last().map_or(0.0, |s| s.aft_radius_m);
-        let base_off = PI * aft_r * aft_r / a_ref;
-        let base_on = (PI * aft_r * aft_r - self.motor_area_m2).max(0.0) / a_ref;
+        // Steps between consecutive sections (and the blunt fore face of the first, and the
+        // aft base): up, a face meeting the flow (stagnation drag); down, a base.
+        let mut steps_up = 0.0;
+        let mut steps_down = 0.0;
+        let mut before = 0.0;
+        for s in &self.sections {
+            let (a, b) = (before, s.fore_radius_m);
+            if b > a {
+                steps_up += PI * (b * b - a * a) / a_ref;
+            } else if b < a {
+                steps_down += PI * (a * a - b * b) / a_ref;
+            }
+            before = s.aft_radius_m;
+        }
+        steps_down += PI * before * before / a_ref;
 
         let common = |mach: f64| {
             let re = reynolds_per_metre(mach.max(0.01)) * self.length_m;
@@ -227,20 +255,42 @@ impl DragGeometry {
                         / a_ref
                 })
                 .sum();
+            let per_m = reynolds_per_metre(mach.max(0.01));
             let guides: f64 = self
                 .guides
                 .iter()
-                .map(|&(l, d, di)| {
-                    launch_guide_cd(mach, l, d) * launch_guide_area_m2(l, d, di) / a_ref
+                .map(|g| match *g {
+                    Guide::Lug {
+                        length_m,
+                        outer_diameter_m,
+                        inner_diameter_m,
+                    } => launch_lug_cd(
+                        mach,
+                        per_m,
+                        self.roughness_m,
+                        length_m,
+                        outer_diameter_m,
+                        inner_diameter_m,
+                        a_ref,
+                    ),
+                    Guide::Button {
+                        station_m,
+                        outer_diameter_m,
+                        height_m,
+                    } => rail_button_cd(mach, per_m, station_m, outer_diameter_m, height_m, a_ref),
                 })
                 .sum();
-            friction + body + fins + guides + base_cd(mach) * steps
+            friction
+                + body
+                + fins
+                + guides
+                + stagnation_cd(mach) * steps_up
+                + base_cd(mach) * steps_down
         };
-        let power_off = MachTable::from_fn(|m| common(m) + base_cd(m) * base_off);
-        let power_on = MachTable::from_fn(|m| common(m) + base_cd(m) * base_on);
+        let power_off = MachTable::from_fn(common);
         DragEstimate {
+            power_on: power_off.clone(),
             power_off,
-            power_on,
         }
     }
 }
@@ -271,7 +321,6 @@ mod tests {
             ],
             fins: vec![],
             guides: vec![],
-            motor_area_m2: PI * 0.02 * 0.02,
         }
     }
 
@@ -279,10 +328,11 @@ mod tests {
     fn a_finless_cone_and_tube_sums_friction_nose_and_base_drag_as_by_hand() {
         let est = cone_and_tube().estimate();
         let mach = 0.3;
-        // Wetted area: π R sqrt(R² + L²) + 2π R 0.7 = 0.267685391 m²; f_B = 10 so the body
-        // factor is 1.05: 0.267685391 · 1.05 / (π 0.05²) = 35.786900657.
+        // Wetted area: π R sqrt(R² + L²) + 2π R 0.7 = 0.267685391 m²; OpenRocket's body
+        // fineness is (1 m + 0.1 mm)/R = 20.002, so the body factor is 1 + 1/40.004 =
+        // 1.0249975: 0.267685391 · 1.0249975 / (π 0.05²) = 34.934746395.
         let re = 0.3 * 2.32960853e7; // on L = 1 m; zero roughness: smooth turbulent
-        let friction = skin_friction(re, mach, 0.0) * 35.786900657;
+        let friction = skin_friction(re, mach, 0.0) * 34.934746395;
         // Nose pressure drag (cone, fineness 3, sin φ = 0.05/sqrt(0.0925)) on its full base.
         let sin_eps = 0.05 / 0.0925f64.sqrt();
         let nose = NosePressureDrag::new(NoseShape::Conical, 3.0, sin_eps).at(mach);
@@ -293,11 +343,40 @@ mod tests {
             "{} vs {want_off}",
             est.power_off.at(mach)
         );
-        // Power on: the 40 mm motor's area (0.16 of the base) has no base drag.
-        let want_on = want_off - base * 0.16;
-        assert!((est.power_on.at(mach) - want_on).abs() < 1e-6);
+        // Power on: the same (OpenRocket keeps the base drag with the motor burning).
+        assert_eq!(est.power_on.at(mach), est.power_off.at(mach));
         // The friction coefficient alone: 1/(1.5 ln(6.98883e6) − 5.6)² · 0.991 = 0.00304518
-        let cf = friction / 35.786900657;
+        let cf = friction / 34.934746395;
         assert!((cf - 0.00304518).abs() < 1e-8, "{cf}");
+    }
+
+    #[test]
+    fn a_step_up_in_radius_meets_the_flow_with_stagnation_drag_and_a_step_down_has_base_drag() {
+        // The cone and tube with a 0.2 m tube of 120 mm after it: a 10 mm step up (a face of
+        // π (0.06² − 0.05²) meeting the flow) and the wider aft base.
+        let mut g = cone_and_tube();
+        g.sections.push(Section::tube(0.2, 0.06));
+        g.ref_area_m2 = PI * 0.06 * 0.06;
+        g.ref_diameter_m = 0.12;
+        g.length_m = 1.2;
+        let with_step = g.estimate().power_off.at(0.3);
+        // The same airframe's friction and nose, by the parts: remove the face and the base.
+        let a_ref = g.ref_area_m2;
+        let face = stagnation_cd(0.3) * PI * (0.06f64.powi(2) - 0.05f64.powi(2)) / a_ref;
+        let aft_base = base_cd(0.3) * PI * 0.06 * 0.06 / a_ref;
+        let mut smooth = g.clone();
+        smooth.sections[2] = Section::tube(0.2, 0.05);
+        let plain = smooth.estimate().power_off.at(0.3);
+        let plain_base = base_cd(0.3) * PI * 0.05 * 0.05 / a_ref;
+        // Friction differs by the wider tube's extra wetted area only.
+        let body_factor = 1.0 + 1.0 / (2.0 * (1.2 + 1e-4) / 0.06);
+        let body_factor_plain = 1.0 + 1.0 / (2.0 * (1.2 + 1e-4) / 0.05);
+        let cf = skin_friction(reynolds_per_metre(0.3) * 1.2, 0.3, 0.0);
+        let wet_cone_tube = PI * 0.05 * (0.05f64 * 0.05 + 0.09).sqrt() + 2.0 * PI * 0.05 * 0.7;
+        let friction = cf * (wet_cone_tube + 2.0 * PI * 0.06 * 0.2) * body_factor / a_ref;
+        let friction_plain =
+            cf * (wet_cone_tube + 2.0 * PI * 0.05 * 0.2) * body_factor_plain / a_ref;
+        let want = plain - plain_base - friction_plain + friction + face + aft_base;
+        assert!((with_step - want).abs() < 1e-12, "{with_step} vs {want}");
     }
 }

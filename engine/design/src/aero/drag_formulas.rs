@@ -12,31 +12,15 @@ use crate::design::FinCrossSection;
 /// Ratio of specific heats of air.
 pub const GAMMA_AIR: f64 = 1.4;
 
-/// Which branch of the skin-friction formula applies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FrictionRegime {
-    /// `R < 10⁴`: the value at `R = 10⁴`, 1.48e-2.
-    LowReynolds,
-    /// Fully turbulent, smooth: `1/(1.50 ln R − 5.6)²` (eq. 3.78).
-    Turbulent,
-    /// Above the roughness-critical Reynolds number `51 (R_s/L)^−1.039` (eq. 3.79):
-    /// `0.032 (R_s/L)^0.2` (eq. 3.80).
-    RoughnessLimited,
-}
-
-/// Incompressible skin-friction coefficient on the wetted area, for a Reynolds number `re`
-/// (on the rocket's length `L`) and relative roughness `R_s/L`, with the branch used.
-pub fn skin_friction_incompressible(re: f64, relative_roughness: f64) -> (f64, FrictionRegime) {
-    let re_crit = 51.0 * relative_roughness.powf(-1.039);
+/// Smooth skin friction before its compressibility correction, for a Reynolds number `re`
+/// on the rocket's length: fully turbulent `1/(1.50 ln R − 5.6)²` (eq. 3.78), and below
+/// `R = 10⁴` the value there, 1.48e-2 (OpenRocket's `calculateFrictionCoefficient` for a
+/// finish that is not "perfect").
+pub fn smooth_cf(re: f64) -> f64 {
     if re < 1.0e4 {
-        (1.48e-2, FrictionRegime::LowReynolds)
-    } else if re < re_crit {
-        (turbulent_cf(re), FrictionRegime::Turbulent)
+        1.48e-2
     } else {
-        (
-            0.032 * relative_roughness.powf(0.2),
-            FrictionRegime::RoughnessLimited,
-        )
+        turbulent_cf(re)
     }
 }
 
@@ -45,47 +29,61 @@ pub fn turbulent_cf(re: f64) -> f64 {
     1.0 / (1.50 * re.ln() - 5.6).powi(2)
 }
 
-/// Compressibility factor of the turbulent (and low-Reynolds) skin friction: `1 − 0.1 M²`
-/// subsonic (eq. 3.82), `(1 + 0.15 M²)^−0.58` supersonic (eq. 3.83).
-pub fn turbulent_compressibility(mach: f64) -> f64 {
-    if mach < 1.0 {
-        1.0 - 0.1 * mach * mach
+/// Roughness-limited skin friction `0.032 (R_s/L)^0.2` (eq. 3.80), before its compressibility
+/// correction.
+pub fn roughness_limited_cf(relative_roughness: f64) -> f64 {
+    0.032 * relative_roughness.powf(0.2)
+}
+
+/// `sub` below Mach 0.9, `sup` above 1.1, and between them the two weighted linearly across
+/// the band, as OpenRocket joins its subsonic and supersonic corrections.
+fn across_mach_one(mach: f64, sub: f64, sup: f64) -> f64 {
+    if mach < 0.9 {
+        sub
+    } else if mach < 1.1 {
+        sup * (mach - 0.9) / 0.2 + sub * (1.1 - mach) / 0.2
     } else {
-        (1.0 + 0.15 * mach * mach).powf(-0.58)
+        sup
     }
+}
+
+/// Compressibility factor of the smooth skin friction: `1 − 0.1 M²` subsonic (eq. 3.82),
+/// `(1 + 0.15 M²)^−0.58` supersonic (eq. 3.83), both taken at `M` and blended over Mach
+/// 0.9–1.1.
+pub fn turbulent_compressibility(mach: f64) -> f64 {
+    let m2 = mach * mach;
+    across_mach_one(mach, 1.0 - 0.1 * m2, (1.0 + 0.15 * m2).powf(-0.58))
 }
 
 /// Compressibility factor of the roughness-limited skin friction: `1 − 0.1 M²` subsonic,
-/// `1/(1 + 0.18 M²)` supersonic (eq. 3.84).
+/// `1/(1 + 0.18 M²)` supersonic (eq. 3.84), and over Mach 0.9–1.1 a straight line between
+/// their values at 0.9 and 1.1 (OpenRocket's `calculateRoughnessCorrection`).
 pub fn roughness_compressibility(mach: f64) -> f64 {
-    if mach < 1.0 {
+    if mach < 0.9 {
         1.0 - 0.1 * mach * mach
-    } else {
+    } else if mach > 1.1 {
         1.0 / (1.0 + 0.18 * mach * mach)
+    } else {
+        across_mach_one(mach, 1.0 - 0.1 * 0.81, 1.0 / (1.0 + 0.18 * 1.21))
     }
 }
 
-/// Skin-friction coefficient with the compressibility corrections; a corrected
-/// roughness-limited value below the corrected turbulent one is replaced by the latter (§3.4.2).
+/// Skin-friction coefficient on the wetted area: the larger of the smooth and the
+/// roughness-limited values, each with its compressibility correction (OpenRocket's
+/// `calculateFrictionCD`: "actual Cf is maximum of Cf and the roughness-limited value"; the
+/// thesis' critical Reynolds number `51 (R_s/L)^−1.039` is not used). `relative_roughness` is
+/// `R_s/L`, `re` on the rocket's length.
 pub fn skin_friction(re: f64, mach: f64, relative_roughness: f64) -> f64 {
-    let (cf, regime) = skin_friction_incompressible(re, relative_roughness);
-    match regime {
-        FrictionRegime::LowReynolds | FrictionRegime::Turbulent => {
-            cf * turbulent_compressibility(mach)
-        }
-        FrictionRegime::RoughnessLimited => {
-            let rough = cf * roughness_compressibility(mach);
-            let smooth = turbulent_cf(re) * turbulent_compressibility(mach);
-            rough.max(smooth)
-        }
-    }
+    let smooth = smooth_cf(re) * turbulent_compressibility(mach);
+    let rough = roughness_limited_cf(relative_roughness) * roughness_compressibility(mach);
+    smooth.max(rough)
 }
 
 /// Stagnation-pressure drag of a blunt cylinder face, per own area: `0.85 q_stag/q` with
-/// `q_stag/q = 1 + M²/4 + M⁴/40` (M < 1) or `1.84 − 0.76/M² + 0.166/M⁴ + 0.035/M⁶` (eqs. B.1, B.2).
+/// `q_stag/q = 1 + M²/4 + M⁴/40` (M ≤ 1) or `1.84 − 0.76/M² + 0.166/M⁴ + 0.035/M⁶` (eqs. B.1, B.2).
 pub fn stagnation_cd(mach: f64) -> f64 {
     let m2 = mach * mach;
-    let q = if mach < 1.0 {
+    let q = if mach <= 1.0 {
         1.0 + m2 / 4.0 + m2 * m2 / 40.0
     } else {
         1.84 - 0.76 / m2 + 0.166 / (m2 * m2) + 0.035 / (m2 * m2 * m2)
@@ -138,16 +136,95 @@ pub fn fin_pressure_cd(
     le_perp * leading_edge_sweep_rad.cos().powi(2) + te
 }
 
-/// Pressure drag of a launch guide of length `l` and outer diameter `d` per its reference
-/// area [`launch_guide_area_m2`]: `max(1.3 − 0.3 l/d, 1) · C_D,stag` (eq. 3.95).
-pub fn launch_guide_cd(mach: f64, length_m: f64, outer_diameter_m: f64) -> f64 {
-    (1.3 - 0.3 * length_m / outer_diameter_m).max(1.0) * stagnation_cd(mach)
+/// Drag of a launch lug (a tube along the body) per `A_ref`, as OpenRocket's `TubeCalc`:
+/// the bore's pipe friction `f (l/d_i)` on the bore's area, with the Darcy friction factor of
+/// the Swamee–Jain equation `f = 0.25 / log10(ε/(3.7 d_i) + 5.74/Re^0.9)²` (`Re = v d_i/ν`,
+/// `ε` the surface roughness), plus `0.7 (C_D,stag + C_D,base)` on the wall's ring. A lug
+/// without a bore is the ring alone. `reynolds_per_m` is `v/ν`.
+pub fn launch_lug_cd(
+    mach: f64,
+    reynolds_per_m: f64,
+    roughness_m: f64,
+    length_m: f64,
+    outer_diameter_m: f64,
+    inner_diameter_m: f64,
+    ref_area_m2: f64,
+) -> f64 {
+    use std::f64::consts::PI;
+    let inner_area = PI * inner_diameter_m * inner_diameter_m / 4.0;
+    let ring = PI * outer_diameter_m * outer_diameter_m / 4.0 - inner_area;
+    let bore = if inner_diameter_m > 0.0 {
+        let re = reynolds_per_m * inner_diameter_m;
+        let f = 0.25
+            / (roughness_m / (3.7 * inner_diameter_m) + 5.74 / re.powf(0.9))
+                .log10()
+                .powi(2);
+        f * length_m / inner_diameter_m * inner_area
+    } else {
+        0.0
+    };
+    (bore + 0.7 * (stagnation_cd(mach) + base_cd(mach)) * ring) / ref_area_m2
 }
 
-/// Reference area of a launch guide: `π r_ext² − π r_int² max(1 − l/d, 0)` (eq. 3.96).
-pub fn launch_guide_area_m2(length_m: f64, outer_diameter_m: f64, inner_diameter_m: f64) -> f64 {
-    let (re, ri) = (outer_diameter_m / 2.0, inner_diameter_m / 2.0);
-    std::f64::consts::PI * (re * re - ri * ri * (1.0 - length_m / outer_diameter_m).max(0.0))
+/// The drag coefficients OpenRocket's `RailButtonCalc` reads for a circular cylinder across
+/// the flow against the Mach number of the air it meets (Gowen and Perkins, NACA TN 2960,
+/// fig. 7): (Mach, C_D) corners, linear between them.
+const CYLINDER_CD: [(f64, f64); 12] = [
+    (0.0, 1.2),
+    (0.2, 1.22),
+    (0.3, 1.25),
+    (0.4, 1.3),
+    (0.5, 1.4),
+    (0.6, 1.5),
+    (0.7, 1.6),
+    (1.0, 2.1),
+    (1.6, 1.5),
+    (2.0, 1.45),
+    (2.8, 1.33),
+    (100.0, 1.33),
+];
+
+/// [`CYLINDER_CD`] at `mach`, linear between its corners (and its end values beyond them).
+fn cylinder_cd(mach: f64) -> f64 {
+    let (first, last) = (CYLINDER_CD[0], CYLINDER_CD[CYLINDER_CD.len() - 1]);
+    if mach <= first.0 {
+        return first.1;
+    }
+    for w in CYLINDER_CD.windows(2) {
+        let ((m0, c0), (m1, c1)) = (w[0], w[1]);
+        if mach <= m1 {
+            return c0 + (c1 - c0) * (mach - m0) / (m1 - m0);
+        }
+    }
+    last.1
+}
+
+/// Drag of a rail button per `A_ref`, as OpenRocket's `RailButtonCalc`: a cylinder of height
+/// `h` and diameter `D` standing in the body's boundary layer, whose thickness where the
+/// button stands, `x` aft of the tip, is `δ = 0.37 x / Re_x^0.2`. The air crossing the button
+/// is taken to move at its mean speed over the height: `M_b = M (h − δ/2)/h` if the button
+/// stands out of the layer, `M h/(2δ)` inside it. The button's drag is then the cylinder's
+/// `C_D(M_b)` at that speed, `C_D(M_b) (M_b/M)²` at the rocket's, times the stagnation
+/// pressure's factor, on the frontal area `D h`. `reynolds_per_m` is `v/ν`.
+pub fn rail_button_cd(
+    mach: f64,
+    reynolds_per_m: f64,
+    station_m: f64,
+    outer_diameter_m: f64,
+    height_m: f64,
+    ref_area_m2: f64,
+) -> f64 {
+    let x = station_m.max(1e-6);
+    let delta = 0.37 * x / (reynolds_per_m * x).powf(0.2);
+    let h = height_m;
+    // M_b / M.
+    let ratio = if h > delta {
+        (h - 0.5 * delta) / h
+    } else {
+        h / 2.0 / delta
+    };
+    cylinder_cd(ratio * mach) * ratio * ratio * stagnation_cd(mach) * outer_diameter_m * h
+        / ref_area_m2
 }
 
 /// Boattail pressure drag per its frontal area `π (r_fore² − r_aft²)` (eq. 3.88): the base
@@ -171,29 +248,42 @@ mod tests {
     #[test]
     fn turbulent_skin_friction_at_a_million_matches_the_formula_by_hand() {
         // 1.5 ln(1e6) − 5.6 = 1.5 · 13.815510558 − 5.6 = 15.123265837; 1/that² = 0.0043722887
-        let (cf, regime) = skin_friction_incompressible(1.0e6, 1e-7);
-        assert_eq!(regime, FrictionRegime::Turbulent);
+        let cf = smooth_cf(1.0e6);
         assert!((cf - 0.0043722887).abs() < 1e-10, "{cf}");
     }
 
     #[test]
     fn skin_friction_below_ten_thousand_is_the_value_at_ten_thousand() {
-        let (cf, regime) = skin_friction_incompressible(5.0e3, 1e-5);
-        assert_eq!(regime, FrictionRegime::LowReynolds);
-        assert_eq!(cf, 1.48e-2);
+        assert_eq!(smooth_cf(5.0e3), 1.48e-2);
         assert!((turbulent_cf(1.0e4) - 1.48e-2).abs() < 1e-4);
     }
 
     #[test]
-    fn rough_skin_friction_is_capped_by_roughness_above_the_critical_reynolds_number() {
-        // R_s/L = 20e-6/2 = 1e-5: R_crit = 51 · 1e5^1.039 = 7.9904e6;
-        // C_f = 0.032 · 1e-5^0.2 = 0.032 · 0.1 = 0.0032.
+    fn skin_friction_is_the_larger_of_the_smooth_and_the_roughness_limited_values() {
+        // R_s/L = 1e-5: 0.032 · 1e-5^0.2 = 0.0032. At Re 7e6 the smooth value is
+        // 1/(1.5 ln 7e6 − 5.6)² = 0.0030720, so the rough one stands, as in OpenRocket (the
+        // thesis' critical Reynolds number, 51 · 1e5^1.039 = 7.99e6, would have kept 0.0030720).
         let rel = 1e-5;
-        let (cf, regime) = skin_friction_incompressible(1.0e7, rel);
-        assert_eq!(regime, FrictionRegime::RoughnessLimited);
-        assert!((cf - 0.0032).abs() < 1e-12);
-        let (_, below) = skin_friction_incompressible(7.0e6, rel);
-        assert_eq!(below, FrictionRegime::Turbulent);
+        assert!((roughness_limited_cf(rel) - 0.0032).abs() < 1e-15);
+        assert!((skin_friction(7.0e6, 0.0, rel) - 0.0032).abs() < 1e-15);
+        assert!((turbulent_cf(7.0e6) - 0.0030720221).abs() < 1e-10);
+        // At Re 1e6 the smooth 0.0043722887 is the larger.
+        assert!((skin_friction(1.0e6, 0.0, rel) - 0.0043722887).abs() < 1e-10);
+    }
+
+    #[test]
+    fn the_compressibility_corrections_are_blended_across_mach_point_nine_to_one_point_one() {
+        // Smooth, at M 1: halfway between 1 − 0.1 = 0.9 and 1.15^−0.58 = 0.9221366: 0.9110683.
+        assert!((turbulent_compressibility(1.0) - 0.9110682925).abs() < 1e-10);
+        // Rough, at M 1: halfway between its values at 0.9 (0.919) and 1.1 (1/1.2178).
+        assert!((roughness_compressibility(1.0) - 0.8700764493).abs() < 1e-10);
+        // Continuous at both ends of the band.
+        for f in [turbulent_compressibility, roughness_compressibility] {
+            for m in [0.9, 1.1] {
+                let (below, above) = (f(m - 1e-12), f(m + 1e-12));
+                assert!((below - above).abs() < 1e-10, "{m}: {below} {above}");
+            }
+        }
     }
 
     #[test]
@@ -250,16 +340,44 @@ mod tests {
     }
 
     #[test]
-    fn a_long_launch_lug_counts_its_bore_and_the_stagnation_drag() {
-        // l/d = 2: factor max(0.7, 1) = 1, area = π r_ext² (bore closed off).
-        let a = launch_guide_area_m2(0.02, 0.01, 0.008);
-        assert!((a - std::f64::consts::PI * 0.005 * 0.005).abs() < 1e-18);
-        assert_eq!(launch_guide_cd(0.3, 0.02, 0.01), stagnation_cd(0.3));
-        // l = 0: factor 1.3, area is the ring only.
-        let ring = launch_guide_area_m2(0.0, 0.01, 0.008);
-        assert!(
-            (ring - std::f64::consts::PI * (0.005f64.powi(2) - 0.004f64.powi(2))).abs() < 1e-18
-        );
-        assert!((launch_guide_cd(0.3, 0.0, 0.01) - 1.3 * stagnation_cd(0.3)).abs() < 1e-15);
+    fn a_launch_lug_is_its_bores_pipe_friction_and_its_rings_stagnation_and_base_drag() {
+        // A 5/16" lug 50 mm long with a 1/4" bore on a 54 mm rocket, at Mach 0.3 at sea level
+        // (v/ν = 6.988826e6 /m), 60 µm finish, by hand: Re_d = 44728.48, Swamee–Jain
+        // f = 0.25/log10(60e-6/(3.7 · 0.0064) + 5.74/Re_d^0.9)² = 0.0388610; bore
+        // f (0.05/0.0064) π 0.0032², ring 0.7 (C_stag + C_base) π (0.00395² − 0.0032²), over
+        // π 0.027²: 0.0094188954.
+        let a_ref = std::f64::consts::PI * 0.027 * 0.027;
+        let cd = launch_lug_cd(0.3, 6.988825584e6, 60e-6, 0.05, 0.0079, 0.0064, a_ref);
+        assert!((cd - 0.0094188954).abs() < 1e-9, "{cd}");
+        // Without a bore, the ring alone (here the whole face).
+        let solid = launch_lug_cd(0.3, 6.988825584e6, 60e-6, 0.05, 0.0079, 0.0, a_ref);
+        let want =
+            0.7 * (stagnation_cd(0.3) + base_cd(0.3)) * std::f64::consts::PI * 0.00395f64.powi(2)
+                / a_ref;
+        assert!((solid - want).abs() < 1e-15, "{solid} vs {want}");
+    }
+
+    #[test]
+    fn a_rail_button_inside_the_boundary_layer_meets_a_quarter_of_the_speed() {
+        // A 10 mm × 8 mm button 1 m aft of the tip at Mach 0.3 at sea level: Re_x = 6.988826e6,
+        // δ = 0.37/Re_x^0.2 = 0.0158242 m > h, so the air crossing it moves at
+        // h/(2δ) = 0.2527779 of the rocket's speed; the cylinder's C_D there (Mach 0.0758) is
+        // 1.2075833, and the button's 1.2075833 · 0.2527779² · C_stag(0.3) · 0.01 · 0.008 / A_ref
+        // = 0.0023430209 on a 54 mm rocket (a lug of the button's area had counted 0.0303655).
+        let a_ref = std::f64::consts::PI * 0.027 * 0.027;
+        let cd = rail_button_cd(0.3, 6.988825584e6, 1.0, 0.01, 0.008, a_ref);
+        assert!((cd - 0.0023430209).abs() < 1e-10, "{cd}");
+        // A button standing out of a thin layer meets the speed less half the layer's share.
+        let tall = rail_button_cd(0.3, 6.988825584e6, 1.0, 0.01, 0.05, a_ref);
+        let delta = 0.37 / 6.988825584e6f64.powf(0.2);
+        assert!((delta - 0.0158241679).abs() < 1e-10);
+        let ratio = (0.05 - 0.5 * delta) / 0.05;
+        // (Mach 0.2527: between the table's corners at 0.2 and 0.3.)
+        let cyl = 1.22 + 0.03 * (ratio * 0.3 - 0.2) / 0.1;
+        let want = cyl * ratio * ratio * stagnation_cd(0.3) * 0.01 * 0.05 / a_ref;
+        assert!((tall - want).abs() < 1e-9 * want, "{tall} vs {want}");
+        // The cylinder's table between its corners.
+        assert!((cylinder_cd(0.85) - 1.85).abs() < 1e-12);
+        assert_eq!(cylinder_cd(200.0), 1.33);
     }
 }

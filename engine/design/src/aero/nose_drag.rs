@@ -196,11 +196,19 @@ pub struct NosePressureDrag {
 
 impl NosePressureDrag {
     pub fn new(shape: NoseShape, fineness: f64, sin_phi: f64) -> Self {
+        // A tangent ogive meets the body at no angle: OpenRocket sets its joint angle to
+        // zero ("special case: tangent ogive"), so it has no pressure drag below Mach 1 and
+        // only the conical formula's transonic bump of a zero angle above.
+        let sin_phi = if shape == NoseShape::Ogive {
+            0.0
+        } else {
+            sin_phi
+        };
         let sin_eps = 1.0 / (1.0 + 4.0 * fineness * fineness).sqrt();
         let blend = |a: Base, b: Base, p: f64| (a, Some(b), p.clamp(0.0, 1.0));
         let (one, two, p, direct) = match shape {
             NoseShape::Conical => (Base::Cone(sin_phi), None, 0.0, true),
-            NoseShape::Ogive => (Base::Cone(sin_eps), None, 0.0, true),
+            NoseShape::Ogive => (Base::Cone(sin_phi), None, 0.0, true),
             NoseShape::Elliptical => (Base::Data(ELLIPSOID), None, 0.0, false),
             NoseShape::PowerSeries { k } => {
                 let (a, b, p) = if k <= 0.25 {
@@ -324,6 +332,26 @@ mod tests {
         let d = NosePressureDrag::new(NoseShape::Conical, 3.0, s);
         assert!((d.at(0.0) - 0.8 * s * s).abs() < 1e-12);
         assert!(d.at(0.5) > d.at(0.0) && d.at(0.9) > d.at(0.5) && d.at(0.99) < d.at(1.0) + 1e-9);
+    }
+
+    #[test]
+    fn a_tangent_ogive_has_no_pressure_drag_but_the_zero_angle_cones_transonic_bump() {
+        // OpenRocket's tangent ogive: joint angle zero whatever the profile says, so nothing
+        // below Mach 1 or above 1.3, and between them the conical cubic through 0 at both ends
+        // with slope 4/(γ + 1) at Mach 1 and 0 at 1.3: 0.3 · (5/3) (t³ − 2t² + t), t = (M − 1)/0.3
+        // (at M 1.16, t = 0.5333: 0.0580741).
+        let n = NosePressureDrag::new(NoseShape::Ogive, 2.5, 0.3);
+        for m in [0.0, 0.3, 0.9, 0.99, 1.4, 2.0] {
+            assert_eq!(n.at(m), 0.0, "Mach {m}");
+        }
+        let t: f64 = 0.16 / 0.3;
+        let want = 0.3 * (4.0 / 2.4) * (t * t * t - 2.0 * t * t + t);
+        assert!(
+            (n.at(1.16) - want).abs() < 1e-12,
+            "{} vs {want}",
+            n.at(1.16)
+        );
+        assert!((want - 0.0580741).abs() < 1e-7);
     }
 
     #[test]
