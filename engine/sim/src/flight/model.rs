@@ -128,6 +128,19 @@ impl InstantMemo {
         if let Some(ms) = model.settled_state(starts, t) {
             return (ms, 0.0);
         }
+        self.computed(model, starts, starts_changed, t)
+    }
+
+    /// [`InstantMemo::get`] where the caller has found the mass not settled at `t`
+    /// ([`FlightModel::mass_settled`] false, so [`FlightModel::settled_state`] is `None`).
+    #[inline]
+    pub fn computed<'m>(
+        &'m mut self,
+        model: &'m FlightModel,
+        starts: &ShiftStarts,
+        starts_changed: u64,
+        t: f64,
+    ) -> (&'m MassState, f64) {
         let key = Some((t.to_bits(), starts_changed));
         if self.key != key {
             self.inst = model.instant_computed(starts, t);

@@ -469,7 +469,7 @@ impl<'a, O: Observer> Paused<'a, O> {
         // The step's last two stages share a time: the second reads the first's mass state.
         let key = (t.to_bits(), self.run.starts_changed);
         if self.moving_key != Some(key) {
-            let (ms, thrust_n) = self.run.memo.get(model, starts, key.1, t);
+            let (ms, thrust_n) = self.run.memo.computed(model, starts, key.1, t);
             self.moving = MassLanes::of(ms);
             self.moving_thrust_n = thrust_n;
             self.moving_key = Some(key);
