@@ -28,8 +28,9 @@
 //! **Determinism.** A lane depends only on its row of the columns, never on its chunk, its
 //! neighbours, its thread or the order lanes are scheduled in; results are handed to the sink
 //! in variant order. **Memory** does not grow with the number of variants: [`Batch::run`] asks
-//! a closure for the columns of one chunk at a time, inside the task that flies it, and keeps a
-//! window of chunks (their columns and results) in flight at once. **Failures** are rows: a
+//! a closure for the columns of one chunk at a time, inside the task that flies it, and starts
+//! no chunk more than a window of chunks beyond the first whose results are not yet handed on
+//! (`stream`: one worker per thread, chunks taken in order, results reordered, no barrier). **Failures** are rows: a
 //! refused input, a flight that fails or a lane that panics is recorded with its reason and the
 //! run goes on.
 //!
@@ -38,6 +39,7 @@
 //! controller and the pad and rail run one lane at a time (see `ARCHITECTURE.md`).
 
 mod group;
+mod stream;
 
 pub use group::{eval_four, LANES_IN_FLIGHT};
 
@@ -47,7 +49,6 @@ use crate::flight::{Flight, Metrics, SimError, Simulation, Warning};
 use crate::trigger::Trigger;
 use crate::wind::Wind;
 use group::{step_group, Flying, Lane, LaneEnd, Scratch};
-use rayon::prelude::*;
 use std::cell::OnceCell;
 use std::ops::Range;
 
@@ -628,68 +629,6 @@ impl Batch {
             Status::Failed,
             format!("the simulator panicked: {message}"),
         )
-    }
-
-    /// Fly variants `0..n` on the current rayon pool, `chunk` variants per task, keeping at
-    /// most `window` chunks in flight, and hand each result to `sink` in variant order.
-    ///
-    /// `columns_of(range)` gives the columns of the variants `range` (row `r` is variant
-    /// `range.start + r`); it is called once per chunk, inside the task that flies it, so only
-    /// the chunks in flight hold their inputs. It must give a variant the same row whatever
-    /// the range it comes in (then the results do not depend on `chunk`, `window` or the
-    /// threads). Errs at the first chunk whose columns have the wrong shape or length, after
-    /// handing on the results of every variant before that chunk.
-    pub fn run(
-        &self,
-        n: usize,
-        chunk: usize,
-        window: usize,
-        columns_of: impl Fn(Range<usize>) -> Columns + Sync,
-        mut sink: impl FnMut(LaneResult),
-    ) -> Result<(), String> {
-        let chunk = chunk.max(1);
-        let window = window.max(1);
-        let mut start = 0;
-        while start < n {
-            let end = (start + chunk * window).min(n);
-            let chunks: Vec<Result<Vec<LaneResult>, String>> = (start..end)
-                .step_by(chunk)
-                .collect::<Vec<_>>()
-                .into_par_iter()
-                .map(|c0| {
-                    let rows = c0..(c0 + chunk).min(end);
-                    let columns = columns_of(rows.clone());
-                    if columns.len != rows.len() {
-                        return Err(format!(
-                            "the columns of variants {rows:?} have {} rows, not {}",
-                            columns.len,
-                            rows.len()
-                        ));
-                    }
-                    self.fly_chunk(&columns, c0)
-                        .map_err(|e| format!("variants {rows:?}: {e}"))
-                })
-                .collect();
-            for results in chunks {
-                for r in results? {
-                    sink(r);
-                }
-            }
-            start = end;
-        }
-        Ok(())
-    }
-
-    /// [`Batch::run`] over columns held whole (`columns.len` variants), sliced chunk by chunk.
-    pub fn run_columns(
-        &self,
-        columns: &Columns,
-        chunk: usize,
-        window: usize,
-        sink: impl FnMut(LaneResult),
-    ) -> Result<(), String> {
-        self.check(columns)?;
-        self.run(columns.len, chunk, window, |r| columns.slice(r), sink)
     }
 }
 

@@ -386,6 +386,71 @@ fn each_chunk_s_columns_are_asked_for_once_in_chunk_sized_ranges_covering_every_
 }
 
 #[test]
+fn no_chunk_starts_more_than_a_window_beyond_the_first_not_yet_handed_on() {
+    // Memory stays bounded: with 2 threads, chunks of 3 and a window of 2, when a chunk's
+    // columns are asked for, the chunks before the window's start have all been sunk.
+    let (n, chunk, window) = (60, 3, 2);
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let sunk = std::sync::atomic::AtomicUsize::new(0);
+    let worst_lead = std::sync::atomic::AtomicUsize::new(0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        batch.run(
+            n,
+            chunk,
+            window,
+            |rows| {
+                let first_unsunk = sunk.load(std::sync::atomic::Ordering::SeqCst) / chunk;
+                let lead = rows.start / chunk - first_unsunk;
+                worst_lead.fetch_max(lead, std::sync::atomic::Ordering::SeqCst);
+                columns_of(rows, 3)
+            },
+            |_| {
+                sunk.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+            },
+        )
+    })
+    .unwrap();
+    assert_eq!(sunk.into_inner(), n);
+    let lead = worst_lead.into_inner();
+    assert!(
+        lead < window,
+        "a chunk started {lead} chunks ahead of the sink"
+    );
+}
+
+#[test]
+fn a_panic_in_the_columns_closure_reaches_the_caller_instead_of_hanging_the_workers() {
+    // Chunk 0 panics while another worker waits for it to be sunk (window 1).
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        pool.install(|| {
+            batch.run(
+                8,
+                2,
+                1,
+                |rows| {
+                    if rows.start == 0 {
+                        std::thread::sleep(std::time::Duration::from_millis(50));
+                        panic!("columns of the first chunk");
+                    }
+                    columns_of(rows, 1)
+                },
+                |_| {},
+            )
+        })
+    }));
+    assert!(caught.is_err(), "the panic was swallowed");
+}
+
+#[test]
 fn columns_of_the_wrong_length_or_shape_are_an_error_naming_the_variants() {
     let batch = Batch::new(base(), Some("ballast")).unwrap();
     let short = batch
