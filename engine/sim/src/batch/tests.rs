@@ -10,6 +10,7 @@ use crate::MassShift;
 use hpr_design::motor::{self, MotorOptions};
 use hpr_design::Design;
 
+mod air;
 mod kernels;
 
 const REFERENCE: &str = concat!(

@@ -9,11 +9,13 @@
 //! which no change touches), so the order of the changes never changes a verdict.
 
 use super::{MassAdjustment, Parachute, Rail, SimError, SimOptions, Simulation};
+use crate::atmosphere::AirTable;
 use crate::flight::{model, Environment};
 use crate::shifts::{self, MassShift};
 use crate::trigger::Trigger;
 use hpr_design::mass;
 use hpr_design::motor::MotorOptions;
+use std::sync::Arc;
 
 /// A flight being changed: every setter checks its input as the matching `with_*` builder
 /// does and records it; [`Simulation::with_changes`] rebuilds the model once at the end.
@@ -182,6 +184,13 @@ impl Changes<'_> {
             delta_cg_m,
         };
         Ok(())
+    }
+
+    /// Offer `table` as the flight's air table: the rebuild keeps it if it is the table of the
+    /// air the flight then names (the same numbers, built once for many flights), and builds
+    /// the right one otherwise.
+    pub fn air_table_candidate(&mut self, table: Arc<AirTable>) {
+        self.sim.model.air = table;
     }
 
     /// See [`Simulation::with_site`]. The site and rail are checked by the rebuild.
