@@ -30,9 +30,9 @@
 //! in variant order. **Memory** does not grow with the number of variants: [`Batch::run`] asks
 //! a closure for the columns of one chunk at a time, inside the task that flies it, and starts
 //! no chunk more than a window of chunks beyond the first whose results are not yet handed on
-//! (`stream`: one worker per thread, chunks taken in order, results reordered, no barrier). **Failures** are rows: a
-//! refused input, a flight that fails or a lane that panics is recorded with its reason and the
-//! run goes on.
+//! (`stream`: one worker per thread, chunks taken in order, results reordered, no barrier).
+//! **Failures** are rows: a refused input, a flight that fails or a lane that panics is
+//! recorded with its reason and the run goes on.
 //!
 //! What it does not do yet: each lane's step ends (event functions and their location,
 //! metrics, triggers), its mass states while the motor burns or a part moves, the step-size
