@@ -76,14 +76,21 @@ fn the_moving_ballast_example_prints_the_specification_s_table_to_every_digit() 
     let moving = flight.metrics.apogee_m.unwrap();
     let held = still.run(&mut ()).unwrap().metrics.apogee_m.unwrap();
     eprintln!("apogee {moving:.3} m with the ballast moving, {held:.3} m held still");
+    // The specification: 1749.8 m moving, 1749.9 m held. Measured 1749.987 and 1750.084 m
+    // (0.01 % above; the specification does not say which atmosphere, rail and integrator
+    // settings its figures used, so 0.5 m is allowed); the ballast's worth, −0.097 m, is the
+    // specification's −0.1 m.
+    for (a, spec) in [(moving, 1749.8), (held, 1749.9)] {
+        assert!(
+            (a - spec).abs() <= 0.5,
+            "apogee {a} m against {spec} m (bound 0.5 m)"
+        );
+    }
     assert!(
-        (moving - held).abs() < 1.0,
-        "the apogees differ by {} m (bound 1 m)",
+        (moving - held + 0.1).abs() <= 0.05,
+        "the ballast moves the apogee by {} m (the specification: −0.1 m ± 0.05)",
         moving - held
     );
-    for a in [moving, held] {
-        assert!((a - 1750.0).abs() <= 17.5, "apogee {a} m (1750 m ± 1 %)");
-    }
 }
 
 #[test]

@@ -127,6 +127,9 @@ impl ShiftRefusal {
         use ShiftRefusal::*;
         match self {
             TooShort { index, .. } => Some((*index, "duration_s")),
+            NotFinite {
+                index, travel_m, ..
+            } if travel_m.is_finite() => Some((*index, "duration_s")),
             NotFinite { index, .. } => Some((*index, "travel_m")),
             UnknownComponent { index, .. }
             | BodyComponent { index, .. }

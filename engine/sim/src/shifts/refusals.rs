@@ -32,10 +32,14 @@ fn shifts_that_cannot_be_made_are_refused() {
         plan(&design(&v), &one("ballast", 0.1, 0.01), Some(6.0)).is_ok(),
         "exactly 10 ms is allowed"
     );
-    assert!(matches!(
-        refuse(&v, one("ballast", f64::NAN, 1.0)),
-        ShiftRefusal::NotFinite { .. }
-    ));
+    // A value that is not a finite number is refused, and the refusal names the field at
+    // fault, so that a scenario or design file can point at its own key.
+    let travel = refuse(&v, one("ballast", f64::NAN, 1.0));
+    assert!(matches!(travel, ShiftRefusal::NotFinite { .. }));
+    assert_eq!(travel.field(), Some((0, "travel_m")));
+    let duration = refuse(&v, one("ballast", 0.1, f64::INFINITY));
+    assert!(matches!(duration, ShiftRefusal::NotFinite { .. }));
+    assert_eq!(duration.field(), Some((0, "duration_s")));
     assert!(matches!(
         refuse(&v, one("no_such_part", 0.1, 1.0)),
         ShiftRefusal::UnknownComponent { .. }

@@ -153,6 +153,45 @@ fn mass_properties_before_during_and_after_a_shift_match_the_hand_calculation() 
         assert_eq!(p.mass_kg, big_m, "the mass does not change");
     }
     assert!(worst <= 1e-15, "worst error {worst:e} (bound 1e-15)");
+    // The specification's two-body figures: its hand arithmetic on the table's rounded
+    // figures (M 0.8188 kg, center 0.6681 m; ballast 0.2 kg at 0.375 m) gives μ = 0.1511 kg,
+    // the rest's center 0.7628 m, the ballast 0.3878 m from it and then 0.0878 m, and the
+    // inertia changed by μ (0.0878² − 0.3878²) = −0.0216 kg·m²; the simulator's unrounded
+    // figures are the same within that rounding (the rest's center 0.76285 rounds up).
+    let hand_mu: f64 = 0.2 * 0.6188 / 0.8188;
+    let hand_rest: f64 = (0.8188 * 0.6681 - 0.2 * 0.375) / 0.6188;
+    let (hand_d0, hand_d1) = (hand_rest - 0.375, hand_rest - 0.675);
+    let hand_change = hand_mu * (hand_d1 * hand_d1 - hand_d0 * hand_d0);
+    assert_eq!(
+        format!(
+            "{hand_mu:.4} {hand_rest:.4} {hand_d0:.4} {:.4} {hand_change:.4}",
+            hand_d1.abs()
+        ),
+        "0.1511 0.7628 0.3878 0.0878 -0.0216"
+    );
+    let (d0, d1) = (
+        (ballast.cg_m.x - rest_cg.x).abs(),
+        (ballast.cg_m.x + 0.3 - rest_cg.x).abs(),
+    );
+    let change =
+        sim.mass_properties(&flight, 7.0).transverse_inertia() - before.transverse_inertia();
+    eprintln!(
+        "unrounded: μ {mu:.6} kg, rest's center {:.6} m, {d0:.6} → {d1:.6} m, ΔI {change:.6} kg·m²",
+        rest_cg.x
+    );
+    for (exact, hand) in [
+        (mu, hand_mu),
+        (rest_cg.x, hand_rest),
+        (d0, hand_d0),
+        (d1, hand_d1.abs()),
+        (change, hand_change),
+    ] {
+        assert!(
+            (exact - hand).abs() < 2e-4,
+            "{exact} against the hand's {hand}"
+        );
+    }
+    assert!((change - mu * (d1 * d1 - d0 * d0)).abs() < 1e-15);
     // The worked example's hand figures: the center moves m Δ / M and halfway at τ = ½.
     let (p0, p1) = (
         sim.mass_properties(&flight, 4.0),
@@ -206,6 +245,35 @@ fn a_moving_mass_shifts_the_static_margin_by_the_hand_calculation() {
     );
 }
 
+#[test]
+fn the_flight_margin_moves_by_the_same_amount_as_the_static_margin() {
+    // Only the center of pressure differs between the two margins: at every instant of the
+    // flight, moving ballast or not, flight − static = (x_cp(Mach) − x_cp(0)) / d.
+    let sim = simulation(
+        design(&reference_json()),
+        Environment::default(),
+        SimOptions::default(),
+    )
+    .with_shifts(vec![MassShift::new(
+        Trigger::Time { time_s: 5.0 },
+        "ballast",
+        0.3,
+        1.0,
+    )])
+    .unwrap();
+    let flight = sim.run(&mut ()).unwrap();
+    let model = sim.model();
+    let (mut worst, mut during): (f64, usize) = (0.0, 0);
+    for s in flight.samples.iter().filter(|s| s.phase == Phase::Free) {
+        let cp_shift = (model.aero.cp_m(s.mach) - model.cp_mach0_m) / model.ref_diameter_m;
+        worst = worst.max((s.flight_margin_cal - s.static_margin_cal - cp_shift).abs());
+        during += usize::from(s.t_s > 5.0 && s.t_s < 6.0);
+    }
+    eprintln!("{during} samples during the shift; worst error {worst:.1e} calibres");
+    assert!(during >= 16, "the shift's 16 stop times are samples");
+    assert!(worst <= 1e-12, "worst {worst:e} (bound 1e-12)");
+}
+
 /// The free-space case: the reference rocket after burnout with its ballast 1 cm off the axis,
 /// moving 0.3 m aft over 1 s while the rocket turns about all three axes.
 fn off_axis_free_space(options: SimOptions, duration_s: f64) -> (Simulation, Flight) {
@@ -250,8 +318,10 @@ fn a_part_moving_off_the_axis_keeps_both_momenta_in_free_space() {
     );
     assert!(eh <= 1e-10, "angular momentum {eh:e} (bound 1e-10)");
     assert!(ev <= 1e-10, "center's velocity {ev:e} m/s (bound 1e-10)");
-    // The term ω × h + h′ matters here: the ballast's own angular momentum is not negligible.
-    assert!(h_rel_max > 1e-3);
+    // The term ω × h + h′ matters here: the ballast's own angular momentum is not negligible
+    // (1.19 % of the rocket's at its peak with this test's turning rates; the specification
+    // quotes 1.8 % for rates it does not give), far above the bounds above.
+    assert!(h_rel_max > 5e-3, "{h_rel_max}");
 }
 
 #[test]
