@@ -517,6 +517,40 @@ fn a_shift_starts_at_apogee_or_at_its_height_on_the_way_down() {
 }
 
 #[test]
+fn a_shift_starts_at_burnout_or_its_delay_after() {
+    let sim = simulation(
+        design(&reference_json()),
+        Environment::default(),
+        SimOptions::default(),
+    )
+    .with_shifts(vec![
+        MassShift::new(Trigger::Burnout, "ballast", 0.1, 0.5),
+        MassShift::new(
+            Trigger::BurnoutPlusDelay { delay_s: Some(2.0) },
+            "ballast",
+            0.1,
+            0.5,
+        ),
+    ])
+    .unwrap();
+    let flight = sim.run(&mut ()).unwrap();
+    let burnout = sim.model().burnout_s;
+    let burnout_event = flight.event(EventKind::Burnout).unwrap().time_s;
+    eprintln!("burnout {burnout} s; shifts at {:?}", flight.shift_starts_s);
+    assert_eq!(burnout_event, burnout);
+    assert_eq!(
+        flight.shift_starts_s,
+        vec![Some(burnout), Some(burnout + 2.0)]
+    );
+    // Both moved the ballast (the motor out at burnout, the first just starting): 0.2 m aft
+    // in all once the second has ended.
+    let before = sim.mass_properties(&flight, burnout).cg_m.x;
+    let after = sim.mass_properties(&flight, burnout + 3.0).cg_m.x;
+    let m = sim.mass_properties(&flight, burnout + 3.0).mass_kg;
+    assert!(((after - before) - 0.2 * 0.2 / m).abs() < 1e-12);
+}
+
+#[test]
 fn the_instant_memo_gives_the_model_s_instant_and_never_one_held_for_other_starts() {
     use crate::flight::model::InstantMemo;
     let sim = simulation(
