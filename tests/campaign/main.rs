@@ -511,6 +511,29 @@ fn the_exit_code_says_whether_every_variant_landed_or_the_input_was_bad() {
     let (code, _, stderr) = hpr_mc(&[file.to_str().unwrap(), "--shard", "3/3"]);
     assert_eq!(code, 2);
     assert!(stderr.contains("0 <= K < N"), "{stderr}");
+    // An output directory that is a file is refused by name before anything is flown.
+    std::fs::write(&file, calm_text(&text)).unwrap();
+    let not_a_dir = dir.path().join("a_file");
+    std::fs::write(&not_a_dir, "x").unwrap();
+    let (code, _, stderr) = hpr_mc(&[
+        file.to_str().unwrap(),
+        "--out",
+        not_a_dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("a_file: the output directory is a file, not a directory"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_to_string(&not_a_dir).unwrap(), "x");
+}
+
+fn calm_text(text: &str) -> String {
+    text.replace(
+        "parachutes.main.lag_s = { dist = \"uniform\", min = -2.5, max = 0.5 }",
+        "",
+    )
 }
 
 #[test]

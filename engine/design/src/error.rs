@@ -242,6 +242,15 @@ pub enum DesignError {
         column: usize,
         message: String,
     },
+    /// A component that does not fit the format (a wrong type, a missing or an unknown
+    /// field), placed by its id and field (see `design::json_errors`).
+    #[error("{file}: {at}: {}{message}", field_prefix(.field))]
+    JsonAt {
+        file: String,
+        at: Location,
+        field: Option<String>,
+        message: String,
+    },
     /// A drag CSV that does not parse.
     #[error("{file}: line {line}: {message}")]
     Csv {

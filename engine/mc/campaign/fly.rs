@@ -281,9 +281,13 @@ impl Prepared {
                             SimError::Shift(r) => r.field(),
                             _ => None,
                         };
-                        match shift {
-                            Some((i, field)) => refused_at(&format!("shifts[{i}].{field}"), &e),
-                            None => refused_at(point_key, &e),
+                        match (shift, &e) {
+                            (Some((i, field)), _) => {
+                                refused_at(&format!("shifts[{i}].{field}"), &e)
+                            }
+                            // A motor that does not fit is the motor's fault, not the sweep's.
+                            (None, SimError::MotorDoesNotFit(_)) => refused_at("motor.name", &e),
+                            (None, _) => refused_at(point_key, &e),
                         }
                     })?;
                     let part = ballast.map(|i| design.components[i].id.as_str());

@@ -135,6 +135,12 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
     let total = prepared.plan.total();
     let count = shard.count(total);
     let chunk_list = chunks(count, prepared.scenario.chunk_size);
+    if dir.exists() && !dir.is_dir() {
+        bail!(
+            "{}: the output directory is a file, not a directory (give another with --out)",
+            dir.display()
+        );
+    }
     std::fs::create_dir_all(&outputs.parts)
         .with_context(|| format!("can't create {}", outputs.parts.display()))?;
 

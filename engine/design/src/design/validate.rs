@@ -59,7 +59,15 @@ impl Design {
             Some(p) => p.display().to_string(),
             None => "<design>".to_owned(),
         };
-        let raw: RawDesign = serde_json::from_str(text).map_err(|e| json_error(&file, &e))?;
+        let raw: RawDesign = serde_json::from_str(text).map_err(|e| {
+            // A component's fault is placed by its id and field; anything else keeps serde's
+            // line and column.
+            let located = match e.classify() {
+                serde_json::error::Category::Data => super::json_errors::locate(&file, text),
+                _ => None,
+            };
+            located.unwrap_or_else(|| json_error(&file, &e))
+        })?;
         Builder {
             file,
             source,
@@ -133,7 +141,7 @@ fn json_error(file: &str, e: &serde_json::Error) -> DesignError {
     let (line, column) = (e.line(), e.column());
     let text = e.to_string();
     let suffix = format!(" at line {line} column {column}");
-    let message = text.strip_suffix(&suffix).unwrap_or(&text).to_owned();
+    let message = super::json_errors::plain_types(text.strip_suffix(&suffix).unwrap_or(&text));
     DesignError::Json {
         file: file.to_owned(),
         line,

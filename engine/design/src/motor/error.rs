@@ -41,6 +41,10 @@ pub enum MotorError {
         file: String,
         designations: Vec<String>,
     },
+    /// A name that reads as a path (a directory in it, or a `.eng`/`.rse` ending) names no
+    /// file and no bundled motor's file.
+    #[error("no such motor file: `{file}` (a bundled motor is named by its file stem, e.g. `Cesaroni_I175`, or its designation)")]
+    NoSuchFile { file: String },
     /// No file and no bundled motor matches the name.
     #[error("no motor file or bundled motor matches `{name}` (bundled motors: {})", available.join(", "))]
     NotFound {

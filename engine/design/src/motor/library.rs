@@ -135,6 +135,12 @@ pub fn find(name_or_path: &str) -> Result<Motor, MotorError> {
     {
         return Ok(e.motor.clone());
     }
+    let lower = name.to_ascii_lowercase();
+    if name.contains(['/', '\\']) || lower.ends_with(".eng") || lower.ends_with(".rse") {
+        return Err(MotorError::NoSuchFile {
+            file: name.to_string(),
+        });
+    }
     let key = normalized(name);
     let by_stem = |e: &Entry| e.stem.eq_ignore_ascii_case(name);
     let by_designation = |e: &Entry| !key.is_empty() && normalized(&e.motor.designation) == key;

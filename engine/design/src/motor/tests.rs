@@ -299,6 +299,27 @@ fn an_unknown_name_lists_the_bundled_motors() {
 }
 
 #[test]
+fn a_path_that_names_no_file_is_said_to_be_missing() {
+    for name in ["motors/my_I175.eng", "my_I175.rse", "motors\\I175"] {
+        let err = find(name).unwrap_err();
+        assert!(
+            matches!(err, MotorError::NoSuchFile { .. }),
+            "{name}: {err}"
+        );
+        assert!(
+            err.to_string()
+                .starts_with(&format!("no such motor file: `{name}`")),
+            "{err}"
+        );
+    }
+    // A bundled motor's own file name still finds it.
+    assert_eq!(
+        find("Cesaroni_I175.eng").unwrap().designation,
+        "411-I175-WH-14A"
+    );
+}
+
+#[test]
 fn the_bundled_list_has_one_motor_per_stem_preferring_the_eng() {
     let list = bundled();
     assert_eq!(list.len(), 22);

@@ -233,8 +233,15 @@ impl Scenario {
             key: key.to_string(),
             rule,
         };
-        let de = toml::Deserializer::parse(text)
-            .map_err(|e| bad("(syntax)", one_line(&e.to_string())))?;
+        let de = toml::Deserializer::parse(text).map_err(|e| {
+            let hint = if text.trim_start().starts_with('{') {
+                " (this looks like a JSON design: a scenario is a TOML file that names its design \
+                 under [design] file = \"...\"; see docs/scenarios.md)"
+            } else {
+                ""
+            };
+            bad("(syntax)", format!("{}{hint}", one_line(&e.to_string())))
+        })?;
         let mut raw: RawScenario = serde_path_to_error::deserialize(de).map_err(|e| {
             let key = e.path().to_string();
             let key = if key == "." {
@@ -242,7 +249,12 @@ impl Scenario {
             } else {
                 key
             };
-            bad(&key, one_line(&e.into_inner().to_string()))
+            bad(
+                &key,
+                hpr_design::design::json_errors::plain_types(&one_line(
+                    &e.into_inner().to_string(),
+                )),
+            )
         })?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
 

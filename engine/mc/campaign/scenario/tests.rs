@@ -245,6 +245,28 @@ fn a_toml_syntax_error_says_where() {
     let e = parse("[sweep\n").unwrap_err();
     assert_eq!(e.key(), "(syntax)");
     assert!(e.to_string().contains("line"), "{e}");
+    assert!(!e.to_string().contains("JSON design"), "{e}");
+    // A design file given where a scenario belongs is recognised as one.
+    let e = Scenario::parse("{\n  \"name\": \"x\"\n}\n", &path()).unwrap_err();
+    assert_eq!(e.key(), "(syntax)");
+    assert!(
+        e.to_string().contains("this looks like a JSON design"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_value_of_the_wrong_kind_is_named_in_plain_words() {
+    let e = Scenario::parse(&BASE.replace("seed = 1", "seed = -5"), &path()).unwrap_err();
+    assert_eq!(e.key(), "seed");
+    assert!(
+        e.to_string().contains("expected a whole number, 0 or more"),
+        "{e}"
+    );
+    let e = parse("[rail]\nlength_m = \"1.83\"\n").unwrap_err();
+    assert_eq!(e.key(), "rail.length_m");
+    assert!(e.to_string().contains("expected a number"), "{e}");
+    assert!(!e.to_string().contains("f64"), "{e}");
 }
 
 #[test]
@@ -255,6 +277,13 @@ fn rules_that_need_the_design_and_motor_name_their_key() {
     )
     .unwrap_err();
     assert_eq!(e.key(), "motor.name");
+    // A motor too wide for the mount is the motor's fault too, not the sweep's.
+    let e = Prepared::new(
+        Scenario::parse(&BASE.replace("Cesaroni_I175", "Cesaroni_M1670"), &path()).unwrap(),
+    )
+    .unwrap_err();
+    assert_eq!(e.key(), "motor.name");
+    assert!(e.to_string().contains("the motor is too wide"), "{e}");
     let text = BASE.replace("ballast = \"ballast\"", "ballast = \"lead\"");
     let e = Prepared::new(Scenario::parse(&text, &path()).unwrap()).unwrap_err();
     assert_eq!(e.key(), "design.ballast");

@@ -40,6 +40,9 @@ pub enum SimError {
     Shift(#[from] ShiftRefusal),
     #[error("motor: {0}")]
     Motor(#[from] hpr_design::motor::MotorError),
+    /// The motor is wider than its mount or longer than the room it has (the design's words).
+    #[error("{0}")]
+    MotorDoesNotFit(String),
     #[error("aerodynamics: {0}")]
     Aero(#[from] hpr_design::aero::AeroError),
     #[error("the motor's thrust never beats the rocket's weight along the rail (peak thrust {max_thrust_n:.1} N, weight along the rail {weight_n:.1} N): the rocket never leaves the pad")]
@@ -428,7 +431,7 @@ pub fn build_model(
     })?;
     design
         .motor_fits(motor.diameter_m, motor.length_m)
-        .map_err(|e| SimError::Setup(e.to_string()))?;
+        .map_err(|e| SimError::MotorDoesNotFit(e.to_string()))?;
     let motor_tables = MotorTables::new(motor, motor_options)?;
     let burnout = motor_tables.burn_time_s();
     let full = motor_tables.mass_props(0.0, mount.motor_aft_m);

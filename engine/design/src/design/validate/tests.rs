@@ -236,7 +236,7 @@ fn an_explicit_mass_may_be_zero_but_not_negative() {
 }
 
 #[test]
-fn syntax_errors_and_unknown_fields_give_the_line_and_column() {
+fn syntax_errors_give_the_line_and_column_and_a_component_s_faults_its_id_and_field() {
     let e = Design::from_json_str(
         "{\n  \"name\": \"x\",\n  \"stages\": [,]\n}",
         Some(Path::new("d.json")),
@@ -253,22 +253,53 @@ fn syntax_errors_and_unknown_fields_give_the_line_and_column() {
         }
         e => panic!("{e}"),
     }
-    let mut v = example_value();
-    at(&mut v, BODY)
-        .as_object_mut()
-        .unwrap()
-        .insert("colour".into(), json!("red"));
-    let text = serde_json::to_string_pretty(&v).unwrap();
-    let e = Design::from_json_str(&text, None).unwrap_err();
-    let DesignError::Json { line, message, .. } = &e else {
-        panic!("{e}")
+    // A component's unknown field, wrong type, missing or unknown type: serde alone would put
+    // them at the end of the enclosing array, naming neither the component nor the field.
+    let located = |e: DesignError| match e {
+        DesignError::JsonAt {
+            at: place,
+            field,
+            message,
+            ..
+        } => (place, field, message),
+        e => panic!("not placed by component: {e}"),
     };
-    assert!(message.contains("unknown field `colour`"), "{message}");
-    // serde reports a tagged component's errors at the end of its object: past the field.
-    let colour_line = text.lines().position(|l| l.contains("colour")).unwrap() + 1;
-    assert!(*line >= colour_line, "{e}");
+    let (place, field, message) = located(
+        with(|v| {
+            at(v, BODY)
+                .as_object_mut()
+                .unwrap()
+                .insert("colour".into(), json!("red"));
+        })
+        .unwrap_err(),
+    );
+    assert_eq!((place, field.as_deref()), (comp("body"), Some("colour")));
+    assert!(message.starts_with("unknown field `colour`"), "{message}");
+    let (place, field, message) =
+        located(with(|v| *at(v, &format!("{FINS}/count")) = json!(3.5)).unwrap_err());
+    assert_eq!((place, field.as_deref()), (comp("fins"), Some("count")));
+    assert_eq!(
+        message,
+        "invalid type: floating point `3.5`, expected a whole number, 0 or more"
+    );
+    let (place, field, message) =
+        located(with(|v| *at(v, &format!("{BODY}/length_m")) = json!("0.9")).unwrap_err());
+    assert_eq!((place, field.as_deref()), (comp("body"), Some("length_m")));
+    assert_eq!(message, "invalid type: string \"0.9\", expected a number");
     let e = with(|v| *at(v, "/stages/0/components/1/type") = json!("bodytube")).unwrap_err();
     assert!(e.to_string().contains("unknown variant `bodytube`"), "{e}");
+    let (place, field, _) = located(e);
+    assert_eq!((place, field.as_deref()), (comp("body"), Some("type")));
+    let (place, field, _) = located(
+        with(|v| {
+            at(v, FINS).as_object_mut().unwrap().remove("type");
+        })
+        .unwrap_err(),
+    );
+    assert_eq!((place, field.as_deref()), (comp("fins"), Some("type")));
+    // Outside the components serde's own place stands: a top-level field by line and column.
+    let e = with(|v| v["name"] = json!(5)).unwrap_err();
+    assert!(matches!(e, DesignError::Json { .. }), "{e}");
 }
 
 #[test]
