@@ -289,3 +289,25 @@ fn a_trajectory_file_of_another_kind_is_refused_before_the_flight_and_nothing_is
     // The flight takes about 490 steps, a sample each.
     assert!(text.lines().count() > 400, "{} lines", text.lines().count());
 }
+
+#[test]
+fn a_flag_s_number_out_of_range_is_refused_naming_the_flag() {
+    for (flag, value, rule) in [
+        ("--rail-length-m", "-2", "must be positive and finite"),
+        ("--lag-s", "-1", "must be 0 or more and finite"),
+        ("--main-cds-m2", "0", "must be positive and finite"),
+        ("--wind-m-s", "fast", "not a number"),
+    ] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
+            .args(["fly", REFERENCE, &format!("{flag}={value}")])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{flag}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains(&format!("invalid value '{value}' for '{flag}")) && err.contains(rule),
+            "{err}"
+        );
+        assert!(out.stdout.is_empty());
+    }
+}

@@ -66,7 +66,7 @@ pub struct FlyArgs {
     #[arg(long, value_name = "FILE")]
     pub trajectory: Option<PathBuf>,
     /// Rail length, m.
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, default_value_t = 2.0, value_parser = positive)]
     pub rail_length_m: f64,
     /// Rail inclination above the horizon, degrees.
     #[arg(long, default_value_t = 90.0)]
@@ -88,34 +88,52 @@ pub struct FlyArgs {
     /// The air's temperature at the site, K: with --pressure-pa, the atmosphere runs from the
     /// site's measured air to the standard 216.65 K at 11 km (OpenRocket's custom launch
     /// conditions); either alone takes the standard's other. Default: the standard atmosphere.
-    #[arg(long)]
+    #[arg(long, value_parser = positive)]
     pub temperature_k: Option<f64>,
     /// The air's pressure at the site, Pa (see --temperature-k).
-    #[arg(long)]
+    #[arg(long, value_parser = positive)]
     pub pressure_pa: Option<f64>,
     /// Constant wind speed, m/s.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = not_negative)]
     pub wind_m_s: f64,
     /// Direction the wind blows from, degrees clockwise from north.
     #[arg(long, default_value_t = 0.0)]
     pub wind_from_deg: f64,
     /// Drogue CdS, m², opened at apogee (default: the design's first parachute).
-    #[arg(long)]
+    #[arg(long, value_parser = positive)]
     pub drogue_cds_m2: Option<f64>,
     /// Main CdS, m², opened on the way down at --main-height-m (default: the design's second parachute).
-    #[arg(long)]
+    #[arg(long, value_parser = positive)]
     pub main_cds_m2: Option<f64>,
     /// Height of the main's opening above ground, m.
     #[arg(long, default_value_t = 300.0)]
     pub main_height_m: f64,
     /// Time from a trigger to an open canopy, s.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = not_negative)]
     pub lag_s: f64,
     /// The sampling rate of the flight computer that fires both parachutes, Hz: a trigger
     /// fires at its first sample at or after the moment its condition is met (default:
     /// watched continuously).
-    #[arg(long)]
+    #[arg(long, value_parser = positive)]
     pub sampling_rate_hz: Option<f64>,
+}
+
+/// A flag's number that must be positive and finite (clap names the flag in its error).
+fn positive(text: &str) -> std::result::Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        Ok(_) => Err("must be positive and finite".to_owned()),
+        Err(_) => Err("not a number".to_owned()),
+    }
+}
+
+/// A flag's number that must be finite and not negative.
+fn not_negative(text: &str) -> std::result::Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        Ok(_) => Err("must be 0 or more and finite".to_owned()),
+        Err(_) => Err("not a number".to_owned()),
+    }
 }
 
 /// The design and its motor (the `--motor` choice, else the design's own).
