@@ -700,3 +700,25 @@ fn assert_rows_flown_by_hand_in(
         }
     }
 }
+
+#[test]
+fn an_output_that_cannot_be_put_in_place_leaves_no_temporary_file_behind() {
+    let (dir, file) = setup(&calm_text(&tiny(2)));
+    let out = dir.path().join("out");
+    // A directory where the summary should go: the rename of its temporary file fails.
+    std::fs::create_dir_all(out.join("summary.parquet")).unwrap();
+    let (code, _, stderr) = hpr_mc(&[
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("summary.parquet"), "{stderr}");
+    let leftovers: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}

@@ -252,8 +252,11 @@ pub fn write_atomic(
         Ok(())
     })();
     match result {
-        Ok(()) => std::fs::rename(&tmp, path)
-            .with_context(|| format!("can't rename {} to {}", tmp.display(), path.display())),
+        Ok(()) => std::fs::rename(&tmp, path).or_else(|e| {
+            // Nothing half-written is left behind: the temporary file goes too.
+            let _ = std::fs::remove_file(&tmp);
+            Err(e).with_context(|| format!("can't rename {} to {}", tmp.display(), path.display()))
+        }),
         Err(e) => {
             let _ = std::fs::remove_file(&tmp);
             Err(e.context(format!("writing {}", path.display())))
