@@ -259,7 +259,7 @@ pub enum DesignError {
         message: String,
     },
     /// A rule of the design broken, with where and what.
-    #[error("{file}: {at}: {}{rule}", field_prefix(.field))]
+    #[error("{file}: {at}: {}{}", field_prefix(.field), tidy_numbers(&.rule.to_string()))]
     Invalid {
         file: String,
         at: Location,
@@ -273,6 +273,33 @@ fn field_prefix(field: &Option<String>) -> String {
         Some(name) => format!("field \"{name}\": "),
         None => String::new(),
     }
+}
+
+/// `text` with every number of more than 12 significant digits (a position summed from
+/// several, `1.1501819599999998`) written to 10 (`1.15018196`); shorter ones, what a user
+/// typed, as they are.
+pub fn tidy_numbers(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(start) = rest.find(|c: char| c.is_ascii_digit()) {
+        out.push_str(&rest[..start]);
+        let tail = &rest[start..];
+        let len = tail
+            .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .unwrap_or(tail.len());
+        let token = &tail[..len];
+        let digits = token.chars().filter(char::is_ascii_digit).count();
+        match token.parse::<f64>() {
+            Ok(x) if digits > 12 && token.contains('.') => {
+                let rounded: f64 = format!("{x:.9e}").parse().unwrap_or(x);
+                out.push_str(&rounded.to_string());
+            }
+            _ => out.push_str(token),
+        }
+        rest = &tail[len..];
+    }
+    out.push_str(rest);
+    out
 }
 
 impl DesignError {
@@ -304,6 +331,19 @@ impl DesignError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_computed_numbers_are_written_to_ten_digits_and_typed_ones_as_typed() {
+        assert_eq!(
+            tidy_numbers("outside its parent (0.25 m to 1.1501819599999998 m)"),
+            "outside its parent (0.25 m to 1.15018196 m)"
+        );
+        assert_eq!(
+            tidy_numbers("stages[0].components[12]: got -0.1 and 1234.5678"),
+            "stages[0].components[12]: got -0.1 and 1234.5678"
+        );
+        assert_eq!(tidy_numbers("0.30000000000000004 m"), "0.3 m");
+    }
 
     #[test]
     fn an_invalid_field_reads_as_file_component_field_and_rule() {

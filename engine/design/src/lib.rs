@@ -18,5 +18,5 @@ pub mod mass;
 pub mod motor;
 
 pub use design::{Component, ComponentKind, Design};
-// (re-exported once error.rs defines it) pub use error::DesignError;
+pub use error::DesignError;
 pub use mass::MassProps;

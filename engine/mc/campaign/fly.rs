@@ -518,7 +518,10 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
         .map(|(v, setup)| {
             let (status, error) = match setup.map(|_| lanes.next()) {
                 Ok(Some(lane)) => return prepared.result(v.id, lane),
-                Err(e) => (Status::Refused, format!("sampled {e}")),
+                Err(e) => (
+                    Status::Refused,
+                    hpr_design::error::tidy_numbers(&format!("sampled {e}")),
+                ),
                 Ok(None) => (Status::Failed, "internal error: a lane is missing".into()),
             };
             VariantResult {
