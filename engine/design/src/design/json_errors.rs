@@ -32,8 +32,8 @@ pub fn plain_types(message: &str) -> String {
 }
 
 /// The component of `text` (a design that is valid JSON) that does not fit the format, as a
-/// [`DesignError::Invalid`]-like [`DesignError::Json`] with its place; `None` when every
-/// component reads on its own (the fault is elsewhere: serde's line and column stand).
+/// [`DesignError::JsonAt`] with its place; `None` when every component reads on its own (the
+/// fault is elsewhere: serde's line and column stand).
 pub fn locate(file: &str, text: &str) -> Option<DesignError> {
     let v: Value = serde_json::from_str(text).ok()?;
     for (i, stage) in v.get("stages")?.as_array()?.iter().enumerate() {
@@ -70,18 +70,18 @@ fn component(file: &str, c: &Value, path: &str) -> Option<DesignError> {
     let Some(object) = c.as_object() else {
         return Some(fault(None, "a component must be a JSON object".to_owned()));
     };
-    // The component alone: its children have been read above.
-    let mut alone = object.clone();
-    if alone.contains_key("children") {
-        alone.insert("children".to_owned(), Value::Array(Vec::new()));
-    }
-    let alone = Value::Object(alone);
     let Some(kind) = object.get("type") else {
         return Some(fault(
             Some("type".to_owned()),
             "missing: every component says its type (`nose_cone`, `body_tube`, ...)".to_owned(),
         ));
     };
+    // The component alone: its children have been read above.
+    let mut alone = object.clone();
+    if alone.contains_key("children") {
+        alone.insert("children".to_owned(), Value::Array(Vec::new()));
+    }
+    let alone = Value::Object(alone);
     let result = match kind.as_str().unwrap_or("") {
         "nose_cone" => read::<RawNoseCone>(alone),
         "body_tube" => read::<RawBodyTube>(alone),

@@ -55,6 +55,23 @@ pub(super) fn simulation(design: Design, env: Environment, options: SimOptions) 
         .unwrap()
 }
 
+/// The specification's worked example: the reference design on its I175, the 200 g ballast
+/// slid 0.3 m aft over 1 s from t = 5 s, in still standard air.
+fn worked_example() -> Simulation {
+    simulation(
+        design(&reference_json()),
+        Environment::default(),
+        SimOptions::default(),
+    )
+    .with_shifts(vec![MassShift::new(
+        Trigger::Time { time_s: 5.0 },
+        "ballast",
+        0.3,
+        1.0,
+    )])
+    .unwrap()
+}
+
 fn tight() -> SimOptions {
     SimOptions {
         integrator: Integrator::Adaptive {
@@ -114,18 +131,7 @@ fn momenta(sim: &Simulation, flight: &Flight, i: usize) -> (Vector3<f64>, Vector
 
 #[test]
 fn mass_properties_before_during_and_after_a_shift_match_the_hand_calculation() {
-    let sim = simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 5.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
-    .unwrap();
+    let sim = worked_example();
     let flight = sim.run(&mut ()).unwrap();
     assert_eq!(flight.shift_starts_s, vec![Some(5.0)]);
     // Two bodies: the ballast (m, at c(t), own inertia I_b) and the rest (M − m, fixed).
@@ -205,18 +211,7 @@ fn mass_properties_before_during_and_after_a_shift_match_the_hand_calculation() 
 
 #[test]
 fn a_moving_mass_shifts_the_static_margin_by_the_hand_calculation() {
-    let sim = simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 5.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
-    .unwrap();
+    let sim = worked_example();
     let flight = sim.run(&mut ()).unwrap();
     let burnout = sim.model().burnout_s;
     let d = sim.model().ref_diameter_m;
@@ -249,18 +244,7 @@ fn a_moving_mass_shifts_the_static_margin_by_the_hand_calculation() {
 fn the_flight_margin_moves_by_the_same_amount_as_the_static_margin() {
     // Only the center of pressure differs between the two margins: at every instant of the
     // flight, moving ballast or not, flight − static = (x_cp(Mach) − x_cp(0)) / d.
-    let sim = simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 5.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
-    .unwrap();
+    let sim = worked_example();
     let flight = sim.run(&mut ()).unwrap();
     let model = sim.model();
     let (mut worst, mut during): (f64, usize) = (0.0, 0);
