@@ -143,7 +143,7 @@ impl InstantMemo {
     ) -> (&'m MassState, f64) {
         let key = Some((t.to_bits(), starts_changed));
         if self.key != key {
-            self.inst = model.instant_computed(starts, t);
+            model.instant_computed_into(starts, t, &mut self.inst);
             self.key = key;
         }
         (&self.inst.mass, self.inst.motor.thrust_n)
@@ -168,6 +168,13 @@ impl FlightModel {
     #[inline]
     pub fn motions(&self, starts: &ShiftStarts, t: f64) -> [CycloidState; MAX_MOVING_PARTS] {
         let mut m = [CycloidState::default(); MAX_MOVING_PARTS];
+        self.motions_into(starts, t, &mut m);
+        m
+    }
+
+    /// [`FlightModel::motions`] added into `m` (all zeros on entry).
+    #[inline(always)]
+    fn motions_into(&self, starts: &ShiftStarts, t: f64, m: &mut [CycloidState; MAX_MOVING_PARTS]) {
         for (k, s) in self.shifts.iter().enumerate() {
             let start = starts[k];
             if t > start {
@@ -178,7 +185,6 @@ impl FlightModel {
                 acc.accel_m_s2 += c.accel_m_s2;
             }
         }
-        m
     }
 
     /// Motor and mass state at `t`. While nothing changes the mass it is read from
@@ -213,18 +219,25 @@ impl FlightModel {
     /// [`FlightModel::instant`] computed from the motor and the shifts' motions.
     #[inline]
     pub fn instant_computed(&self, starts: &ShiftStarts, t: f64) -> Instant {
-        let motor = self.motor.eval(t);
+        let mut inst = Instant::default();
+        self.instant_computed_into(starts, t, &mut inst);
+        inst
+    }
+
+    /// [`FlightModel::instant_computed`] written in place (a flight's memo is refreshed
+    /// without copying the instant through the stack).
+    #[inline(never)]
+    pub fn instant_computed_into(&self, starts: &ShiftStarts, t: f64, out: &mut Instant) {
+        out.motor = self.motor.eval(t);
         let prop = PropellantState {
-            mass_kg: motor.propellant_kg,
-            rate_kg_s: motor.propellant_rate_kg_s,
-            accel_kg_s2: motor.propellant_accel_kg_s2,
+            mass_kg: out.motor.propellant_kg,
+            rate_kg_s: out.motor.propellant_rate_kg_s,
+            accel_kg_s2: out.motor.propellant_accel_kg_s2,
         };
-        let motions = self.motions(starts, t);
+        let mut motions = [CycloidState::default(); MAX_MOVING_PARTS];
+        self.motions_into(starts, t, &mut motions);
         let n = self.mass.parts.len();
-        Instant {
-            motor,
-            mass: mass_state(&self.mass, &prop, &motions[..n]),
-        }
+        out.mass = mass_state(&self.mass, &prop, &motions[..n]);
     }
 
     /// Tabulate [`FlightModel::settled`]: for every set of started shifts, the mass state
