@@ -245,6 +245,18 @@ def build(spec, geo, wind="wind", lever_arm=False, air=False):
     env.set_atmospheric_model(type="custom_atmosphere", wind_u=u, wind_v=v)
     if air:
         corrections.true_standard_air(env)
+    motor, rocket = assemble(spec, geo, lever_arm)
+    r, m, rail = geo["rocket_after_burnout"], geo["motor"], spec["rail"]
+    flight = Flight(rocket=rocket, environment=env,
+                    rail_length=rail["length_m"] - (r["aft_end_m"] - m["aft_m"]),
+                    inclination=rail["inclination_deg"], heading=rail["heading_deg"],
+                    max_time_step=spec.get("max_time_step_s", np.inf))
+    return env, motor, rocket, flight
+
+
+def assemble(spec, geo, lever_arm=False):
+    """RocketPy's motor and rocket (its canopies included), its lever arm corrected or not,
+    not yet flown."""
     m = geo["motor"]
     half = 0.5 * m["length_m"]
     eng = os.path.join(REPO, "engine", "design", "motors", m["file"] + ".eng")
@@ -295,12 +307,7 @@ def build(spec, geo, wind="wind", lever_arm=False, air=False):
                          sampling_rate=SAMPLING_HZ, lag=chutes["drogue"]["lag_s"])
     if lever_arm:
         corrections.correct(rocket)
-    rail = spec["rail"]
-    flight = Flight(rocket=rocket, environment=env,
-                    rail_length=rail["length_m"] - (r["aft_end_m"] - m["aft_m"]),
-                    inclination=rail["inclination_deg"], heading=rail["heading_deg"],
-                    max_time_step=spec.get("max_time_step_s", np.inf))
-    return env, motor, rocket, flight
+    return motor, rocket
 
 
 def parachutes(spec, geo):
@@ -330,14 +337,16 @@ def case(spec, geo, **kw):
     return outputs(env, rocket, flight)
 
 
-def one(name, spec):
+def one(name, spec, winds=("wind", "profile", "calm")):
+    """One rocket's record: its inputs, RocketPy's checks of the rocket and each case of
+    `winds`, flown three ways."""
     design_path = os.path.join(REPO, spec["design"])
     with open(design_path) as fh:
         design = json.load(fh)
     geo = geometry(design, inspect(design_path))
     _, motor, rocket, _ = build(spec, geo, wind="calm")
     cases = {}
-    for wind in ("wind", "profile", "calm"):
+    for wind in winds:
         cases[wind] = {
             "outputs": case(spec, geo, wind=wind),
             "lever_arm_corrected": case(spec, geo, wind=wind, lever_arm=True),

@@ -17,6 +17,7 @@ mod exact;
 mod inputs;
 mod jet_damping;
 mod large_angles;
+mod random_crosscheck;
 mod rocket_equation;
 mod sampling;
 mod warnings;
