@@ -184,8 +184,10 @@ pub(crate) fn simulation(r: &Value, case: &str, below_m: f64) -> Simulation {
         .expect("set up")
 }
 
-/// hpr's flight of the reference's rocket `r` in `case`, mapped as RocketPy flies it.
-pub(crate) fn fly(r: &Value, case: &str) -> Crosscheck {
+/// hpr's simulation of the reference's rocket `r` in `case` as [`fly`] flies it (its
+/// canopies RocketPy's, its surroundings where RocketPy's rocket reads them), and where its
+/// center of dry mass starts: its height and its offset (east, north), m.
+pub(crate) fn crosscheck_simulation(r: &Value, case: &str) -> (Simulation, f64, [f64; 2]) {
     // RocketPy's state is the center of dry mass, starting at ground level; hpr's center of
     // mass starts with the aft end at the rail's foot, and is the center of dry mass once the
     // motor is out, `aft − x_dry` up the rail.
@@ -216,6 +218,12 @@ pub(crate) fn fly(r: &Value, case: &str) -> Crosscheck {
         num(r, "/inputs/sampling_rate_hz"),
     );
     let sim = sim.with_parachutes(chutes).expect("parachutes");
+    (sim, start_height, start_en)
+}
+
+/// hpr's flight of the reference's rocket `r` in `case`, mapped as RocketPy flies it.
+pub(crate) fn fly(r: &Value, case: &str) -> Crosscheck {
+    let (sim, start_height, start_en) = crosscheck_simulation(r, case);
     let flight = sim.run(&mut ()).expect("flies");
     let m = &flight.metrics;
     let airframe_rail_exit_speed =
