@@ -4,7 +4,7 @@
 //! one design, the reference design. Here the seventeen rockets RocketPy has flown (the five
 //! hand-picked of `crosscheck.rs`, the twelve drawn at random of `random_crosscheck.rs`:
 //! canted fins that spin, boattails, lugs, elliptical and free-form fins, H to M motors, Mach
-//! 0.5 to 1.8) are each flown in their three winds through [`Batch`], a dozen variants apiece
+//! 0.3 to 1.5) are each flown in their three winds through [`Batch`], a dozen variants apiece
 //! (motor, drag, wind, rail and canopy lags scattered), and every lane is compared with
 //! [`Batch::variant`]'s single flight: the same metrics, canopy openings and landing to the
 //! last bit (tolerance 0), and the same count of derivative evaluations.
