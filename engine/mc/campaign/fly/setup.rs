@@ -127,7 +127,7 @@ impl Fixed<'_> {
         let air = if (s.temperature_k, s.pressure_pa)
             == (self.nominal.temperature_k, self.nominal.pressure_pa)
         {
-            site.air
+            site.air.clone()
         } else {
             // The air of the scenario's site, at this setup's temperature and pressure.
             site.air

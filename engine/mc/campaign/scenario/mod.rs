@@ -15,7 +15,7 @@ mod tests;
 
 use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
-use hpr_sim::atmosphere::{AirModel, AtmosphereError};
+use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
 use hpr_sim::wind::{Wind, WindError, WindRow};
 use hpr_sim::{CanopyShape, Integrator, Trigger};
@@ -392,17 +392,50 @@ impl Scenario {
             },
             air: AirModel::Standard,
         };
-        environment.air =
-            AirModel::site(environment.elevation_m, env.temperature_k, env.pressure_pa).map_err(
-                |e| {
-                    let key = match e {
-                        AtmosphereError::SiteTemperature { .. } => "environment.temperature_k",
-                        AtmosphereError::SitePressure { .. } => "environment.pressure_pa",
-                        _ => "environment.elevation_m",
-                    };
-                    bad(key, e.to_string().replace("atmosphere: ", ""))
-                },
-            )?;
+        let air_error = |e: AtmosphereError| {
+            let key = match &e {
+                AtmosphereError::SiteTemperature { .. } => "environment.temperature_k".into(),
+                AtmosphereError::SitePressure { .. } => "environment.pressure_pa".into(),
+                AtmosphereError::ProfileRows { .. } => "environment.air_profile".into(),
+                AtmosphereError::ProfileHeight { row, .. } => {
+                    format!("environment.air_profile[{row}].height_m")
+                }
+                AtmosphereError::ProfileTemperature { row, .. } => {
+                    format!("environment.air_profile[{row}].temperature_k")
+                }
+                _ => "environment.elevation_m".into(),
+            };
+            bad(&key, e.to_string().replace("atmosphere: ", ""))
+        };
+        environment.air = match &env.air_profile {
+            None => AirModel::site(environment.elevation_m, env.temperature_k, env.pressure_pa)
+                .map_err(air_error)?,
+            Some(_) if env.temperature_k.is_some() => {
+                return Err(bad(
+                    "environment.temperature_k",
+                    "the site's temperature is environment.air_profile's first row: give one or the other".into(),
+                ))
+            }
+            Some(rows) => {
+                let standard = hpr_sim::atmosphere::Atmosphere::standard(0.0)
+                    .map_err(air_error)?
+                    .at_msl(environment.elevation_m);
+                let profile = AirProfile {
+                    elevation_m: environment.elevation_m,
+                    pressure_pa: env.pressure_pa.unwrap_or(standard.pressure_pa),
+                    rows: rows
+                        .iter()
+                        .map(|r| AirRow {
+                            height_m: r.height_m,
+                            temperature_k: r.temperature_k,
+                        })
+                        .collect(),
+                };
+                let air = AirModel::Profile(std::sync::Arc::new(profile));
+                air.check().map_err(air_error)?;
+                air
+            }
+        };
         // The site's gravity can be had (Somigliana's needs the latitude).
         environment
             .gravity
@@ -536,6 +569,23 @@ impl Scenario {
                 return Err(bad(
                     &format!("{section}.{}", i.key),
                     "the wind is environment.wind_profile, whose rows give its speeds and directions: vary it with wind_scale (a factor on every speed) and wind_rotation_deg (a clockwise turn of every direction)".into(),
+                ));
+            }
+        }
+        if let AirModel::Profile(_) = scenario.environment.air {
+            if let Some(i) = scenario
+                .inputs
+                .iter()
+                .find(|i| matches!(i.param, Param::TemperatureK | Param::PressurePa))
+            {
+                let section = if i.sweep.is_some() {
+                    "sweep"
+                } else {
+                    "dispersions"
+                };
+                return Err(bad(
+                    &format!("{section}.{}", i.key),
+                    "the air is environment.air_profile, whose rows give its temperatures and whose pressure_pa is the site's: vary the profile itself, not the site's temperature or pressure".into(),
                 ));
             }
         }

@@ -52,6 +52,15 @@ pub(super) struct RawEnvironment {
     pub(super) latitude_deg: Option<f64>,
     pub(super) temperature_k: Option<f64>,
     pub(super) pressure_pa: Option<f64>,
+    pub(super) air_profile: Option<Vec<RawAirRow>>,
+}
+
+/// A row of `environment.air_profile`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawAirRow {
+    pub(super) height_m: f64,
+    pub(super) temperature_k: f64,
 }
 
 /// A row of `environment.wind_profile`.

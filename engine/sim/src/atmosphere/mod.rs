@@ -43,6 +43,7 @@
 //! [`Atmosphere::at`] is pure, allocation-free and branch-light: it is called per derivative
 //! evaluation.
 
+use std::sync::Arc;
 use thiserror::Error;
 
 /// Standard gravity used by the geopotential definition, m/s².
@@ -90,7 +91,7 @@ pub struct AirState {
 }
 
 /// Which atmosphere a flight flies through.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub enum AirModel {
     /// The US 1976 standard atmosphere.
     #[default]
@@ -103,7 +104,41 @@ pub enum AirModel {
         temperature_k: f64,
         pressure_pa: f64,
     },
+    /// A measured temperature profile (a sounding) over a site: see [`AirProfile`].
+    Profile(Arc<AirProfile>),
 }
+
+/// A temperature profile over a launch site, as a radiosonde or a forecast gives it: the
+/// temperature at heights above the site, linear in geopotential altitude between rows, and
+/// the site's pressure; the pressure above follows the hydrostatic law of each row-to-row
+/// layer (the standard atmosphere's own formulas, one layer per pair of rows), so that the
+/// density and the speed of sound are consistent with the temperatures at every height.
+/// Above the last row the air is isothermal at its temperature; below the site the first
+/// layer's lapse continues.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AirProfile {
+    /// The site's elevation above mean sea level, m (the rows' heights are above it).
+    pub elevation_m: f64,
+    /// The site's pressure, Pa.
+    pub pressure_pa: f64,
+    /// The rows, the first at height 0, heights increasing.
+    pub rows: Vec<AirRow>,
+}
+
+/// One row of an [`AirProfile`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AirRow {
+    /// Height above the site, m.
+    pub height_m: f64,
+    /// Temperature there, K.
+    pub temperature_k: f64,
+}
+
+/// Most rows of an [`AirProfile`].
+pub const MAX_PROFILE_ROWS: usize = 1000;
+/// The highest row of an [`AirProfile`], m above the site (the table's top is 86 km above
+/// sea level).
+pub const MAX_PROFILE_HEIGHT_M: f64 = 80_000.0;
 
 /// The range of a site's temperature, K (−123 °C to 77 °C: any air a rocket launches into).
 pub const SITE_TEMPERATURE_RANGE_K: (f64, f64) = (150.0, 350.0);
@@ -135,12 +170,17 @@ impl AirModel {
     /// The site's elevation, temperature and pressure this air names, for a launch at
     /// `launch_elevation_m`: a site's own, or the standard's at the launch elevation.
     pub fn site_values(&self, launch_elevation_m: f64) -> (f64, f64, f64) {
-        match *self {
-            AirModel::Site {
+        match self {
+            &AirModel::Site {
                 elevation_m,
                 temperature_k,
                 pressure_pa,
             } => (elevation_m, temperature_k, pressure_pa),
+            AirModel::Profile(p) => (
+                p.elevation_m,
+                p.rows.first().map_or(f64::NAN, |r| r.temperature_k),
+                p.pressure_pa,
+            ),
             AirModel::Standard => {
                 let a = Atmosphere::standard(0.0)
                     .expect("the standard atmosphere is valid")
@@ -158,6 +198,12 @@ impl AirModel {
         temperature_k: Option<f64>,
         pressure_pa: Option<f64>,
     ) -> Result<AirModel, AtmosphereError> {
+        if let AirModel::Profile(_) = self {
+            if temperature_k.is_some() || pressure_pa.is_some() {
+                return Err(AtmosphereError::ProfileSiteValues);
+            }
+            return Ok(self.clone());
+        }
         let (elevation_m, t, p) = self.site_values(launch_elevation_m);
         AirModel::site(
             elevation_m,
@@ -169,13 +215,57 @@ impl AirModel {
     /// Check a site's numbers: a finite elevation below the 11 km layer, a temperature and a
     /// pressure within [`SITE_TEMPERATURE_RANGE_K`] and [`SITE_PRESSURE_RANGE_PA`].
     pub fn check(&self) -> Result<(), AtmosphereError> {
+        let within = |v: f64, (lo, hi): (f64, f64)| v.is_finite() && (lo..=hi).contains(&v);
+        if let AirModel::Profile(p) = self {
+            if !(p.elevation_m.is_finite()
+                && (MIN_ALTITUDE_MSL_M..=MAX_SITE_ELEVATION_M).contains(&p.elevation_m))
+            {
+                return Err(AtmosphereError::SiteElevation {
+                    value: p.elevation_m,
+                });
+            }
+            if !within(p.pressure_pa, SITE_PRESSURE_RANGE_PA) {
+                return Err(AtmosphereError::SitePressure {
+                    value: p.pressure_pa,
+                });
+            }
+            if p.rows.is_empty() || p.rows.len() > MAX_PROFILE_ROWS {
+                return Err(AtmosphereError::ProfileRows {
+                    count: p.rows.len(),
+                });
+            }
+            let mut below = f64::NEG_INFINITY;
+            for (row, r) in p.rows.iter().enumerate() {
+                let first = row == 0;
+                let ok = r.height_m.is_finite()
+                    && r.height_m <= MAX_PROFILE_HEIGHT_M
+                    && if first {
+                        r.height_m == 0.0
+                    } else {
+                        r.height_m > below
+                    };
+                if !ok {
+                    return Err(AtmosphereError::ProfileHeight {
+                        row,
+                        value: r.height_m,
+                    });
+                }
+                if !within(r.temperature_k, SITE_TEMPERATURE_RANGE_K) {
+                    return Err(AtmosphereError::ProfileTemperature {
+                        row,
+                        value: r.temperature_k,
+                    });
+                }
+                below = r.height_m;
+            }
+            return Ok(());
+        }
         if let AirModel::Site {
             elevation_m,
             temperature_k,
             pressure_pa,
         } = *self
         {
-            let within = |v: f64, (lo, hi): (f64, f64)| v.is_finite() && (lo..=hi).contains(&v);
             if !(elevation_m.is_finite()
                 && (MIN_ALTITUDE_MSL_M..=MAX_SITE_ELEVATION_M).contains(&elevation_m))
             {
@@ -229,6 +319,31 @@ pub enum AtmosphereError {
          and within [{}, {}] Pa", SITE_PRESSURE_RANGE_PA.0, SITE_PRESSURE_RANGE_PA.1
     )]
     SitePressure { value: f64 },
+    /// An air profile with no rows, or too many.
+    #[error(
+        "atmosphere: field \"air_profile\": {count} rows: a profile has 1 to \
+         {MAX_PROFILE_ROWS} rows"
+    )]
+    ProfileRows { count: usize },
+    /// A profile row's height: the first must be 0 (the site), each next one higher.
+    #[error(
+        "atmosphere: field \"air_profile[{row}].height_m\" = {value}: the first row is at the \
+         site (height 0) and each row is higher than the one before, up to \
+         {MAX_PROFILE_HEIGHT_M} m above the site"
+    )]
+    ProfileHeight { row: usize, value: f64 },
+    /// A profile row's temperature outside [`SITE_TEMPERATURE_RANGE_K`].
+    #[error(
+        "atmosphere: field \"air_profile[{row}].temperature_k\" = {value}: must be finite and \
+         within [{}, {}] K", SITE_TEMPERATURE_RANGE_K.0, SITE_TEMPERATURE_RANGE_K.1
+    )]
+    ProfileTemperature { row: usize, value: f64 },
+    /// A site temperature or pressure given for air that is a profile.
+    #[error(
+        "atmosphere: the air is a profile, whose first row is the site's temperature and whose \
+         pressure is the site's: a site temperature or pressure cannot be set beside it"
+    )]
+    ProfileSiteValues,
 }
 
 /// One layer of the model, precomputed.
@@ -242,11 +357,12 @@ struct Layer {
     exponent: f64,
 }
 
-/// The standard atmosphere seen from one launch site.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The standard atmosphere (or a site's air, or a profile) seen from one launch site.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Atmosphere {
     launch_elevation_m: f64,
-    layers: [Layer; 8],
+    /// Layers by base, lowest first (the first also serves below its base).
+    layers: Vec<Layer>,
 }
 
 impl Atmosphere {
@@ -265,8 +381,15 @@ impl Atmosphere {
             });
         }
         model.check()?;
+        if let AirModel::Profile(profile) = model {
+            return Ok(Self {
+                launch_elevation_m,
+                layers: profile_layers(profile),
+            });
+        }
         // The first layer: the standard's from sea level, or the site's to 11 km.
         let (base0, t0, p0, lapse0) = match *model {
+            AirModel::Profile(_) => unreachable!("a profile's layers are built above"),
             AirModel::Standard => (LAYER_BASE_M[0], T0_K, P0_PA, LAPSE_K_M[0]),
             AirModel::Site {
                 elevation_m,
@@ -281,13 +404,16 @@ impl Atmosphere {
                 (base, temperature_k, pressure_pa, lapse)
             }
         };
-        let mut layers = [Layer {
-            base_m: 0.0,
-            lapse_k_m: 0.0,
-            t_base_k: t0,
-            p_base_pa: p0,
-            exponent: 0.0,
-        }; 8];
+        let mut layers = vec![
+            Layer {
+                base_m: 0.0,
+                lapse_k_m: 0.0,
+                t_base_k: t0,
+                p_base_pa: p0,
+                exponent: 0.0,
+            };
+            8
+        ];
         let mut t_b = t0;
         let mut p_b = p0;
         for i in 0..8 {
@@ -337,8 +463,8 @@ impl Atmosphere {
     pub fn at_msl(&self, altitude_msl_m: f64) -> AirState {
         let z = altitude_msl_m.max(MIN_ALTITUDE_MSL_M);
         let h = geopotential_altitude_m(z);
-        // Seven bases above 0: find the last layer whose base is below h (layer 0 below 0 m).
-        let mut i = 7;
+        // The last layer whose base is below h (the first below its own base).
+        let mut i = self.layers.len() - 1;
         while i > 0 && h < self.layers[i].base_m {
             i -= 1;
         }
@@ -346,6 +472,46 @@ impl Atmosphere {
         let (t, p) = layer.temperature_pressure(h - layer.base_m);
         air_state(t, p)
     }
+}
+
+/// A profile's layers: one per pair of rows, its temperature linear in geopotential altitude
+/// from one row's to the next's, its pressure carried up from the site's by each layer's
+/// hydrostatic law; then an isothermal layer from the last row up.
+fn profile_layers(profile: &AirProfile) -> Vec<Layer> {
+    let bases: Vec<f64> = profile
+        .rows
+        .iter()
+        .map(|r| geopotential_altitude_m(profile.elevation_m + r.height_m))
+        .collect();
+    let mut layers = Vec::with_capacity(profile.rows.len());
+    let (mut t_b, mut p_b) = (profile.rows[0].temperature_k, profile.pressure_pa);
+    for (i, &base) in bases.iter().enumerate() {
+        let lapse = match profile.rows.get(i + 1) {
+            Some(next) => (next.temperature_k - t_b) / (bases[i + 1] - base),
+            None => 0.0,
+        };
+        // A lapse this small is isothermal (its power would lose its digits).
+        let lapse = if lapse.abs() < 1e-9 { 0.0 } else { lapse };
+        let layer = Layer {
+            base_m: base,
+            lapse_k_m: lapse,
+            t_base_k: t_b,
+            p_base_pa: p_b,
+            exponent: if lapse == 0.0 {
+                G0_M_S2 / (R_AIR_J_KG_K * t_b)
+            } else {
+                G0_M_S2 / (R_AIR_J_KG_K * lapse)
+            },
+        };
+        if let Some(&top) = bases.get(i + 1) {
+            // The next row's temperature as given (not the lapse's rounding of it), the
+            // pressure carried up.
+            p_b = layer.temperature_pressure(top - base).1;
+            t_b = profile.rows[i + 1].temperature_k;
+        }
+        layers.push(layer);
+    }
+    layers
 }
 
 impl Layer {
@@ -389,6 +555,8 @@ fn air_state(t: f64, p: f64) -> AirState {
 mod table;
 pub use table::{Air, AirTable, AIR_TABLE_STEP_M};
 
+#[cfg(test)]
+mod profile_tests;
 #[cfg(test)]
 mod site_tests;
 #[cfg(test)]

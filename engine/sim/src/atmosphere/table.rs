@@ -54,7 +54,7 @@ impl AirTable {
     pub fn new(model: &AirModel) -> Result<std::sync::Arc<AirTable>, AtmosphereError> {
         match model {
             AirModel::Standard => Ok(AirTable::standard()),
-            site => AirTable::build(*site).map(std::sync::Arc::new),
+            other => AirTable::build(other.clone()).map(std::sync::Arc::new),
         }
     }
 
@@ -67,7 +67,7 @@ impl AirTable {
             (a.density_kg_m3, a.speed_of_sound_m_s)
         };
         let nodes = match model {
-            AirModel::Standard => (0..n).map(exact_node).collect(),
+            AirModel::Standard | AirModel::Profile(_) => (0..n).map(exact_node).collect(),
             // A site's layers above 11 km are the standard's temperatures, so its pressure
             // and density there are the standard's times one ratio, that of the pressures at
             // 11 km: the standard's nodes scaled, not 7,500 powers and exponentials again
