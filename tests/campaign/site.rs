@@ -111,3 +111,66 @@ fn a_site_temperature_outside_the_air_s_range_is_refused_naming_the_sweep() {
     assert!(err.contains("sweep.temperature_k"), "{err}");
     assert!(err.contains("must be from 150 to 350"), "{err}");
 }
+
+/// The site model's air above (1200 m, 305 K, 86.5 kPa, linear to 216.65 K at 11 km
+/// geopotential) written as an air profile of two rows.
+fn site_as_profile() -> String {
+    let top = hpr_sim::atmosphere::geometric_altitude_m(11_000.0) - 1200.0;
+    SITE.replace(
+        "temperature_k = 305.0\n",
+        &format!(
+            "air_profile = [\n  {{ height_m = 0.0, temperature_k = 305.0 }},\n  {{ height_m = {top:?}, temperature_k = 216.65 }},\n]\n"
+        ),
+    )
+}
+
+#[test]
+fn an_air_profile_through_the_site_model_s_temperatures_flies_as_the_site_model() {
+    // The same air to 1e-12 below 20 km (the atmosphere's own test), so the same flights to
+    // what that moves: 1e-9 of the apogee and of the landing's offsets (measured: 0, the two
+    // build the same first layer bit for bit).
+    let site = drag_apogee_landing(&windy(SITE, "drag_scale = [1.0]"));
+    let profile = drag_apogee_landing(&windy(&site_as_profile(), "drag_scale = [1.0]"));
+    assert_eq!(site.len(), profile.len());
+    let mut worst = 0.0f64;
+    for (a, b) in site.iter().zip(&profile) {
+        for k in 1..4 {
+            worst = worst.max((a[k] - b[k]).abs() / a[1].abs());
+        }
+    }
+    eprintln!("air profile against the site model: worst {worst:.1e} of the apogee");
+    assert!(worst < 1e-9, "{worst:e}");
+    // A profile of a cold layer aloft (the same site, 10 K colder from 500 m up) is denser
+    // there: the rocket climbs less.
+    let cold = SITE.replace(
+        "temperature_k = 305.0\n",
+        "air_profile = [\n  { height_m = 0.0, temperature_k = 305.0 },\n  { height_m = 500.0, temperature_k = 291.0 },\n  { height_m = 3000.0, temperature_k = 275.0 },\n]\n",
+    );
+    let cold = drag_apogee_landing(&windy(&cold, "drag_scale = [1.0]"));
+    eprintln!(
+        "a cold layer aloft: apogee {:.2} m against {:.2} m",
+        cold[0][1], site[0][1]
+    );
+    assert!(cold[0][1] < site[0][1] - 1.0);
+}
+
+#[test]
+fn an_air_profile_refuses_a_site_temperature_beside_it_and_its_bad_rows_by_index() {
+    let profile = site_as_profile();
+    let beside = profile.replace("pressure_pa", "temperature_k = 290.0\npressure_pa");
+    let err = refusal(&windy(&beside, "drag_scale = [1.0]"));
+    assert!(err.contains("environment.temperature_k"), "{err}");
+    assert!(err.contains("air_profile's first row"), "{err}");
+    let swept = refusal(&windy(&profile, "temperature_k = [280.0, 300.0]"));
+    assert!(swept.contains("sweep.temperature_k"), "{swept}");
+    assert!(swept.contains("vary the profile itself"), "{swept}");
+    let bad = profile.replace("temperature_k = 216.65", "temperature_k = 420.0");
+    let err = refusal(&windy(&bad, "drag_scale = [1.0]"));
+    assert!(
+        err.contains("environment.air_profile[1].temperature_k") && err.contains("350"),
+        "{err}"
+    );
+    let first = profile.replace("height_m = 0.0,", "height_m = 5.0,");
+    let err = refusal(&windy(&first, "drag_scale = [1.0]"));
+    assert!(err.contains("environment.air_profile[0].height_m"), "{err}");
+}
