@@ -1,4 +1,4 @@
-//! The standard atmosphere: temperature, pressure, density, speed of sound and viscosity of the
+//! The atmosphere (the standard one, a site's, a measured profile): temperature, pressure, density, speed of sound and viscosity of the
 //! air as a function of height, for drag and Mach/Reynolds numbers.
 //!
 //! Model: U.S. Standard Atmosphere 1976 (identical to the ICAO/ISO International Standard
@@ -27,6 +27,13 @@
 //! from the site's. A hot day is less dense all the way up; a site at the standard's own
 //! temperature and pressure gives the standard atmosphere. hpr evaluates it, as the standard,
 //! in geopotential altitude (OpenRocket in geometric: 0.05 % apart in pressure at 3 km).
+//!
+//! **A measured temperature profile** ([`AirModel::Profile`], [`AirProfile`]: a sounding's
+//! temperatures by height over the site, and the site's pressure): one layer per pair of rows,
+//! its temperature linear in geopotential altitude from row to row, its pressure carried up by
+//! the same hydrostatic law as the standard's layers; isothermal above the last row. A profile
+//! of the standard's own temperatures at its layer bases is the standard atmosphere, and one
+//! of a site model's temperatures is that site model (both tested).
 //!
 //! Conventions and edges:
 //! - [`Atmosphere::at`] takes the height **above the launch site (ground)**; the site's
