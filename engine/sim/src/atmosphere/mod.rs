@@ -1,5 +1,6 @@
-//! The atmosphere (the standard one, a site's, a measured profile): temperature, pressure, density, speed of sound and viscosity of the
-//! air as a function of height, for drag and Mach/Reynolds numbers.
+//! The atmosphere (the standard one, a site's, a measured profile): temperature, pressure,
+//! density, speed of sound and viscosity of the air as a function of height, for drag and
+//! Mach/Reynolds numbers.
 //!
 //! Model: U.S. Standard Atmosphere 1976 (identical to the ICAO/ISO International Standard
 //! Atmosphere below 32 km), the seven lower layers of linear molecular-scale temperature in
