@@ -161,9 +161,6 @@ fn an_air_profile_refuses_a_site_temperature_beside_it_and_its_bad_rows_by_index
     let err = refusal(&windy(&beside, "drag_scale = [1.0]"));
     assert!(err.contains("environment.temperature_k"), "{err}");
     assert!(err.contains("air_profile's first row"), "{err}");
-    let swept = refusal(&windy(&profile, "temperature_k = [280.0, 300.0]"));
-    assert!(swept.contains("sweep.temperature_k"), "{swept}");
-    assert!(swept.contains("vary the profile itself"), "{swept}");
     let bad = profile.replace("temperature_k = 216.65", "temperature_k = 420.0");
     let err = refusal(&windy(&bad, "drag_scale = [1.0]"));
     assert!(
@@ -173,4 +170,57 @@ fn an_air_profile_refuses_a_site_temperature_beside_it_and_its_bad_rows_by_index
     let first = profile.replace("height_m = 0.0,", "height_m = 5.0,");
     let err = refusal(&windy(&first, "drag_scale = [1.0]"));
     assert!(err.contains("environment.air_profile[0].height_m"), "{err}");
+}
+
+#[test]
+fn a_swept_site_temperature_moves_an_air_profile_whole_and_each_row_flies_in_its_own_air() {
+    // A profile of an inversion (warmer 400 m up) over a 1200 m site at 87 kPa, its site
+    // temperature swept over 285 and 305 K: each row is the simulator set up by hand with
+    // every row of the profile moved by the sweep's change, and the warmer day climbs higher.
+    let text = windy(
+        "elevation_m = 1200.0\nwind_speed_m_s = 4.0\nwind_from_deg = 250.0\npressure_pa = 87000.0\nair_profile = [\n  { height_m = 0.0, temperature_k = 290.0 },\n  { height_m = 400.0, temperature_k = 293.0 },\n  { height_m = 2500.0, temperature_k = 278.0 },\n]",
+        "temperature_k = [285.0, 305.0]",
+    );
+    let rows = landed_rows(
+        &text,
+        [
+            "temperature_k",
+            "drag_scale",
+            "apogee_m",
+            "landing_x_m",
+            "landing_y_m",
+        ],
+    );
+    assert_eq!(rows.len(), 8, "two temperatures, four variants each");
+    let envs: Vec<Environment> = rows
+        .iter()
+        .map(|r| {
+            let shift = r[0] - 290.0;
+            let row = |height_m: f64, t: f64| hpr_sim::atmosphere::AirRow {
+                height_m,
+                temperature_k: t + shift,
+            };
+            Environment {
+                elevation_m: 1200.0,
+                wind: Wind::constant(4.0, 250.0).unwrap(),
+                air: AirModel::Profile(std::sync::Arc::new(hpr_sim::atmosphere::AirProfile {
+                    elevation_m: 1200.0,
+                    pressure_pa: 87_000.0,
+                    rows: vec![row(0.0, 290.0), row(400.0, 293.0), row(2500.0, 278.0)],
+                })),
+                ..Environment::default()
+            }
+        })
+        .collect();
+    let flown: Vec<[f64; 4]> = rows.iter().map(|r| [r[1], r[2], r[3], r[4]]).collect();
+    let chute = Parachute::new("main", 0.9, Trigger::Apogee, 1.0);
+    assert_rows_flown_by_hand_in(&flown, &envs, &chute);
+    let mean = |t: f64| {
+        let a: Vec<f64> = rows.iter().filter(|r| r[0] == t).map(|r| r[2]).collect();
+        assert_eq!(a.len(), 4);
+        a.iter().sum::<f64>() / 4.0
+    };
+    let (cold, warm) = (mean(285.0), mean(305.0));
+    eprintln!("profile moved to 285 K: apogee {cold:.2} m, to 305 K: {warm:.2} m");
+    assert!(warm > cold + 10.0, "{warm} against {cold}");
 }

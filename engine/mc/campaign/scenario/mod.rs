@@ -572,23 +572,6 @@ impl Scenario {
                 ));
             }
         }
-        if let AirModel::Profile(_) = scenario.environment.air {
-            if let Some(i) = scenario
-                .inputs
-                .iter()
-                .find(|i| matches!(i.param, Param::TemperatureK | Param::PressurePa))
-            {
-                let section = if i.sweep.is_some() {
-                    "sweep"
-                } else {
-                    "dispersions"
-                };
-                return Err(bad(
-                    &format!("{section}.{}", i.key),
-                    "the air is environment.air_profile, whose rows give its temperatures and whose pressure_pa is the site's: vary the profile itself, not the site's temperature or pressure".into(),
-                ));
-            }
-        }
         if scenario.total_variants().is_none() {
             return Err(bad(
                 "variants_per_point",

@@ -199,18 +199,33 @@ impl AirModel {
     }
 
     /// This air with its site's temperature or pressure changed (a sweep's or a dispersion's):
-    /// the air of [`AirModel::site_values`]'s site, the numbers not given kept.
+    /// the air of [`AirModel::site_values`]'s site, the numbers not given kept. A profile
+    /// keeps its shape: every row moves by the site temperature's change.
     pub fn with_site_values(
         &self,
         launch_elevation_m: f64,
         temperature_k: Option<f64>,
         pressure_pa: Option<f64>,
     ) -> Result<AirModel, AtmosphereError> {
-        if let AirModel::Profile(_) = self {
-            if temperature_k.is_some() || pressure_pa.is_some() {
-                return Err(AtmosphereError::ProfileSiteValues);
-            }
-            return Ok(self.clone());
+        if let AirModel::Profile(profile) = self {
+            // A warmer or colder day shifts the whole profile by the site's change; a new
+            // site pressure carries up through the same temperatures.
+            let t0 = profile.rows.first().map_or(f64::NAN, |r| r.temperature_k);
+            let shift = temperature_k.map_or(0.0, |t| t - t0);
+            let changed = AirModel::Profile(Arc::new(AirProfile {
+                elevation_m: profile.elevation_m,
+                pressure_pa: pressure_pa.unwrap_or(profile.pressure_pa),
+                rows: profile
+                    .rows
+                    .iter()
+                    .map(|r| AirRow {
+                        height_m: r.height_m,
+                        temperature_k: r.temperature_k + shift,
+                    })
+                    .collect(),
+            }));
+            changed.check()?;
+            return Ok(changed);
         }
         let (elevation_m, t, p) = self.site_values(launch_elevation_m);
         AirModel::site(
@@ -346,12 +361,6 @@ pub enum AtmosphereError {
          within [{}, {}] K", SITE_TEMPERATURE_RANGE_K.0, SITE_TEMPERATURE_RANGE_K.1
     )]
     ProfileTemperature { row: usize, value: f64 },
-    /// A site temperature or pressure given for air that is a profile.
-    #[error(
-        "atmosphere: the air is a profile, whose first row is the site's temperature and whose \
-         pressure is the site's: a site temperature or pressure cannot be set beside it"
-    )]
-    ProfileSiteValues,
 }
 
 /// One layer of the model, precomputed.

@@ -176,11 +176,22 @@ fn a_profile_s_bad_rows_are_refused_naming_the_row() {
         profile(0.0, 5_000.0, &[(0.0, 280.0)]).check(),
         Err(AtmosphereError::SitePressure { .. })
     ));
-    // Its site's temperature and pressure are its own: they cannot be set beside it.
-    let p = profile(0.0, P0_PA, &[(0.0, 280.0)]);
-    assert_eq!(p.with_site_values(0.0, None, None), Ok(p.clone()));
+}
+
+#[test]
+fn a_profile_s_site_temperature_shifts_every_row_and_its_pressure_is_the_site_s() {
+    // A sweep's or a dispersion's site temperature moves the whole profile by its change
+    // (a warmer day, the same shape); a site pressure replaces the site's; a row pushed out
+    // of range is refused by its index.
+    let p = profile(300.0, 97_000.0, &[(0.0, 300.0), (2000.0, 288.0)]);
+    assert_eq!(p.with_site_values(300.0, None, None), Ok(p.clone()));
     assert_eq!(
-        p.with_site_values(0.0, Some(290.0), None),
-        Err(AtmosphereError::ProfileSiteValues)
+        p.with_site_values(300.0, Some(305.5), Some(96_000.0)),
+        Ok(profile(300.0, 96_000.0, &[(0.0, 305.5), (2000.0, 293.5)]))
     );
+    assert_eq!(p.site_values(0.0), (300.0, 300.0, 97_000.0));
+    assert!(matches!(
+        p.with_site_values(300.0, Some(355.0), None),
+        Err(AtmosphereError::ProfileTemperature { row: 0, .. })
+    ));
 }
