@@ -243,7 +243,9 @@ def build(spec, geo, wind="wind", lever_arm=False, air=False):
     else:
         u, v = 0.0, 0.0
     env.set_atmospheric_model(type="custom_atmosphere", wind_u=u, wind_v=v)
-    if air:
+    if callable(air):
+        air(env)  # another air, as the caller gives it (profile_crosscheck.py)
+    elif air:
         corrections.true_standard_air(env)
     motor, rocket = assemble(spec, geo, lever_arm)
     r, m, rail = geo["rocket_after_burnout"], geo["motor"], spec["rail"]

@@ -18,6 +18,7 @@ mod exact;
 mod inputs;
 mod jet_damping;
 mod large_angles;
+mod profile_crosscheck;
 mod random_crosscheck;
 mod rocket_equation;
 mod sampling;

@@ -1,0 +1,136 @@
+"""Fly one of hpr-mc's cross-checked rockets in RocketPy through a measured temperature
+profile (``environment.air_profile``, ``hpr_sim::atmosphere::AirProfile``) instead of the
+standard atmosphere: the check that the profile's air reaches the flight as it should.
+
+The rocket is ``design_crosscheck.py``'s ``elliptical_fins`` (102 mm, L1115, Mach 1.2 to
+3.9 km), handed to RocketPy exactly as there (its functions, imported). The air is a hot day
+with an inversion over the site (``ROWS``: 305 K at the ground, 309 K at 600 m, 292 K at
+2.5 km, 262 K at 6 km, isothermal above) at 86.2 kPa, written here from the hydrostatic law
+of each row-to-row layer (temperature linear in geopotential altitude; this file's own
+implementation of the law ``hpr_sim::atmosphere`` states) and given to RocketPy as its
+temperature, pressure, density and speed of sound functions, and the exact inverse of the
+pressure as its barometric height (the main's trigger), as ``corrections.true_standard_air``
+does for the standard air. Flown in the constant wind and in still air, with RocketPy's
+lever arm corrected (``as_hpr_models``), into ``profile_crosscheck_reference.json``, which
+``engine/sim/tests/flight_proof/profile_crosscheck.rs`` compares with hpr-mc's flight under
+the same tolerances as the hand-picked cross-check.
+
+Run from the repository root after ``cargo build --release``:
+    .venv/bin/python validation/rocketpy/profile_crosscheck.py
+"""
+
+import importlib.metadata
+import json
+import math
+import os
+import sys
+
+from rocketpy import Function
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import design_crosscheck as dc  # noqa: E402  (the rocket and its flight, as there)
+
+OUT = os.path.join(HERE, "profile_crosscheck_reference.json")
+ROCKET = "elliptical_fins"
+# (height above the site m, temperature K): a hot afternoon with an inversion at 600 m.
+ROWS = [(0.0, 305.0), (600.0, 309.0), (2500.0, 292.0), (6000.0, 262.0)]
+SITE_PRESSURE_PA = 86200.0
+G0, R_AIR, R0 = 9.80665, 8314.32 / 28.9644, 6356766.0
+
+
+def geopotential(z):
+    return R0 * z / (R0 + z)
+
+
+def layers():
+    """(base geopotential m, lapse K/m, base temperature K, base pressure Pa) of each layer."""
+    site = dc.SITE["elevation_m"]
+    bases = [geopotential(site + h) for h, _ in ROWS]
+    out, p = [], SITE_PRESSURE_PA
+    for i, (base, (_, t)) in enumerate(zip(bases, ROWS)):
+        lapse = (ROWS[i + 1][1] - t) / (bases[i + 1] - base) if i + 1 < len(ROWS) else 0.0
+        out.append((base, lapse, t, p))
+        if i + 1 < len(ROWS):
+            p = layer_air(out[-1], bases[i + 1])[1]
+    return out
+
+
+def layer_air(layer, h):
+    base, lapse, t0, p0 = layer
+    if lapse == 0.0:
+        return t0, p0 * math.exp(-G0 * (h - base) / (R_AIR * t0))
+    t = t0 + lapse * (h - base)
+    return t, p0 * (t0 / t) ** (G0 / (R_AIR * lapse))
+
+
+LAYERS = layers()
+
+
+def profile_air(z):
+    """Temperature (K) and pressure (Pa) at geometric height z above sea level."""
+    h = geopotential(z)
+    layer = [b for b in LAYERS if b[0] <= h][-1] if h >= LAYERS[0][0] else LAYERS[0]
+    return layer_air(layer, h)
+
+
+def profile_height(p_pa):
+    """The geometric height above sea level of the pressure p_pa (bisection to 1e-9 m)."""
+    lo, hi = -2000.0, 40000.0
+    while hi - lo > 1e-9:
+        mid = 0.5 * (lo + hi)
+        if profile_air(mid)[1] > p_pa:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def apply_profile(env):
+    height = "Height Above Sea Level (m)"
+    env.temperature = Function(lambda z: profile_air(z)[0], height, "Temperature (K)")
+    env.pressure = Function(lambda z: profile_air(z)[1], height, "Pressure (Pa)")
+
+    def density(z):
+        t, p = profile_air(z)
+        return p / (R_AIR * t)
+
+    env.density = Function(density, height, "Air Density (kg/m³)")
+    env.speed_of_sound = Function(
+        lambda z: (1.4 * R_AIR * profile_air(z)[0]) ** 0.5, height, "Speed of Sound (m/s)")
+    env.barometric_height = Function(profile_height, "Pressure (Pa)", height)
+    return env
+
+
+def main():
+    spec = dc.ROCKETS[ROCKET]
+    record = dc.one(ROCKET, spec, winds=())
+    design_path = os.path.join(dc.REPO, spec["design"])
+    with open(design_path) as fh:
+        geo = dc.geometry(json.load(fh), dc.inspect(design_path))
+    cases = {}
+    for wind in ("wind", "calm"):
+        h = dc.case(spec, geo, wind=wind, lever_arm=True, air=apply_profile)
+        cases[wind] = {"as_hpr_models": h}
+        print(f"{ROCKET} {wind} in the profile: apogee {h['apogee_agl_m']:.2f} m at"
+              f" {h['apogee_time_s']:.3f} s; impact ({h['impact_x_m']:.1f},"
+              f" {h['impact_y_m']:.1f}) at {h['impact_time_s']:.2f} s")
+    record["cases"] = cases
+    record["inputs"]["air_profile"] = {
+        "elevation_m": dc.SITE["elevation_m"],
+        "pressure_pa": SITE_PRESSURE_PA,
+        "rows": [{"height_m": h, "temperature_k": t} for h, t in ROWS],
+    }
+    ref = {
+        "generator": "validation/rocketpy/profile_crosscheck.py",
+        "rocketpy_version": importlib.metadata.version("rocketpy"),
+        "rockets": {ROCKET: record},
+    }
+    with open(OUT, "w") as fh:
+        json.dump(ref, fh, indent=1, sort_keys=True)
+        fh.write("\n")
+    print(f"wrote {OUT}")
+
+
+if __name__ == "__main__":
+    main()
