@@ -417,12 +417,11 @@ impl Scenario {
                 ))
             }
             Some(rows) => {
-                let standard = hpr_sim::atmosphere::Atmosphere::standard(0.0)
-                    .map_err(air_error)?
-                    .at_msl(environment.elevation_m);
+                // The site's pressure: as given, or the standard's at the site.
+                let (_, _, standard_pa) = AirModel::Standard.site_values(environment.elevation_m);
                 let profile = AirProfile {
                     elevation_m: environment.elevation_m,
-                    pressure_pa: env.pressure_pa.unwrap_or(standard.pressure_pa),
+                    pressure_pa: env.pressure_pa.unwrap_or(standard_pa),
                     rows: rows
                         .iter()
                         .map(|r| AirRow {

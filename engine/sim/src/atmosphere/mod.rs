@@ -398,16 +398,11 @@ impl Atmosphere {
             });
         }
         model.check()?;
-        if let AirModel::Profile(profile) = model {
-            return Ok(Self {
-                launch_elevation_m,
-                layers: profile_layers(profile),
-            });
-        }
-        // The first layer: the standard's from sea level, or the site's to 11 km.
-        let (base0, t0, p0, lapse0) = match *model {
-            AirModel::Profile(_) => unreachable!("a profile's layers are built above"),
-            AirModel::Standard => (LAYER_BASE_M[0], T0_K, P0_PA, LAPSE_K_M[0]),
+        let layers = match *model {
+            AirModel::Profile(ref profile) => profile_layers(profile),
+            // The first layer: the standard's from sea level, or the site's to 11 km; the
+            // standard's above.
+            AirModel::Standard => standard_layers(LAYER_BASE_M[0], T0_K, P0_PA, LAPSE_K_M[0]),
             AirModel::Site {
                 elevation_m,
                 temperature_k,
@@ -416,47 +411,9 @@ impl Atmosphere {
                 let base = geopotential_altitude_m(elevation_m);
                 let t11 = T0_K + LAPSE_K_M[0] * LAYER_BASE_M[1];
                 let lapse = (t11 - temperature_k) / (LAYER_BASE_M[1] - base);
-                // A lapse this small is isothermal (its power would lose its digits).
-                let lapse = if lapse.abs() < 1e-9 { 0.0 } else { lapse };
-                (base, temperature_k, pressure_pa, lapse)
+                standard_layers(base, temperature_k, pressure_pa, lapse)
             }
         };
-        let mut layers = vec![
-            Layer {
-                base_m: 0.0,
-                lapse_k_m: 0.0,
-                t_base_k: t0,
-                p_base_pa: p0,
-                exponent: 0.0,
-            };
-            8
-        ];
-        let mut t_b = t0;
-        let mut p_b = p0;
-        for i in 0..8 {
-            let (base, lapse) = match i {
-                0 => (base0, lapse0),
-                _ => (LAYER_BASE_M[i], LAPSE_K_M[i]),
-            };
-            let exponent = if lapse == 0.0 {
-                G0_M_S2 / (R_AIR_J_KG_K * t_b)
-            } else {
-                G0_M_S2 / (R_AIR_J_KG_K * lapse)
-            };
-            layers[i] = Layer {
-                base_m: base,
-                lapse_k_m: lapse,
-                t_base_k: t_b,
-                p_base_pa: p_b,
-                exponent,
-            };
-            if i + 1 < 8 {
-                let dh = LAYER_BASE_M[i + 1] - base;
-                let (t_top, p_top) = layers[i].temperature_pressure(dh);
-                t_b = t_top;
-                p_b = p_top;
-            }
-        }
         Ok(Self {
             launch_elevation_m,
             layers,
@@ -491,6 +448,26 @@ impl Atmosphere {
     }
 }
 
+/// The standard's eight layers above a first one from `base0` (geopotential m) at `t0`, `p0`
+/// with lapse `lapse0`, each layer's base temperature and pressure carried up from the one
+/// below.
+fn standard_layers(base0: f64, t0: f64, p0: f64, lapse0: f64) -> Vec<Layer> {
+    let mut layers = Vec::with_capacity(LAYER_BASE_M.len());
+    let (mut t_b, mut p_b) = (t0, p0);
+    for i in 0..LAYER_BASE_M.len() {
+        let (base, lapse) = match i {
+            0 => (base0, lapse0),
+            _ => (LAYER_BASE_M[i], LAPSE_K_M[i]),
+        };
+        let layer = Layer::new(base, lapse, t_b, p_b);
+        if let Some(&top) = LAYER_BASE_M.get(i + 1) {
+            (t_b, p_b) = layer.temperature_pressure(top - base);
+        }
+        layers.push(layer);
+    }
+    layers
+}
+
 /// A profile's layers: one per pair of rows, its temperature linear in geopotential altitude
 /// from one row's to the next's, its pressure carried up from the site's by each layer's
 /// hydrostatic law; then an isothermal layer from the last row up.
@@ -507,19 +484,7 @@ fn profile_layers(profile: &AirProfile) -> Vec<Layer> {
             Some(next) => (next.temperature_k - t_b) / (bases[i + 1] - base),
             None => 0.0,
         };
-        // A lapse this small is isothermal (its power would lose its digits).
-        let lapse = if lapse.abs() < 1e-9 { 0.0 } else { lapse };
-        let layer = Layer {
-            base_m: base,
-            lapse_k_m: lapse,
-            t_base_k: t_b,
-            p_base_pa: p_b,
-            exponent: if lapse == 0.0 {
-                G0_M_S2 / (R_AIR_J_KG_K * t_b)
-            } else {
-                G0_M_S2 / (R_AIR_J_KG_K * lapse)
-            },
-        };
+        let layer = Layer::new(base, lapse, t_b, p_b);
         if let Some(&top) = bases.get(i + 1) {
             // The next row's temperature as given (not the lapse's rounding of it), the
             // pressure carried up.
@@ -532,6 +497,27 @@ fn profile_layers(profile: &AirProfile) -> Vec<Layer> {
 }
 
 impl Layer {
+    /// The layer from `base_m` (geopotential m) with lapse `lapse_k_m` from `t_base_k`,
+    /// `p_base_pa`. A lapse under 1e-9 K/m is isothermal (its power would lose its digits).
+    fn new(base_m: f64, lapse_k_m: f64, t_base_k: f64, p_base_pa: f64) -> Layer {
+        let lapse_k_m = if lapse_k_m.abs() < 1e-9 {
+            0.0
+        } else {
+            lapse_k_m
+        };
+        Layer {
+            base_m,
+            lapse_k_m,
+            t_base_k,
+            p_base_pa,
+            exponent: if lapse_k_m == 0.0 {
+                G0_M_S2 / (R_AIR_J_KG_K * t_base_k)
+            } else {
+                G0_M_S2 / (R_AIR_J_KG_K * lapse_k_m)
+            },
+        }
+    }
+
     /// Temperature and pressure `dh` geopotential metres above this layer's base.
     #[inline]
     fn temperature_pressure(&self, dh: f64) -> (f64, f64) {
