@@ -395,6 +395,14 @@ def one(name, spec, winds=("wind", "profile", "calm")):
     }
 
 
+def write_reference(path, ref):
+    """Write a cross-check's reference as every cross-check script does (sorted keys, one
+    space of indent, a final newline), so that regenerating gives the same bytes."""
+    with open(path, "w") as fh:
+        json.dump(ref, fh, indent=1, sort_keys=True)
+        fh.write("\n")
+
+
 def main():
     np.random.seed(20261202)  # parachute noise is off; nothing is drawn
     names = sys.argv[1:] or list(ROCKETS)
@@ -412,9 +420,7 @@ def main():
         "rockets": {name: fresh.get(name, kept.get(name)) for name in ROCKETS
                     if name in fresh or name in kept},
     }
-    with open(OUT, "w") as fh:
-        json.dump(ref, fh, indent=1, sort_keys=True)
-        fh.write("\n")
+    write_reference(OUT, ref)
     print(f"wrote {OUT}")
 
 

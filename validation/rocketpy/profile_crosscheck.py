@@ -7,7 +7,8 @@ The rocket is ``design_crosscheck.py``'s ``elliptical_fins`` (102 mm, L1115, Mac
 with an inversion over the site (``ROWS``: 305 K at the ground, 309 K at 600 m, 292 K at
 2.5 km, 262 K at 6 km, isothermal above) at 86.2 kPa, written here from the hydrostatic law
 of each row-to-row layer (temperature linear in geopotential altitude; this file's own
-implementation of the law ``hpr_sim::atmosphere`` states) and given to RocketPy as its
+implementation of the law ``hpr_sim::atmosphere`` states, each layer by
+``corrections``' standard-air layer law) and given to RocketPy as its
 temperature, pressure, density and speed of sound functions, and the exact inverse of the
 pressure as its barometric height (the main's trigger), as ``corrections.true_standard_air``
 does for the standard air. Flown in the constant wind and in still air, with RocketPy's
@@ -21,7 +22,6 @@ Run from the repository root after ``cargo build --release``:
 
 import importlib.metadata
 import json
-import math
 import os
 import sys
 
@@ -30,13 +30,14 @@ from rocketpy import Function
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import design_crosscheck as dc  # noqa: E402  (the rocket and its flight, as there)
+from corrections import _G0 as G0, _R_AIR as R_AIR, _R0 as R0  # noqa: E402
+from corrections import _temperature_pressure as layer_air  # noqa: E402  (one layer's law)
 
 OUT = os.path.join(HERE, "profile_crosscheck_reference.json")
 ROCKET = "elliptical_fins"
 # (height above the site m, temperature K): a hot afternoon with an inversion at 600 m.
 ROWS = [(0.0, 305.0), (600.0, 309.0), (2500.0, 292.0), (6000.0, 262.0)]
 SITE_PRESSURE_PA = 86200.0
-G0, R_AIR, R0 = 9.80665, 8314.32 / 28.9644, 6356766.0
 
 
 def geopotential(z):
@@ -54,14 +55,6 @@ def layers():
         if i + 1 < len(ROWS):
             p = layer_air(out[-1], bases[i + 1])[1]
     return out
-
-
-def layer_air(layer, h):
-    base, lapse, t0, p0 = layer
-    if lapse == 0.0:
-        return t0, p0 * math.exp(-G0 * (h - base) / (R_AIR * t0))
-    t = t0 + lapse * (h - base)
-    return t, p0 * (t0 / t) ** (G0 / (R_AIR * lapse))
 
 
 LAYERS = layers()
@@ -126,9 +119,7 @@ def main():
         "rocketpy_version": importlib.metadata.version("rocketpy"),
         "rockets": {ROCKET: record},
     }
-    with open(OUT, "w") as fh:
-        json.dump(ref, fh, indent=1, sort_keys=True)
-        fh.write("\n")
+    dc.write_reference(OUT, ref)
     print(f"wrote {OUT}")
 
 

@@ -372,9 +372,7 @@ def main():
         "rejected": rejected,
         "rockets": kept,
     }
-    with open(OUT, "w") as fh:
-        json.dump(ref, fh, indent=1, sort_keys=True)
-        fh.write("\n")
+    dc.write_reference(OUT, ref)
     print(f"wrote {OUT}: {len(kept)} rockets kept, {len(rejected)} rejected")
 
 
