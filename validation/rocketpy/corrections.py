@@ -101,21 +101,28 @@ def standard_air(z_m):
 
 def true_standard_air(env):
     """Give ``env`` the 1976 standard's air at every height, as hpr-mc has it."""
+    return set_air(env, standard_air, standard_height)
+
+
+def set_air(env, air, height_of):
+    """Give ``env`` the air ``air(z)`` = (temperature K, pressure Pa) at geometric height z
+    above sea level, its density and speed of sound from them, and ``height_of(p)``, the
+    inverse of its pressure, as its barometric height."""
     height = "Height Above Sea Level (m)"
-    env.temperature = Function(lambda z: standard_air(z)[0], height, "Temperature (K)")
-    env.pressure = Function(lambda z: standard_air(z)[1], height, "Pressure (Pa)")
+    env.temperature = Function(lambda z: air(z)[0], height, "Temperature (K)")
+    env.pressure = Function(lambda z: air(z)[1], height, "Pressure (Pa)")
 
     def density(z):
-        t, p = standard_air(z)
+        t, p = air(z)
         return p / (_R_AIR * t)
 
     env.density = Function(density, height, "Air Density (kg/m³)")
     env.speed_of_sound = Function(
-        lambda z: (1.4 * _R_AIR * standard_air(z)[0]) ** 0.5, height, "Speed of Sound (m/s)")
+        lambda z: (1.4 * _R_AIR * air(z)[0]) ** 0.5, height, "Speed of Sound (m/s)")
     # A parachute's height trigger reads the height of its (noise-free) pressure: the
     # pressure's own inverse, not RocketPy's, which inverts its former pressure through 100
     # samples and puts the main's trigger a few centimetres off.
-    env.barometric_height = Function(standard_height, "Pressure (Pa)", height)
+    env.barometric_height = Function(height_of, "Pressure (Pa)", height)
     return env
 
 

@@ -25,11 +25,10 @@ import json
 import os
 import sys
 
-from rocketpy import Function
-
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import design_crosscheck as dc  # noqa: E402  (the rocket and its flight, as there)
+import corrections  # noqa: E402
 from corrections import _G0 as G0, _R_AIR as R_AIR, _R0 as R0  # noqa: E402
 from corrections import _temperature_pressure as layer_air  # noqa: E402  (one layer's law)
 
@@ -80,19 +79,7 @@ def profile_height(p_pa):
 
 
 def apply_profile(env):
-    height = "Height Above Sea Level (m)"
-    env.temperature = Function(lambda z: profile_air(z)[0], height, "Temperature (K)")
-    env.pressure = Function(lambda z: profile_air(z)[1], height, "Pressure (Pa)")
-
-    def density(z):
-        t, p = profile_air(z)
-        return p / (R_AIR * t)
-
-    env.density = Function(density, height, "Air Density (kg/m³)")
-    env.speed_of_sound = Function(
-        lambda z: (1.4 * R_AIR * profile_air(z)[0]) ** 0.5, height, "Speed of Sound (m/s)")
-    env.barometric_height = Function(profile_height, "Pressure (Pa)", height)
-    return env
+    return corrections.set_air(env, profile_air, profile_height)
 
 
 def main():
