@@ -15,6 +15,7 @@ pub mod gravity;
 pub mod integrate;
 pub mod lanes;
 pub mod massprops;
+pub mod sensor;
 pub mod shifts;
 pub mod trigger;
 pub mod wind;
@@ -24,5 +25,6 @@ pub use flight::{
     AirModel, CanopyShape, Environment, Flight, Integrator, Parachute, Rail, SimError, SimOptions,
     Simulation, Warning,
 };
+pub use sensor::SensorNoise;
 pub use shifts::MassShift;
 pub use trigger::Trigger;

@@ -96,6 +96,12 @@ impl AirTable {
         })
     }
 
+    /// The static pressure at `altitude_msl_m` above sea level, Pa, from the exact layers
+    /// (not tabulated: a flight reads it only where a noisy barometer is judged).
+    pub fn pressure_msl_pa(&self, altitude_msl_m: f64) -> f64 {
+        self.exact.at_msl(altitude_msl_m).pressure_pa
+    }
+
     /// The atmosphere this table holds.
     pub fn model(&self) -> &AirModel {
         &self.model

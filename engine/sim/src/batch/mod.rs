@@ -118,6 +118,8 @@ pub struct Columns {
     pub shift_duration_s: Vec<Vec<f64>>,
     /// The number in a shift's trigger (its time, height or delay).
     pub shift_trigger: Vec<Vec<f64>>,
+    /// The seed of the parachutes' sensor noise ([`Simulation::with_sensor_seed`]).
+    pub sensor_seed: Vec<u64>,
 }
 
 /// How a lane ended.
@@ -216,6 +218,10 @@ impl Columns {
             shift_travel_m: nested(&self.shift_travel_m),
             shift_duration_s: nested(&self.shift_duration_s),
             shift_trigger: nested(&self.shift_trigger),
+            sensor_seed: {
+                let end = rows.end.min(self.sensor_seed.len());
+                self.sensor_seed[rows.start.min(end)..end].to_vec()
+            },
         }
     }
 }
@@ -295,12 +301,10 @@ impl Batch {
             ("rail_inclination_deg", &columns.rail_inclination_deg),
             ("rail_heading_deg", &columns.rail_heading_deg),
         ];
-        for (name, c) in flat {
-            if !c.is_empty() && c.len() != n {
-                return Err(format!(
-                    "column {name} has {} values for {n} variants",
-                    c.len()
-                ));
+        let seeds = ("sensor_seed", columns.sensor_seed.len());
+        for (name, len) in flat.iter().map(|(name, c)| (*name, c.len())).chain([seeds]) {
+            if len != 0 && len != n {
+                return Err(format!("column {name} has {len} values for {n} variants"));
             }
         }
         let (chutes, shifts) = (self.base.parachutes().len(), self.base.shifts().len());
@@ -419,6 +423,9 @@ impl Batch {
             }
             if let Some(v) = get(&c.drag_scale) {
                 ch.drag_scale(v)?;
+            }
+            if let Some(&seed) = c.sensor_seed.get(row) {
+                ch.sensor_seed(seed);
             }
             if let Some(m) = get(&c.part_mass_kg) {
                 ch.part_mass(self.part.as_deref().unwrap_or_default(), m)?;

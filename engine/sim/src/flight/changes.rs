@@ -66,6 +66,18 @@ impl Changes<'_> {
                     )));
                 }
             }
+            if let Some(noise) = &p.noise {
+                noise.check().map_err(|(field, rule)| {
+                    SimError::Setup(format!("{what}: noise field \"{field}\" {rule} (got {})", match field {
+                        "bias_pa" => noise.bias_pa,
+                        "std_pa" => noise.std_pa,
+                        _ => noise.correlation,
+                    }))
+                })?;
+                if p.sampling_rate_hz.is_none() {
+                    return Err(SimError::Setup(format!("{what}: a noisy pressure is read at samples: field \"sampling_rate_hz\" is needed with \"noise\" (RocketPy's default is 100 Hz)")));
+                }
+            }
             p.canopy.check().map_err(|(field, rule)| {
                 SimError::Setup(format!("{what}: canopy field \"{field}\" {rule}"))
             })?;
@@ -110,6 +122,11 @@ impl Changes<'_> {
         self.sim.shifts = shifts;
         self.sim.plan = plan;
         Ok(())
+    }
+
+    /// See [`Simulation::with_sensor_seed`].
+    pub fn sensor_seed(&mut self, seed: u64) {
+        self.sim.sensor_seed = seed;
     }
 
     /// See [`Simulation::with_options`].

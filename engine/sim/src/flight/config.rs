@@ -5,6 +5,7 @@
 pub use crate::atmosphere::AirModel;
 pub use crate::eom::CanopyShape;
 use crate::gravity::Gravity;
+use crate::sensor::SensorNoise;
 use crate::trigger::Trigger;
 use crate::wind::Wind;
 
@@ -100,6 +101,11 @@ pub struct Parachute {
     /// (RocketPy's `sampling_rate`; an altimeter reading at 20 Hz sees an apogee up to 50 ms
     /// late).
     pub sampling_rate_hz: Option<f64>,
+    /// The noise of the pressure its flight computer reads (RocketPy's `noise`); `None` (the
+    /// default) reads the air's pressure exactly. Only a height trigger reads the pressure,
+    /// and a noisy one must be sampled ([`Parachute::sampling_rate_hz`]): see
+    /// [`crate::sensor`].
+    pub noise: Option<SensorNoise>,
 }
 
 impl Parachute {
@@ -112,6 +118,7 @@ impl Parachute {
             lag_s,
             canopy: CanopyShape::default(),
             sampling_rate_hz: None,
+            noise: None,
         }
     }
 
@@ -131,6 +138,14 @@ impl Parachute {
             None => t,
             // k / rate rounds to the nearest double; a sample that rounds below `t` is `t`.
             Some(rate) => ((t * rate).ceil() / rate).max(t),
+        }
+    }
+
+    /// This parachute fired on a pressure read with `noise` (see [`Parachute::noise`]).
+    pub fn with_noise(self, noise: SensorNoise) -> Parachute {
+        Parachute {
+            noise: Some(noise),
+            ..self
         }
     }
 

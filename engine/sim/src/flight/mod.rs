@@ -76,6 +76,8 @@ pub struct Simulation {
     mass_adjustment: MassAdjustment,
     part_masses: Vec<(usize, f64)>,
     tables: Arc<DesignTables>,
+    /// The seed of the flight computers' sensor noise ([`Simulation::with_sensor_seed`]).
+    sensor_seed: u64,
     model: FlightModel,
 }
 
@@ -208,6 +210,7 @@ impl Simulation {
             mass_adjustment: MassAdjustment::default(),
             part_masses: vec![],
             tables,
+            sensor_seed: 0,
             model,
         })
     }
@@ -230,6 +233,7 @@ impl Simulation {
             &self.tables,
             air,
         )?;
+        self.model.sensor_seed = self.sensor_seed;
         Ok(self)
     }
 
@@ -243,6 +247,16 @@ impl Simulation {
     /// is checked here, and a refusal names the rule it broke.
     pub fn with_shifts(self, shifts: Vec<MassShift>) -> Result<Simulation, SimError> {
         self.with_changes(|c| c.shifts(shifts))
+    }
+
+    /// The seed of the noise the parachutes' flight computers read (those given a
+    /// [`Parachute::noise`]; 0 unless set): flights that differ only by it see different
+    /// noise, and the same seed gives the same noise (see [`crate::sensor`]). A campaign gives
+    /// each variant its own from the scenario's seed.
+    pub fn with_sensor_seed(mut self, seed: u64) -> Simulation {
+        self.sensor_seed = seed;
+        self.model.sensor_seed = seed;
+        self
     }
 
     /// Integrator and limits.
@@ -511,6 +525,7 @@ pub fn build_model(
         cp_mach0_m: tables.aero.cp_mach0_m,
         motor: motor_tables,
         settled: Vec::new(),
+        sensor_seed: 0,
     }
     .with_settled_states())
 }

@@ -85,6 +85,8 @@ pub struct FlightModel {
     /// ended), for flights with at most [`SETTLED_MAX_SHIFTS`] shifts; built once by
     /// [`FlightModel::with_settled_states`]. Empty: always compute.
     pub settled: Vec<MassState>,
+    /// The seed of the parachutes' sensor noise ([`crate::sensor`]).
+    pub sensor_seed: u64,
 }
 
 /// Most shifts for which [`FlightModel::settled`] is tabulated (2⁴ = 16 states).

@@ -22,4 +22,5 @@ mod profile_crosscheck;
 mod random_crosscheck;
 mod rocket_equation;
 mod sampling;
+mod sensor_noise;
 mod warnings;

@@ -101,7 +101,7 @@ impl Descent {
             consider(locate_event(&**s, |_t, y: &[f64; N3]| y[2], Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::Landing);
             if run.apogee_done {
                 for (i, p) in model.parachutes.iter().enumerate() {
-                    if let (Trigger::HeightDescending { height_m }, true) = (p.trigger, run.chute_armed(i)) {
+                    if let (Trigger::HeightDescending { height_m }, true) = (p.trigger, run.chute_armed(i) && !run.reads_noise(i)) {
                         consider(locate_event(&**s, |_t, y: &[f64; N3]| y[2] - height_m, Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::ParachuteTrigger(i));
                     }
                 }
@@ -112,10 +112,24 @@ impl Descent {
                 }
             }
         });
-        let (t_end, y_end) = match found {
+        let (mut t_end, mut y_end) = match found {
             Some((te, _)) => (te, each!(stepper, s => s.dense(te))),
             None => (each!(stepper, s => s.t()), *each!(stepper, s => s.y())),
         };
+        // A noisy barometer's sample that fires before the step's end or its event.
+        let mut noisy = false;
+        let t0 = each!(stepper, s => s.t_prev());
+        if let Some((tk, i)) = run.noisy_trigger(t0, t_end, y_end[2], |t| {
+            each!(stepper, s => s.dense_component(t, 2))
+        }) {
+            if found.is_none_or(|(te, _)| tk < te) {
+                if tk < t_end {
+                    (t_end, y_end) = (tk, each!(stepper, s => s.dense(tk)));
+                }
+                found = Some((tk, EventKind::ParachuteTrigger(i)));
+                noisy = true;
+            }
+        }
         let mut dy = [0.0; N3];
         let aux = model.derivative_descent(&run.starts, &self.canopies, t_end, &y_end, &mut dy);
         let pos = Vector3::new(y_end[0], y_end[1], y_end[2]);
@@ -143,6 +157,7 @@ impl Descent {
                     land(run, te, pos, vel);
                     return Ok(Some(PhaseEnd::Landed));
                 }
+                EventKind::ParachuteTrigger(i) if noisy => run.fire_at_sample(i, te, alt, speed),
                 EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
                 EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
                 _ => {}

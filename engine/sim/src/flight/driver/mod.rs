@@ -16,6 +16,7 @@ use crate::integrate::{
     brent_root, brent_root_bracketed, locate_event, Crossing, DenseStepper, Dopri54,
     IntegratorError, Rk4, StepOutcome, Tolerances,
 };
+use crate::sensor::NoiseProcess;
 use crate::shifts::STOPS_PER_SHIFT;
 use crate::trigger::Trigger;
 use nalgebra::Vector3;
@@ -169,6 +170,9 @@ struct Run<'a, O: Observer> {
     apogee_done: bool,
     /// Per parachute: where it is between armed and open.
     chutes: Vec<Chute>,
+    /// Per parachute, the noise of its barometer where a noisy one fires it (a sampled
+    /// height trigger with [`super::Parachute::noise`]); empty when none does.
+    noise: Vec<Option<NoiseProcess>>,
     /// Per trigger owner: whether a height-on-the-way-down trigger has fired (chutes, then shifts).
     rail_exit_done: bool,
     burnout_done: bool,
@@ -178,6 +182,24 @@ struct Run<'a, O: Observer> {
     /// [`FlightAux::alpha_rad`]'s `atan2` (crossflow speed ≥ 0, axial air velocity): angles in
     /// [0, π] compare by a cross product, and the one `atan2` is taken when the flight ends.
     steepest: Option<(f64, f64)>,
+}
+
+/// The noise of each parachute a noisy barometer fires (a sampled height trigger with a
+/// noise), from the flight's sensor seed; empty when none does (nothing allocated).
+fn noise_processes(model: &FlightModel) -> Vec<Option<NoiseProcess>> {
+    let noisy = |p: &super::Parachute| match (p.noise, p.trigger, p.sampling_rate_hz) {
+        (Some(noise), Trigger::HeightDescending { .. }, Some(_)) => Some(noise),
+        _ => None,
+    };
+    if !model.parachutes.iter().any(|p| noisy(p).is_some()) {
+        return Vec::new();
+    }
+    model
+        .parachutes
+        .iter()
+        .enumerate()
+        .map(|(i, p)| noisy(p).map(|n| NoiseProcess::new(n, model.sensor_seed, i as u64)))
+        .collect()
 }
 
 /// Where a parachute is between its trigger and its open canopy.
@@ -347,6 +369,81 @@ impl<'a, O: Observer> Run<'a, O> {
     /// Whether parachute `i`'s trigger still watches for its condition.
     fn chute_armed(&self, i: usize) -> bool {
         self.chutes[i] == Chute::Armed
+    }
+
+    /// Whether parachute `i` fires on a noisy barometer (judged at its samples by
+    /// [`Run::noisy_trigger`], not located as an event).
+    #[inline]
+    fn reads_noise(&self, i: usize) -> bool {
+        self.noise.get(i).is_some_and(Option::is_some)
+    }
+
+    /// The first sample in `(t0, t1]` at which an armed parachute's noisy barometer says the
+    /// rocket is below its trigger height (see [`crate::sensor`]), and which parachute, once
+    /// past apogee. `z1` is the center's height at `t1` (the lowest of the interval: the rocket
+    /// descends) and `height_at(t)` the center's height at a time of the interval. Draws each
+    /// parachute's noise up to the samples it reads.
+    fn noisy_trigger(
+        &mut self,
+        t0: f64,
+        t1: f64,
+        z1: f64,
+        mut height_at: impl FnMut(f64) -> f64,
+    ) -> Option<(f64, usize)> {
+        if self.noise.is_empty() || !self.apogee_done {
+            return None;
+        }
+        let model = self.model;
+        let elevation = model.env.elevation_m;
+        let p1 = model.air.pressure_msl_pa(z1 + elevation);
+        let mut found: Option<(f64, usize)> = None;
+        for i in 0..self.noise.len() {
+            if self.chutes[i] != Chute::Armed {
+                continue;
+            }
+            let Some(process) = self.noise[i].as_mut() else {
+                continue;
+            };
+            let chute = &model.parachutes[i];
+            let (Trigger::HeightDescending { height_m }, Some(rate)) =
+                (chute.trigger, chute.sampling_rate_hz)
+            else {
+                continue;
+            };
+            let p_trigger = model.air.pressure_msl_pa(height_m + elevation);
+            if p1 + process.ceiling_pa() <= p_trigger {
+                continue;
+            }
+            // The samples k / rate in (t0, t_last], none of them drawn before.
+            let t_last = found.map_or(t1, |(t, _)| t);
+            let mut k = ((t0 * rate).floor() as i64).max(process.last_sample() + 1);
+            while (k as f64) / rate <= t0 {
+                k += 1;
+            }
+            loop {
+                let tk = k as f64 / rate;
+                if tk > t_last {
+                    break;
+                }
+                let p = model.air.pressure_msl_pa(height_at(tk) + elevation);
+                if p + process.at(k) > p_trigger {
+                    if found.is_none_or(|(t, _)| tk < t) {
+                        found = Some((tk, i));
+                    }
+                    break;
+                }
+                k += 1;
+            }
+        }
+        found
+    }
+
+    /// Parachute `i`'s noisy barometer read below its height at its sample `t`: it fires
+    /// there (the canopy opens `lag_s` after, a stop time).
+    fn fire_at_sample(&mut self, i: usize, t: f64, altitude_m: f64, speed_m_s: f64) {
+        self.chutes[i] = Chute::Fired { fires_s: t };
+        self.push_event(EventKind::ParachuteTrigger(i), t, altitude_m, speed_m_s);
+        self.stops.push(t + self.model.parachutes[i].lag_s);
     }
 
     /// The open canopies: their CdS and the air they carry, summed.

@@ -189,7 +189,7 @@ impl SixDof {
             events.push((EventKind::Landing, G::Height(0.0)));
             for (i, p) in model.parachutes.iter().enumerate() {
                 if let (Trigger::HeightDescending { height_m }, true) =
-                    (p.trigger, run.chute_armed(i))
+                    (p.trigger, run.chute_armed(i) && !run.reads_noise(i))
                 {
                     events.push((EventKind::ParachuteTrigger(i), G::Height(height_m)));
                 }
@@ -229,27 +229,27 @@ impl SixDof {
                 }
             }
         }
-        let (t_end, y_end, ep) = match found {
+        let (mut t_end, mut y_end, mut ep) = match found {
             Some((te, _)) => {
-                let ye = each!(stepper, s => s.dense(te));
-                let mut dy = [0.0; N6];
-                let changes = run.starts_changed;
-                derivative(
-                    model,
-                    rail,
-                    &mut run.memo,
-                    &starts,
-                    changes,
-                    te,
-                    &ye,
-                    &mut dy,
-                );
-                let ms = run.memo.get(model, &starts, changes, te).0;
-                let (pos, vel, aux) = model.end_point(ms, &ye, &dy, rail);
-                (te, ye, EndPoint { pos, vel, aux })
+                let (ye, ep) = end_point_at(run, stepper, rail, te);
+                (te, ye, ep)
             }
             None => (t1, y1, ep1),
         };
+        // A noisy barometer's sample that fires before the step's end or its event.
+        let mut noisy = false;
+        if let Some((tk, i)) = run.noisy_trigger(t_now, t_end, ep.pos.z, |t| {
+            each!(stepper, s => G::Height(0.0).at(model, &starts, t, &s.dense(t)))
+        }) {
+            if found.is_none_or(|(te, _)| tk < te) {
+                if tk < t_end {
+                    (y_end, ep) = end_point_at(run, stepper, rail, tk);
+                    t_end = tk;
+                }
+                found = Some((tk, EventKind::ParachuteTrigger(i)));
+                noisy = true;
+            }
+        }
         run.record(
             phase,
             t_end,
@@ -285,6 +285,7 @@ impl SixDof {
                     land(run, te, pos, vel);
                     return Ok(Some((te, y_end, PhaseEnd::Landed)));
                 }
+                EventKind::ParachuteTrigger(i) if noisy => run.fire_at_sample(i, te, alt, speed),
                 EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
                 EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
                 _ => {}
@@ -330,6 +331,23 @@ impl SixDof {
         run.evaluations += evals;
         self.after_step(run, stepper, outcome, None)
     }
+}
+
+/// The state at `te` inside the step just taken (its dense output) and the end figures there.
+fn end_point_at<O: Observer>(
+    run: &mut Run<'_, O>,
+    stepper: &Stepper<N6>,
+    rail: bool,
+    te: f64,
+) -> ([f64; N6], EndPoint) {
+    let model = run.model;
+    let (starts, changes) = (run.starts, run.starts_changed);
+    let ye = each!(stepper, s => s.dense(te));
+    let mut dy = [0.0; N6];
+    derivative(model, rail, &mut run.memo, &starts, changes, te, &ye, &mut dy);
+    let ms = run.memo.get(model, &starts, changes, te).0;
+    let (pos, vel, aux) = model.end_point(ms, &ye, &dy, rail);
+    (ye, EndPoint { pos, vel, aux })
 }
 
 /// Rail or free flight until the rail exit (rail), a canopy opens, landing or the time limit.
