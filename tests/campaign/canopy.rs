@@ -72,3 +72,104 @@ fn a_sampling_rate_that_is_not_positive_is_refused_naming_its_parachute_s_key() 
     assert!(err.contains("parachutes[0].sampling_rate_hz"), "{err}");
     assert!(err.contains("must be positive and finite"), "{err}");
 }
+
+/// [`windy`]'s main fired at 300 m on the way down by a 100 Hz altimeter, with `noise` (a
+/// TOML inline table) on its barometer, if any.
+fn main_at_300(noise: Option<&str>) -> String {
+    let noise = noise.map_or(String::new(), |n| format!("noise = {n}\n"));
+    windy("wind_speed_m_s = 4.0\nwind_from_deg = 250.0", "drag_scale = [1.0]").replace(
+        "trigger = \"apogee\"\n",
+        &format!("trigger = {{ height_m = 300.0 }}\nsampling_rate_hz = 100.0\n{noise}"),
+    )
+}
+
+#[test]
+fn a_scenario_s_noisy_barometer_fires_each_variant_s_main_through_its_own_seed() {
+    // A poor barometer (60 Pa, about 5 m of height: a dozen samples of the ballistic fall)
+    // with a bias and correlated samples. Each variant reads its own noise: its sensor seed is
+    // drawn from the scenario's seed and its stream (key "sensor_noise"), so the same scenario
+    // repeats its rows, and each row is the simulator set up by hand with that seed.
+    let noisy_text = main_at_300(Some("{ bias_pa = 5.0, std_pa = 60.0, correlation = 0.3 }"));
+    let names = [
+        "drag_scale",
+        "parachute_main_deploy_time_s",
+        "apogee_m",
+        "landing_x_m",
+    ];
+    let (noisy, again, plain) = (
+        landed_rows(&noisy_text, names),
+        landed_rows(&noisy_text, names),
+        landed_rows(&main_at_300(None), names),
+    );
+    assert_eq!(noisy, again, "the same scenario and seed, the same rows");
+    let design = hpr_design::Design::load(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("validation/designs/synthetic-54mm-three-fin.json"),
+    )
+    .unwrap();
+    let noise = hpr_sim::SensorNoise {
+        bias_pa: 5.0,
+        std_pa: 60.0,
+        correlation: 0.3,
+    };
+    let chute = Parachute::new("main", 0.9, Trigger::HeightDescending { height_m: 300.0 }, 1.0)
+        .with_sampling_rate(100.0)
+        .with_noise(noise);
+    let mut moved = 0;
+    for (r, (n, p)) in noisy.iter().zip(&plain).enumerate() {
+        assert_eq!(n[0], p[0], "the same drag scales");
+        assert_eq!(n[2], p[2], "the same apogee: nothing reads the noise before it");
+        // One point, common random numbers: variant r draws from stream r (the scenario's
+        // seed is 3).
+        let seed: u64 = rand::RngExt::random(&mut hpr_mc::campaign::sample::input_rng(
+            3,
+            r as u64,
+            "sensor_noise",
+        ));
+        let f = hpr_sim::Simulation::new(
+            design.clone(),
+            hpr_design::motor::find("Cesaroni_I175").unwrap(),
+            Environment {
+                wind: Wind::constant(4.0, 250.0).unwrap(),
+                ..Environment::default()
+            },
+            hpr_sim::Rail {
+                inclination_deg: 85.0,
+                ..hpr_sim::Rail::default()
+            },
+        )
+        .and_then(|s| s.with_parachutes(vec![chute.clone()]))
+        .and_then(|s| s.with_drag_scale(n[0]))
+        .and_then(|s| {
+            s.with_options(hpr_sim::SimOptions {
+                max_time_s: 900.0,
+                ..hpr_sim::SimOptions::default()
+            })
+        })
+        .unwrap()
+        .with_sensor_seed(seed)
+        .run(&mut ())
+        .unwrap();
+        assert_eq!(Some(n[1]), f.deploy(0).map(|d| d.0), "row {r}");
+        assert_eq!(Some(n[3]), f.metrics.landing_position_m.map(|p| p[0]), "row {r}");
+        moved += usize::from(n[1] != p[1]);
+        eprintln!(
+            "drag {:.4}: main opens at {:.2} s noiseless, {:.2} s through the noisy barometer",
+            p[0], p[1], n[1]
+        );
+    }
+    assert!(moved >= 3, "{moved} of {} moved", noisy.len());
+}
+
+#[test]
+fn a_noisy_barometer_without_a_sampling_rate_or_with_a_bad_number_is_refused_by_key() {
+    let no_rate = main_at_300(Some("{ std_pa = 8.3 }")).replace("sampling_rate_hz = 100.0\n", "");
+    let err = refusal(&no_rate);
+    assert!(err.contains("parachutes[0].noise") && err.contains("sampling_rate_hz"), "{err}");
+    let err = refusal(&main_at_300(Some("{ std_pa = -2.0 }")));
+    assert!(err.contains("parachutes[0].noise.std_pa") && err.contains("-2"), "{err}");
+    let err = refusal(&main_at_300(Some("{ std_pa = 1.0, correlation = 1.5 }")));
+    assert!(err.contains("parachutes[0].noise.correlation"), "{err}");
+    let err = refusal(&main_at_300(Some("{ std_pa = 1.0, sigma = 2.0 }")));
+    assert!(err.contains("sigma"), "{err}");
+}

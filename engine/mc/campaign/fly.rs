@@ -211,6 +211,7 @@ impl Prepared {
             ],
             parachutes,
             shifts,
+            sensor_seed: 0,
         };
         let plan = Plan {
             seed: scenario.seed,
@@ -493,7 +494,15 @@ fn check_ballast(design: &Design, idx: usize) -> Result<(), String> {
 pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult> {
     let fixed = prepared.fixed();
     let setups: Vec<Result<Setup, String>> =
-        variants.iter().map(|v| fixed.setup(&v.values)).collect();
+        variants
+            .iter()
+            .map(|v| {
+                fixed.setup(&v.values).map(|s| Setup {
+                    sensor_seed: v.sensor_seed,
+                    ..s
+                })
+            })
+            .collect();
     let rows: Vec<&Setup> = setups.iter().filter_map(|s| s.as_ref().ok()).collect();
     let lanes = prepared.batch.fly_chunk(&fixed.columns(&rows), 0);
     let mut lanes = match lanes {

@@ -14,6 +14,7 @@
 //! order into chunks of `chunk_size`, the unit of work and of resumption.
 
 use super::sample::{input_rng, Dispersion};
+use rand::RngExt;
 
 /// One input as the variants need it: its nominal (the center when it is not swept), its
 /// sweep and its dispersion.
@@ -45,6 +46,10 @@ pub struct Variant {
     pub point: usize,
     pub replicate: u64,
     pub values: Vec<f64>,
+    /// The seed of its parachutes' barometer noise: drawn from the same stream as its
+    /// values (key `sensor_noise`), so it too depends only on (seed, id), and with common
+    /// random numbers replicate r of every point reads the same noise.
+    pub sensor_seed: u64,
 }
 
 impl Plan {
@@ -127,6 +132,7 @@ impl Plan {
             point,
             replicate,
             values,
+            sensor_seed: input_rng(self.seed, stream, "sensor_noise").random(),
         }
     }
 }

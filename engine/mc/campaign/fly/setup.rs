@@ -32,6 +32,8 @@ pub(super) struct Setup {
     pub(super) parachutes: Vec<[f64; 3]>,
     /// Per shift: travel, duration, trigger number (NaN if none).
     pub(super) shifts: Vec<[f64; 3]>,
+    /// The seed of the parachutes' barometer noise (the variant's own; 0 for the nominal).
+    pub(super) sensor_seed: u64,
 }
 
 impl Setup {
@@ -164,6 +166,7 @@ impl Fixed<'_> {
                     .zip(&s.parachutes)
                     .map(|(p, v)| Parachute {
                         sampling_rate_hz: p.sampling_rate_hz,
+                        noise: p.noise,
                         ..Parachute::new(
                             p.name.clone(),
                             v[0],
@@ -264,7 +267,13 @@ impl Fixed<'_> {
                 .collect::<Vec<_>>()
         };
         let (chutes, shifts) = (self.scenario.parachutes.len(), self.scenario.shifts.len());
+        let noisy = self.scenario.parachutes.iter().any(|p| p.noise.is_some());
         Columns {
+            sensor_seed: if noisy {
+                rows.iter().map(|s| s.sensor_seed).collect()
+            } else {
+                vec![]
+            },
             len: rows.len(),
             structure_delta_mass_kg: col(structure, &|s| self.structure_deltas(s).0),
             structure_delta_cg_m: col(structure, &|s| self.structure_deltas(s).1),

@@ -18,7 +18,7 @@ use super::sample::{fingerprint, Dispersion};
 use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
 use hpr_sim::wind::{Wind, WindError, WindRow};
-use hpr_sim::{CanopyShape, Integrator, Trigger};
+use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use raw::RawScenario;
 use rules::{canopy_shape, check_name, check_param, finite, inputs, integrator, one_line};
 use std::path::{Path, PathBuf};
@@ -124,6 +124,8 @@ pub struct ParachuteSpec {
     pub canopy: CanopyShape,
     /// The sampling rate of the flight computer that fires it, Hz (`None`: continuous).
     pub sampling_rate_hz: Option<f64>,
+    /// The noise of its barometer (RocketPy's `noise`; see `hpr_sim::sensor`).
+    pub noise: Option<SensorNoise>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -488,6 +490,31 @@ impl Scenario {
                         ))
                     }
                     r => r,
+                },
+                noise: match &p.noise {
+                    None => None,
+                    Some(n) => {
+                        let noise = SensorNoise {
+                            bias_pa: n.bias_pa,
+                            std_pa: n.std_pa,
+                            correlation: n.correlation,
+                        };
+                        if let Err((field, rule)) = noise.check() {
+                            let got = match field {
+                                "bias_pa" => n.bias_pa,
+                                "std_pa" => n.std_pa,
+                                _ => n.correlation,
+                            };
+                            return Err(bad(
+                                &key(&format!("noise.{field}")),
+                                format!("{rule} (got {got})"),
+                            ));
+                        }
+                        if p.sampling_rate_hz.is_none() {
+                            return Err(bad(&key("noise"), "a noisy barometer is read at samples: give the parachute a sampling_rate_hz too (RocketPy's default is 100 Hz)".into()));
+                        }
+                        Some(noise)
+                    }
                 },
             });
         }

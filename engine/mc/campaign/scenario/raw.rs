@@ -92,6 +92,19 @@ pub(super) struct RawParachute {
     pub(super) height_m: Option<f64>,
     pub(super) porosity: Option<f64>,
     pub(super) sampling_rate_hz: Option<f64>,
+    pub(super) noise: Option<RawNoise>,
+}
+
+/// A flight computer's barometer noise: `{ bias_pa = 0, std_pa = 8.3, correlation = 0.5 }`
+/// (RocketPy's `noise` tuple; bias and correlation default to 0).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawNoise {
+    #[serde(default)]
+    pub(super) bias_pa: f64,
+    pub(super) std_pa: f64,
+    #[serde(default)]
+    pub(super) correlation: f64,
 }
 
 #[derive(Deserialize)]
