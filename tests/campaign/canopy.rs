@@ -77,7 +77,11 @@ fn a_sampling_rate_that_is_not_positive_is_refused_naming_its_parachute_s_key() 
 /// TOML inline table) on its barometer, if any.
 fn main_at_300(noise: Option<&str>) -> String {
     let noise = noise.map_or(String::new(), |n| format!("noise = {n}\n"));
-    windy("wind_speed_m_s = 4.0\nwind_from_deg = 250.0", "drag_scale = [1.0]").replace(
+    windy(
+        "wind_speed_m_s = 4.0\nwind_from_deg = 250.0",
+        "drag_scale = [1.0]",
+    )
+    .replace(
         "trigger = \"apogee\"\n",
         &format!("trigger = {{ height_m = 300.0 }}\nsampling_rate_hz = 100.0\n{noise}"),
     )
@@ -112,13 +116,21 @@ fn a_scenario_s_noisy_barometer_fires_each_variant_s_main_through_its_own_seed()
         std_pa: 60.0,
         correlation: 0.3,
     };
-    let chute = Parachute::new("main", 0.9, Trigger::HeightDescending { height_m: 300.0 }, 1.0)
-        .with_sampling_rate(100.0)
-        .with_noise(noise);
+    let chute = Parachute::new(
+        "main",
+        0.9,
+        Trigger::HeightDescending { height_m: 300.0 },
+        1.0,
+    )
+    .with_sampling_rate(100.0)
+    .with_noise(noise);
     let mut moved = 0;
     for (r, (n, p)) in noisy.iter().zip(&plain).enumerate() {
         assert_eq!(n[0], p[0], "the same drag scales");
-        assert_eq!(n[2], p[2], "the same apogee: nothing reads the noise before it");
+        assert_eq!(
+            n[2], p[2],
+            "the same apogee: nothing reads the noise before it"
+        );
         // One point, common random numbers: variant r draws from stream r (the scenario's
         // seed is 3).
         let seed: u64 = rand::RngExt::random(&mut hpr_mc::campaign::sample::input_rng(
@@ -151,7 +163,11 @@ fn a_scenario_s_noisy_barometer_fires_each_variant_s_main_through_its_own_seed()
         .run(&mut ())
         .unwrap();
         assert_eq!(Some(n[1]), f.deploy(0).map(|d| d.0), "row {r}");
-        assert_eq!(Some(n[3]), f.metrics.landing_position_m.map(|p| p[0]), "row {r}");
+        assert_eq!(
+            Some(n[3]),
+            f.metrics.landing_position_m.map(|p| p[0]),
+            "row {r}"
+        );
         moved += usize::from(n[1] != p[1]);
         eprintln!(
             "drag {:.4}: main opens at {:.2} s noiseless, {:.2} s through the noisy barometer",
@@ -165,9 +181,15 @@ fn a_scenario_s_noisy_barometer_fires_each_variant_s_main_through_its_own_seed()
 fn a_noisy_barometer_without_a_sampling_rate_or_with_a_bad_number_is_refused_by_key() {
     let no_rate = main_at_300(Some("{ std_pa = 8.3 }")).replace("sampling_rate_hz = 100.0\n", "");
     let err = refusal(&no_rate);
-    assert!(err.contains("parachutes[0].noise") && err.contains("sampling_rate_hz"), "{err}");
+    assert!(
+        err.contains("parachutes[0].noise") && err.contains("sampling_rate_hz"),
+        "{err}"
+    );
     let err = refusal(&main_at_300(Some("{ std_pa = -2.0 }")));
-    assert!(err.contains("parachutes[0].noise.std_pa") && err.contains("-2"), "{err}");
+    assert!(
+        err.contains("parachutes[0].noise.std_pa") && err.contains("-2"),
+        "{err}"
+    );
     let err = refusal(&main_at_300(Some("{ std_pa = 1.0, correlation = 1.5 }")));
     assert!(err.contains("parachutes[0].noise.correlation"), "{err}");
     let err = refusal(&main_at_300(Some("{ std_pa = 1.0, sigma = 2.0 }")));

@@ -493,16 +493,15 @@ fn check_ballast(design: &Design, idx: usize) -> Result<(), String> {
 /// as lanes of the prepared base flight (the run loop spreads the chunks over the threads).
 pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult> {
     let fixed = prepared.fixed();
-    let setups: Vec<Result<Setup, String>> =
-        variants
-            .iter()
-            .map(|v| {
-                fixed.setup(&v.values).map(|s| Setup {
-                    sensor_seed: v.sensor_seed,
-                    ..s
-                })
+    let setups: Vec<Result<Setup, String>> = variants
+        .iter()
+        .map(|v| {
+            fixed.setup(&v.values).map(|s| Setup {
+                sensor_seed: v.sensor_seed,
+                ..s
             })
-            .collect();
+        })
+        .collect();
     let rows: Vec<&Setup> = setups.iter().filter_map(|s| s.as_ref().ok()).collect();
     let lanes = prepared.batch.fly_chunk(&fixed.columns(&rows), 0);
     let mut lanes = match lanes {

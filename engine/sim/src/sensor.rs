@@ -190,9 +190,15 @@ mod tests {
         let (mean, sd, rho) = moments(noise, 1, 200_000, 11);
         let settled = (0.75f64).sqrt() * 2.0 / 0.5;
         assert!((noise.settled_mean_pa() - settled).abs() < 1e-15);
-        assert!((mean - settled).abs() < 5.0 * 0.032, "mean {mean} against {settled}");
+        assert!(
+            (mean - settled).abs() < 5.0 * 0.032,
+            "mean {mean} against {settled}"
+        );
         assert!((sd - 8.3).abs() < 5.0 * 0.017, "deviation {sd}");
-        assert!((rho - 0.5).abs() < 5.0 * 0.0019, "lag-one correlation {rho}");
+        assert!(
+            (rho - 0.5).abs() < 5.0 * 0.0019,
+            "lag-one correlation {rho}"
+        );
     }
 
     #[test]
@@ -205,7 +211,10 @@ mod tests {
             correlation: 0.5,
         };
         let (mean, sd, rho) = moments(noise, 3, 200_000, 12);
-        assert!((mean - noise.settled_mean_pa()).abs() < 5.0 * 0.0101, "mean {mean}");
+        assert!(
+            (mean - noise.settled_mean_pa()).abs() < 5.0 * 0.0101,
+            "mean {mean}"
+        );
         assert!((sd - 4.0).abs() < 5.0 * 0.0064, "deviation {sd}");
         assert!((rho - 0.125).abs() < 5.0 * 0.0022, "correlation {rho}");
     }
@@ -258,7 +267,19 @@ mod tests {
         assert_eq!(ok.check(), Ok(()));
         let bad = |n: SensorNoise| n.check().unwrap_err().0;
         assert_eq!(bad(SensorNoise { std_pa: -1.0, ..ok }), "std_pa");
-        assert_eq!(bad(SensorNoise { bias_pa: f64::NAN, ..ok }), "bias_pa");
-        assert_eq!(bad(SensorNoise { correlation: 1.5, ..ok }), "correlation");
+        assert_eq!(
+            bad(SensorNoise {
+                bias_pa: f64::NAN,
+                ..ok
+            }),
+            "bias_pa"
+        );
+        assert_eq!(
+            bad(SensorNoise {
+                correlation: 1.5,
+                ..ok
+            }),
+            "correlation"
+        );
     }
 }

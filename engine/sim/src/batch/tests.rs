@@ -728,9 +728,8 @@ fn lanes_with_noisy_barometers_equal_their_single_flights_whatever_the_chunks() 
         // under the drogue at 20 Hz).
         if lane.variant < 20 {
             let other = sim.with_sensor_seed(1).run(&mut ()).unwrap();
-            let main = |f: &crate::flight::Flight| {
-                f.event(EventKind::ParachuteTrigger(1)).unwrap().time_s
-            };
+            let main =
+                |f: &crate::flight::Flight| f.event(EventKind::ParachuteTrigger(1)).unwrap().time_s;
             moved += usize::from(main(&other) != main(&f));
         }
     }

@@ -68,11 +68,14 @@ impl Changes<'_> {
             }
             if let Some(noise) = &p.noise {
                 noise.check().map_err(|(field, rule)| {
-                    SimError::Setup(format!("{what}: noise field \"{field}\" {rule} (got {})", match field {
-                        "bias_pa" => noise.bias_pa,
-                        "std_pa" => noise.std_pa,
-                        _ => noise.correlation,
-                    }))
+                    SimError::Setup(format!(
+                        "{what}: noise field \"{field}\" {rule} (got {})",
+                        match field {
+                            "bias_pa" => noise.bias_pa,
+                            "std_pa" => noise.std_pa,
+                            _ => noise.correlation,
+                        }
+                    ))
                 })?;
                 if p.sampling_rate_hz.is_none() {
                     return Err(SimError::Setup(format!("{what}: a noisy pressure is read at samples: field \"sampling_rate_hz\" is needed with \"noise\" (RocketPy's default is 100 Hz)")));

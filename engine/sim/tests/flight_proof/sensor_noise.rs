@@ -212,7 +212,10 @@ fn a_noisy_barometer_scatters_the_main_as_a_first_passage_of_its_noise_and_repea
         (mean - model_mean).abs() < 4.0 * se,
         "{mean} m against the model's {model_mean} m"
     );
-    assert!((sd / model_sd - 1.0).abs() < 0.15, "{sd} m against {model_sd} m");
+    assert!(
+        (sd / model_sd - 1.0).abs() < 0.15,
+        "{sd} m against {model_sd} m"
+    );
     // The same seed, the same flight; another seed, another.
     let (a, b) = (fly(MAIN_M, Some(noise), 7), fly(MAIN_M, Some(noise), 7));
     assert_eq!(a.metrics.landing_time_s, b.metrics.landing_time_s);
@@ -243,7 +246,14 @@ fn a_noisy_barometer_needs_a_sampling_rate_and_numbers_in_range() {
         .expect_err("refused")
         .to_string()
     };
-    let main = || Parachute::new("main", 0.9, Trigger::HeightDescending { height_m: 300.0 }, 1.0);
+    let main = || {
+        Parachute::new(
+            "main",
+            0.9,
+            Trigger::HeightDescending { height_m: 300.0 },
+            1.0,
+        )
+    };
     let e = refused(main().with_noise(noise));
     assert!(
         e.contains("parachute 0 (\"main\")") && e.contains("sampling_rate_hz"),
@@ -253,7 +263,10 @@ fn a_noisy_barometer_needs_a_sampling_rate_and_numbers_in_range() {
         std_pa: -1.0,
         ..noise
     }));
-    assert!(e.contains("noise field \"std_pa\"") && e.contains("-1"), "{e}");
+    assert!(
+        e.contains("noise field \"std_pa\"") && e.contains("-1"),
+        "{e}"
+    );
     let e = refused(main().with_sampling_rate(100.0).with_noise(SensorNoise {
         correlation: 2.0,
         ..noise

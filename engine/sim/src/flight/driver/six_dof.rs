@@ -238,9 +238,12 @@ impl SixDof {
         };
         // A noisy barometer's sample that fires before the step's end or its event.
         let mut noisy = false;
-        if let Some((tk, i)) = run.noisy_trigger(t_now, t_end, ep.pos.z, |t| {
-            each!(stepper, s => G::Height(0.0).at(model, &starts, t, &s.dense(t)))
-        }) {
+        if let Some((tk, i)) = run.noisy_trigger(
+            t_now,
+            t_end,
+            ep.pos.z,
+            |t| each!(stepper, s => G::Height(0.0).at(model, &starts, t, &s.dense(t))),
+        ) {
             if found.is_none_or(|(te, _)| tk < te) {
                 if tk < t_end {
                     (y_end, ep) = end_point_at(run, stepper, rail, tk);
@@ -344,7 +347,16 @@ fn end_point_at<O: Observer>(
     let (starts, changes) = (run.starts, run.starts_changed);
     let ye = each!(stepper, s => s.dense(te));
     let mut dy = [0.0; N6];
-    derivative(model, rail, &mut run.memo, &starts, changes, te, &ye, &mut dy);
+    derivative(
+        model,
+        rail,
+        &mut run.memo,
+        &starts,
+        changes,
+        te,
+        &ye,
+        &mut dy,
+    );
     let ms = run.memo.get(model, &starts, changes, te).0;
     let (pos, vel, aux) = model.end_point(ms, &ye, &dy, rail);
     (ye, EndPoint { pos, vel, aux })
