@@ -229,9 +229,10 @@ def linear(points, name):
                     interpolation="linear", extrapolation="constant")
 
 
-def build(spec, geo, wind="wind", lever_arm=False, air=False):
+def build(spec, geo, wind="wind", lever_arm=False, air=False, noise=(0, 0, 0)):
     """The rocket in `wind` ("wind", "profile" or "calm"), RocketPy's lever arm and standard
-    air corrected or not."""
+    air corrected or not, its parachutes' barometers read with `noise` (RocketPy's (bias,
+    deviation, correlation); none by default)."""
     env = Environment(latitude=SITE["latitude_deg"], longitude=SITE["longitude_deg"],
                       elevation=SITE["elevation_m"])
     if wind == "wind":
@@ -247,7 +248,7 @@ def build(spec, geo, wind="wind", lever_arm=False, air=False):
         air(env)  # another air, as the caller gives it (profile_crosscheck.py)
     elif air:
         corrections.true_standard_air(env)
-    motor, rocket = assemble(spec, geo, lever_arm)
+    motor, rocket = assemble(spec, geo, lever_arm, noise)
     r, m, rail = geo["rocket_after_burnout"], geo["motor"], spec["rail"]
     flight = Flight(rocket=rocket, environment=env,
                     rail_length=rail["length_m"] - (r["aft_end_m"] - m["aft_m"]),
@@ -256,9 +257,9 @@ def build(spec, geo, wind="wind", lever_arm=False, air=False):
     return env, motor, rocket, flight
 
 
-def assemble(spec, geo, lever_arm=False):
-    """RocketPy's motor and rocket (its canopies included), its lever arm corrected or not,
-    not yet flown."""
+def assemble(spec, geo, lever_arm=False, noise=(0, 0, 0)):
+    """RocketPy's motor and rocket (its canopies included, their barometers read with
+    `noise`), its lever arm corrected or not, not yet flown."""
     m = geo["motor"]
     half = 0.5 * m["length_m"]
     eng = os.path.join(REPO, "engine", "design", "motors", m["file"] + ".eng")
@@ -304,9 +305,10 @@ def assemble(spec, geo, lever_arm=False):
     chutes = parachutes(spec, geo)
     rocket.add_parachute("main", cd_s=chutes["main"]["cd_s_m2"],
                          trigger=chutes["main"]["height_m"], sampling_rate=SAMPLING_HZ,
-                         lag=chutes["main"]["lag_s"])
+                         lag=chutes["main"]["lag_s"], noise=noise)
     rocket.add_parachute("drogue", cd_s=chutes["drogue"]["cd_s_m2"], trigger="apogee",
-                         sampling_rate=SAMPLING_HZ, lag=chutes["drogue"]["lag_s"])
+                         sampling_rate=SAMPLING_HZ, lag=chutes["drogue"]["lag_s"],
+                         noise=noise)
     if lever_arm:
         corrections.correct(rocket)
     return motor, rocket

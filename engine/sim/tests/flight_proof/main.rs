@@ -17,6 +17,7 @@ mod events;
 mod exact;
 mod inputs;
 mod jet_damping;
+mod noise_crosscheck;
 mod large_angles;
 mod profile_crosscheck;
 mod random_crosscheck;
