@@ -60,7 +60,10 @@ fn a_noisy_barometer_fires_the_main_at_heights_distributed_as_rocketpys() {
         "noiseless main: hpr at {t_hpr:.6} s, {:.4} m; RocketPy at {t_rp:.6} s, {h_rp:.4} m",
         main_height(&plain)
     );
-    assert!(((t_hpr - t_rp) * rate).abs() < 0.5, "the same 105 Hz sample");
+    assert!(
+        ((t_hpr - t_rp) * rate).abs() < 0.5,
+        "the same 105 Hz sample"
+    );
     assert!((main_height(&plain) - h_rp).abs() < 0.02);
     for (name, run) in rp["runs"].as_object().unwrap() {
         let noise = SensorNoise {
@@ -96,6 +99,9 @@ fn a_noisy_barometer_fires_the_main_at_heights_distributed_as_rocketpys() {
             s_h / s_r
         );
         assert!((m_h - m_r).abs() < 4.0 * se_mean, "{name}: means");
-        assert!((s_h / s_r - 1.0).abs() < 4.0 * se_ratio, "{name}: deviations");
+        assert!(
+            (s_h / s_r - 1.0).abs() < 4.0 * se_ratio,
+            "{name}: deviations"
+        );
     }
 }

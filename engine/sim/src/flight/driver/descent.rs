@@ -118,13 +118,16 @@ impl Descent {
         };
         // A noisy barometer's sample that fires before the step's end or its event.
         let mut noisy = false;
-        let t0 = each!(stepper, s => s.t_prev());
-        if let Some((tk, i)) = run.noisy_trigger(
-            t0,
-            t_end,
-            y_end[2],
-            |t| each!(stepper, s => s.dense_component(t, 2)),
-        ) {
+        let heard = match run.hears_noise() {
+            false => None,
+            true => run.noisy_trigger(
+                each!(stepper, s => s.t_prev()),
+                t_end,
+                y_end[2],
+                |t| each!(stepper, s => s.dense_component(t, 2)),
+            ),
+        };
+        if let Some((tk, i)) = heard {
             if found.is_none_or(|(te, _)| tk < te) {
                 if tk < t_end {
                     (t_end, y_end) = (tk, each!(stepper, s => s.dense(tk)));

@@ -378,6 +378,13 @@ impl<'a, O: Observer> Run<'a, O> {
         self.noise.get(i).is_some_and(Option::is_some)
     }
 
+    /// Whether a noisy barometer may fire a parachute now (past apogee; the test before
+    /// [`Run::noisy_trigger`], kept in line so that flights without one pay one comparison).
+    #[inline(always)]
+    fn hears_noise(&self) -> bool {
+        self.apogee_done && !self.noise.is_empty()
+    }
+
     /// The first sample in `(t0, t1]` at which an armed parachute's noisy barometer says the
     /// rocket is below its trigger height (see [`crate::sensor`]), and which parachute, once
     /// past apogee. `z1` is the center's height at `t1` (the lowest of the interval: the rocket
@@ -390,7 +397,7 @@ impl<'a, O: Observer> Run<'a, O> {
         z1: f64,
         mut height_at: impl FnMut(f64) -> f64,
     ) -> Option<(f64, usize)> {
-        if self.noise.is_empty() || !self.apogee_done {
+        if !self.hears_noise() {
             return None;
         }
         let model = self.model;

@@ -238,12 +238,16 @@ impl SixDof {
         };
         // A noisy barometer's sample that fires before the step's end or its event.
         let mut noisy = false;
-        if let Some((tk, i)) = run.noisy_trigger(
-            t_now,
-            t_end,
-            ep.pos.z,
-            |t| each!(stepper, s => G::Height(0.0).at(model, &starts, t, &s.dense(t))),
-        ) {
+        let heard = match run.hears_noise() {
+            false => None,
+            true => run.noisy_trigger(
+                t_now,
+                t_end,
+                ep.pos.z,
+                |t| each!(stepper, s => G::Height(0.0).at(model, &starts, t, &s.dense(t))),
+            ),
+        };
+        if let Some((tk, i)) = heard {
             if found.is_none_or(|(te, _)| tk < te) {
                 if tk < t_end {
                     (y_end, ep) = end_point_at(run, stepper, rail, tk);
