@@ -17,6 +17,7 @@ pub mod lanes;
 pub mod massprops;
 pub mod sensor;
 pub mod shifts;
+pub mod sounding;
 pub mod trigger;
 pub mod wind;
 

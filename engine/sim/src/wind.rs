@@ -312,7 +312,7 @@ fn check_speed_direction(row: Option<usize>, speed: f64, from_deg: f64) -> Resul
 
 /// (east, north) velocity of a wind of `speed` blowing from `from_deg`: it moves toward
 /// `from_deg + 180°`.
-fn components_en(speed: f64, from_deg: f64) -> [f64; 2] {
+pub(crate) fn components_en(speed: f64, from_deg: f64) -> [f64; 2] {
     let (s, c) = from_deg.to_radians().sin_cos();
     [-speed * s, -speed * c]
 }
