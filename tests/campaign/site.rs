@@ -224,3 +224,123 @@ fn a_swept_site_temperature_moves_an_air_profile_whole_and_each_row_flies_in_its
     eprintln!("profile moved to 285 K: apogee {cold:.2} m, to 305 K: {warm:.2} m");
     assert!(warm > cold + 10.0, "{warm} against {cold}");
 }
+
+/// The synthetic Wyoming listing (`validation/soundings/synthetic-wyoming.txt`), by its
+/// absolute path.
+fn sounding_path() -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/soundings/synthetic-wyoming.txt")
+        .display()
+        .to_string()
+}
+
+#[test]
+fn a_scenario_s_sounding_flies_as_its_air_and_wind_rows_written_out_by_hand() {
+    // `sounding = "..."` with no elevation: the site is the sounding's ground (its lowest
+    // level with a temperature and a pressure, 1400 m geopotential), the air its temperature
+    // rows above the site with its pressure there, the wind its rows. The same scenario with
+    // those rows written into `air_profile`, `pressure_pa` and `wind_profile` flies the same
+    // rows bit for bit, and so does a swept temperature (which shifts every row of both).
+    let path = sounding_path();
+    let sounding =
+        hpr_sim::sounding::Sounding::parse(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let site = sounding.surface_m().unwrap();
+    let air = sounding.air_profile(site).unwrap();
+    let wind = sounding.wind_rows(site).unwrap();
+    let air_rows: Vec<String> = air
+        .rows
+        .iter()
+        .map(|r| {
+            format!(
+                "{{ height_m = {:?}, temperature_k = {:?} }}",
+                r.height_m, r.temperature_k
+            )
+        })
+        .collect();
+    let wind_rows: Vec<String> = wind
+        .iter()
+        .map(|r| {
+            format!(
+                "{{ height_m = {:?}, speed_m_s = {:?}, from_deg = {:?} }}",
+                r.height_agl_m, r.speed_m_s, r.from_deg
+            )
+        })
+        .collect();
+    let by_hand = format!(
+        "elevation_m = {site:?}\npressure_pa = {:?}\nair_profile = [{}]\nwind_profile = [{}]",
+        air.pressure_pa,
+        air_rows.join(", "),
+        wind_rows.join(", ")
+    );
+    let names = ["drag_scale", "apogee_m", "landing_x_m", "landing_y_m"];
+    for sweep in ["drag_scale = [1.0]", "temperature_k = [300.0, 310.0]"] {
+        let read = landed_rows(&windy(&format!("sounding = {path:?}"), sweep), names);
+        let written = landed_rows(&windy(&by_hand, sweep), names);
+        assert_eq!(read, written, "{sweep}");
+        eprintln!(
+            "{sweep}: through the sounding, apogee {:.2} m, landing ({:.1}, {:.1}) m",
+            read[0][1], read[0][2], read[0][3]
+        );
+    }
+    // Given an elevation between levels, the site moves up into the sounding: a higher,
+    // cooler site with less air above it.
+    let higher = landed_rows(
+        &windy(
+            &format!("sounding = {path:?}\nelevation_m = 1600.0"),
+            "drag_scale = [1.0]",
+        ),
+        names,
+    );
+    let ground = landed_rows(
+        &windy(&format!("sounding = {path:?}"), "drag_scale = [1.0]"),
+        names,
+    );
+    assert!(higher[0][1] != ground[0][1]);
+}
+
+#[test]
+fn a_sounding_is_refused_beside_the_air_or_wind_it_gives_and_when_it_cannot_be_read() {
+    let path = sounding_path();
+    for other in [
+        "temperature_k = 300.0",
+        "pressure_pa = 86000.0",
+        "wind_speed_m_s = 4.0",
+        "wind_profile = [{ height_m = 0.0, speed_m_s = 3.0, from_deg = 90.0 }]",
+    ] {
+        let err = refusal(&windy(
+            &format!("sounding = {path:?}\n{other}"),
+            "drag_scale = [1.0]",
+        ));
+        let field = other.split(' ').next().unwrap();
+        assert!(
+            err.contains("environment.sounding") && err.contains(&format!("environment.{field}")),
+            "{err}"
+        );
+    }
+    let err = refusal(&windy(
+        "sounding = \"no-such-sounding.txt\"",
+        "drag_scale = [1.0]",
+    ));
+    assert!(
+        err.contains("environment.sounding") && err.contains("cannot read"),
+        "{err}"
+    );
+    // A site below the sounding's ground.
+    let err = refusal(&windy(
+        &format!("sounding = {path:?}\nelevation_m = 500.0"),
+        "drag_scale = [1.0]",
+    ));
+    assert!(
+        err.contains("environment.sounding") && err.contains("outside the sounding's temperatures"),
+        "{err}"
+    );
+    // A file that is not a listing.
+    let dir = tempfile::tempdir().unwrap();
+    let junk = dir.path().join("junk.txt");
+    std::fs::write(&junk, "not a sounding\n").unwrap();
+    let err = refusal(&windy(
+        &format!("sounding = {:?}", junk.display().to_string()),
+        "drag_scale = [1.0]",
+    ));
+    assert!(err.contains("no table of levels"), "{err}");
+}

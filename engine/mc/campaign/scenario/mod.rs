@@ -17,6 +17,7 @@ use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
 use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
+use hpr_sim::sounding::{Sounding, SoundingError};
 use hpr_sim::wind::{Wind, WindError, WindRow};
 use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use raw::RawScenario;
@@ -66,6 +67,9 @@ pub struct EnvironmentSpec {
     /// The atmosphere: the standard one, or the site's measured air (`temperature_k`,
     /// `pressure_pa` at the nominal `elevation_m`, built once: every variant flies it).
     pub air: AirModel,
+    /// The sounding the air and the wind were read from (`environment.sounding`), if any,
+    /// and its text.
+    pub sounding: Option<(PathBuf, String)>,
 }
 
 /// `environment.gravity` (and `fly --gravity`).
@@ -157,7 +161,8 @@ pub struct Scenario {
     /// The file (for messages and metadata), its directory (relative paths start there).
     pub file: PathBuf,
     pub dir: PathBuf,
-    /// The file's text and its FNV-1a 64 fingerprint.
+    /// The file's text and its FNV-1a 64 fingerprint (of the text and its sounding's, if
+    /// it reads one).
     pub text: String,
     pub hash: String,
     pub name: String,
@@ -316,7 +321,72 @@ impl Scenario {
             raw.motor.name.clone()
         };
 
-        let env = raw.environment.take().unwrap_or_default();
+        let mut env = raw.environment.take().unwrap_or_default();
+        // A sounding gives the air and the wind: read here, it becomes the air profile and
+        // the wind profile below, as if the scenario had written their rows.
+        let sounding = match &env.sounding {
+            None => None,
+            Some(file) => {
+                let key = "environment.sounding";
+                let given = [
+                    ("temperature_k", env.temperature_k.is_some()),
+                    ("pressure_pa", env.pressure_pa.is_some()),
+                    ("air_profile", env.air_profile.is_some()),
+                    ("wind_speed_m_s", env.wind_speed_m_s.is_some()),
+                    ("wind_from_deg", env.wind_from_deg.is_some()),
+                    ("wind_profile", env.wind_profile.is_some()),
+                ];
+                if let Some((field, _)) = given.iter().find(|(_, g)| *g) {
+                    return Err(bad(key, format!("a sounding gives the site's air and wind: give either it or environment.{field}, not both")));
+                }
+                let path = dir.join(file);
+                let text = std::fs::read_to_string(&path)
+                    .map_err(|e| bad(key, format!("cannot read {}: {e}", path.display())))?;
+                let s = Sounding::parse(&text)
+                    .map_err(|e| bad(key, format!("{}: {e}", path.display())))?;
+                let elevation = match env.elevation_m {
+                    Some(e) => e,
+                    None => s.surface_m().ok_or_else(|| {
+                        bad(
+                            key,
+                            format!(
+                                "{}: no level has both a temperature and a pressure",
+                                path.display()
+                            ),
+                        )
+                    })?,
+                };
+                let in_sounding = |e: SoundingError| {
+                    bad(
+                        key,
+                        format!("{} (environment.elevation_m): {e}", path.display()),
+                    )
+                };
+                let air = s.air_profile(elevation).map_err(in_sounding)?;
+                let wind = s.wind_rows(elevation).map_err(in_sounding)?;
+                env.elevation_m = Some(elevation);
+                env.pressure_pa = Some(air.pressure_pa);
+                env.air_profile = Some(
+                    air.rows
+                        .iter()
+                        .map(|r| raw::RawAirRow {
+                            height_m: r.height_m,
+                            temperature_k: r.temperature_k,
+                        })
+                        .collect(),
+                );
+                env.wind_profile = Some(
+                    wind.iter()
+                        .map(|r| raw::RawWindRow {
+                            height_m: r.height_agl_m,
+                            speed_m_s: r.speed_m_s,
+                            from_deg: r.from_deg,
+                        })
+                        .collect(),
+                );
+                Some((path, text))
+            }
+        };
         let wind_profile = match &env.wind_profile {
             None => None,
             Some(_) if env.wind_speed_m_s.is_some() || env.wind_from_deg.is_some() => {
@@ -393,6 +463,7 @@ impl Scenario {
                 l => l,
             },
             air: AirModel::Standard,
+            sounding,
         };
         let air_error = |e: AtmosphereError| {
             let key = match &e {
@@ -561,7 +632,11 @@ impl Scenario {
             file: path.to_path_buf(),
             dir,
             text: text.to_string(),
-            hash: fingerprint(text.as_bytes()),
+            // A sounding is part of the scenario: a run resumed with another is refused.
+            hash: match &environment.sounding {
+                None => fingerprint(text.as_bytes()),
+                Some((_, sounding)) => fingerprint(format!("{text}\n{sounding}").as_bytes()),
+            },
             name,
             description: raw.description.take(),
             seed: raw.seed,

@@ -53,6 +53,7 @@ pub(super) struct RawEnvironment {
     pub(super) temperature_k: Option<f64>,
     pub(super) pressure_pa: Option<f64>,
     pub(super) air_profile: Option<Vec<RawAirRow>>,
+    pub(super) sounding: Option<String>,
 }
 
 /// A row of `environment.air_profile`.
