@@ -13,11 +13,13 @@
 //! information, indices, HTML) is ignored.
 //!
 //! **What a flight gets** ([`Sounding::air_profile`], [`Sounding::wind_rows`]): the launch
-//! site is at `elevation_m` above sea level, within the sounding. The air is an
+//! site is at `elevation_m` above sea level, within the sounding (or up to
+//! [`BELOW_LOWEST_LEVEL_M`] below its lowest level). The air is an
 //! [`AirProfile`]: the temperature at each level above the site (linear in height between
 //! levels, as the profile's layers are, and at the site interpolated between the two levels
-//! around it), and the site's pressure interpolated between those two levels with the
-//! logarithm of the pressure linear in height (hydrostatic at a constant temperature). The
+//! around it), and the site's pressure interpolated between the two measured levels around
+//! it (those with a temperature too) with the logarithm of the pressure linear in height
+//! (hydrostatic at a constant temperature). The
 //! pressure aloft is then the profile's own, carried up hydrostatically from the site's
 //! through the measured temperatures (dry air: no humidity), not the sounding's reported
 //! pressures; the two agree to the sounding's rounding and the humidity's effect on density
@@ -36,6 +38,13 @@ use thiserror::Error;
 
 /// Knots to m/s (1852 m an hour).
 const KNOT_M_S: f64 = 1852.0 / 3600.0;
+
+/// How far below the sounding's lowest level a site may be, m: its air is then the lowest
+/// two levels' extrapolated (the temperature and the logarithm of the pressure linear in
+/// height) and its wind the lowest level's. A station listed at "1400.0 m" is 1400 m
+/// geopotential, 0.31 m below its lowest level's geometric height; a launch site near the
+/// station may be a little lower.
+pub const BELOW_LOWEST_LEVEL_M: f64 = 100.0;
 
 /// One level of a sounding: its geometric height above sea level and what was measured there.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,7 +87,7 @@ pub enum SoundingError {
         value: f64,
         rule: &'static str,
     },
-    #[error("the site at {elevation_m} m is outside the sounding's {what} ({low_m:.1} to {high_m:.1} m above sea level)")]
+    #[error("the site at {elevation_m} m is outside the sounding's {what} ({low_m:.1} to {high_m:.1} m above sea level; a site may be up to {BELOW_LOWEST_LEVEL_M} m below the lowest)")]
     Site {
         elevation_m: f64,
         what: &'static str,
@@ -262,7 +271,7 @@ impl Sounding {
             return Err(SoundingError::TooFew { what });
         }
         let (low, high) = (series[0].0, series[series.len() - 1].0);
-        if !(elevation_m >= low && elevation_m < high) {
+        if !(elevation_m >= low - BELOW_LOWEST_LEVEL_M && elevation_m < high) {
             return Err(SoundingError::Site {
                 elevation_m,
                 what,
@@ -270,7 +279,10 @@ impl Sounding {
                 high_m: high,
             });
         }
-        let i = series.partition_point(|(h, _)| *h <= elevation_m) - 1;
+        // Below the lowest level: from the lowest two, extrapolated (f < 0).
+        let i = series
+            .partition_point(|(h, _)| *h <= elevation_m)
+            .saturating_sub(1);
         let f = (elevation_m - series[i].0) / (series[i + 1].0 - series[i].0);
         Ok((i, f))
     }
@@ -285,7 +297,7 @@ impl Sounding {
             temperature_k: site_t,
         }];
         rows.extend(
-            temps[i + 1..]
+            temps[i..]
                 .iter()
                 .filter(|(h, _)| *h > elevation_m)
                 .map(|&(h, t)| AirRow {
@@ -293,7 +305,9 @@ impl Sounding {
                     temperature_k: t,
                 }),
         );
-        let pressures = self.series(|l| l.pressure_pa);
+        // The measured levels' pressures (a level below the ground listed with a pressure and
+        // a height only is the surface air extrapolated down, not a measurement).
+        let pressures = self.series(|l| l.temperature_k.and(l.pressure_pa));
         let (j, g) = Sounding::around(&pressures, elevation_m, "pressures")?;
         let (p0, p1) = (pressures[j].1, pressures[j + 1].1);
         Ok(AirProfile {
@@ -308,7 +322,8 @@ impl Sounding {
     pub fn wind_rows(&self, elevation_m: f64) -> Result<Vec<WindRow>, SoundingError> {
         let winds = self.series(|l| l.wind);
         let (i, f) = Sounding::around(&winds, elevation_m, "winds")?;
-        // At the site: the components interpolated, as the table interpolates them.
+        let f = f.max(0.0); // below the lowest level: its wind
+                            // At the site: the components interpolated, as the table interpolates them.
         let en = |(s, d): (f64, f64)| components_en(s, d);
         let (a, b) = (en(winds[i].1), en(winds[i + 1].1));
         let (e, n) = (a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]));
@@ -319,7 +334,7 @@ impl Sounding {
         };
         let mut rows = vec![site];
         rows.extend(
-            winds[i + 1..]
+            winds[i..]
                 .iter()
                 .filter(|(h, _)| *h > elevation_m)
                 .map(|&(h, (s, d))| WindRow {
@@ -448,7 +463,18 @@ mod tests {
         let air = s.air_profile(a.height_msl_m).unwrap();
         assert_eq!(air.pressure_pa, 86_000.0);
         assert_eq!(air.rows[0].temperature_k, ta);
-        // Outside the sounding's temperatures: refused, naming them.
+        // Just below the lowest level (the station's listed 1400 m, 0.31 m below the level's
+        // geometric height): the lowest two levels extrapolated, the lowest level's wind.
+        let low = s.air_profile(1400.0).unwrap();
+        let f = (1400.0 - a.height_msl_m) / (b.height_msl_m - a.height_msl_m);
+        assert!(f < 0.0);
+        assert!((low.rows[0].temperature_k - (ta + f * (tb - ta))).abs() < 1e-9);
+        assert!((low.pressure_pa - pa * (pb / pa).powf(f)).abs() < 1e-8);
+        assert!((low.rows[1].height_m - (a.height_msl_m - 1400.0)).abs() < 1e-12);
+        let w = s.wind_rows(1400.0).unwrap()[0];
+        let lowest = a.wind.unwrap();
+        assert!((w.speed_m_s - lowest.0).abs() < 1e-12 && (w.from_deg - lowest.1).abs() < 1e-9);
+        // Further outside the sounding's temperatures: refused, naming them.
         assert!(matches!(
             s.air_profile(1000.0),
             Err(SoundingError::Site {
