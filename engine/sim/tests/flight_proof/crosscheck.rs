@@ -248,10 +248,20 @@ pub(crate) fn crosscheck_simulation(r: &Value, case: &str) -> (Simulation, f64, 
 /// hpr's flight of the reference's rocket `r` in `case`, mapped as RocketPy flies it.
 pub(crate) fn fly(r: &Value, case: &str) -> Crosscheck {
     let (sim, start_height, start_en) = crosscheck_simulation(r, case);
-    let flight = sim.run(&mut ()).expect("flies");
+    fly_simulation(&sim, start_height, start_en)
+}
+
+/// The flight of `sim` (a [`crosscheck_simulation`], its surroundings changed or not) as
+/// [`fly`] records it.
+pub(crate) fn fly_simulation(
+    sim: &Simulation,
+    start_height: f64,
+    start_en: [f64; 2],
+) -> Crosscheck {
+    let flight = sim.clone().run(&mut ()).expect("flies");
     let m = &flight.metrics;
     let airframe_rail_exit_speed =
-        m.rail_exit_speed_m_s.unwrap() - mass_at(&sim, m.rail_exit_time_s.unwrap()).r_cm_rate.z;
+        m.rail_exit_speed_m_s.unwrap() - mass_at(sim, m.rail_exit_time_s.unwrap()).r_cm_rate.z;
     Crosscheck {
         flight,
         start_height,

@@ -24,4 +24,5 @@ mod random_crosscheck;
 mod rocket_equation;
 mod sampling;
 mod sensor_noise;
+mod sounding_crosscheck;
 mod warnings;
