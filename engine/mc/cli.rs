@@ -50,6 +50,7 @@ pub struct FlyArgs {
         "design", "motor", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
         "latitude_deg", "gravity", "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2",
         "main_height_m", "lag_s", "sampling_rate_hz", "temperature_k", "pressure_pa",
+        "sounding",
     ])]
     pub scenario: Option<PathBuf>,
     /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary;
@@ -74,9 +75,10 @@ pub struct FlyArgs {
     /// Rail heading, degrees clockwise from north.
     #[arg(long, default_value_t = 0.0)]
     pub heading_deg: f64,
-    /// Launch site elevation above sea level, m.
-    #[arg(long, default_value_t = 0.0)]
-    pub elevation_m: f64,
+    /// Launch site elevation above sea level, m (default 0, or with --sounding the
+    /// sounding's ground).
+    #[arg(long)]
+    pub elevation_m: Option<f64>,
     /// The site's latitude, degrees north: the flight feels the Earth's rotation (Coriolis).
     /// Without it the launch frame is inertial.
     #[arg(long, allow_negative_numbers = true)]
@@ -93,6 +95,13 @@ pub struct FlyArgs {
     /// The air's pressure at the site, Pa (see --temperature-k).
     #[arg(long, value_parser = positive)]
     pub pressure_pa: Option<f64>,
+    /// A radiosonde sounding (the University of Wyoming's text listing, as RocketPy's
+    /// wyoming_sounding reads it): the air and the wind over the site, in place of
+    /// --temperature-k, --pressure-pa, --wind-m-s and --wind-from-deg.
+    #[arg(long, value_name = "FILE", conflicts_with_all = [
+        "temperature_k", "pressure_pa", "wind_m_s", "wind_from_deg",
+    ])]
+    pub sounding: Option<PathBuf>,
     /// Constant wind speed, m/s.
     #[arg(long, default_value_t = 0.0, value_parser = not_negative)]
     pub wind_m_s: f64,
@@ -273,16 +282,39 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
 /// The flight `fly`'s options describe for `design`.
 fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
     let (design, motor) = load(design, &a.motor)?;
-    let wind = hpr_sim::wind::Wind::constant(a.wind_m_s, a.wind_from_deg)
-        .map_err(|e| anyhow!("--wind: {e}"))?;
+    let (elevation_m, wind, air) = match &a.sounding {
+        None => {
+            let elevation_m = a.elevation_m.unwrap_or(0.0);
+            let wind = hpr_sim::wind::Wind::constant(a.wind_m_s, a.wind_from_deg)
+                .map_err(|e| anyhow!("--wind: {e}"))?;
+            let air = hpr_sim::AirModel::site(elevation_m, a.temperature_k, a.pressure_pa)
+                .map_err(|e| anyhow!("--temperature-k/--pressure-pa: {e}"))?;
+            (elevation_m, wind, air)
+        }
+        Some(file) => {
+            let what = |e: &dyn std::fmt::Display| anyhow!("--sounding {}: {e}", file.display());
+            let text = std::fs::read_to_string(file).map_err(|e| what(&e))?;
+            let s = hpr_sim::sounding::Sounding::parse(&text).map_err(|e| what(&e))?;
+            let elevation_m = match a.elevation_m {
+                Some(e) => e,
+                None => s
+                    .surface_m()
+                    .ok_or_else(|| what(&"no level has both a temperature and a pressure"))?,
+            };
+            let profile = s.air_profile(elevation_m).map_err(|e| what(&e))?;
+            let rows = s.wind_rows(elevation_m).map_err(|e| what(&e))?;
+            let wind = hpr_sim::wind::Wind::table(&rows).map_err(|e| what(&e))?;
+            let air = hpr_sim::AirModel::Profile(std::sync::Arc::new(profile));
+            air.check().map_err(|e| what(&e))?;
+            (elevation_m, wind, air)
+        }
+    };
     let gravity = a
         .gravity
-        .at_site(a.latitude_deg, a.elevation_m, "--latitude-deg")
+        .at_site(a.latitude_deg, elevation_m, "--latitude-deg")
         .map_err(|e| anyhow!("--gravity: {e}"))?;
-    let air = hpr_sim::AirModel::site(a.elevation_m, a.temperature_k, a.pressure_pa)
-        .map_err(|e| anyhow!("--temperature-k/--pressure-pa: {e}"))?;
     let env = Environment {
-        elevation_m: a.elevation_m,
+        elevation_m,
         wind,
         gravity,
         latitude_deg: a.latitude_deg,

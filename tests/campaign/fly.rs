@@ -103,3 +103,68 @@ fn fly_with_a_scenario_takes_an_input_given_by_its_own_mean_at_that_mean() {
     assert_eq!(about_mean.to_bits(), at_six.to_bits());
     assert!((at_six - at_two).abs() > 10.0, "{at_six} {at_two}");
 }
+
+#[test]
+fn fly_with_a_sounding_flies_the_scenario_that_names_it() {
+    // `fly DESIGN --sounding FILE` and a scenario with `environment.sounding = FILE` (no
+    // dispersion, its main at apogee on the same rail) fly the same flight: the site the
+    // sounding's ground, its air and wind.
+    let sounding = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/soundings/synthetic-wyoming.txt")
+        .display()
+        .to_string();
+    let text = windy(&format!("sounding = {sounding:?}"), "drag_scale = [1.0]").replace(
+        "drag_scale = { dist = \"normal\", sigma = 0.05, relative = true }\n",
+        "",
+    );
+    let (dir, file) = setup(&text);
+    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+    let b = read(&report.outputs.variants);
+    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json")
+        .display()
+        .to_string();
+    let (code, out, err) = hpr_mc(&[
+        "fly",
+        &design,
+        "--motor",
+        "Cesaroni_I175",
+        "--sounding",
+        &sounding,
+        "--inclination-deg",
+        "85",
+        "--main-cds-m2",
+        "0.9",
+        "--drogue-cds-m2",
+        "0.9",
+        "--main-height-m",
+        "0.001",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let a = v["metrics"]["apogee_m"].as_f64().unwrap();
+    // To rounding, as the other `fly` checks (the campaign's air passes through its site's
+    // values: 1 ulp here).
+    let c = f64s(&b, "apogee_m").value(0);
+    assert!(
+        (a - c).abs() <= 1e-9 * c,
+        "the same climb through the same air: {a} against {c}"
+    );
+    // A sounding beside the air or wind it gives is refused by clap, naming both flags.
+    let (code, _, err) = hpr_mc(&[
+        "fly",
+        &design,
+        "--motor",
+        "Cesaroni_I175",
+        "--sounding",
+        &sounding,
+        "--wind-m-s",
+        "3",
+    ]);
+    assert_ne!(code, 0);
+    assert!(
+        err.contains("--sounding") && err.contains("--wind-m-s"),
+        "{err}"
+    );
+}
