@@ -341,6 +341,15 @@ def case(spec, geo, **kw):
     return outputs(env, rocket, flight)
 
 
+def rocket(name):
+    """``ROCKETS[name]`` and its geometry as ``geometry`` gives it."""
+    spec = ROCKETS[name]
+    design_path = os.path.join(REPO, spec["design"])
+    with open(design_path) as fh:
+        design = json.load(fh)
+    return spec, geometry(design, inspect(design_path))
+
+
 def one(name, spec, winds=("wind", "profile", "calm")):
     """One rocket's record: its inputs, RocketPy's checks of the rocket and each case of
     `winds`, flown three ways."""

@@ -19,7 +19,6 @@ Run from the repository root after ``cargo build --release`` (about 6 minutes):
 """
 
 import importlib.metadata
-import json
 import os
 import sys
 
@@ -43,11 +42,7 @@ def main_trigger(env, flight):
 
 
 def main():
-    spec = dc.ROCKETS[ROCKET]
-    design_path = os.path.join(dc.REPO, spec["design"])
-    with open(design_path) as fh:
-        design = json.load(fh)
-    geo = dc.geometry(design, dc.inspect(design_path))
+    spec, geo = dc.rocket(ROCKET)
     env, _, _, flight = dc.build(spec, geo, wind="calm", lever_arm=True, air=True)
     t0, h0 = main_trigger(env, flight)
     print(f"noiseless: main fires at {t0:.4f} s, {h0:.4f} m")

@@ -21,7 +21,6 @@ Run from the repository root after ``cargo build --release``:
 """
 
 import importlib.metadata
-import json
 import os
 import sys
 
@@ -29,7 +28,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import design_crosscheck as dc  # noqa: E402  (the rocket and its flight, as there)
 import corrections  # noqa: E402
-from corrections import _G0 as G0, _R_AIR as R_AIR, _R0 as R0  # noqa: E402
+from corrections import _R0 as R0  # noqa: E402
 from corrections import _temperature_pressure as layer_air  # noqa: E402  (one layer's law)
 
 OUT = os.path.join(HERE, "profile_crosscheck_reference.json")
@@ -85,9 +84,7 @@ def apply_profile(env):
 def main():
     spec = dc.ROCKETS[ROCKET]
     record = dc.one(ROCKET, spec, winds=())
-    design_path = os.path.join(dc.REPO, spec["design"])
-    with open(design_path) as fh:
-        geo = dc.geometry(json.load(fh), dc.inspect(design_path))
+    _, geo = dc.rocket(ROCKET)
     cases = {}
     for wind in ("wind", "calm"):
         h = dc.case(spec, geo, wind=wind, lever_arm=True, air=apply_profile)

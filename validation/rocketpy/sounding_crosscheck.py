@@ -33,7 +33,6 @@ Run from the repository root after ``cargo build --release``:
 """
 
 import importlib.metadata
-import json
 import os
 import sys
 from types import SimpleNamespace
@@ -82,11 +81,7 @@ def read_sounding_geometric(env):
 
 
 def main():
-    spec = dc.ROCKETS[ROCKET]
-    design_path = os.path.join(dc.REPO, spec["design"])
-    with open(design_path) as fh:
-        design = json.load(fh)
-    geo = dc.geometry(design, dc.inspect(design_path))
+    spec, geo = dc.rocket(ROCKET)
     env, _, rocket, flight = dc.build(spec, geo, wind="calm", lever_arm=True, air=read_sounding)
     site = env.elevation
     air = [{
