@@ -532,7 +532,10 @@ fn every_bundled_scenario_reads_and_sets_up_at_every_sweep_point() {
         }
     }
     names.sort();
-    assert_eq!(names, vec!["ballast_sweep", "calisto", "sounding", "wind_study"]);
+    assert_eq!(
+        names,
+        vec!["ballast_sweep", "calisto", "sounding", "wind_study"]
+    );
 }
 
 #[test]
