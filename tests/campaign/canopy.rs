@@ -106,6 +106,27 @@ fn a_scenario_s_noisy_barometer_fires_each_variant_s_main_through_its_own_seed()
         landed_rows(&main_at_300(None), names),
     );
     assert_eq!(noisy, again, "the same scenario and seed, the same rows");
+    let seeds: Vec<u64> = {
+        let (dir, file) = setup(&noisy_text);
+        let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+        let b = read(&report.outputs.variants);
+        let col = b
+            .column_by_name("sensor_seed")
+            .expect("a sensor_seed column");
+        let col = col
+            .as_any()
+            .downcast_ref::<arrow::array::UInt64Array>()
+            .unwrap();
+        col.values().to_vec()
+    };
+    // Without noise, no such column.
+    {
+        let (dir, file) = setup(&main_at_300(None));
+        let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+        assert!(read(&report.outputs.variants)
+            .column_by_name("sensor_seed")
+            .is_none());
+    }
     let design = hpr_design::Design::load(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("validation/designs/synthetic-54mm-three-fin.json"),
@@ -131,13 +152,15 @@ fn a_scenario_s_noisy_barometer_fires_each_variant_s_main_through_its_own_seed()
             n[2], p[2],
             "the same apogee: nothing reads the noise before it"
         );
-        // One point, common random numbers: variant r draws from stream r (the scenario's
-        // seed is 3).
-        let seed: u64 = rand::RngExt::random(&mut hpr_mc::campaign::sample::input_rng(
+        // The row's own sensor seed (a column where a barometer is noisy): one point, common
+        // random numbers, so variant r's is drawn from stream r of the scenario's seed 3.
+        let seed = seeds[r];
+        let derived: u64 = rand::RngExt::random(&mut hpr_mc::campaign::sample::input_rng(
             3,
             r as u64,
             "sensor_noise",
         ));
+        assert_eq!(seed, derived);
         let f = hpr_sim::Simulation::new(
             design.clone(),
             hpr_design::motor::find("Cesaroni_I175").unwrap(),

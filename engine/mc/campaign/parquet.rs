@@ -120,14 +120,24 @@ fn sweep_fields(p: &Prepared) -> Vec<Field> {
         .collect()
 }
 
-/// Schema of variants.parquet: ids, the sweep point's values, every input's value, the
-/// status, error and warnings (as text, and one true/false column per kind), and every metric.
+/// Whether the scenario's parachutes read a noisy barometer, so that each variant's sensor
+/// seed is a column (the seed `Simulation::with_sensor_seed` needs to fly that variant alone).
+fn has_sensor_seed(p: &Prepared) -> bool {
+    p.scenario.parachutes.iter().any(|c| c.noise.is_some())
+}
+
+/// Schema of variants.parquet: ids (and the sensor seed where a barometer is noisy), the sweep
+/// point's values, every input's value, the status, error and warnings (as text, and one
+/// true/false column per kind), and every metric.
 pub fn variants_schema(p: &Prepared, meta: &RunMeta) -> SchemaRef {
     let mut fields = vec![
         field("variant_id", DataType::UInt64, false, None),
         field("point", DataType::UInt32, false, None),
         field("replicate", DataType::UInt64, false, None),
     ];
+    if has_sensor_seed(p) {
+        fields.push(field("sensor_seed", DataType::UInt64, false, None));
+    }
     fields.extend(sweep_fields(p));
     fields.extend(
         p.scenario
@@ -170,6 +180,11 @@ pub fn variants_batch(
             variants.iter().map(|v| v.replicate),
         )),
     ];
+    if has_sensor_seed(p) {
+        cols.push(Arc::new(UInt64Array::from_iter_values(
+            variants.iter().map(|v| v.sensor_seed),
+        )));
+    }
     let swept: Vec<usize> = p
         .scenario
         .inputs
