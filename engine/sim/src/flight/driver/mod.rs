@@ -389,7 +389,10 @@ impl<'a, O: Observer> Run<'a, O> {
     /// rocket is below its trigger height (see [`crate::sensor`]), and which parachute, once
     /// past apogee. `z1` is the center's height at `t1` (the lowest of the interval: the rocket
     /// descends) and `height_at(t)` the center's height at a time of the interval. Draws each
-    /// parachute's noise up to the samples it reads.
+    /// parachute's noise up to the samples it reads. (Where two noisy parachutes could fire in
+    /// one step, the one scanned first may have read samples past the other's firing sample:
+    /// those draws are kept, read once, on the trajectory as it was before the other fired,
+    /// which a firing does not change until its canopy opens a lag later.)
     fn noisy_trigger(
         &mut self,
         t0: f64,
