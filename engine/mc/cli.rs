@@ -294,19 +294,13 @@ fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
         Some(file) => {
             let what = |e: &dyn std::fmt::Display| anyhow!("--sounding {}: {e}", file.display());
             let text = std::fs::read_to_string(file).map_err(|e| what(&e))?;
-            let s = hpr_sim::sounding::Sounding::parse(&text).map_err(|e| what(&e))?;
-            let elevation_m = match a.elevation_m {
-                Some(e) => e,
-                None => s
-                    .surface_m()
-                    .ok_or_else(|| what(&"no level has both a temperature and a pressure"))?,
-            };
-            let profile = s.air_profile(elevation_m).map_err(|e| what(&e))?;
-            let rows = s.wind_rows(elevation_m).map_err(|e| what(&e))?;
-            let wind = hpr_sim::wind::Wind::table(&rows).map_err(|e| what(&e))?;
-            let air = hpr_sim::AirModel::Profile(std::sync::Arc::new(profile));
+            let site = hpr_sim::sounding::Sounding::parse(&text)
+                .and_then(|s| s.over_site(a.elevation_m))
+                .map_err(|e| what(&e))?;
+            let wind = hpr_sim::wind::Wind::table(&site.wind).map_err(|e| what(&e))?;
+            let air = hpr_sim::AirModel::Profile(std::sync::Arc::new(site.air));
             air.check().map_err(|e| what(&e))?;
-            (elevation_m, wind, air)
+            (site.elevation_m, wind, air)
         }
     };
     let gravity = a

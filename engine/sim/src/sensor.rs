@@ -56,16 +56,16 @@ pub struct SensorNoise {
 }
 
 impl SensorNoise {
-    /// Check the numbers: the field broken and the rule, if any.
-    pub fn check(&self) -> Result<(), (&'static str, &'static str)> {
+    /// Check the numbers: the field broken, the rule and the value given, if any.
+    pub fn check(&self) -> Result<(), (&'static str, &'static str, f64)> {
         if !self.bias_pa.is_finite() {
-            return Err(("bias_pa", "must be finite"));
+            return Err(("bias_pa", "must be finite", self.bias_pa));
         }
         if !(self.std_pa.is_finite() && self.std_pa >= 0.0) {
-            return Err(("std_pa", "must be finite and not negative"));
+            return Err(("std_pa", "must be finite and not negative", self.std_pa));
         }
         if !(-1.0..=1.0).contains(&self.correlation) {
-            return Err(("correlation", "must be from -1 to 1"));
+            return Err(("correlation", "must be from -1 to 1", self.correlation));
         }
         Ok(())
     }

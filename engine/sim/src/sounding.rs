@@ -96,6 +96,20 @@ pub enum SoundingError {
     },
     #[error("the sounding has fewer than two levels with a {what}")]
     TooFew { what: &'static str },
+    #[error(
+        "no level has both a temperature and a pressure: the sounding has no ground to launch from"
+    )]
+    NoGround,
+}
+
+/// A sounding's air and wind over one launch site.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SiteAir {
+    /// The site's elevation above sea level, m.
+    pub elevation_m: f64,
+    pub air: AirProfile,
+    /// The wind's rows by height above the site.
+    pub wind: Vec<WindRow>,
 }
 
 /// The columns read, by their header names.
@@ -250,6 +264,21 @@ impl Sounding {
             .iter()
             .find(|l| l.temperature_k.is_some() && l.pressure_pa.is_some())
             .map(|l| l.height_msl_m)
+    }
+
+    /// The air and the wind over a site `elevation_m` above sea level, or over the sounding's
+    /// ground ([`Sounding::surface_m`]) when `None`: [`Sounding::air_profile`] and
+    /// [`Sounding::wind_rows`] there.
+    pub fn over_site(&self, elevation_m: Option<f64>) -> Result<SiteAir, SoundingError> {
+        let elevation_m = match elevation_m {
+            Some(e) => e,
+            None => self.surface_m().ok_or(SoundingError::NoGround)?,
+        };
+        Ok(SiteAir {
+            elevation_m,
+            air: self.air_profile(elevation_m)?,
+            wind: self.wind_rows(elevation_m)?,
+        })
     }
 
     /// The levels with a value `get` gives, as (height above sea level, value).
@@ -442,6 +471,7 @@ mod tests {
     #[test]
     fn a_site_between_levels_gets_their_temperature_wind_and_pressure_interpolated() {
         let s = synthetic();
+        let below = s.levels[0]; // a pressure and a height only
         let (a, b) = (s.levels[2], s.levels[3]); // 1400 and 1550 m geopotential
         let site = a.height_msl_m + 0.4 * (b.height_msl_m - a.height_msl_m);
         let air = s.air_profile(site).unwrap();
@@ -474,6 +504,15 @@ mod tests {
         let w = s.wind_rows(1400.0).unwrap()[0];
         let lowest = a.wind.unwrap();
         assert!((w.speed_m_s - lowest.0).abs() < 1e-12 && (w.from_deg - lowest.1).abs() < 1e-9);
+        // Over the sounding's ground unless told otherwise; none without a ground.
+        let ground = s.over_site(None).unwrap();
+        assert_eq!(ground.elevation_m, a.height_msl_m);
+        assert_eq!(ground.air, s.air_profile(a.height_msl_m).unwrap());
+        assert_eq!(ground.wind, s.wind_rows(a.height_msl_m).unwrap());
+        let bare = Sounding {
+            levels: vec![below, below],
+        };
+        assert_eq!(bare.over_site(None), Err(SoundingError::NoGround));
         // Further outside the sounding's temperatures: refused, naming them.
         assert!(matches!(
             s.air_profile(1000.0),

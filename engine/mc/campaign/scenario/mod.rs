@@ -17,11 +17,12 @@ use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
 use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
-use hpr_sim::sounding::{Sounding, SoundingError};
 use hpr_sim::wind::{Wind, WindError, WindRow};
 use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use raw::RawScenario;
-use rules::{canopy_shape, check_name, check_param, finite, inputs, integrator, one_line};
+use rules::{
+    canopy_shape, check_name, check_param, finite, inputs, integrator, noise, one_line, sounding,
+};
 use std::path::{Path, PathBuf};
 
 /// A scenario file that can't be read or breaks a rule.
@@ -324,69 +325,7 @@ impl Scenario {
         let mut env = raw.environment.take().unwrap_or_default();
         // A sounding gives the air and the wind: read here, it becomes the air profile and
         // the wind profile below, as if the scenario had written their rows.
-        let sounding = match &env.sounding {
-            None => None,
-            Some(file) => {
-                let key = "environment.sounding";
-                let given = [
-                    ("temperature_k", env.temperature_k.is_some()),
-                    ("pressure_pa", env.pressure_pa.is_some()),
-                    ("air_profile", env.air_profile.is_some()),
-                    ("wind_speed_m_s", env.wind_speed_m_s.is_some()),
-                    ("wind_from_deg", env.wind_from_deg.is_some()),
-                    ("wind_profile", env.wind_profile.is_some()),
-                ];
-                if let Some((field, _)) = given.iter().find(|(_, g)| *g) {
-                    return Err(bad(key, format!("a sounding gives the site's air and wind: give either it or environment.{field}, not both")));
-                }
-                let path = dir.join(file);
-                let text = std::fs::read_to_string(&path)
-                    .map_err(|e| bad(key, format!("cannot read {}: {e}", path.display())))?;
-                let s = Sounding::parse(&text)
-                    .map_err(|e| bad(key, format!("{}: {e}", path.display())))?;
-                let elevation = match env.elevation_m {
-                    Some(e) => e,
-                    None => s.surface_m().ok_or_else(|| {
-                        bad(
-                            key,
-                            format!(
-                                "{}: no level has both a temperature and a pressure",
-                                path.display()
-                            ),
-                        )
-                    })?,
-                };
-                let in_sounding = |e: SoundingError| {
-                    bad(
-                        key,
-                        format!("{} (environment.elevation_m): {e}", path.display()),
-                    )
-                };
-                let air = s.air_profile(elevation).map_err(in_sounding)?;
-                let wind = s.wind_rows(elevation).map_err(in_sounding)?;
-                env.elevation_m = Some(elevation);
-                env.pressure_pa = Some(air.pressure_pa);
-                env.air_profile = Some(
-                    air.rows
-                        .iter()
-                        .map(|r| raw::RawAirRow {
-                            height_m: r.height_m,
-                            temperature_k: r.temperature_k,
-                        })
-                        .collect(),
-                );
-                env.wind_profile = Some(
-                    wind.iter()
-                        .map(|r| raw::RawWindRow {
-                            height_m: r.height_agl_m,
-                            speed_m_s: r.speed_m_s,
-                            from_deg: r.from_deg,
-                        })
-                        .collect(),
-                );
-                Some((path, text))
-            }
-        };
+        let sounding = sounding(&bad, &dir, &mut env)?;
         let wind_profile = match &env.wind_profile {
             None => None,
             Some(_) if env.wind_speed_m_s.is_some() || env.wind_from_deg.is_some() => {
@@ -562,31 +501,7 @@ impl Scenario {
                     }
                     r => r,
                 },
-                noise: match &p.noise {
-                    None => None,
-                    Some(n) => {
-                        let noise = SensorNoise {
-                            bias_pa: n.bias_pa,
-                            std_pa: n.std_pa,
-                            correlation: n.correlation,
-                        };
-                        if let Err((field, rule)) = noise.check() {
-                            let got = match field {
-                                "bias_pa" => n.bias_pa,
-                                "std_pa" => n.std_pa,
-                                _ => n.correlation,
-                            };
-                            return Err(bad(
-                                &key(&format!("noise.{field}")),
-                                format!("{rule} (got {got})"),
-                            ));
-                        }
-                        if p.sampling_rate_hz.is_none() {
-                            return Err(bad(&key("noise"), "a noisy barometer is read at samples: give the parachute a sampling_rate_hz too (RocketPy's default is 100 Hz)".into()));
-                        }
-                        Some(noise)
-                    }
-                },
+                noise: noise(&bad, &key, p)?,
             });
         }
         let mut shifts = Vec::new();

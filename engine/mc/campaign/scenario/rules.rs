@@ -2,13 +2,16 @@
 //! names the key path.
 
 use super::raw::{
-    RawDist, RawIntegrator, RawParachute, RawParachuteParams, RawParams, RawShiftParams,
+    RawAirRow, RawDist, RawEnvironment, RawIntegrator, RawParachute, RawParachuteParams, RawParams,
+    RawShiftParams, RawWindRow,
 };
 use super::{trigger_field, InputSpec, Scenario, ScenarioError};
 use crate::campaign::params::{Param, GLOBAL};
 use crate::campaign::sample::{Dispersion, Shape};
-use hpr_sim::{CanopyShape, Integrator, Trigger};
+use hpr_sim::sounding::Sounding;
+use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 
 /// A TOML error on one line (the crate's messages show the offending line in a box).
 pub(super) fn one_line(s: &str) -> String {
@@ -57,6 +60,92 @@ pub(super) fn canopy_shape(
         .check()
         .map_err(|(field, rule)| bad(&key(field), rule))?;
     Ok(shape)
+}
+
+/// A parachute's `noise`, checked: its numbers, and a sampling rate to read it at.
+pub(super) fn noise(
+    bad: &Bad,
+    key: &dyn Fn(&str) -> String,
+    p: &RawParachute,
+) -> Result<Option<SensorNoise>, ScenarioError> {
+    let Some(n) = &p.noise else {
+        return Ok(None);
+    };
+    let noise = SensorNoise {
+        bias_pa: n.bias_pa,
+        std_pa: n.std_pa,
+        correlation: n.correlation,
+    };
+    noise.check().map_err(|(field, rule, got)| {
+        bad(
+            &key(&format!("noise.{field}")),
+            format!("{rule} (got {got})"),
+        )
+    })?;
+    if p.sampling_rate_hz.is_none() {
+        return Err(bad(&key("noise"), "a noisy barometer is read at samples: give the parachute a sampling_rate_hz too (RocketPy's default is 100 Hz)".into()));
+    }
+    Ok(Some(noise))
+}
+
+/// `environment.sounding`, read: the site's elevation (the sounding's ground unless given),
+/// its pressure and the air and wind rows written into `env` as if the scenario had given
+/// them; the file and its text, to fingerprint. Refused beside the keys it replaces.
+pub(super) fn sounding(
+    bad: &Bad,
+    dir: &Path,
+    env: &mut RawEnvironment,
+) -> Result<Option<(PathBuf, String)>, ScenarioError> {
+    let Some(file) = &env.sounding else {
+        return Ok(None);
+    };
+    let key = "environment.sounding";
+    let given = [
+        ("temperature_k", env.temperature_k.is_some()),
+        ("pressure_pa", env.pressure_pa.is_some()),
+        ("air_profile", env.air_profile.is_some()),
+        ("wind_speed_m_s", env.wind_speed_m_s.is_some()),
+        ("wind_from_deg", env.wind_from_deg.is_some()),
+        ("wind_profile", env.wind_profile.is_some()),
+    ];
+    if let Some((field, _)) = given.iter().find(|(_, g)| *g) {
+        return Err(bad(key, format!("a sounding gives the site's air and wind: give either it or environment.{field}, not both")));
+    }
+    let path = dir.join(file);
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| bad(key, format!("cannot read {}: {e}", path.display())))?;
+    let site = Sounding::parse(&text)
+        .map_err(|e| bad(key, format!("{}: {e}", path.display())))?
+        .over_site(env.elevation_m)
+        .map_err(|e| {
+            bad(
+                key,
+                format!("{} (environment.elevation_m): {e}", path.display()),
+            )
+        })?;
+    env.elevation_m = Some(site.elevation_m);
+    env.pressure_pa = Some(site.air.pressure_pa);
+    env.air_profile = Some(
+        site.air
+            .rows
+            .iter()
+            .map(|r| RawAirRow {
+                height_m: r.height_m,
+                temperature_k: r.temperature_k,
+            })
+            .collect(),
+    );
+    env.wind_profile = Some(
+        site.wind
+            .iter()
+            .map(|r| RawWindRow {
+                height_m: r.height_agl_m,
+                speed_m_s: r.speed_m_s,
+                from_deg: r.from_deg,
+            })
+            .collect(),
+    );
+    Ok(Some((path, text)))
 }
 
 pub(super) fn check_name(bad: &Bad, key: &str, name: &str) -> Result<(), ScenarioError> {

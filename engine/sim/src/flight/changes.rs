@@ -67,14 +67,9 @@ impl Changes<'_> {
                 }
             }
             if let Some(noise) = &p.noise {
-                noise.check().map_err(|(field, rule)| {
+                noise.check().map_err(|(field, rule, got)| {
                     SimError::Setup(format!(
-                        "{what}: noise field \"{field}\" {rule} (got {})",
-                        match field {
-                            "bias_pa" => noise.bias_pa,
-                            "std_pa" => noise.std_pa,
-                            _ => noise.correlation,
-                        }
+                        "{what}: noise field \"{field}\" {rule} (got {got})"
                     ))
                 })?;
                 if p.sampling_rate_hz.is_none() {

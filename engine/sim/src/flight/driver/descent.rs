@@ -117,24 +117,19 @@ impl Descent {
             None => (each!(stepper, s => s.t()), *each!(stepper, s => s.y())),
         };
         // A noisy barometer's sample that fires before the step's end or its event.
-        let mut noisy = false;
-        let heard = match run.hears_noise() {
-            false => None,
-            true => run.noisy_trigger(
-                each!(stepper, s => s.t_prev()),
-                t_end,
-                y_end[2],
-                |t| each!(stepper, s => s.dense_component(t, 2)),
-            ),
-        };
-        if let Some((tk, i)) = heard {
-            if found.is_none_or(|(te, _)| tk < te) {
-                if tk < t_end {
-                    (t_end, y_end) = (tk, each!(stepper, s => s.dense(tk)));
-                }
-                found = Some((tk, EventKind::ParachuteTrigger(i)));
-                noisy = true;
+        let t0 = each!(stepper, s => s.t_prev());
+        let noisy = run.noisy_before(
+            found,
+            t0,
+            t_end,
+            y_end[2],
+            |t| each!(stepper, s => s.dense_component(t, 2)),
+        );
+        if let Some((tk, i)) = noisy {
+            if tk < t_end {
+                (t_end, y_end) = (tk, each!(stepper, s => s.dense(tk)));
             }
+            found = Some((tk, EventKind::ParachuteTrigger(i)));
         }
         let mut dy = [0.0; N3];
         let aux = model.derivative_descent(&run.starts, &self.canopies, t_end, &y_end, &mut dy);
@@ -163,7 +158,9 @@ impl Descent {
                     land(run, te, pos, vel);
                     return Ok(Some(PhaseEnd::Landed));
                 }
-                EventKind::ParachuteTrigger(i) if noisy => run.fire_at_sample(i, te, alt, speed),
+                EventKind::ParachuteTrigger(i) if noisy.is_some() => {
+                    run.fire_at_sample(i, te, alt, speed)
+                }
                 EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
                 EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
                 _ => {}

@@ -170,9 +170,9 @@ struct Run<'a, O: Observer> {
     apogee_done: bool,
     /// Per parachute: where it is between armed and open.
     chutes: Vec<Chute>,
-    /// Per parachute, the noise of its barometer where a noisy one fires it (a sampled
-    /// height trigger with [`super::Parachute::noise`]); empty when none does.
-    noise: Vec<Option<NoiseProcess>>,
+    /// Per parachute, its noisy barometer where one fires it (a sampled height trigger with
+    /// [`super::Parachute::noise`]); empty when none does.
+    noise: Vec<Option<Barometer>>,
     /// Per trigger owner: whether a height-on-the-way-down trigger has fired (chutes, then shifts).
     rail_exit_done: bool,
     burnout_done: bool,
@@ -184,11 +184,21 @@ struct Run<'a, O: Observer> {
     steepest: Option<(f64, f64)>,
 }
 
-/// The noise of each parachute a noisy barometer fires (a sampled height trigger with a
-/// noise), from the flight's sensor seed; empty when none does (nothing allocated).
-fn noise_processes(model: &FlightModel) -> Vec<Option<NoiseProcess>> {
+/// A parachute's noisy barometer through one flight: its noise, the pressure at its trigger
+/// height and its sampling rate, fixed for the flight and so found once.
+struct Barometer {
+    noise: NoiseProcess,
+    trigger_pa: f64,
+    rate_hz: f64,
+}
+
+/// The barometer of each parachute a noisy one fires (a sampled height trigger with a
+/// noise), its noise from the flight's sensor seed; empty when none does (nothing allocated).
+fn barometers(model: &FlightModel) -> Vec<Option<Barometer>> {
     let noisy = |p: &super::Parachute| match (p.noise, p.trigger, p.sampling_rate_hz) {
-        (Some(noise), Trigger::HeightDescending { .. }, Some(_)) => Some(noise),
+        (Some(noise), Trigger::HeightDescending { height_m }, Some(rate_hz)) => {
+            Some((noise, height_m, rate_hz))
+        }
         _ => None,
     };
     if !model.parachutes.iter().any(|p| noisy(p).is_some()) {
@@ -198,7 +208,13 @@ fn noise_processes(model: &FlightModel) -> Vec<Option<NoiseProcess>> {
         .parachutes
         .iter()
         .enumerate()
-        .map(|(i, p)| noisy(p).map(|n| NoiseProcess::new(n, model.sensor_seed, i as u64)))
+        .map(|(i, p)| {
+            noisy(p).map(|(noise, height_m, rate_hz)| Barometer {
+                noise: NoiseProcess::new(noise, model.sensor_seed, i as u64),
+                trigger_pa: model.air.pressure_msl_pa(height_m + model.env.elevation_m),
+                rate_hz,
+            })
+        })
         .collect()
 }
 
@@ -378,16 +394,29 @@ impl<'a, O: Observer> Run<'a, O> {
         self.noise.get(i).is_some_and(Option::is_some)
     }
 
-    /// Whether a noisy barometer may fire a parachute now (past apogee; the test before
-    /// [`Run::noisy_trigger`], kept in line so that flights without one pay one comparison).
+    /// The sample in `(t0, t_end]` at which a noisy barometer fires a parachute
+    /// ([`Run::noisy_trigger`]) if it comes before `found`, the step's other event: its time
+    /// and the parachute. In line, so that a flight without a noisy barometer, or before
+    /// apogee, pays one comparison a step end.
     #[inline(always)]
-    fn hears_noise(&self) -> bool {
-        self.apogee_done && !self.noise.is_empty()
+    fn noisy_before(
+        &mut self,
+        found: Option<(f64, EventKind)>,
+        t0: f64,
+        t_end: f64,
+        z_end: f64,
+        height_at: impl FnMut(f64) -> f64,
+    ) -> Option<(f64, usize)> {
+        if !self.apogee_done || self.noise.is_empty() {
+            return None;
+        }
+        self.noisy_trigger(t0, t_end, z_end, height_at)
+            .filter(|&(tk, _)| found.is_none_or(|(te, _)| tk < te))
     }
 
     /// The first sample in `(t0, t1]` at which an armed parachute's noisy barometer says the
-    /// rocket is below its trigger height (see [`crate::sensor`]), and which parachute, once
-    /// past apogee. `z1` is the center's height at `t1` (the lowest of the interval: the rocket
+    /// rocket is below its trigger height (see [`crate::sensor`]), and which parachute (past
+    /// apogee: [`Run::noisy_before`] calls it). `z1` is the center's height at `t1` (the lowest of the interval: the rocket
     /// descends) and `height_at(t)` the center's height at a time of the interval. Draws each
     /// parachute's noise up to the samples it reads. (Where two noisy parachutes could fire in
     /// one step, the one scanned first may have read samples past the other's firing sample:
@@ -400,9 +429,6 @@ impl<'a, O: Observer> Run<'a, O> {
         z1: f64,
         mut height_at: impl FnMut(f64) -> f64,
     ) -> Option<(f64, usize)> {
-        if !self.hears_noise() {
-            return None;
-        }
         let model = self.model;
         let elevation = model.env.elevation_m;
         let p1 = model.air.pressure_msl_pa(z1 + elevation);
@@ -411,16 +437,15 @@ impl<'a, O: Observer> Run<'a, O> {
             if self.chutes[i] != Chute::Armed {
                 continue;
             }
-            let Some(process) = self.noise[i].as_mut() else {
-                continue;
-            };
-            let chute = &model.parachutes[i];
-            let (Trigger::HeightDescending { height_m }, Some(rate)) =
-                (chute.trigger, chute.sampling_rate_hz)
+            let Some(Barometer {
+                noise: process,
+                trigger_pa: p_trigger,
+                rate_hz: rate,
+            }) = self.noise[i].as_mut()
             else {
                 continue;
             };
-            let p_trigger = model.air.pressure_msl_pa(height_m + elevation);
+            let (p_trigger, rate) = (*p_trigger, *rate);
             if p1 + process.ceiling_pa() <= p_trigger {
                 continue;
             }

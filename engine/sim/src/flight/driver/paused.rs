@@ -224,7 +224,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         steps: 0,
         apogee_done: false,
         chutes: vec![Chute::Armed; n_chutes],
-        noise: noise_processes(model),
+        noise: barometers(model),
         rail_exit_done: false,
         burnout_done: false,
         max_climb_m_s: 0.0,

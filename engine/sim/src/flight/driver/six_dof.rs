@@ -237,25 +237,19 @@ impl SixDof {
             None => (t1, y1, ep1),
         };
         // A noisy barometer's sample that fires before the step's end or its event.
-        let mut noisy = false;
-        let heard = match run.hears_noise() {
-            false => None,
-            true => run.noisy_trigger(
-                t_now,
-                t_end,
-                ep.pos.z,
-                |t| each!(stepper, s => G::Height(0.0).at(model, &starts, t, &s.dense(t))),
-            ),
-        };
-        if let Some((tk, i)) = heard {
-            if found.is_none_or(|(te, _)| tk < te) {
-                if tk < t_end {
-                    (y_end, ep) = end_point_at(run, stepper, rail, tk);
-                    t_end = tk;
-                }
-                found = Some((tk, EventKind::ParachuteTrigger(i)));
-                noisy = true;
+        let noisy = run.noisy_before(
+            found,
+            t_now,
+            t_end,
+            ep.pos.z,
+            |t| each!(stepper, s => G::Height(0.0).at(model, &starts, t, &s.dense(t))),
+        );
+        if let Some((tk, i)) = noisy {
+            if tk < t_end {
+                (y_end, ep) = end_point_at(run, stepper, rail, tk);
+                t_end = tk;
             }
+            found = Some((tk, EventKind::ParachuteTrigger(i)));
         }
         run.record(
             phase,
@@ -292,7 +286,9 @@ impl SixDof {
                     land(run, te, pos, vel);
                     return Ok(Some((te, y_end, PhaseEnd::Landed)));
                 }
-                EventKind::ParachuteTrigger(i) if noisy => run.fire_at_sample(i, te, alt, speed),
+                EventKind::ParachuteTrigger(i) if noisy.is_some() => {
+                    run.fire_at_sample(i, te, alt, speed)
+                }
                 EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
                 EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
                 _ => {}
