@@ -28,7 +28,7 @@ pub fn emit(text: &str) -> Result<()> {
 
 #[derive(clap::Args, Debug)]
 pub struct InspectArgs {
-    /// The design (JSON).
+    /// The design (JSON, or an OpenRocket .ork).
     pub design: PathBuf,
     /// Motor: a file path, a bundled file stem (Cesaroni_I175) or a designation. Defaults to
     /// the design's own motor.
@@ -41,7 +41,7 @@ pub struct InspectArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct FlyArgs {
-    /// The design (JSON).
+    /// The design (JSON, or an OpenRocket .ork).
     #[arg(required_unless_present = "scenario")]
     pub design: Option<PathBuf>,
     /// Fly a scenario's nominal flight instead (every input at its center, its shifts,
@@ -186,6 +186,36 @@ pub fn inspect(a: &InspectArgs) -> Result<ExitCode> {
         ))?;
     } else {
         emit(&r.to_text())?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+#[derive(clap::Args, Debug)]
+pub struct ImportArgs {
+    /// The OpenRocket design (.ork: a ZIP, gzipped or plain XML).
+    pub ork: PathBuf,
+    /// Write the design (JSON) here instead of to standard output.
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+}
+
+/// `hpr-mc import`: an OpenRocket design as hpr's design JSON, checked as a hand-written
+/// design is before anything is written; what the import left out goes to standard error.
+/// (`inspect`, `fly` and scenarios read a `.ork` directly; this shows and keeps the JSON.)
+pub fn import(a: &ImportArgs) -> Result<ExitCode> {
+    let file = a.ork.display().to_string();
+    let bytes = std::fs::read(&a.ork).with_context(|| format!("{file}: can't read it"))?;
+    let import = hpr_design::ork::import(&bytes, &file).map_err(|e| anyhow!("{e}"))?;
+    let text = format!("{}\n", serde_json::to_string_pretty(&import.json)?);
+    // Checked before it is written: a design the import cannot make valid writes nothing.
+    Design::from_json_str(&text, Some(&a.ork)).map_err(|e| anyhow!("{e}"))?;
+    for note in &import.notes {
+        eprintln!("note: {note}");
+    }
+    match &a.output {
+        Some(out) => std::fs::write(out, text)
+            .with_context(|| format!("{}: can't write it", out.display()))?,
+        None => emit(&text)?,
     }
     Ok(ExitCode::SUCCESS)
 }

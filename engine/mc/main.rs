@@ -29,6 +29,8 @@ enum Command {
     Fly(hpr_mc::cli::FlyArgs),
     /// Run a scenario (sweeps × dispersions) and write Parquet.
     Run(hpr_mc::cli::RunCommand),
+    /// Read an OpenRocket design (.ork) into hpr's design format (JSON).
+    Import(hpr_mc::cli::ImportArgs),
 }
 
 fn main() -> ExitCode {
@@ -37,10 +39,11 @@ fn main() -> ExitCode {
         Some(Command::Inspect(a)) => hpr_mc::cli::inspect(&a),
         Some(Command::Fly(a)) => hpr_mc::cli::fly(&a),
         Some(Command::Run(a)) => hpr_mc::cli::run(&a.scenario, &a.args),
+        Some(Command::Import(a)) => hpr_mc::cli::import(&a),
         None => match cli.scenario {
             Some(s) => hpr_mc::cli::run(&s, &cli.run),
             None => {
-                eprintln!("hpr-mc: give a scenario file (hpr-mc SCENARIO.toml) or a command (inspect, fly, run); see hpr-mc --help");
+                eprintln!("hpr-mc: give a scenario file (hpr-mc SCENARIO.toml) or a command (inspect, fly, run, import); see hpr-mc --help");
                 return ExitCode::from(2);
             }
         },

@@ -258,6 +258,14 @@ pub enum DesignError {
         line: usize,
         message: String,
     },
+    /// An OpenRocket file (`.ork`) that cannot be read or holds what a design cannot: the
+    /// element (a path of components, `stage "Sustainer"/bodytube "Body"/<radius>`) and why.
+    #[error("{file}: {element}: {message}")]
+    Ork {
+        file: String,
+        element: String,
+        message: String,
+    },
     /// A rule of the design broken, with where and what.
     #[error("{file}: {at}: {}{}", field_prefix(.field), tidy_numbers(&.rule.to_string()))]
     Invalid {

@@ -16,6 +16,7 @@ pub mod design;
 pub mod error;
 pub mod mass;
 pub mod motor;
+pub mod ork;
 
 pub use design::{Component, ComponentKind, Design};
 pub use error::DesignError;

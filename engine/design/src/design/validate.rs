@@ -44,9 +44,17 @@ impl Design {
     /// Reads and validates a design file. Drag CSVs are found relative to it.
     pub fn load(path: impl AsRef<Path>) -> Result<Design, DesignError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| DesignError::Io {
+        let bytes = std::fs::read(path).map_err(|source| DesignError::Io {
             file: path.display().to_string(),
             source,
+        })?;
+        if crate::ork::is_ork(&bytes) {
+            let import = crate::ork::import(&bytes, &path.display().to_string())?;
+            return Design::from_json_str(&import.json.to_string(), Some(path));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| DesignError::Io {
+            file: path.display().to_string(),
+            source: std::io::Error::new(std::io::ErrorKind::InvalidData, e),
         })?;
         Design::from_json_str(&text, Some(path))
     }

@@ -1,0 +1,904 @@
+//! Each OpenRocket component mapped onto the design format's (the element names, units and
+//! rules are OpenRocket's savers' and loader's: lengths in metres, angles in degrees,
+//! positions of a part's fore end along its parent).
+
+use super::{Auto, El};
+use crate::error::DesignError;
+use serde_json::{json, Map, Value};
+use std::collections::HashMap;
+
+/// The default flight configuration's motor: how to find it in hpr's library, and how to
+/// name it to a reader.
+pub(super) struct OrkMotor {
+    pub candidates: Vec<String>,
+    pub label: String,
+}
+
+/// What the import carries from component to component: the ids used, the finishes seen,
+/// the motor mount chosen, and the notes.
+pub(super) struct Context {
+    ids: HashMap<String, usize>,
+    finishes: Vec<(String, f64)>,
+    /// The configuration id of the default motor, and whether its mount has been placed.
+    config: Option<String>,
+    mount_placed: bool,
+    pub notes: Vec<String>,
+}
+
+/// A component's JSON object.
+type Component = Map<String, Value>;
+
+/// A body component read, its radii resolved later (a bare `auto` takes its neighbour's).
+struct Body {
+    json: Map<String, Value>,
+    fore: Option<Auto>,
+    aft: Option<Auto>,
+    kind: &'static str,
+}
+
+impl Context {
+    pub fn new() -> Context {
+        Context {
+            ids: HashMap::new(),
+            finishes: Vec::new(),
+            config: None,
+            mount_placed: false,
+            notes: Vec::new(),
+        }
+    }
+
+    pub fn note(&mut self, text: String) {
+        if !self.notes.contains(&text) {
+            self.notes.push(text);
+        }
+    }
+
+    /// The surface roughness of the finish most outer components have (OpenRocket's
+    /// roughness of each finish), 60 µm ("normal") if none is given.
+    pub fn roughness(&mut self) -> f64 {
+        let mut counts: Vec<(String, f64, usize)> = Vec::new();
+        for (name, r) in &self.finishes {
+            match counts.iter_mut().find(|c| &c.0 == name) {
+                Some(c) => c.2 += 1,
+                None => counts.push((name.clone(), *r, 1)),
+            }
+        }
+        let Some(most) = counts.iter().max_by_key(|c| c.2) else {
+            return 60e-6;
+        };
+        if counts.len() > 1 {
+            let all: Vec<String> = counts.iter().map(|c| c.0.clone()).collect();
+            self.note(format!(
+                "The parts' finishes differ ({}): the drag estimate takes \"{}\" ({} µm) for \
+                 all of them.",
+                all.join(", "),
+                most.0,
+                most.1 * 1e6
+            ));
+        }
+        most.1
+    }
+
+    /// The default flight configuration's motor, if the document declares one.
+    pub fn default_motor(&mut self, rocket: &El<'_, '_>) -> Option<OrkMotor> {
+        let configs: Vec<El<'_, '_>> = rocket
+            .children()
+            .filter(|c| c.tag() == "motorconfiguration" || c.tag() == "flightconfiguration")
+            .collect();
+        let default = configs
+            .iter()
+            .find(|c| c.attribute("default") == Some("true"))
+            .or(configs.first())
+            .and_then(|c| c.attribute("configid"))
+            .map(str::to_owned);
+        self.config = default;
+        let config = self.config.clone();
+        let motor = find_motor(rocket, config.as_deref())?;
+        let designation = motor.text("designation").unwrap_or("").to_owned();
+        let manufacturer = motor.text("manufacturer").unwrap_or("").to_owned();
+        if designation.is_empty() {
+            return None;
+        }
+        // "Cesaroni Technology" and "Loki Research" file as Cesaroni_… and Loki_….
+        let maker = manufacturer.split_whitespace().next().unwrap_or("");
+        let mut candidates = Vec::new();
+        if !maker.is_empty() {
+            candidates.push(format!("{maker}_{designation}"));
+        }
+        candidates.push(designation.clone());
+        if self.config.is_none() {
+            self.config = motor.attribute("configid").map(str::to_owned);
+        }
+        Some(OrkMotor {
+            candidates,
+            label: format!("{manufacturer} {designation}").trim().to_owned(),
+        })
+    }
+
+    /// A unique id from a component's name (lower case, words joined by `_`).
+    fn id(&mut self, name: &str) -> String {
+        let mut slug = String::new();
+        for c in name.trim().chars() {
+            if c.is_ascii_alphanumeric() {
+                slug.push(c.to_ascii_lowercase());
+            } else if !slug.ends_with('_') && !slug.is_empty() {
+                slug.push('_');
+            }
+        }
+        let slug = slug.trim_end_matches('_');
+        let slug = if slug.is_empty() { "part" } else { slug }.to_owned();
+        let n = self.ids.entry(slug.clone()).or_insert(0);
+        *n += 1;
+        if *n == 1 {
+            slug
+        } else {
+            format!("{slug}_{n}")
+        }
+    }
+
+    /// The fields every component has: id, name, material and overrides.
+    fn common(&mut self, el: &El<'_, '_>) -> Result<Map<String, Value>, DesignError> {
+        let mut m = Map::new();
+        m.insert("id".into(), json!(self.id(el.name())));
+        m.insert("name".into(), json!(el.name()));
+        if let Some(mat) = el.child("material") {
+            let density = mat
+                .attribute("density")
+                .and_then(|d| d.trim().parse::<f64>().ok())
+                .filter(|d| d.is_finite())
+                .ok_or_else(|| el.bad("material", "has no finite density"))?;
+            let kind = mat.attribute("type").unwrap_or("bulk");
+            if kind == "bulk" {
+                m.insert(
+                    "material".into(),
+                    json!({ "name": mat.own_text(), "density_kg_m3": density }),
+                );
+            }
+        }
+        if let Some(finish) = el.text("finish") {
+            let roughness_m = match finish {
+                "rough" => 500e-6,
+                "roughunfinished" => 250e-6,
+                "unfinished" => 150e-6,
+                "normal" => 60e-6,
+                "smooth" => 20e-6,
+                "optimum" => 5e-6,
+                "polished" => 2e-6,
+                "finishpolished" => 0.5e-6,
+                "mirror" => 0.0,
+                other => return Err(el.bad("finish", format!("unknown finish \"{other}\""))),
+            };
+            self.finishes.push((finish.to_owned(), roughness_m));
+        }
+        let mass = el.num("overridemass")?;
+        let cg = el.num("overridecg")?;
+        if mass.is_some() || cg.is_some() {
+            // Files before 1.8 have one flag for mass, CG and drag.
+            let old = el.flag("overridesubcomponents");
+            let mass_children = el.flag("overridesubcomponentsmass") || old;
+            let cg_children = el.flag("overridesubcomponentscg") || old;
+            let covers = if mass.is_some() {
+                mass_children
+            } else {
+                cg_children
+            };
+            if mass.is_some() && cg.is_some() && mass_children != cg_children {
+                self.note(format!(
+                    "{}: its mass and CG overrides differ on whether they cover the parts \
+                     inside; both are taken as {}.",
+                    el.name(),
+                    if covers { "covering them" } else { "its own" }
+                ));
+            }
+            let mut o = Map::new();
+            if let Some(v) = mass {
+                o.insert("mass_kg".into(), json!(v));
+            }
+            if let Some(v) = cg {
+                o.insert("cg_m".into(), json!(v));
+            }
+            o.insert("covers_children".into(), json!(covers));
+            m.insert("override".into(), Value::Object(o));
+        }
+        if el.text("overridecd").is_some() {
+            self.note(format!(
+                "{}: its drag override is not imported (the drag is estimated from the \
+                 geometry).",
+                el.name()
+            ));
+        }
+        Ok(m)
+    }
+
+    /// One stage: its body components fore to aft, their parts inside.
+    pub fn stage(&mut self, el: &El<'_, '_>) -> Result<Value, DesignError> {
+        let mut stage = Map::new();
+        stage.insert("id".into(), json!(self.id(el.name())));
+        stage.insert("name".into(), json!(el.name()));
+        let mut bodies = Vec::new();
+        for c in el
+            .child("subcomponents")
+            .iter()
+            .flat_map(|s| s.children().collect::<Vec<_>>())
+        {
+            bodies.push(self.body(&c)?);
+        }
+        if bodies.is_empty() {
+            return Err(el.bad(
+                "subcomponents",
+                "a stage needs a nose cone, body tube or transition",
+            ));
+        }
+        resolve_radii(el, &mut bodies)?;
+        let components: Vec<Value> = bodies.into_iter().map(|b| Value::Object(b.json)).collect();
+        stage.insert("components".into(), Value::Array(components));
+        Ok(Value::Object(stage))
+    }
+
+    /// A nose cone, body tube or transition, and the parts on and in it.
+    fn body(&mut self, el: &El<'_, '_>) -> Result<Body, DesignError> {
+        let kind = match el.tag() {
+            "nosecone" => "nose_cone",
+            "bodytube" => "body_tube",
+            "transition" => "transition",
+            other => return Err(el.refuse(&format!("a <{other}> among a stage's body components"))),
+        };
+        let mut m = self.common(el)?;
+        m.insert("type".into(), json!(kind));
+        let length = el.req("length")?;
+        m.insert("length_m".into(), json!(length));
+        let mut fore = None;
+        let aft;
+        match kind {
+            "body_tube" => {
+                let r = el
+                    .auto("radius")?
+                    .ok_or_else(|| el.bad("radius", "is missing"))?;
+                (fore, aft) = (Some(r), Some(r));
+                let wall = match el.text("thickness") {
+                    Some("filled") => return Err(el.refuse("a filled body tube")),
+                    _ => el.req("thickness")?,
+                };
+                m.insert("wall_thickness_m".into(), json!(wall));
+            }
+            _ => {
+                if el.flag("isflipped") {
+                    return Err(el.refuse("a flipped nose cone (a tail cone)"));
+                }
+                let (shape, param) = shape(el)?;
+                m.insert("shape".into(), json!(shape));
+                if let Some(p) = param {
+                    m.insert("shape_parameter".into(), json!(p));
+                }
+                if el.flag("shapeclipped")
+                    && matches!(shape, "elliptical" | "power_series" | "haack")
+                {
+                    return Err(el.refuse("a clipped transition"));
+                }
+                match el.text("thickness") {
+                    Some("filled") => {
+                        m.insert("filled".into(), json!(true));
+                    }
+                    _ => {
+                        m.insert("wall_thickness_m".into(), json!(el.req("thickness")?));
+                    }
+                }
+                aft = Some(
+                    el.auto("aftradius")?
+                        .ok_or_else(|| el.bad("aftradius", "is missing"))?,
+                );
+                if kind == "transition" {
+                    fore = Some(
+                        el.auto("foreradius")?
+                            .ok_or_else(|| el.bad("foreradius", "is missing"))?,
+                    );
+                    if let Some(s) = shoulder(el, "fore")? {
+                        m.insert("fore_shoulder".into(), s);
+                    }
+                    if let Some(s) = shoulder(el, "aft")? {
+                        m.insert("aft_shoulder".into(), s);
+                    }
+                } else if let Some(s) = shoulder(el, "aft")? {
+                    m.insert("shoulder".into(), s);
+                }
+            }
+        }
+        if let Some(mount) = el.child("motormount") {
+            self.mount(el, &mount, &mut m)?;
+        }
+        let inner = match (kind, aft) {
+            ("body_tube", Some(Auto::Value(r))) => Some(r - el.req("thickness")?),
+            _ => None,
+        };
+        let parts = self.parts(el, length, inner, true)?;
+        if !parts.is_empty() {
+            m.insert("children".into(), Value::Array(parts));
+        }
+        Ok(Body {
+            json: m,
+            fore,
+            aft,
+            kind,
+        })
+    }
+
+    /// A tube's `<motormount>`: the mount of the default configuration's motor becomes the
+    /// design's motor mount (a body tube holding the motor directly is refused).
+    fn mount(
+        &mut self,
+        tube: &El<'_, '_>,
+        mount: &El<'_, '_>,
+        m: &mut Map<String, Value>,
+    ) -> Result<(), DesignError> {
+        let holds_default = mount.children().any(|c| {
+            c.tag() == "motor"
+                && (self.config.is_none() || c.attribute("configid") == self.config.as_deref())
+        });
+        if !holds_default || self.mount_placed {
+            return Ok(());
+        }
+        if tube.tag() == "bodytube" {
+            return Err(tube.refuse(
+                "a body tube that holds the motor itself (put the motor in an inner tube)",
+            ));
+        }
+        self.mount_placed = true;
+        m.insert(
+            "motor_mount".into(),
+            json!({ "overhang_m": mount.num("overhang")?.unwrap_or(0.0) }),
+        );
+        Ok(())
+    }
+
+    /// The parts on and in a component of length `parent_length` (inner radius
+    /// `parent_inner`, where known), in the order OpenRocket lists them. `on_body`: the
+    /// parent is a body component (fins, lugs and buttons only go there).
+    fn parts(
+        &mut self,
+        parent: &El<'_, '_>,
+        parent_length: f64,
+        parent_inner: Option<f64>,
+        on_body: bool,
+    ) -> Result<Vec<Value>, DesignError> {
+        let mut out = Vec::new();
+        // The fore end and length of the last part placed, for OpenRocket's "after".
+        let mut previous: Option<(f64, f64)> = None;
+        let Some(subs) = parent.child("subcomponents") else {
+            return Ok(out);
+        };
+        let children: Vec<El<'_, '_>> = subs.children().collect();
+        for el in &children {
+            if !on_body
+                && matches!(
+                    el.tag(),
+                    "trapezoidfinset"
+                        | "ellipticalfinset"
+                        | "freeformfinset"
+                        | "launchlug"
+                        | "railbutton"
+                )
+            {
+                return Err(el.refuse("an outside part on an inner tube"));
+            }
+            let made = self.part(el, parent_inner, &children)?;
+            let Some((part, length)) = made else {
+                continue;
+            };
+            let count = el
+                .num("instancecount")?
+                .filter(|_| {
+                    matches!(
+                        el.tag(),
+                        "launchlug" | "railbutton" | "centeringring" | "bulkhead"
+                    )
+                })
+                .unwrap_or(1.0);
+            let separation = el.num("instanceseparation")?.unwrap_or(0.0);
+            let (method, value) = position(el)?;
+            let fore = match method {
+                "top" => value,
+                "middle" => value + (parent_length - length) / 2.0,
+                "bottom" => value + parent_length - length,
+                "after" => previous.map_or(0.0, |(x, l)| x + l),
+                _ => value, // absolute: kept as such below
+            };
+            previous = Some((fore, length));
+            let (from, offset) = match method {
+                "after" => ("top", fore),
+                "absolute" => ("nose_tip", value),
+                m => (m, value),
+            };
+            if !(count >= 1.0 && count.fract() == 0.0 && count <= 64.0) {
+                return Err(el.bad(
+                    "instancecount",
+                    format!("must be a whole number from 1 to 64 (got {count})"),
+                ));
+            }
+            let id = part["id"].as_str().unwrap_or("part").to_owned();
+            for i in 0..count as usize {
+                let mut p = part.clone();
+                if i > 0 {
+                    p.insert("id".into(), json!(self.id(&format!("{id} {}", i + 1))));
+                }
+                p.insert(
+                    "position".into(),
+                    json!({ "from": from, "offset_m": offset + i as f64 * separation }),
+                );
+                out.push(Value::Object(p));
+            }
+        }
+        Ok(out)
+    }
+
+    /// One part and its length along the axis (what OpenRocket positions it by); `None` for
+    /// an element that is not a component.
+    fn part(
+        &mut self,
+        el: &El<'_, '_>,
+        parent_inner: Option<f64>,
+        siblings: &[El<'_, '_>],
+    ) -> Result<Option<(Component, f64)>, DesignError> {
+        let tag = el.tag();
+        let mut m = self.common(el)?;
+        let length;
+        match tag {
+            "trapezoidfinset" | "ellipticalfinset" | "freeformfinset" => {
+                m.insert("type".into(), json!("fin_set"));
+                m.insert("count".into(), json!(fin_count(el)?));
+                m.insert("thickness_m".into(), json!(el.req("thickness")?));
+                let cross = el.text("crosssection").unwrap_or("square");
+                match cross {
+                    "square" | "rounded" | "airfoil" => {
+                        m.insert("cross_section".into(), json!(cross))
+                    }
+                    other => {
+                        return Err(el.bad(
+                            "crosssection",
+                            format!("cross-section \"{other}\" cannot be imported"),
+                        ))
+                    }
+                };
+                m.insert("cant_deg".into(), json!(el.num("cant")?.unwrap_or(0.0)));
+                let rotation = match el.num("angleoffset")? {
+                    Some(a) => a,
+                    None => el.num("rotation")?.unwrap_or(0.0),
+                };
+                m.insert("rotation_deg".into(), json!(rotation));
+                match tag {
+                    "trapezoidfinset" => {
+                        length = el.req("rootchord")?;
+                        m.insert("planform".into(), json!("trapezoidal"));
+                        m.insert("root_chord_m".into(), json!(length));
+                        m.insert("tip_chord_m".into(), json!(el.req("tipchord")?));
+                        m.insert("span_m".into(), json!(el.req("height")?));
+                        m.insert(
+                            "sweep_m".into(),
+                            json!(el.num("sweeplength")?.unwrap_or(0.0)),
+                        );
+                    }
+                    "ellipticalfinset" => {
+                        length = el.req("rootchord")?;
+                        m.insert("planform".into(), json!("elliptical"));
+                        m.insert("root_chord_m".into(), json!(length));
+                        m.insert("span_m".into(), json!(el.req("height")?));
+                    }
+                    _ => {
+                        let points = fin_points(el)?;
+                        length = points.last().map_or(0.0, |p| p[0]);
+                        m.insert("planform".into(), json!("free_form"));
+                        m.insert("points_m".into(), json!(points));
+                    }
+                }
+                if el.num("tabheight")?.unwrap_or(0.0) > 0.0
+                    && el.num("tablength")?.unwrap_or(0.0) > 0.0
+                {
+                    self.note(format!(
+                        "{}: its fin tabs are not imported (their mass is left out).",
+                        el.name()
+                    ));
+                }
+                if el.num("filletradius")?.unwrap_or(0.0) > 0.0 {
+                    self.note(format!(
+                        "{}: its fillets are not imported (their mass is left out).",
+                        el.name()
+                    ));
+                }
+            }
+            "launchlug" => {
+                length = el.req("length")?;
+                let r = el.req("radius")?;
+                m.insert("type".into(), json!("launch_lug"));
+                m.insert("length_m".into(), json!(length));
+                m.insert("outer_diameter_m".into(), json!(2.0 * r));
+                m.insert("wall_thickness_m".into(), json!(el.req("thickness")?));
+                m.insert("angle_deg".into(), json!(angle(el)?));
+            }
+            "railbutton" => {
+                let d = el.req("outerdiameter")?;
+                length = d;
+                m.insert("type".into(), json!("rail_button"));
+                m.insert("outer_diameter_m".into(), json!(d));
+                m.insert("height_m".into(), json!(el.req("height")?));
+                m.insert("angle_deg".into(), json!(angle(el)?));
+            }
+            "innertube" | "tubecoupler" => {
+                length = el.req("length")?;
+                let r = ring_outer(el, "outerradius", parent_inner)?;
+                let wall = el.req("thickness")?;
+                if tag == "innertube" {
+                    let cluster = el.text("clusterconfiguration").unwrap_or("single");
+                    if cluster != "single" {
+                        return Err(el.refuse(&format!("a cluster of inner tubes (\"{cluster}\")")));
+                    }
+                    m.insert(
+                        "radial_offset_m".into(),
+                        json!(el.num("radialposition")?.unwrap_or(0.0)),
+                    );
+                    m.insert(
+                        "radial_angle_deg".into(),
+                        json!(el.num("radialdirection")?.unwrap_or(0.0)),
+                    );
+                }
+                m.insert("type".into(), json!("inner_tube"));
+                m.insert("length_m".into(), json!(length));
+                m.insert("outer_diameter_m".into(), json!(2.0 * r));
+                m.insert("wall_thickness_m".into(), json!(wall));
+                if let Some(mount) = el.child("motormount") {
+                    self.mount(el, &mount, &mut m)?;
+                }
+                let children = self.parts(el, length, Some(r - wall), false)?;
+                if !children.is_empty() {
+                    m.insert("children".into(), Value::Array(children));
+                }
+            }
+            "centeringring" | "engineblock" => {
+                length = el.req("length")?;
+                let r = ring_outer(el, "outerradius", parent_inner)?;
+                let inner = if tag == "engineblock" {
+                    r - el.req("thickness")?
+                } else {
+                    match el.auto("innerradius")? {
+                        Some(Auto::Value(v)) => v,
+                        Some(Auto::Bare) => ring_inner_auto(siblings)?,
+                        None => return Err(el.bad("innerradius", "is missing")),
+                    }
+                };
+                m.insert("type".into(), json!("centering_ring"));
+                m.insert("length_m".into(), json!(length));
+                m.insert("outer_diameter_m".into(), json!(2.0 * r));
+                m.insert("inner_diameter_m".into(), json!(2.0 * inner));
+            }
+            "bulkhead" => {
+                length = el.req("length")?;
+                let r = ring_outer(el, "outerradius", parent_inner)?;
+                m.insert("type".into(), json!("bulkhead"));
+                m.insert("length_m".into(), json!(length));
+                m.insert("outer_diameter_m".into(), json!(2.0 * r));
+            }
+            "masscomponent" | "parachute" | "shockcord" | "streamer" => {
+                length = el.req("packedlength")?;
+                let radius = match el.auto("packedradius")? {
+                    Some(Auto::Value(v)) => v,
+                    Some(Auto::Bare) => parent_inner.ok_or_else(|| {
+                        el.bad(
+                            "packedradius",
+                            "a bare auto inside a tapered part cannot be resolved; give the radius",
+                        )
+                    })?,
+                    None => return Err(el.bad("packedradius", "is missing")),
+                };
+                m.insert("length_m".into(), json!(length));
+                m.insert("radius_m".into(), json!(radius));
+                m.insert(
+                    "radial_offset_m".into(),
+                    json!(el.num("radialposition")?.unwrap_or(0.0)),
+                );
+                m.insert(
+                    "radial_angle_deg".into(),
+                    json!(el.num("radialdirection")?.unwrap_or(0.0)),
+                );
+                let surface = |el: &El<'_, '_>| -> Result<f64, DesignError> {
+                    density(el, "material", "surface")
+                };
+                match tag {
+                    "masscomponent" => {
+                        m.insert("type".into(), json!("mass_component"));
+                        m.insert("mass_kg".into(), json!(el.req("mass")?));
+                    }
+                    "parachute" => {
+                        let d = el.req("diameter")?;
+                        let cd = match el.auto("cd")? {
+                            Some(Auto::Value(v)) => v,
+                            _ => 0.8,
+                        };
+                        let lines = el.num("linecount")?.unwrap_or(0.0)
+                            * el.num("linelength")?.unwrap_or(1.5 * d)
+                            * density(el, "linematerial", "line").unwrap_or(0.0);
+                        let canopy = std::f64::consts::PI * (d / 2.0).powi(2) * surface(el)?;
+                        m.insert("type".into(), json!("parachute"));
+                        m.insert("canopy_diameter_m".into(), json!(d));
+                        m.insert("cd".into(), json!(cd));
+                        m.insert("mass_kg".into(), json!(canopy + lines));
+                        let event = el.text("deployevent").unwrap_or("ejection");
+                        let when = match event {
+                            "apogee" => "at apogee".to_owned(),
+                            "altitude" => format!(
+                                "at {} m on the way down",
+                                el.num("deployaltitude")?.unwrap_or(0.0)
+                            ),
+                            other => format!("on \"{other}\""),
+                        };
+                        self.note(format!(
+                            "{}: OpenRocket deploys it {when}{}; hpr takes a parachute's trigger from \
+                             the scenario or fly's flags.",
+                            el.name(),
+                            match el.num("deploydelay")? {
+                                Some(d) if d > 0.0 => format!(" after {d} s"),
+                                _ => String::new(),
+                            }
+                        ));
+                    }
+                    "shockcord" => {
+                        m.insert("type".into(), json!("shock_cord"));
+                        m.insert(
+                            "linear_density_kg_m".into(),
+                            json!(density(el, "material", "line")?),
+                        );
+                        m.insert("cord_length_m".into(), json!(el.req("cordlength")?));
+                    }
+                    _ => {
+                        let area = el.req("striplength")? * el.req("stripwidth")?;
+                        m.insert("type".into(), json!("mass_component"));
+                        m.insert("mass_kg".into(), json!(area * surface(el)?));
+                        self.note(format!(
+                            "{}: a streamer is imported as its mass (its drag is not modelled).",
+                            el.name()
+                        ));
+                    }
+                }
+                m.remove("material");
+            }
+            "tubefinset" => return Err(el.refuse("a tube fin set")),
+            "podset" | "parallelstage" | "boosterset" => {
+                return Err(el.refuse("a pod or a parallel stage"))
+            }
+            "nosecone" | "bodytube" | "transition" => {
+                return Err(el.refuse("a body component inside another component"))
+            }
+            _ => return Ok(None),
+        }
+        Ok(Some((m, length)))
+    }
+}
+
+/// The `<motor>` of configuration `config` (any, if `None`) anywhere under `el`.
+fn find_motor<'a, 'i>(el: &El<'a, 'i>, config: Option<&str>) -> Option<El<'a, 'i>> {
+    for c in el.children() {
+        if c.tag() == "motor" && (config.is_none() || c.attribute("configid") == config) {
+            return Some(c);
+        }
+        if let Some(m) = find_motor(&c, config) {
+            return Some(m);
+        }
+    }
+    None
+}
+
+/// The design format's nose shape and shape parameter of an OpenRocket `<shape>`.
+fn shape(el: &El<'_, '_>) -> Result<(&'static str, Option<f64>), DesignError> {
+    let p = el.num("shapeparameter")?;
+    Ok(match el.text("shape").unwrap_or("conical") {
+        "conical" => ("conical", None),
+        "ogive" => {
+            if p.is_some_and(|p| p != 1.0) {
+                return Err(el.refuse("a secant ogive (shape parameter below 1)"));
+            }
+            ("ogive", None)
+        }
+        "ellipsoid" => ("elliptical", None),
+        "power" => ("power_series", Some(p.unwrap_or(0.5))),
+        "parabolic" => ("parabolic", Some(p.unwrap_or(1.0))),
+        "haack" => ("haack", Some(p.unwrap_or(0.0))),
+        other => return Err(el.bad("shape", format!("unknown shape \"{other}\""))),
+    })
+}
+
+/// A transition's or nose cone's shoulder on `side` (fore or aft), if it has a length.
+fn shoulder(el: &El<'_, '_>, side: &str) -> Result<Option<Value>, DesignError> {
+    let length = el.num(&format!("{side}shoulderlength"))?.unwrap_or(0.0);
+    if length <= 0.0 {
+        return Ok(None);
+    }
+    let r = el.req(&format!("{side}shoulderradius"))?;
+    Ok(Some(json!({
+        "length_m": length,
+        "outer_diameter_m": 2.0 * r,
+        "wall_thickness_m": el.num(&format!("{side}shoulderthickness"))?.unwrap_or(r),
+        "capped": el.flag(&format!("{side}shouldercapped")),
+    })))
+}
+
+fn fin_count(el: &El<'_, '_>) -> Result<u32, DesignError> {
+    let n = match el.num("fincount")? {
+        Some(n) => n,
+        None => el.req("instancecount")?,
+    };
+    if n >= 1.0 && n.fract() == 0.0 && n <= 64.0 {
+        Ok(n as u32)
+    } else {
+        Err(el.bad(
+            "fincount",
+            format!("must be a whole number of fins (got {n})"),
+        ))
+    }
+}
+
+/// A free-form fin's outline from `<finpoints>`.
+fn fin_points(el: &El<'_, '_>) -> Result<Vec<[f64; 2]>, DesignError> {
+    let points = el
+        .child("finpoints")
+        .ok_or_else(|| el.bad("finpoints", "is missing"))?;
+    let mut out = Vec::new();
+    for p in points.children().filter(|p| p.tag() == "point") {
+        let coord = |a: &str| {
+            p.attribute(a)
+                .and_then(|v| v.trim().parse::<f64>().ok())
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| el.bad("finpoints", format!("a point without a finite {a}")))
+        };
+        out.push([coord("x")?, coord("y")?]);
+    }
+    if out.len() < 3 {
+        return Err(el.bad("finpoints", "an outline needs at least three points"));
+    }
+    Ok(out)
+}
+
+/// A part's angle about the axis, degrees (`<angleoffset>`, or the older `<radialdirection>`).
+fn angle(el: &El<'_, '_>) -> Result<f64, DesignError> {
+    Ok(match el.num("angleoffset")? {
+        Some(a) => a,
+        None => el.num("radialdirection")?.unwrap_or(0.0),
+    })
+}
+
+/// The density of material element `tag`, which must be of kind `kind` (surface, line).
+fn density(el: &El<'_, '_>, tag: &str, kind: &str) -> Result<f64, DesignError> {
+    let mat = el.child(tag).ok_or_else(|| el.bad(tag, "is missing"))?;
+    if mat.attribute("type").is_some_and(|t| t != kind) {
+        return Err(el.bad(tag, format!("must be a {kind} material")));
+    }
+    mat.attribute("density")
+        .and_then(|d| d.trim().parse::<f64>().ok())
+        .filter(|d| d.is_finite())
+        .ok_or_else(|| el.bad(tag, "has no finite density"))
+}
+
+/// A ring's outer radius: its value, or (a bare `auto`) its parent's inner radius.
+fn ring_outer(el: &El<'_, '_>, tag: &str, parent_inner: Option<f64>) -> Result<f64, DesignError> {
+    match el.auto(tag)? {
+        Some(Auto::Value(v)) => Ok(v),
+        Some(Auto::Bare) => parent_inner.ok_or_else(|| {
+            el.bad(
+                tag,
+                "a bare auto inside a tapered part cannot be resolved; give the radius",
+            )
+        }),
+        None => Err(el.bad(tag, "is missing")),
+    }
+}
+
+/// A centering ring's automatic inner radius: the largest outer radius of the inner tubes
+/// beside it that overlap it along the axis (OpenRocket's rule), 0 if none.
+fn ring_inner_auto(siblings: &[El<'_, '_>]) -> Result<f64, DesignError> {
+    let mut r: f64 = 0.0;
+    for s in siblings.iter().filter(|s| s.tag() == "innertube") {
+        if let Some(Auto::Value(v)) = s.auto("outerradius")? {
+            r = r.max(v);
+        }
+    }
+    Ok(r)
+}
+
+/// A part's position: OpenRocket's method (top, middle, bottom, after, absolute) and value.
+fn position(el: &El<'_, '_>) -> Result<(&'static str, f64), DesignError> {
+    let found = el
+        .child("axialoffset")
+        .map(|p| (p.attribute("method"), "axialoffset", p))
+        .or_else(|| {
+            el.child("position")
+                .map(|p| (p.attribute("type"), "position", p))
+        });
+    let Some((method, tag, p)) = found else {
+        let default = if el.tag().ends_with("finset") {
+            "bottom"
+        } else {
+            "top"
+        };
+        return Ok((default, 0.0));
+    };
+    let method = match method.unwrap_or("top") {
+        "top" => "top",
+        "middle" => "middle",
+        "bottom" => "bottom",
+        "after" => "after",
+        "absolute" => "absolute",
+        other => return Err(el.bad(tag, format!("unknown position method \"{other}\""))),
+    };
+    let text = p.own_text();
+    let value = if text.is_empty() {
+        0.0
+    } else {
+        text.parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| el.bad(tag, format!("not a finite number: \"{text}\"")))?
+    };
+    Ok((method, value))
+}
+
+/// Resolve the body components' radii: `auto` with its value as given; a bare `auto` (files
+/// before 1.8) from the neighbours as OpenRocket does (a tube or a transition's fore end from
+/// the component before it, its aft end, and a nose cone's base, from the one after).
+fn resolve_radii(stage: &El<'_, '_>, bodies: &mut [Body]) -> Result<(), DesignError> {
+    let value = |a: Option<Auto>| match a {
+        Some(Auto::Value(v)) => Some(v),
+        _ => None,
+    };
+    for _ in 0..bodies.len() + 1 {
+        for i in 0..bodies.len() {
+            let before = if i > 0 {
+                value(bodies[i - 1].aft)
+            } else {
+                None
+            };
+            let after = bodies.get(i + 1).and_then(|b| value(b.fore));
+            let b = &mut bodies[i];
+            match b.kind {
+                "body_tube" if b.fore == Some(Auto::Bare) => {
+                    if let Some(r) = before.or(after) {
+                        (b.fore, b.aft) = (Some(Auto::Value(r)), Some(Auto::Value(r)));
+                    }
+                }
+                _ => {
+                    if b.fore == Some(Auto::Bare) {
+                        if let Some(r) = before {
+                            b.fore = Some(Auto::Value(r));
+                        }
+                    }
+                    if b.aft == Some(Auto::Bare) {
+                        if let Some(r) = after {
+                            b.aft = Some(Auto::Value(r));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for b in bodies.iter_mut() {
+        let (Some(aft), fore) = (value(b.aft), value(b.fore)) else {
+            return Err(stage.bad(
+                "subcomponents",
+                format!(
+                    "the radius of \"{}\" is automatic and no neighbour gives it",
+                    b.json["name"].as_str().unwrap_or("?")
+                ),
+            ));
+        };
+        match b.kind {
+            "body_tube" => b.json.insert("outer_diameter_m".into(), json!(2.0 * aft)),
+            "nose_cone" => b.json.insert("base_diameter_m".into(), json!(2.0 * aft)),
+            _ => {
+                let fore = fore.ok_or_else(|| {
+                    stage.bad(
+                        "subcomponents",
+                        "a transition's fore radius is automatic and no neighbour gives it",
+                    )
+                })?;
+                b.json.insert("fore_diameter_m".into(), json!(2.0 * fore));
+                b.json.insert("aft_diameter_m".into(), json!(2.0 * aft))
+            }
+        };
+    }
+    Ok(())
+}

@@ -1,0 +1,311 @@
+//! OpenRocket designs (`.ork`) read into hpr's design format, so that a team can fly the
+//! rocket it already drew in OpenRocket.
+//!
+//! An `.ork` is a ZIP whose first entry is the XML document (`rocket.ork`); very old files
+//! are that XML gzipped or plain (OpenRocket's own loader tells them apart by their first
+//! bytes, and so does [`is_ork`]). The document is a tree of components in SI units but for
+//! angles (degrees), which [`import`] maps one to one onto the design format's components
+//! (`docs/design-format.md`, whose positions, overrides and materials follow OpenRocket's):
+//! the result is the JSON of a design, validated afterwards exactly as a hand-written one.
+//!
+//! What a design cannot hold is refused with the element and the reason (pods and parallel
+//! stages, tube fins, clustered or flipped parts, secant ogives); what it leaves out is listed
+//! in [`OrkImport::notes`] and the design's `notes` (fin tabs and fillets, drag overrides,
+//! each parachute's deployment, which the scenario or `fly` gives, a streamer's drag). The
+//! drag is estimated from the geometry with the finish most of the outer surfaces have, as
+//! OpenRocket estimates it (a `.ork` holds no drag curve).
+//!
+//! Written by hand over `roxmltree` (the document is small and its mapping is the whole job);
+//! the container is read with the `zip` and `flate2` crates.
+
+mod components;
+#[cfg(test)]
+mod tests;
+
+use crate::error::DesignError;
+use roxmltree::Node;
+use serde_json::{json, Map, Value};
+use std::io::Read;
+
+/// A design read from an `.ork`: its JSON (the design format) and what the import left out
+/// or approximated, one sentence each.
+#[derive(Debug, Clone)]
+pub struct OrkImport {
+    pub json: Value,
+    pub notes: Vec<String>,
+}
+
+/// Whether `bytes` look like an OpenRocket file: a ZIP or a gzip stream (as OpenRocket writes
+/// them), or XML that names `<openrocket` in its first 300 bytes.
+pub fn is_ork(bytes: &[u8]) -> bool {
+    bytes.starts_with(b"PK")
+        || bytes.starts_with(&[0x1f, 0x8b])
+        || bytes[..bytes.len().min(300)]
+            .windows(b"<openrocket".len())
+            .any(|w| w == b"<openrocket")
+}
+
+/// Read the `.ork` in `bytes` (`file` names it in errors) into a design.
+pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
+    let xml = document_text(bytes, file)?;
+    let doc = roxmltree::Document::parse(&xml).map_err(|e| err(file, "document", e))?;
+    let root = doc.root_element();
+    if root.tag_name().name() != "openrocket" {
+        return Err(err(
+            file,
+            "document",
+            "the root element is not <openrocket>",
+        ));
+    }
+    // Paths start at <rocket> (`rocket/stage "Sustainer"/bodytube "Body"`).
+    let rocket = El::new(file, root, "")
+        .child("rocket")
+        .ok_or_else(|| err(file, "openrocket", "has no <rocket>"))?;
+    let mut cx = components::Context::new();
+    let motor = cx.default_motor(&rocket);
+    let mut stages = Vec::new();
+    let subs = rocket.child("subcomponents");
+    for stage in subs.iter().flat_map(|s| s.children()) {
+        match stage.tag() {
+            "stage" => stages.push(cx.stage(&stage)?),
+            other => return Err(stage.refuse(&format!("a <{other}> directly in the rocket"))),
+        }
+    }
+    if stages.is_empty() {
+        return Err(err(file, "rocket", "has no <stage>"));
+    }
+    let name = rocket
+        .text("name")
+        .unwrap_or("OpenRocket design")
+        .to_owned();
+    let creator = root.attribute("creator").unwrap_or("OpenRocket");
+    let version = root.attribute("version").unwrap_or("?");
+    let mut design = Map::new();
+    design.insert("name".into(), json!(name));
+    let motor_name = match motor {
+        Some(m) => match crate::motor::find(&m.candidates[0])
+            .ok()
+            .map(|_| m.candidates[0].clone())
+            .or_else(|| {
+                m.candidates[1..]
+                    .iter()
+                    .find(|c| crate::motor::find(c).is_ok())
+                    .cloned()
+            }) {
+            Some(found) => Some(found),
+            None => {
+                cx.note(format!(
+                    "the motor {} is not bundled with hpr-mc: give it with --motor FILE (a \
+                     .eng or .rse) or the scenario's motor",
+                    m.label
+                ));
+                None
+            }
+        },
+        None => None,
+    };
+    let roughness = cx.roughness();
+    let mut notes = vec![format!(
+        "Imported from {} ({creator}, file format {version}).",
+        short_name(file)
+    )];
+    notes.extend(cx.notes.iter().cloned());
+    design.insert("notes".into(), json!(notes.join(" ")));
+    if let Some(m) = motor_name {
+        design.insert("motor".into(), json!(m));
+    }
+    design.insert(
+        "drag".into(),
+        json!({ "estimate": { "roughness_m": roughness } }),
+    );
+    design.insert("stages".into(), Value::Array(stages));
+    Ok(OrkImport {
+        json: Value::Object(design),
+        notes: cx.notes,
+    })
+}
+
+/// The file's name without its directories.
+fn short_name(file: &str) -> &str {
+    file.rsplit(['/', '\\']).next().unwrap_or(file)
+}
+
+/// The XML text of the document: the first entry of a ZIP, a gunzipped stream, or the bytes.
+fn document_text(bytes: &[u8], file: &str) -> Result<String, DesignError> {
+    let mut text = String::new();
+    if bytes.starts_with(b"PK") {
+        let mut zip = zip::ZipArchive::new(std::io::Cursor::new(bytes))
+            .map_err(|e| err(file, "container", format!("not a readable ZIP: {e}")))?;
+        if zip.is_empty() {
+            return Err(err(file, "container", "the ZIP is empty"));
+        }
+        // OpenRocket reads the first entry; `rocket.ork` is its name when OpenRocket wrote it.
+        let index = zip.index_for_name("rocket.ork").unwrap_or(0);
+        let mut entry = zip
+            .by_index(index)
+            .map_err(|e| err(file, "container", format!("cannot open its document: {e}")))?;
+        entry
+            .read_to_string(&mut text)
+            .map_err(|e| err(file, "container", format!("cannot read its document: {e}")))?;
+    } else if bytes.starts_with(&[0x1f, 0x8b]) {
+        flate2::read::GzDecoder::new(bytes)
+            .read_to_string(&mut text)
+            .map_err(|e| {
+                err(
+                    file,
+                    "container",
+                    format!("not a readable gzip stream: {e}"),
+                )
+            })?;
+    } else {
+        text = String::from_utf8(bytes.to_vec())
+            .map_err(|_| err(file, "document", "not UTF-8 text"))?;
+    }
+    Ok(text)
+}
+
+fn err(file: &str, element: &str, message: impl std::fmt::Display) -> DesignError {
+    DesignError::Ork {
+        file: file.to_owned(),
+        element: element.to_owned(),
+        message: message.to_string(),
+    }
+}
+
+/// An element of the document with its path (for errors): `stage "Sustainer"/bodytube
+/// "Body tube"`.
+#[derive(Clone)]
+pub(crate) struct El<'a, 'i> {
+    file: &'a str,
+    node: Node<'a, 'i>,
+    path: String,
+}
+
+/// A number that may be OpenRocket's `auto` (its value resolved from the neighbours): `auto
+/// 0.0325` carries the value, a bare `auto` (files before 1.8) does not.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Auto {
+    Value(f64),
+    Bare,
+}
+
+impl<'a, 'i> El<'a, 'i> {
+    fn new(file: &'a str, node: Node<'a, 'i>, path: &str) -> El<'a, 'i> {
+        El {
+            file,
+            node,
+            path: path.to_owned(),
+        }
+    }
+
+    pub(crate) fn tag(&self) -> &'a str {
+        self.node.tag_name().name()
+    }
+
+    /// The element's `<name>`, or its tag.
+    pub(crate) fn name(&self) -> &'a str {
+        self.text("name").unwrap_or(self.tag())
+    }
+
+    /// The element children (components inside `<subcomponents>`), each with its path.
+    pub(crate) fn children(&self) -> impl Iterator<Item = El<'a, 'i>> + '_ {
+        self.node.children().filter(Node::is_element).map(|n| {
+            let tag = n.tag_name().name();
+            let name = n
+                .children()
+                .find(|c| c.has_tag_name("name"))
+                .and_then(|c| c.text())
+                .map(|s| format!(" \"{}\"", s.trim()))
+                .unwrap_or_default();
+            let path = if self.tag() == "subcomponents" {
+                // A component's path skips the <subcomponents> between it and its parent.
+                self.path
+                    .trim_end_matches("/subcomponents")
+                    .trim_end_matches("subcomponents")
+                    .to_owned()
+            } else {
+                self.path.clone()
+            };
+            let sep = if path.is_empty() { "" } else { "/" };
+            El::new(self.file, n, &format!("{path}{sep}{tag}{name}"))
+        })
+    }
+
+    pub(crate) fn child(&self, tag: &str) -> Option<El<'a, 'i>> {
+        self.node.children().find(|c| c.has_tag_name(tag)).map(|n| {
+            let sep = if self.path.is_empty() { "" } else { "/" };
+            El::new(self.file, n, &format!("{}{sep}{tag}", self.path))
+        })
+    }
+
+    pub(crate) fn attribute(&self, name: &str) -> Option<&'a str> {
+        self.node.attribute(name)
+    }
+
+    /// The trimmed text of child `<tag>`.
+    pub(crate) fn text(&self, tag: &str) -> Option<&'a str> {
+        self.node
+            .children()
+            .find(|c| c.has_tag_name(tag))
+            .map(|c| c.text().unwrap_or("").trim())
+    }
+
+    /// This element's own trimmed text.
+    pub(crate) fn own_text(&self) -> &'a str {
+        self.node.text().unwrap_or("").trim()
+    }
+
+    /// An error at child `<field>` of this element.
+    pub(crate) fn bad(&self, field: &str, message: impl std::fmt::Display) -> DesignError {
+        err(self.file, &format!("{}/<{field}>", self.path), message)
+    }
+
+    /// An error at this element: what hpr cannot hold.
+    pub(crate) fn refuse(&self, what: &str) -> DesignError {
+        err(
+            self.file,
+            &self.path,
+            format!("{what} cannot be imported (hpr's design format has no such part)"),
+        )
+    }
+
+    /// Child `<tag>` as a finite number, if present.
+    pub(crate) fn num(&self, tag: &str) -> Result<Option<f64>, DesignError> {
+        match self.text(tag) {
+            None => Ok(None),
+            Some(t) => parse_number(t)
+                .map(Some)
+                .ok_or_else(|| self.bad(tag, format!("not a finite number: \"{t}\""))),
+        }
+    }
+
+    /// Child `<tag>` as a finite number, required.
+    pub(crate) fn req(&self, tag: &str) -> Result<f64, DesignError> {
+        self.num(tag)?
+            .ok_or_else(|| self.bad(tag, "is missing (the design needs it)"))
+    }
+
+    /// Child `<tag>`, a number or OpenRocket's `auto` (`auto 0.0325`, or a bare `auto`).
+    pub(crate) fn auto(&self, tag: &str) -> Result<Option<Auto>, DesignError> {
+        let Some(t) = self.text(tag) else {
+            return Ok(None);
+        };
+        let value = t.strip_prefix("auto").map(str::trim).unwrap_or(t);
+        if value.is_empty() {
+            return Ok(Some(Auto::Bare));
+        }
+        parse_number(value)
+            .map(|v| Some(Auto::Value(v)))
+            .ok_or_else(|| self.bad(tag, format!("not a finite number or auto: \"{t}\"")))
+    }
+
+    /// Child `<tag>` as `true`/`false` (absent: false).
+    pub(crate) fn flag(&self, tag: &str) -> bool {
+        self.text(tag)
+            .is_some_and(|t| t.eq_ignore_ascii_case("true"))
+    }
+}
+
+fn parse_number(t: &str) -> Option<f64> {
+    t.parse::<f64>().ok().filter(|v| v.is_finite())
+}

@@ -1,0 +1,289 @@
+//! The import against the design it describes: the design format's own example
+//! (`docs/design-format.md`, "A complete example") drawn as OpenRocket 24.12 saves it.
+
+use super::*;
+use crate::aero::AeroModel;
+use crate::mass::components::dry;
+use crate::Design;
+use std::io::Write as _;
+
+/// The example rocket as an OpenRocket document (`validation/designs/example-minimal.ork`,
+/// plain XML, which OpenRocket reads as it reads its ZIPs): the same parts, their positions
+/// given as OpenRocket gives them (the rail buttons as one part of two instances, the
+/// ballast's position absolute, radii `auto` with their values).
+const EXAMPLE: &str = include_str!("../../../../validation/designs/example-minimal.ork");
+
+/// The parachute's mass as OpenRocket computes it: canopy area × the cloth's surface
+/// density, plus its lines (count × length × linear density).
+fn chute_mass_kg() -> f64 {
+    std::f64::consts::PI * 0.3 * 0.3 * 0.067 + 6.0 * 0.9 * 0.0018
+}
+
+/// `validation/designs/example-minimal.json` as the `.ork` says it: the drag estimated with
+/// the normal finish, the parachute's mass from its cloth and lines, each rail button's mass
+/// overriding its material's.
+fn expected() -> Design {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../validation/designs/example-minimal.json"
+    );
+    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    v["drag"] = json!({ "estimate": { "roughness_m": 60e-6 } });
+    let parts = v["stages"][0]["components"][1]["children"]
+        .as_array_mut()
+        .unwrap();
+    for p in parts.iter_mut() {
+        if p["id"] == "chute" {
+            p["mass_kg"] = json!(chute_mass_kg());
+        }
+    }
+    Design::from_json_str(&v.to_string(), None).unwrap()
+}
+
+fn imported(bytes: &[u8]) -> (Design, OrkImport) {
+    let import = super::import(bytes, "example.ork").unwrap();
+    let design = Design::from_json_str(&import.json.to_string(), None).unwrap();
+    (design, import)
+}
+
+fn zipped(entries: &[(&str, &str)]) -> Vec<u8> {
+    let mut out = std::io::Cursor::new(Vec::new());
+    let mut zip = zip::ZipWriter::new(&mut out);
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    for (name, text) in entries {
+        zip.start_file(*name, options).unwrap();
+        zip.write_all(text.as_bytes()).unwrap();
+    }
+    zip.finish().unwrap();
+    out.into_inner()
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol * a.abs().max(b.abs()).max(1e-300)
+}
+
+#[test]
+fn an_openrocket_file_gives_the_mass_center_inertia_and_pressure_center_of_its_design() {
+    let (got, import) = imported(EXAMPLE.as_bytes());
+    let want = expected();
+    let (g, w) = (dry(&got), dry(&want));
+    // The same parts at the same places: equal to rounding (positions summed in another order).
+    assert!(
+        close(g.mass_kg, w.mass_kg, 1e-14),
+        "{} {}",
+        g.mass_kg,
+        w.mass_kg
+    );
+    assert!(
+        close(g.cg_m.x, w.cg_m.x, 1e-13),
+        "{} {}",
+        g.cg_m.x,
+        w.cg_m.x
+    );
+    for (a, b) in g.inertia_cg.iter().zip(w.inertia_cg.iter()) {
+        assert!((a - b).abs() <= 1e-13 * w.inertia_cg.norm(), "{a} {b}");
+    }
+    let (ga, wa) = (
+        AeroModel::from_design(&got).unwrap(),
+        AeroModel::from_design(&want).unwrap(),
+    );
+    for mach in [0.0, 0.3, 0.8, 1.5] {
+        assert!(
+            close(ga.cp_m(mach), wa.cp_m(mach), 1e-13),
+            "CP at Mach {mach}"
+        );
+        assert!(
+            close(ga.cn_alpha(mach), wa.cn_alpha(mach), 1e-13),
+            "CNα at Mach {mach}"
+        );
+        assert!(
+            close(ga.cd_power_off(mach), wa.cd_power_off(mach), 1e-13),
+            "Cd at Mach {mach}"
+        );
+    }
+    assert_eq!(import.json["motor"], "Cesaroni_I175");
+    assert_eq!(got.reference_diameter_m, 0.0563);
+    // The parachute's deployment is a note (hpr takes it from the scenario or fly's flags).
+    assert!(
+        import
+            .notes
+            .iter()
+            .any(|n| n.contains("at 300 m on the way down")),
+        "{:?}",
+        import.notes
+    );
+}
+
+#[test]
+fn the_parachute_weighs_its_cloth_and_its_lines() {
+    let (_, import) = imported(EXAMPLE.as_bytes());
+    let chute = &import.json["stages"][0]["components"][1]["children"][4];
+    assert_eq!(chute["type"], "parachute");
+    // π (0.3 m)² × 0.067 kg/m² + 6 × 0.9 m × 0.0018 kg/m = 0.018943803 + 0.00972 kg.
+    let want = 0.028663803_f64;
+    assert!((chute["mass_kg"].as_f64().unwrap() - want).abs() < 1e-9);
+    assert_eq!(chute["canopy_diameter_m"], 0.6);
+    assert_eq!(chute["cd"], 1.5);
+}
+
+#[test]
+fn a_zipped_a_gzipped_and_a_plain_document_give_the_same_design() {
+    let plain = super::import(EXAMPLE.as_bytes(), "a.ork").unwrap().json;
+    let zip = super::import(&zipped(&[("rocket.ork", EXAMPLE)]), "a.ork")
+        .unwrap()
+        .json;
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    gz.write_all(EXAMPLE.as_bytes()).unwrap();
+    let gzip = super::import(&gz.finish().unwrap(), "a.ork").unwrap().json;
+    assert_eq!(zip, plain);
+    assert_eq!(gzip, plain);
+    // OpenRocket reads the first entry of a ZIP (decal images follow it).
+    let with_decal = zipped(&[("rocket.ork", EXAMPLE), ("decals/fin.png", "not xml")]);
+    assert_eq!(super::import(&with_decal, "a.ork").unwrap().json, plain);
+    assert!(is_ork(EXAMPLE.as_bytes()) && !is_ork(b"{\"name\": \"x\"}"));
+}
+
+#[test]
+fn two_instances_of_a_rail_button_stand_their_separation_apart() {
+    let (got, _) = imported(EXAMPLE.as_bytes());
+    let tops: Vec<f64> = got
+        .components
+        .iter()
+        .filter(|c| c.kind.type_name() == "rail_button")
+        .map(|c| c.x_top_m)
+        .collect();
+    // The body starts 0.25 m aft of the tip: 0.25 + 0.4 and 0.25 + 0.4 + 0.47.
+    assert_eq!(tops.len(), 2);
+    assert!(
+        (tops[0] - 0.65).abs() < 1e-12 && (tops[1] - 1.12).abs() < 1e-12,
+        "{tops:?}"
+    );
+}
+
+/// The example with `from` replaced by `to` (once).
+fn edited(from: &str, to: &str) -> String {
+    assert!(EXAMPLE.contains(from), "{from}");
+    EXAMPLE.replacen(from, to, 1)
+}
+
+#[test]
+fn a_bare_auto_radius_of_an_older_file_is_taken_from_the_neighbouring_component() {
+    // Files before format 1.8 write `auto` without its value: the body tube takes the nose
+    // cone's base radius, as OpenRocket resolves it.
+    let old = edited("<radius>auto 0.02815</radius>", "<radius>auto</radius>");
+    let (got, _) = imported(old.as_bytes());
+    match &got.component("body_tube").unwrap().kind {
+        crate::ComponentKind::BodyTube(t) => assert_eq!(t.outer_diameter_m, 0.0563),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_part_after_another_starts_where_that_one_ends() {
+    // An old `<position type="after">`: the ballast right after the parachute (0.05 + 0.08 m
+    // down the body tube), its value ignored as OpenRocket ignores it.
+    let old = edited(
+        r#"<axialoffset method="absolute">0.35</axialoffset>
+                <position type="absolute">0.35</position>"#,
+        r#"<position type="after">9.0</position>"#,
+    );
+    let (got, _) = imported(old.as_bytes());
+    let ballast = got.component("ballast").unwrap();
+    assert!(
+        (ballast.x_top_m - (0.25 + 0.05 + 0.08)).abs() < 1e-12,
+        "{}",
+        ballast.x_top_m
+    );
+}
+
+#[test]
+fn what_a_design_cannot_hold_is_refused_with_its_element_and_reason() {
+    let cases = [
+        (
+            edited(
+                "<shapeparameter>1.0</shapeparameter>",
+                "<shapeparameter>0.5</shapeparameter>",
+            ),
+            "nosecone \"Nose cone\"",
+            "secant ogive",
+        ),
+        (
+            edited(
+                "<clusterconfiguration>single</clusterconfiguration>",
+                "<clusterconfiguration>3-ring</clusterconfiguration>",
+            ),
+            "innertube \"Motor mount\"",
+            "cluster",
+        ),
+        (
+            edited(
+                "<parachute>",
+                "<tubefinset><name>Tubes</name></tubefinset><parachute>",
+            ),
+            "tubefinset \"Tubes\"",
+            "tube fin set",
+        ),
+        (
+            edited("<length>0.9</length>", "<length>not a length</length>"),
+            "bodytube \"Body tube\"/<length>",
+            "not a finite number",
+        ),
+        (
+            edited(
+                "<isflipped>false</isflipped>",
+                "<isflipped>true</isflipped>",
+            ),
+            "nosecone \"Nose cone\"",
+            "flipped",
+        ),
+        (
+            "<openrocket version=\"1.10\"><rocket><name>x</name></rocket></openrocket>".to_owned(),
+            "rocket",
+            "has no <stage>",
+        ),
+    ];
+    for (text, element, why) in cases {
+        let e = super::import(text.as_bytes(), "r.ork")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("r.ork: "), "{e}");
+        assert!(e.contains(element) && e.contains(why), "{e}");
+    }
+    let broken = super::import(b"PK\x03\x04 not really a zip", "z.ork")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        broken.starts_with("z.ork: container: not a readable ZIP"),
+        "{broken}"
+    );
+}
+
+#[test]
+fn fin_tabs_fillets_and_drag_overrides_are_left_out_with_a_note() {
+    let text = edited(
+        "<filletradius>0.0</filletradius>",
+        "<filletradius>0.005</filletradius><tabheight>0.01</tabheight><tablength>0.05</tablength>",
+    )
+    .replacen(
+        "<length>0.9</length>",
+        "<length>0.9</length><overridecd>0.5</overridecd>",
+        1,
+    );
+    let (_, import) = imported(text.as_bytes());
+    let notes = import.notes.join(" ");
+    assert!(
+        notes.contains("Fins: its fin tabs are not imported"),
+        "{notes}"
+    );
+    assert!(
+        notes.contains("Fins: its fillets are not imported"),
+        "{notes}"
+    );
+    assert!(
+        notes.contains("Body tube: its drag override is not imported"),
+        "{notes}"
+    );
+    // The notes travel with the design, for the reader of the JSON.
+    assert!(import.json["notes"].as_str().unwrap().contains("fin tabs"));
+}
