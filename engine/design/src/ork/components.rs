@@ -215,6 +215,25 @@ impl Context {
         let mut stage = Map::new();
         stage.insert("id".into(), json!(self.id(el.name())));
         stage.insert("name".into(), json!(el.name()));
+        let (mass, cg) = (el.num("overridemass")?, el.num("overridecg")?);
+        if mass.is_some() || cg.is_some() {
+            // A stage's override is the whole stage's (its parts' masses replaced), as the
+            // design format's stage override is.
+            if !(el.flag("overridesubcomponentsmass")
+                || el.flag("overridesubcomponentscg")
+                || el.flag("overridesubcomponents"))
+            {
+                return Err(el.refuse("a stage's override that does not cover its parts"));
+            }
+            let mut o = Map::new();
+            if let Some(v) = mass {
+                o.insert("mass_kg".into(), json!(v));
+            }
+            if let Some(v) = cg {
+                o.insert("cg_m".into(), json!(v));
+            }
+            stage.insert("override".into(), Value::Object(o));
+        }
         let mut bodies = Vec::new();
         for c in el
             .child("subcomponents")

@@ -61,6 +61,9 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
     let rocket = El::new(file, root, "")
         .child("rocket")
         .ok_or_else(|| err(file, "openrocket", "has no <rocket>"))?;
+    if rocket.text("overridemass").is_some() || rocket.text("overridecg").is_some() {
+        return Err(rocket.refuse("an override of the whole rocket"));
+    }
     let mut cx = components::Context::new();
     let motor = cx.default_motor(&rocket);
     let mut stages = Vec::new();

@@ -260,6 +260,38 @@ fn what_a_design_cannot_hold_is_refused_with_its_element_and_reason() {
 }
 
 #[test]
+fn a_stage_s_override_covering_its_parts_becomes_the_stage_s_override() {
+    let text = edited(
+        "<name>Sustainer</name>",
+        "<name>Sustainer</name><overridemass>1.25</overridemass><overridecg>0.7</overridecg>\
+         <overridesubcomponentsmass>true</overridesubcomponentsmass>\
+         <overridesubcomponentscg>true</overridesubcomponentscg>",
+    );
+    let (got, import) = imported(text.as_bytes());
+    assert_eq!(
+        import.json["stages"][0]["override"],
+        json!({ "mass_kg": 1.25, "cg_m": 0.7 })
+    );
+    let m = dry(&got);
+    assert!(
+        (m.mass_kg - 1.25).abs() < 1e-15 && (m.cg_m.x - 0.7).abs() < 1e-15,
+        "{m:?}"
+    );
+    // One that leaves the parts' own masses has no counterpart in a design.
+    let partial = edited(
+        "<name>Sustainer</name>",
+        "<name>Sustainer</name><overridemass>1.25</overridemass>",
+    );
+    let e = super::import(partial.as_bytes(), "s.ork")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("stage \"Sustainer\": a stage's override that does not cover its parts"),
+        "{e}"
+    );
+}
+
+#[test]
 fn fin_tabs_fillets_and_drag_overrides_are_left_out_with_a_note() {
     let text = edited(
         "<filletradius>0.0</filletradius>",
