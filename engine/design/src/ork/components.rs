@@ -22,6 +22,9 @@ pub(super) struct Context {
     /// The configuration id of the default motor, and whether its mount has been placed.
     config: Option<String>,
     mount_placed: bool,
+    /// The fore end of the next body component, m aft of the nose tip (stages follow each
+    /// other).
+    x_m: f64,
     pub notes: Vec<String>,
 }
 
@@ -29,11 +32,26 @@ pub(super) struct Context {
 type Component = Map<String, Value>;
 
 /// A body component read, its radii resolved later (a bare `auto` takes its neighbour's).
-struct Body {
+struct Body<'a, 'i> {
+    el: El<'a, 'i>,
     json: Map<String, Value>,
+    length_m: f64,
     fore: Option<Auto>,
     aft: Option<Auto>,
     kind: &'static str,
+}
+
+/// What a part's position and automatic sizes read of its parent.
+struct Parent {
+    length_m: f64,
+    /// The parent's fore end, m aft of the nose tip (for OpenRocket's absolute positions).
+    front_m: f64,
+    /// A ring's automatic outer radius (the parent's inner radius), where known.
+    ring_r: Option<f64>,
+    /// A packed part's automatic radius (OpenRocket's rule for each kind of parent).
+    packed_r: Option<f64>,
+    /// Whether the parent is a body component (fins, lugs and buttons only go there).
+    on_body: bool,
 }
 
 impl Context {
@@ -43,6 +61,7 @@ impl Context {
             finishes: Vec::new(),
             config: None,
             mount_placed: false,
+            x_m: 0.0,
             notes: Vec::new(),
         }
     }
@@ -249,13 +268,44 @@ impl Context {
             ));
         }
         resolve_radii(el, &mut bodies)?;
-        let components: Vec<Value> = bodies.into_iter().map(|b| Value::Object(b.json)).collect();
+        let mut components = Vec::new();
+        for mut b in bodies {
+            let radius = |k: &str| b.json[k].as_f64().map(|d| d / 2.0);
+            let (ring_r, packed_r) = match b.kind {
+                "body_tube" => {
+                    let inner = radius("outer_diameter_m")
+                        .zip(b.json["wall_thickness_m"].as_f64())
+                        .map(|(r, t)| r - t);
+                    (inner, inner)
+                }
+                "nose_cone" => (None, radius("base_diameter_m")),
+                _ => (
+                    None,
+                    radius("fore_diameter_m")
+                        .zip(radius("aft_diameter_m"))
+                        .map(|(f, a)| f.max(a)),
+                ),
+            };
+            let parent = Parent {
+                length_m: b.length_m,
+                front_m: self.x_m,
+                ring_r,
+                packed_r,
+                on_body: true,
+            };
+            let parts = self.parts(&b.el, &parent)?;
+            if !parts.is_empty() {
+                b.json.insert("children".into(), Value::Array(parts));
+            }
+            self.x_m += b.length_m;
+            components.push(Value::Object(b.json));
+        }
         stage.insert("components".into(), Value::Array(components));
         Ok(Value::Object(stage))
     }
 
-    /// A nose cone, body tube or transition, and the parts on and in it.
-    fn body(&mut self, el: &El<'_, '_>) -> Result<Body, DesignError> {
+    /// A nose cone, body tube or transition (its parts are read once its radii are known).
+    fn body<'a, 'i>(&mut self, el: &El<'a, 'i>) -> Result<Body<'a, 'i>, DesignError> {
         let kind = match el.tag() {
             "nosecone" => "nose_cone",
             "bodytube" => "body_tube",
@@ -325,16 +375,10 @@ impl Context {
         if let Some(mount) = el.child("motormount") {
             self.mount(el, &mount, &mut m)?;
         }
-        let inner = match (kind, aft) {
-            ("body_tube", Some(Auto::Value(r))) => Some(r - el.req("thickness")?),
-            _ => None,
-        };
-        let parts = self.parts(el, length, inner, true)?;
-        if !parts.is_empty() {
-            m.insert("children".into(), Value::Array(parts));
-        }
         Ok(Body {
+            el: el.clone(),
             json: m,
+            length_m: length,
             fore,
             aft,
             kind,
@@ -369,25 +413,19 @@ impl Context {
         Ok(())
     }
 
-    /// The parts on and in a component of length `parent_length` (inner radius
-    /// `parent_inner`, where known), in the order OpenRocket lists them. `on_body`: the
-    /// parent is a body component (fins, lugs and buttons only go there).
-    fn parts(
-        &mut self,
-        parent: &El<'_, '_>,
-        parent_length: f64,
-        parent_inner: Option<f64>,
-        on_body: bool,
-    ) -> Result<Vec<Value>, DesignError> {
+    /// The parts on and in component `el` (`parent`: what they read of it), in the order
+    /// OpenRocket lists them.
+    fn parts(&mut self, el: &El<'_, '_>, parent: &Parent) -> Result<Vec<Value>, DesignError> {
+        let (parent_el, parent_length) = (el, parent.length_m);
         let mut out = Vec::new();
         // The fore end and length of the last part placed, for OpenRocket's "after".
         let mut previous: Option<(f64, f64)> = None;
-        let Some(subs) = parent.child("subcomponents") else {
+        let Some(subs) = parent_el.child("subcomponents") else {
             return Ok(out);
         };
         let children: Vec<El<'_, '_>> = subs.children().collect();
         for el in &children {
-            if !on_body
+            if !parent.on_body
                 && matches!(
                     el.tag(),
                     "trapezoidfinset"
@@ -399,8 +437,8 @@ impl Context {
             {
                 return Err(el.refuse("an outside part on an inner tube"));
             }
-            let made = self.part(el, parent_inner, &children)?;
-            let Some((part, length)) = made else {
+            let made = self.part(el, parent, &children)?;
+            let Some((mut part, length)) = made else {
                 continue;
             };
             let count = el
@@ -419,9 +457,24 @@ impl Context {
                 "middle" => value + (parent_length - length) / 2.0,
                 "bottom" => value + parent_length - length,
                 "after" => previous.map_or(0.0, |(x, l)| x + l),
-                _ => value, // absolute: kept as such below
+                _ => value - parent.front_m, // absolute
             };
             previous = Some((fore, length));
+            if matches!(el.tag(), "innertube" | "tubecoupler") {
+                let inner = part["outer_diameter_m"].as_f64().unwrap_or(0.0) / 2.0
+                    - part["wall_thickness_m"].as_f64().unwrap_or(0.0);
+                let tube = Parent {
+                    length_m: length,
+                    front_m: parent.front_m + fore,
+                    ring_r: Some(inner),
+                    packed_r: Some(inner),
+                    on_body: false,
+                };
+                let children = self.parts(el, &tube)?;
+                if !children.is_empty() {
+                    part.insert("children".into(), Value::Array(children));
+                }
+            }
             let (from, offset) = match method {
                 "after" => ("top", fore),
                 "absolute" => ("nose_tip", value),
@@ -454,7 +507,7 @@ impl Context {
     fn part(
         &mut self,
         el: &El<'_, '_>,
-        parent_inner: Option<f64>,
+        parent: &Parent,
         siblings: &[El<'_, '_>],
     ) -> Result<Option<(Component, f64)>, DesignError> {
         let tag = el.tag();
@@ -542,7 +595,7 @@ impl Context {
             }
             "innertube" | "tubecoupler" => {
                 length = el.req("length")?;
-                let r = ring_outer(el, "outerradius", parent_inner)?;
+                let r = ring_outer(el, "outerradius", parent.ring_r)?;
                 let wall = el.req("thickness")?;
                 if tag == "innertube" {
                     let cluster = el.text("clusterconfiguration").unwrap_or("single");
@@ -565,14 +618,10 @@ impl Context {
                 if let Some(mount) = el.child("motormount") {
                     self.mount(el, &mount, &mut m)?;
                 }
-                let children = self.parts(el, length, Some(r - wall), false)?;
-                if !children.is_empty() {
-                    m.insert("children".into(), Value::Array(children));
-                }
             }
             "centeringring" | "engineblock" => {
                 length = el.req("length")?;
-                let r = ring_outer(el, "outerradius", parent_inner)?;
+                let r = ring_outer(el, "outerradius", parent.ring_r)?;
                 let inner = if tag == "engineblock" {
                     r - el.req("thickness")?
                 } else {
@@ -589,7 +638,7 @@ impl Context {
             }
             "bulkhead" => {
                 length = el.req("length")?;
-                let r = ring_outer(el, "outerradius", parent_inner)?;
+                let r = ring_outer(el, "outerradius", parent.ring_r)?;
                 m.insert("type".into(), json!("bulkhead"));
                 m.insert("length_m".into(), json!(length));
                 m.insert("outer_diameter_m".into(), json!(2.0 * r));
@@ -598,7 +647,7 @@ impl Context {
                 length = el.req("packedlength")?;
                 let radius = match el.auto("packedradius")? {
                     Some(Auto::Value(v)) => v,
-                    Some(Auto::Bare) => parent_inner.ok_or_else(|| {
+                    Some(Auto::Bare) => parent.packed_r.ok_or_else(|| {
                         el.bad(
                             "packedradius",
                             "a bare auto inside a tapered part cannot be resolved; give the radius",
@@ -684,7 +733,10 @@ impl Context {
             "nosecone" | "bodytube" | "transition" => {
                 return Err(el.refuse("a body component inside another component"))
             }
-            _ => return Ok(None),
+            other => {
+                self.note(format!("{}: a <{other}> is not imported.", el.name()));
+                return Ok(None);
+            }
         }
         Ok(Some((m, length)))
     }

@@ -171,12 +171,27 @@ fn edited(from: &str, to: &str) -> String {
 fn a_bare_auto_radius_of_an_older_file_is_taken_from_the_neighbouring_component() {
     // Files before format 1.8 write `auto` without its value: the body tube takes the nose
     // cone's base radius, as OpenRocket resolves it.
-    let old = edited("<radius>auto 0.02815</radius>", "<radius>auto</radius>");
-    let (got, _) = imported(old.as_bytes());
+    // So do the rings' outer radii inside it (its inner radius) and the parachute's packed
+    // radius: the design is the example's.
+    let old = edited("<radius>auto 0.02815</radius>", "<radius>auto</radius>")
+        .replace("<outerradius>auto 0.02665</outerradius>", "<outerradius>auto</outerradius>")
+        .replace("<packedradius>0.02</packedradius>\n                <radialposition>0.0</radialposition>\n                <radialdirection>0.0</radialdirection>\n                <cd>", "<packedradius>auto</packedradius><cd>");
+    assert_eq!(old.matches(">auto<").count(), 4, "{old}");
+    let (got, import) = imported(old.as_bytes());
     match &got.component("body_tube").unwrap().kind {
         crate::ComponentKind::BodyTube(t) => assert_eq!(t.outer_diameter_m, 0.0563),
         other => panic!("{other:?}"),
     }
+    let ring = &import.json["stages"][0]["components"][1]["children"][2];
+    assert!(
+        (ring["outer_diameter_m"].as_f64().unwrap() - 0.0533).abs() < 1e-15,
+        "{ring}"
+    );
+    let chute = &import.json["stages"][0]["components"][1]["children"][4];
+    assert!(
+        (chute["radius_m"].as_f64().unwrap() - 0.02665).abs() < 1e-15,
+        "{chute}"
+    );
 }
 
 #[test]
@@ -195,6 +210,16 @@ fn a_part_after_another_starts_where_that_one_ends() {
         "{}",
         ballast.x_top_m
     );
+    // After a part placed from the nose tip, the same: the example's ballast spans 0.35 to
+    // 0.40 m from the tip, so the rail buttons after it start at 0.40 m.
+    let after_absolute = edited(
+        r#"<axialoffset method="top">0.4</axialoffset>
+                <position type="top">0.4</position>"#,
+        r#"<position type="after">0.0</position>"#,
+    );
+    let (got, _) = imported(after_absolute.as_bytes());
+    let button = got.component("rail_button").unwrap();
+    assert!((button.x_top_m - 0.40).abs() < 1e-12, "{}", button.x_top_m);
 }
 
 #[test]
