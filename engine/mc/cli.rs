@@ -206,7 +206,7 @@ pub fn import(a: &ImportArgs) -> Result<ExitCode> {
     let file = a.ork.display().to_string();
     let bytes = std::fs::read(&a.ork).with_context(|| format!("{file}: can't read it"))?;
     let import = hpr_design::ork::import(&bytes, &file).map_err(|e| anyhow!("{e}"))?;
-    let text = format!("{}\n", serde_json::to_string_pretty(&import.json)?);
+    let text = hpr_design::ork::to_pretty_json(&import.json);
     // Checked before it is written: a design the import cannot make valid writes nothing.
     Design::from_json_str(&text, Some(&a.ork)).map_err(|e| anyhow!("{e}"))?;
     for note in &import.notes {

@@ -128,6 +128,64 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
     })
 }
 
+/// `design` as indented JSON in the order a person reads a design: a component's id, type
+/// and name first, its dimensions, then its material, override and position, its children
+/// last (a JSON object's keys are otherwise alphabetical).
+pub fn to_pretty_json(design: &Value) -> String {
+    let mut out = String::new();
+    write_value(design, 0, &mut out);
+    out.push('\n');
+    out
+}
+
+fn key_rank(key: &str) -> u8 {
+    match key {
+        "id" => 0,
+        "type" => 1,
+        "name" => 2,
+        "notes" => 3,
+        "motor" => 4,
+        "drag" => 5,
+        "material" => 7,
+        "override" => 8,
+        "position" => 9,
+        "stages" | "components" | "children" => 10,
+        _ => 6,
+    }
+}
+
+fn write_value(v: &Value, depth: usize, out: &mut String) {
+    let pad = |d: usize| "  ".repeat(d);
+    match v {
+        Value::Object(m) if !m.is_empty() => {
+            let mut keys: Vec<&String> = m.keys().collect();
+            keys.sort_by_key(|k| (key_rank(k), k.as_str()));
+            out.push_str("{\n");
+            for (i, k) in keys.iter().enumerate() {
+                out.push_str(&pad(depth + 1));
+                out.push_str(&Value::String((*k).clone()).to_string());
+                out.push_str(": ");
+                write_value(&m[k.as_str()], depth + 1, out);
+                out.push_str(if i + 1 < keys.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&pad(depth));
+            out.push('}');
+        }
+        // Rows of numbers (a free-form fin's corners) on one line each.
+        Value::Array(a) if !a.is_empty() && !a.iter().all(|x| x.is_number()) => {
+            out.push_str("[\n");
+            for (i, x) in a.iter().enumerate() {
+                out.push_str(&pad(depth + 1));
+                write_value(x, depth + 1, out);
+                out.push_str(if i + 1 < a.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&pad(depth));
+            out.push(']');
+        }
+        other => out.push_str(&other.to_string()),
+    }
+}
+
 /// The file's name without its directories.
 fn short_name(file: &str) -> &str {
     file.rsplit(['/', '\\']).next().unwrap_or(file)

@@ -344,3 +344,22 @@ fn fin_tabs_fillets_and_drag_overrides_are_left_out_with_a_note() {
     // The notes travel with the design, for the reader of the JSON.
     assert!(import.json["notes"].as_str().unwrap().contains("fin tabs"));
 }
+
+#[test]
+fn the_written_design_reads_back_as_the_same_json_with_ids_and_types_first() {
+    let (_, import) = imported(EXAMPLE.as_bytes());
+    let text = to_pretty_json(&import.json);
+    let back: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(back, import.json);
+    let nose = &text[text.find("\"components\"").unwrap()..];
+    let (id, kind, length) = (
+        nose.find("\"id\": \"nose_cone\"").unwrap(),
+        nose.find("\"type\": \"nose_cone\"").unwrap(),
+        nose.find("\"length_m\"").unwrap(),
+    );
+    assert!(id < kind && kind < length, "{nose}");
+    assert!(
+        text.starts_with("{\n  \"name\": \"Example: minimal 54 mm rocket\",\n  \"notes\""),
+        "{text}"
+    );
+}
