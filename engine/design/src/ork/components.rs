@@ -25,6 +25,9 @@ pub(super) struct Context {
     /// The fore end of the next body component, m aft of the nose tip (stages follow each
     /// other).
     x_m: f64,
+    /// The aft radius of the last stage's last body component (a bare `auto` of the next
+    /// stage's first may take it).
+    last_radius: Option<f64>,
     pub notes: Vec<String>,
 }
 
@@ -62,6 +65,7 @@ impl Context {
             config: None,
             mount_placed: false,
             x_m: 0.0,
+            last_radius: None,
             notes: Vec::new(),
         }
     }
@@ -267,7 +271,11 @@ impl Context {
                 "a stage needs a nose cone, body tube or transition",
             ));
         }
-        resolve_radii(el, &mut bodies)?;
+        resolve_radii(el, &mut bodies, self.last_radius)?;
+        self.last_radius = bodies.last().and_then(|b| match b.aft {
+            Some(Auto::Value(r)) => Some(r),
+            _ => None,
+        });
         let mut components = Vec::new();
         for mut b in bodies {
             let radius = |k: &str| b.json[k].as_f64().map(|d| d / 2.0);
@@ -339,7 +347,10 @@ impl Context {
                 if let Some(p) = param {
                     m.insert("shape_parameter".into(), json!(p));
                 }
-                if el.flag("shapeclipped")
+                // OpenRocket writes `shapeclipped` for nose cones too, but clips only
+                // transitions.
+                if kind == "transition"
+                    && el.flag("shapeclipped")
                     && matches!(shape, "elliptical" | "power_series" | "haack")
                 {
                     return Err(el.refuse("a clipped transition"));
@@ -910,8 +921,13 @@ fn position(el: &El<'_, '_>) -> Result<(&'static str, f64), DesignError> {
 
 /// Resolve the body components' radii: `auto` with its value as given; a bare `auto` (files
 /// before 1.8) from the neighbours as OpenRocket does (a tube or a transition's fore end from
-/// the component before it, its aft end, and a nose cone's base, from the one after).
-fn resolve_radii(stage: &El<'_, '_>, bodies: &mut [Body]) -> Result<(), DesignError> {
+/// the component before it, the last stage's last for a stage's first, its aft end, and a
+/// nose cone's base, from the one after).
+fn resolve_radii(
+    stage: &El<'_, '_>,
+    bodies: &mut [Body],
+    before_stage: Option<f64>,
+) -> Result<(), DesignError> {
     let value = |a: Option<Auto>| match a {
         Some(Auto::Value(v)) => Some(v),
         _ => None,
@@ -921,7 +937,7 @@ fn resolve_radii(stage: &El<'_, '_>, bodies: &mut [Body]) -> Result<(), DesignEr
             let before = if i > 0 {
                 value(bodies[i - 1].aft)
             } else {
-                None
+                before_stage
             };
             let after = bodies.get(i + 1).and_then(|b| value(b.fore));
             let b = &mut bodies[i];

@@ -77,6 +77,12 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
     if stages.is_empty() {
         return Err(err(file, "rocket", "has no <stage>"));
     }
+    if stages.len() > 1 {
+        cx.note(format!(
+            "The {} stages fly together as one rocket (hpr does not separate stages).",
+            stages.len()
+        ));
+    }
     let name = rocket
         .text("name")
         .unwrap_or("OpenRocket design")

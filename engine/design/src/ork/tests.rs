@@ -256,6 +256,16 @@ fn what_a_design_cannot_hold_is_refused_with_its_element_and_reason() {
         ),
         (
             edited(
+                "</bodytube>",
+                "</bodytube><transition><name>Tail</name><length>0.05</length>\
+                 <thickness>0.002</thickness><shape>haack</shape><shapeclipped>true</shapeclipped>\
+                 <foreradius>auto 0.02815</foreradius><aftradius>0.02</aftradius></transition>",
+            ),
+            "transition \"Tail\"",
+            "a clipped transition",
+        ),
+        (
+            edited(
                 "<isflipped>false</isflipped>",
                 "<isflipped>true</isflipped>",
             ),
@@ -281,6 +291,37 @@ fn what_a_design_cannot_hold_is_refused_with_its_element_and_reason() {
     assert!(
         broken.starts_with("z.ork: container: not a readable ZIP"),
         "{broken}"
+    );
+}
+
+#[test]
+fn a_nose_cone_s_clipped_flag_and_a_second_stage_change_nothing_but_a_note() {
+    let text = edited(
+        "<shapeclipped>false</shapeclipped>",
+        "<shapeclipped>true</shapeclipped>",
+    )
+    .replacen(
+        "</stage>",
+        "</stage><stage><name>Booster</name><subcomponents><bodytube><name>Booster tube</name>\
+             <material type=\"bulk\" density=\"680.0\">Cardboard</material><length>0.3</length>\
+             <thickness>0.0015</thickness><radius>auto</radius></bodytube></subcomponents></stage>",
+        1,
+    );
+    let (got, import) = imported(text.as_bytes());
+    assert_eq!(got.stages.len(), 2);
+    assert!((got.length_m - 1.45).abs() < 1e-12, "{}", got.length_m);
+    // The booster's tube takes the sustainer's radius (a bare auto, from the part before it).
+    assert_eq!(
+        import.json["stages"][1]["components"][0]["outer_diameter_m"],
+        0.0563
+    );
+    assert!(
+        import
+            .notes
+            .iter()
+            .any(|n| n.contains("The 2 stages fly together")),
+        "{:?}",
+        import.notes
     );
 }
 
