@@ -397,7 +397,8 @@ impl Context {
     }
 
     /// A tube's `<motormount>`: the mount of the default configuration's motor becomes the
-    /// design's motor mount (a body tube holding the motor directly is refused).
+    /// design's motor mount (a body tube holding the motor directly, or a second motor, is
+    /// refused).
     fn mount(
         &mut self,
         tube: &El<'_, '_>,
@@ -408,8 +409,13 @@ impl Context {
             c.tag() == "motor"
                 && (self.config.is_none() || c.attribute("configid") == self.config.as_deref())
         });
-        if !holds_default || self.mount_placed {
+        if !holds_default {
             return Ok(());
+        }
+        if self.mount_placed {
+            return Err(tube.refuse(
+                "a second motor in the default flight configuration (hpr flies one motor)",
+            ));
         }
         if tube.tag() == "bodytube" {
             return Err(tube.refuse(
