@@ -52,6 +52,12 @@ fn an_imported_design_inspects_and_flies_as_the_ork_it_came_from() {
     );
     let json = json.to_str().unwrap();
     assert_eq!(stdout_of(&["inspect", ORK]), stdout_of(&["inspect", json]));
+    // A flight of the .ork says the same on standard error; of the JSON, nothing.
+    let fly_ork = hpr_mc(&["fly", ORK]);
+    assert!(
+        String::from_utf8_lossy(&fly_ork.stderr).contains("note: Parachute: OpenRocket deploys it")
+    );
+    assert!(hpr_mc(&["fly", json]).stderr.is_empty());
     let fly = |design: &str| stdout_of(&["fly", design, "--json"]);
     let (from_ork, from_json) = (fly(ORK), fly(json));
     assert_eq!(from_ork, from_json);

@@ -148,6 +148,7 @@ fn not_negative(text: &str) -> std::result::Result<f64, String> {
 /// The design and its motor (the `--motor` choice, else the design's own).
 pub fn load(design: &PathBuf, motor: &Option<String>) -> Result<(Design, Motor)> {
     let d = Design::load(design).map_err(|e| anyhow!("{e}"))?;
+    ork_notes(design);
     let name = match motor {
         Some(m) => m.clone(),
         None => d.default_motor.clone().ok_or_else(|| {
@@ -197,6 +198,21 @@ pub struct ImportArgs {
     /// Write the design (JSON) here instead of to standard output.
     #[arg(long, short)]
     pub output: Option<PathBuf>,
+}
+
+/// What the import of an OpenRocket design left out, on standard error (nothing for a JSON
+/// design): a flight of a `.ork` says what it does not fly.
+fn ork_notes(design: &PathBuf) {
+    let Ok(bytes) = std::fs::read(design) else {
+        return;
+    };
+    if hpr_design::ork::is_ork(&bytes) {
+        if let Ok(import) = hpr_design::ork::import(&bytes, &design.display().to_string()) {
+            for note in &import.notes {
+                eprintln!("note: {note}");
+            }
+        }
+    }
 }
 
 /// `hpr-mc import`: an OpenRocket design as hpr's design JSON, checked as a hand-written
