@@ -619,14 +619,7 @@ impl Context {
                     if cluster != "single" {
                         return Err(el.refuse(&format!("a cluster of inner tubes (\"{cluster}\")")));
                     }
-                    m.insert(
-                        "radial_offset_m".into(),
-                        json!(el.num("radialposition")?.unwrap_or(0.0)),
-                    );
-                    m.insert(
-                        "radial_angle_deg".into(),
-                        json!(el.num("radialdirection")?.unwrap_or(0.0)),
-                    );
+                    radial(el, &mut m)?;
                 }
                 m.insert("type".into(), json!("inner_tube"));
                 m.insert("length_m".into(), json!(length));
@@ -674,14 +667,7 @@ impl Context {
                 };
                 m.insert("length_m".into(), json!(length));
                 m.insert("radius_m".into(), json!(radius));
-                m.insert(
-                    "radial_offset_m".into(),
-                    json!(el.num("radialposition")?.unwrap_or(0.0)),
-                );
-                m.insert(
-                    "radial_angle_deg".into(),
-                    json!(el.num("radialdirection")?.unwrap_or(0.0)),
-                );
+                radial(el, &mut m)?;
                 let surface = |el: &El<'_, '_>| -> Result<f64, DesignError> {
                     density(el, "material", "surface")
                 };
@@ -840,6 +826,17 @@ fn fin_points(el: &El<'_, '_>) -> Result<Vec<[f64; 2]>, DesignError> {
         return Err(el.bad("finpoints", "an outline needs at least three points"));
     }
     Ok(out)
+}
+
+/// A part's axis off its parent's: OpenRocket's radial position and direction.
+fn radial(el: &El<'_, '_>, m: &mut Component) -> Result<(), DesignError> {
+    let offset = el.num("radialposition")?.unwrap_or(0.0);
+    m.insert("radial_offset_m".into(), json!(offset));
+    m.insert(
+        "radial_angle_deg".into(),
+        json!(el.num("radialdirection")?.unwrap_or(0.0)),
+    );
+    Ok(())
 }
 
 /// A part's angle about the axis, degrees (`<angleoffset>`, or the older `<radialdirection>`).

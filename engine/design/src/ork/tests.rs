@@ -59,6 +59,16 @@ fn zipped(entries: &[(&str, &str)]) -> Vec<u8> {
     out.into_inner()
 }
 
+/// The error of an import that must fail, as a user reads it.
+fn refusal(bytes: &[u8], file: &str) -> String {
+    super::import(bytes, file).unwrap_err().to_string()
+}
+
+/// Whether one of the import's notes says `text`.
+fn noted(import: &OrkImport, text: &str) -> bool {
+    import.notes.iter().any(|n| n.contains(text))
+}
+
 fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol * a.abs().max(b.abs()).max(1e-300)
 }
@@ -106,10 +116,7 @@ fn an_openrocket_file_gives_the_mass_center_inertia_and_pressure_center_of_its_d
     assert_eq!(got.reference_diameter_m, 0.0563);
     // The parachute's deployment is a note (hpr takes it from the scenario or fly's flags).
     assert!(
-        import
-            .notes
-            .iter()
-            .any(|n| n.contains("at 300 m on the way down")),
+        noted(&import, "at 300 m on the way down"),
         "{:?}",
         import.notes
     );
@@ -279,15 +286,11 @@ fn what_a_design_cannot_hold_is_refused_with_its_element_and_reason() {
         ),
     ];
     for (text, element, why) in cases {
-        let e = super::import(text.as_bytes(), "r.ork")
-            .unwrap_err()
-            .to_string();
+        let e = refusal(text.as_bytes(), "r.ork");
         assert!(e.starts_with("r.ork: "), "{e}");
         assert!(e.contains(element) && e.contains(why), "{e}");
     }
-    let broken = super::import(b"PK\x03\x04 not really a zip", "z.ork")
-        .unwrap_err()
-        .to_string();
+    let broken = refusal(b"PK\x03\x04 not really a zip", "z.ork");
     assert!(
         broken.starts_with("z.ork: container: not a readable ZIP"),
         "{broken}"
@@ -316,10 +319,7 @@ fn a_nose_cone_s_clipped_flag_and_a_second_stage_change_nothing_but_a_note() {
         0.0563
     );
     assert!(
-        import
-            .notes
-            .iter()
-            .any(|n| n.contains("The 2 stages fly together")),
+        noted(&import, "The 2 stages fly together"),
         "{:?}",
         import.notes
     );
@@ -348,9 +348,7 @@ fn a_stage_s_override_covering_its_parts_becomes_the_stage_s_override() {
         "<name>Sustainer</name>",
         "<name>Sustainer</name><overridemass>1.25</overridemass>",
     );
-    let e = super::import(partial.as_bytes(), "s.ork")
-        .unwrap_err()
-        .to_string();
+    let e = refusal(partial.as_bytes(), "s.ork");
     assert!(
         e.contains("stage \"Sustainer\": a stage's override that does not cover its parts"),
         "{e}"
