@@ -42,7 +42,14 @@ struct Body<'a, 'i> {
     fore: Option<Auto>,
     aft: Option<Auto>,
     kind: &'static str,
+    /// The overhang of the motor this body tube holds itself (a minimum-diameter rocket).
+    holds_motor: Option<f64>,
 }
+
+/// The wall of the massless tube that stands for a body tube's bore when the tube holds the
+/// motor itself, m: thin enough that a motor as wide as the bore fits it (the fit's tolerance
+/// is 1 µm across).
+const BORE_WALL_M: f64 = 1e-7;
 
 /// What a part's position and automatic sizes read of its parent.
 struct Parent {
@@ -301,7 +308,21 @@ impl Context {
                 packed_r,
                 on_body: true,
             };
-            let parts = self.parts(&b.el, &parent)?;
+            let mut parts = self.parts(&b.el, &parent)?;
+            if let (Some(overhang), Some(bore_r)) = (b.holds_motor, ring_r) {
+                let id = self.id(&format!("{} motor mount", b.el.name()));
+                parts.push(json!({
+                    "id": id,
+                    "type": "inner_tube",
+                    "name": format!("{} (its bore, the motor mount)", b.el.name()),
+                    "length_m": b.length_m,
+                    "outer_diameter_m": 2.0 * bore_r,
+                    "wall_thickness_m": BORE_WALL_M,
+                    "mass_kg": 0.0,
+                    "motor_mount": { "overhang_m": overhang },
+                    "position": { "from": "top", "offset_m": 0.0 },
+                }));
+            }
             if !parts.is_empty() {
                 b.json.insert("children".into(), Value::Array(parts));
             }
@@ -383,9 +404,10 @@ impl Context {
                 }
             }
         }
-        if let Some(mount) = el.child("motormount") {
-            self.mount(el, &mount, &mut m)?;
-        }
+        let holds_motor = match el.child("motormount") {
+            Some(mount) => self.mount(el, &mount, &mut m)?,
+            None => None,
+        };
         Ok(Body {
             el: el.clone(),
             json: m,
@@ -393,41 +415,44 @@ impl Context {
             fore,
             aft,
             kind,
+            holds_motor,
         })
     }
 
     /// A tube's `<motormount>`: the mount of the default configuration's motor becomes the
-    /// design's motor mount (a body tube holding the motor directly, or a second motor, is
-    /// refused).
+    /// design's motor mount (a second motor is refused). A body tube that holds the motor
+    /// itself is not a mount in the design format: its overhang is returned, and the stage
+    /// gives the tube a massless inner tube of its bore as the mount.
     fn mount(
         &mut self,
         tube: &El<'_, '_>,
         mount: &El<'_, '_>,
         m: &mut Map<String, Value>,
-    ) -> Result<(), DesignError> {
+    ) -> Result<Option<f64>, DesignError> {
         let holds_default = mount.children().any(|c| {
             c.tag() == "motor"
                 && (self.config.is_none() || c.attribute("configid") == self.config.as_deref())
         });
         if !holds_default {
-            return Ok(());
+            return Ok(None);
         }
         if self.mount_placed {
             return Err(tube.refuse(
                 "a second motor in the default flight configuration (hpr flies one motor)",
             ));
         }
-        if tube.tag() == "bodytube" {
-            return Err(tube.refuse(
-                "a body tube that holds the motor itself (put the motor in an inner tube)",
-            ));
-        }
         self.mount_placed = true;
-        m.insert(
-            "motor_mount".into(),
-            json!({ "overhang_m": mount.num("overhang")?.unwrap_or(0.0) }),
-        );
-        Ok(())
+        let overhang = mount.num("overhang")?.unwrap_or(0.0);
+        if tube.tag() == "bodytube" {
+            self.note(format!(
+                "{}: it holds the motor itself; a massless inner tube of its bore is its motor \
+                 mount.",
+                tube.name()
+            ));
+            return Ok(Some(overhang));
+        }
+        m.insert("motor_mount".into(), json!({ "overhang_m": overhang }));
+        Ok(None)
     }
 
     /// The parts on and in component `el` (`parent`: what they read of it), in the order

@@ -326,6 +326,39 @@ fn a_nose_cone_s_clipped_flag_and_a_second_stage_change_nothing_but_a_note() {
 }
 
 #[test]
+fn a_body_tube_that_holds_the_motor_gets_a_massless_mount_of_its_bore() {
+    // A minimum-diameter rocket: the motor in the body tube itself (the example's mount moved
+    // from its inner tube, which stays as a plain tube).
+    let start = EXAMPLE.find("<motormount>").unwrap();
+    let end = EXAMPLE.find("</motormount>").unwrap() + "</motormount>".len();
+    let mount = &EXAMPLE[start..end];
+    let text = EXAMPLE.replacen(mount, "", 1).replacen(
+        "<radius>auto 0.02815</radius>",
+        &format!("<radius>auto 0.02815</radius>{mount}"),
+        1,
+    );
+    let (got, import) = imported(text.as_bytes());
+    let mm = got.motor_mount.unwrap();
+    // The body runs from 0.25 to 1.15 m; the motor's aft end overhangs it by 0.01 m.
+    assert!((mm.motor_aft_m - 1.16).abs() < 1e-12, "{mm:?}");
+    // The bore: 2 × (0.02815 − 0.0015) m, less the mount's 0.1 µm walls.
+    assert!(
+        (mm.inner_diameter_m - (0.0533 - 2e-7)).abs() < 1e-12,
+        "{mm:?}"
+    );
+    // Massless: the rocket weighs what the example weighs.
+    let (g, w) = (dry(&got), dry(&imported(EXAMPLE.as_bytes()).0));
+    assert!(close(g.mass_kg, w.mass_kg, 1e-14) && close(g.cg_m.x, w.cg_m.x, 1e-13));
+    assert!(
+        noted(&import, "Body tube: it holds the motor itself"),
+        "{:?}",
+        import.notes
+    );
+    // A motor as wide as the bore fits it.
+    assert!(got.motor_fits(0.0533, 0.5).is_ok());
+}
+
+#[test]
 fn a_stage_s_override_covering_its_parts_becomes_the_stage_s_override() {
     let text = edited(
         "<name>Sustainer</name>",
