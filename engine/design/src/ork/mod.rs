@@ -15,6 +15,12 @@
 //! drag is estimated from the geometry with the finish most of the outer surfaces have, as
 //! OpenRocket estimates it (a `.ork` holds no drag curve).
 //!
+//! The element names and their meaning (units, `auto` values, position methods, override
+//! flags, material kinds) are those of OpenRocket's own loader and savers (openrocket/
+//! openrocket: `file/openrocket/importt/DocumentConfig.java` and its setters,
+//! `file/openrocket/savers/*Saver.java`, `rocketcomponent/position/AxialMethod.java`), format
+//! versions 1.0 to 1.10.
+//!
 //! Written by hand over `roxmltree` (the document is small and its mapping is the whole job);
 //! the container is read with the `zip` and `flate2` crates.
 
