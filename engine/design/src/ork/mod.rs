@@ -42,8 +42,12 @@ pub struct OrkImport {
 }
 
 /// Whether `bytes` look like an OpenRocket file: a ZIP or a gzip stream (as OpenRocket writes
-/// them), or XML that names `<openrocket` in its first 300 bytes.
+/// them), or XML that names `<openrocket` in its first 300 bytes (never a JSON object).
 pub fn is_ork(bytes: &[u8]) -> bool {
+    let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    if text.trim_ascii_start().starts_with(b"{") {
+        return false;
+    }
     bytes.starts_with(b"PK")
         || bytes.starts_with(&[0x1f, 0x8b])
         || bytes[..bytes.len().min(300)]

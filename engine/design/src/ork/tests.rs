@@ -149,6 +149,8 @@ fn a_zipped_a_gzipped_and_a_plain_document_give_the_same_design() {
     let with_decal = zipped(&[("rocket.ork", EXAMPLE), ("decals/fin.png", "not xml")]);
     assert_eq!(super::import(&with_decal, "a.ork").unwrap().json, plain);
     assert!(is_ork(EXAMPLE.as_bytes()) && !is_ork(b"{\"name\": \"x\"}"));
+    // A JSON design whose notes quote an OpenRocket document is still JSON.
+    assert!(!is_ork(b"  {\"notes\": \"<openrocket version=1.10>\"}"));
 }
 
 #[test]
