@@ -518,6 +518,12 @@ impl Context {
                 }
             }
             let (from, offset) = match method {
+                // A rail button's fore end, half its diameter before the center OpenRocket
+                // places.
+                _ if el.tag() == "railbutton" => (
+                    "top",
+                    fore - part["outer_diameter_m"].as_f64().unwrap_or(0.0) / 2.0,
+                ),
                 "after" => ("top", fore),
                 "absolute" => ("nose_tip", value),
                 m => (m, value),
@@ -628,12 +634,24 @@ impl Context {
                 m.insert("angle_deg".into(), json!(angle(el)?));
             }
             "railbutton" => {
+                // OpenRocket places a rail button by its center (its length is 0); the parts
+                // loop turns that into the fore end the design format places it by.
+                length = 0.0;
                 let d = el.req("outerdiameter")?;
-                length = d;
+                let height = el.req("height")?;
                 m.insert("type".into(), json!("rail_button"));
                 m.insert("outer_diameter_m".into(), json!(d));
-                m.insert("height_m".into(), json!(el.req("height")?));
+                m.insert("height_m".into(), json!(height));
                 m.insert("angle_deg".into(), json!(angle(el)?));
+                if el.text("overridemass").is_none() {
+                    if let Some(mat) = m.remove("material") {
+                        let density = mat["density_kg_m3"].as_f64().unwrap_or(0.0);
+                        m.insert(
+                            "mass_kg".into(),
+                            json!(density * rail_button_volume(el, d, height)?),
+                        );
+                    }
+                }
             }
             "innertube" | "tubecoupler" => {
                 length = el.req("length")?;
@@ -851,6 +869,18 @@ fn fin_points(el: &El<'_, '_>) -> Result<Vec<[f64; 2]>, DesignError> {
         return Err(el.bad("finpoints", "an outline needs at least three points"));
     }
     Ok(out)
+}
+
+/// A rail button's volume as OpenRocket computes it: the flange and the base (standoff) at
+/// the outer diameter, the waist between them at the inner, and the screw's head.
+fn rail_button_volume(el: &El<'_, '_>, d: f64, height: f64) -> Result<f64, DesignError> {
+    let inner_d = el.num("innerdiameter")?.unwrap_or(d).min(d);
+    let flange = el.num("flangeheight")?.unwrap_or(0.0);
+    let base = el.num("baseheight")?.unwrap_or(0.0);
+    let screw = el.num("screwheight")?.unwrap_or(0.0);
+    let disc = |diameter: f64, h: f64| std::f64::consts::PI * (diameter / 2.0).powi(2) * h;
+    let waist = (height - flange - base).max(0.0);
+    Ok(disc(d, flange) + disc(inner_d, waist) + disc(d, base) + 2.0 / 3.0 * disc(d, screw))
 }
 
 /// A part's axis off its parent's: OpenRocket's radial position and direction.

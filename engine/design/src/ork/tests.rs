@@ -170,6 +170,26 @@ fn two_instances_of_a_rail_button_stand_their_separation_apart() {
     );
 }
 
+#[test]
+fn a_rail_button_is_placed_by_its_center_and_weighs_its_flange_waist_and_base() {
+    // Centred 0.405 m down the body tube (0.655 m from the tip), 0.01 m across: its fore end
+    // at 0.65 m. Without its override it weighs OpenRocket's volume × 1400 kg/m³:
+    // π (0.005² × 0.002 + 0.003² × 0.004 + 0.005² × 0.002) m³ = 4.27257e-7 m³ → 0.598159 g.
+    let text = edited("<overridemass>0.002</overridemass>", "");
+    let (got, import) = imported(text.as_bytes());
+    let button = got.component("rail_button").unwrap();
+    assert!((button.x_top_m + button.length_m / 2.0 - 0.655).abs() < 1e-12);
+    let mass = import.json["stages"][0]["components"][1]["children"][6]["mass_kg"]
+        .as_f64()
+        .unwrap();
+    let want =
+        std::f64::consts::PI * (0.005_f64.powi(2) * 0.004 + 0.003_f64.powi(2) * 0.004) * 1400.0;
+    assert!(
+        (mass - want).abs() < 1e-15 && (mass - 5.98159e-4).abs() < 1e-9,
+        "{mass}"
+    );
+}
+
 /// The example with `from` replaced by `to` (once).
 fn edited(from: &str, to: &str) -> String {
     assert!(EXAMPLE.contains(from), "{from}");
@@ -220,15 +240,16 @@ fn a_part_after_another_starts_where_that_one_ends() {
         ballast.x_top_m
     );
     // After a part placed from the nose tip, the same: the example's ballast spans 0.35 to
-    // 0.40 m from the tip, so the rail buttons after it start at 0.40 m.
+    // 0.40 m from the tip, so the rail buttons after it are centred at 0.40 m (OpenRocket
+    // places a rail button by its center) and begin half their 0.01 m diameter before it.
     let after_absolute = edited(
-        r#"<axialoffset method="top">0.4</axialoffset>
-                <position type="top">0.4</position>"#,
+        r#"<axialoffset method="top">0.405</axialoffset>
+                <position type="top">0.405</position>"#,
         r#"<position type="after">0.0</position>"#,
     );
     let (got, _) = imported(after_absolute.as_bytes());
     let button = got.component("rail_button").unwrap();
-    assert!((button.x_top_m - 0.40).abs() < 1e-12, "{}", button.x_top_m);
+    assert!((button.x_top_m - 0.395).abs() < 1e-12, "{}", button.x_top_m);
 }
 
 #[test]
