@@ -498,7 +498,7 @@ impl Context {
                 "top" => value,
                 "middle" => value + (parent_length - length) / 2.0,
                 "bottom" => value + parent_length - length,
-                "after" => previous.map_or(0.0, |(x, l)| x + l),
+                "after" => previous.map_or(0.0, |(x, l)| x + l) + value,
                 _ => value - parent.front_m, // absolute
             };
             previous = Some((fore, length));

@@ -225,17 +225,17 @@ fn a_bare_auto_radius_of_an_older_file_is_taken_from_the_neighbouring_component(
 
 #[test]
 fn a_part_after_another_starts_where_that_one_ends() {
-    // An old `<position type="after">`: the ballast right after the parachute (0.05 + 0.08 m
-    // down the body tube), its value ignored as OpenRocket ignores it.
+    // An old `<position type="after">`: the ballast 0.02 m after the parachute's end (0.05 +
+    // 0.08 m down the body tube), as OpenRocket's AxialMethod.AFTER adds the offset.
     let old = edited(
         r#"<axialoffset method="absolute">0.35</axialoffset>
                 <position type="absolute">0.35</position>"#,
-        r#"<position type="after">9.0</position>"#,
+        r#"<position type="after">0.02</position>"#,
     );
     let (got, _) = imported(old.as_bytes());
     let ballast = got.component("ballast").unwrap();
     assert!(
-        (ballast.x_top_m - (0.25 + 0.05 + 0.08)).abs() < 1e-12,
+        (ballast.x_top_m - (0.25 + 0.05 + 0.08 + 0.02)).abs() < 1e-12,
         "{}",
         ballast.x_top_m
     );
