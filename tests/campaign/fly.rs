@@ -124,23 +124,31 @@ fn fly_with_a_sounding_flies_the_scenario_that_names_it() {
         .join("validation/designs/synthetic-54mm-three-fin.json")
         .display()
         .to_string();
-    let (code, out, err) = hpr_mc(&[
+    let sounding_fly = [
         "fly",
         &design,
         "--motor",
         "Cesaroni_I175",
         "--sounding",
         &sounding,
-        "--inclination-deg",
-        "85",
-        "--main-cds-m2",
-        "0.9",
-        "--drogue-cds-m2",
-        "0.9",
-        "--main-height-m",
-        "0.001",
-        "--json",
-    ]);
+    ];
+    let (code, out, err) = hpr_mc(
+        &[
+            &sounding_fly[..],
+            &[
+                "--inclination-deg",
+                "85",
+                "--main-cds-m2",
+                "0.9",
+                "--drogue-cds-m2",
+                "0.9",
+                "--main-height-m",
+                "0.001",
+                "--json",
+            ],
+        ]
+        .concat(),
+    );
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let a = v["metrics"]["apogee_m"].as_f64().unwrap();
@@ -152,16 +160,7 @@ fn fly_with_a_sounding_flies_the_scenario_that_names_it() {
         "the same climb through the same air: {a} against {c}"
     );
     // A sounding beside the air or wind it gives is refused by clap, naming both flags.
-    let (code, _, err) = hpr_mc(&[
-        "fly",
-        &design,
-        "--motor",
-        "Cesaroni_I175",
-        "--sounding",
-        &sounding,
-        "--wind-m-s",
-        "3",
-    ]);
+    let (code, _, err) = hpr_mc(&[&sounding_fly[..], &["--wind-m-s", "3"]].concat());
     assert_ne!(code, 0);
     assert!(
         err.contains("--sounding") && err.contains("--wind-m-s"),

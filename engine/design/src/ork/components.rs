@@ -1,6 +1,10 @@
 //! Each OpenRocket component mapped onto the design format's (the element names, units and
 //! rules are OpenRocket's savers' and loader's: lengths in metres, angles in degrees,
-//! positions of a part's fore end along its parent).
+//! positions of a part's fore end along its parent): what the import carries from component
+//! to component ([`Context`]: ids, finishes, the motor, notes), the fields every component
+//! has, the stages and their body components; the parts on and in them are in [`parts`].
+
+mod parts;
 
 use super::{Auto, El};
 use crate::error::DesignError;
@@ -37,7 +41,7 @@ type Component = Map<String, Value>;
 /// A body component read, its radii resolved later (a bare `auto` takes its neighbour's).
 struct Body<'a, 'i> {
     el: El<'a, 'i>,
-    json: Map<String, Value>,
+    json: Component,
     length_m: f64,
     fore: Option<Auto>,
     aft: Option<Auto>,
@@ -119,11 +123,10 @@ impl Context {
             .iter()
             .find(|c| c.attribute("default") == Some("true"))
             .or(configs.first())
-            .and_then(|c| c.attribute("configid"))
-            .map(str::to_owned);
-        self.config = default;
-        let config = self.config.clone();
-        let motor = find_motor(rocket, config.as_deref())?;
+            .and_then(|c| c.attribute("configid"));
+        let motor = find_motor(rocket, default)?;
+        // Without configurations, the first motor's own.
+        self.config = default.or(motor.attribute("configid")).map(str::to_owned);
         let designation = motor.text("designation").unwrap_or("").to_owned();
         let manufacturer = motor.text("manufacturer").unwrap_or("").to_owned();
         if designation.is_empty() {
@@ -136,9 +139,6 @@ impl Context {
             candidates.push(format!("{maker}_{designation}"));
         }
         candidates.push(designation.clone());
-        if self.config.is_none() {
-            self.config = motor.attribute("configid").map(str::to_owned);
-        }
         Some(OrkMotor {
             candidates,
             label: format!("{manufacturer} {designation}").trim().to_owned(),
@@ -167,15 +167,13 @@ impl Context {
     }
 
     /// The fields every component has: id, name, material and overrides.
-    fn common(&mut self, el: &El<'_, '_>) -> Result<Map<String, Value>, DesignError> {
+    fn common(&mut self, el: &El<'_, '_>) -> Result<Component, DesignError> {
         let mut m = Map::new();
         m.insert("id".into(), json!(self.id(el.name())));
         m.insert("name".into(), json!(el.name()));
         if let Some(mat) = el.child("material") {
             let density = mat
-                .attribute("density")
-                .and_then(|d| d.trim().parse::<f64>().ok())
-                .filter(|d| d.is_finite())
+                .attribute_number("density")
                 .ok_or_else(|| el.bad("material", "has no finite density"))?;
             let kind = mat.attribute("type").unwrap_or("bulk");
             if kind == "bulk" {
@@ -220,13 +218,7 @@ impl Context {
                     if covers { "covering them" } else { "its own" }
                 ));
             }
-            let mut o = Map::new();
-            if let Some(v) = mass {
-                o.insert("mass_kg".into(), json!(v));
-            }
-            if let Some(v) = cg {
-                o.insert("cg_m".into(), json!(v));
-            }
+            let mut o = overrides(mass, cg);
             o.insert("covers_children".into(), json!(covers));
             m.insert("override".into(), Value::Object(o));
         }
@@ -255,14 +247,7 @@ impl Context {
             {
                 return Err(el.refuse("a stage's override that does not cover its parts"));
             }
-            let mut o = Map::new();
-            if let Some(v) = mass {
-                o.insert("mass_kg".into(), json!(v));
-            }
-            if let Some(v) = cg {
-                o.insert("cg_m".into(), json!(v));
-            }
-            stage.insert("override".into(), Value::Object(o));
+            stage.insert("override".into(), Value::Object(overrides(mass, cg)));
         }
         let mut bodies = Vec::new();
         for c in el
@@ -427,7 +412,7 @@ impl Context {
         &mut self,
         tube: &El<'_, '_>,
         mount: &El<'_, '_>,
-        m: &mut Map<String, Value>,
+        m: &mut Component,
     ) -> Result<Option<f64>, DesignError> {
         let holds_default = mount.children().any(|c| {
             c.tag() == "motor"
@@ -454,338 +439,18 @@ impl Context {
         m.insert("motor_mount".into(), json!({ "overhang_m": overhang }));
         Ok(None)
     }
+}
 
-    /// The parts on and in component `el` (`parent`: what they read of it), in the order
-    /// OpenRocket lists them.
-    fn parts(&mut self, el: &El<'_, '_>, parent: &Parent) -> Result<Vec<Value>, DesignError> {
-        let (parent_el, parent_length) = (el, parent.length_m);
-        let mut out = Vec::new();
-        // The fore end and length of the last part placed, for OpenRocket's "after".
-        let mut previous: Option<(f64, f64)> = None;
-        let Some(subs) = parent_el.child("subcomponents") else {
-            return Ok(out);
-        };
-        let children: Vec<El<'_, '_>> = subs.children().collect();
-        for el in &children {
-            if !parent.on_body
-                && matches!(
-                    el.tag(),
-                    "trapezoidfinset"
-                        | "ellipticalfinset"
-                        | "freeformfinset"
-                        | "launchlug"
-                        | "railbutton"
-                )
-            {
-                return Err(el.refuse("an outside part on an inner tube"));
-            }
-            let made = self.part(el, parent, &children)?;
-            let Some((mut part, length)) = made else {
-                continue;
-            };
-            let count = el
-                .num("instancecount")?
-                .filter(|_| {
-                    matches!(
-                        el.tag(),
-                        "launchlug" | "railbutton" | "centeringring" | "bulkhead"
-                    )
-                })
-                .unwrap_or(1.0);
-            let separation = el.num("instanceseparation")?.unwrap_or(0.0);
-            let (method, value) = position(el)?;
-            let fore = match method {
-                "top" => value,
-                "middle" => value + (parent_length - length) / 2.0,
-                "bottom" => value + parent_length - length,
-                "after" => previous.map_or(0.0, |(x, l)| x + l) + value,
-                _ => value - parent.front_m, // absolute
-            };
-            previous = Some((fore, length));
-            if matches!(el.tag(), "innertube" | "tubecoupler") {
-                let inner = part["outer_diameter_m"].as_f64().unwrap_or(0.0) / 2.0
-                    - part["wall_thickness_m"].as_f64().unwrap_or(0.0);
-                let tube = Parent {
-                    length_m: length,
-                    front_m: parent.front_m + fore,
-                    ring_r: Some(inner),
-                    packed_r: Some(inner),
-                    on_body: false,
-                };
-                let children = self.parts(el, &tube)?;
-                if !children.is_empty() {
-                    part.insert("children".into(), Value::Array(children));
-                }
-            }
-            let (from, offset) = match method {
-                // A rail button's fore end, half its diameter before the center OpenRocket
-                // places.
-                _ if el.tag() == "railbutton" => (
-                    "top",
-                    fore - part["outer_diameter_m"].as_f64().unwrap_or(0.0) / 2.0,
-                ),
-                "after" => ("top", fore),
-                "absolute" => ("nose_tip", value),
-                m => (m, value),
-            };
-            if !(count >= 1.0 && count.fract() == 0.0 && count <= 64.0) {
-                return Err(el.bad(
-                    "instancecount",
-                    format!("must be a whole number from 1 to 64 (got {count})"),
-                ));
-            }
-            let id = part["id"].as_str().unwrap_or("part").to_owned();
-            for i in 0..count as usize {
-                let mut p = part.clone();
-                if i > 0 {
-                    p.insert("id".into(), json!(self.id(&format!("{id} {}", i + 1))));
-                }
-                p.insert(
-                    "position".into(),
-                    json!({ "from": from, "offset_m": offset + i as f64 * separation }),
-                );
-                out.push(Value::Object(p));
-            }
-        }
-        Ok(out)
+/// An override's mass and CG, where given (the design format's `override` fields).
+fn overrides(mass: Option<f64>, cg: Option<f64>) -> Component {
+    let mut o = Map::new();
+    if let Some(v) = mass {
+        o.insert("mass_kg".into(), json!(v));
     }
-
-    /// One part and its length along the axis (what OpenRocket positions it by); `None` for
-    /// an element that is not a component.
-    fn part(
-        &mut self,
-        el: &El<'_, '_>,
-        parent: &Parent,
-        siblings: &[El<'_, '_>],
-    ) -> Result<Option<(Component, f64)>, DesignError> {
-        let tag = el.tag();
-        let mut m = self.common(el)?;
-        let length;
-        match tag {
-            "trapezoidfinset" | "ellipticalfinset" | "freeformfinset" => {
-                m.insert("type".into(), json!("fin_set"));
-                m.insert("count".into(), json!(fin_count(el)?));
-                m.insert("thickness_m".into(), json!(el.req("thickness")?));
-                let cross = el.text("crosssection").unwrap_or("square");
-                match cross {
-                    "square" | "rounded" | "airfoil" => {
-                        m.insert("cross_section".into(), json!(cross))
-                    }
-                    other => {
-                        return Err(el.bad(
-                            "crosssection",
-                            format!("cross-section \"{other}\" cannot be imported"),
-                        ))
-                    }
-                };
-                m.insert("cant_deg".into(), json!(el.num("cant")?.unwrap_or(0.0)));
-                let rotation = match el.num("angleoffset")? {
-                    Some(a) => a,
-                    None => el.num("rotation")?.unwrap_or(0.0),
-                };
-                m.insert("rotation_deg".into(), json!(rotation));
-                match tag {
-                    "trapezoidfinset" => {
-                        length = el.req("rootchord")?;
-                        m.insert("planform".into(), json!("trapezoidal"));
-                        m.insert("root_chord_m".into(), json!(length));
-                        m.insert("tip_chord_m".into(), json!(el.req("tipchord")?));
-                        m.insert("span_m".into(), json!(el.req("height")?));
-                        m.insert(
-                            "sweep_m".into(),
-                            json!(el.num("sweeplength")?.unwrap_or(0.0)),
-                        );
-                    }
-                    "ellipticalfinset" => {
-                        length = el.req("rootchord")?;
-                        m.insert("planform".into(), json!("elliptical"));
-                        m.insert("root_chord_m".into(), json!(length));
-                        m.insert("span_m".into(), json!(el.req("height")?));
-                    }
-                    _ => {
-                        let points = fin_points(el)?;
-                        length = points.last().map_or(0.0, |p| p[0]);
-                        m.insert("planform".into(), json!("free_form"));
-                        m.insert("points_m".into(), json!(points));
-                    }
-                }
-                if el.num("tabheight")?.unwrap_or(0.0) > 0.0
-                    && el.num("tablength")?.unwrap_or(0.0) > 0.0
-                {
-                    self.note(format!(
-                        "{}: its fin tabs are not imported (their mass is left out).",
-                        el.name()
-                    ));
-                }
-                if el.num("filletradius")?.unwrap_or(0.0) > 0.0 {
-                    self.note(format!(
-                        "{}: its fillets are not imported (their mass is left out).",
-                        el.name()
-                    ));
-                }
-            }
-            "launchlug" => {
-                length = el.req("length")?;
-                let r = el.req("radius")?;
-                m.insert("type".into(), json!("launch_lug"));
-                m.insert("length_m".into(), json!(length));
-                m.insert("outer_diameter_m".into(), json!(2.0 * r));
-                m.insert("wall_thickness_m".into(), json!(el.req("thickness")?));
-                m.insert("angle_deg".into(), json!(angle(el)?));
-            }
-            "railbutton" => {
-                // OpenRocket places a rail button by its center (its length is 0); the parts
-                // loop turns that into the fore end the design format places it by.
-                length = 0.0;
-                let d = el.req("outerdiameter")?;
-                let height = el.req("height")?;
-                m.insert("type".into(), json!("rail_button"));
-                m.insert("outer_diameter_m".into(), json!(d));
-                m.insert("height_m".into(), json!(height));
-                m.insert("angle_deg".into(), json!(angle(el)?));
-                if el.text("overridemass").is_none() {
-                    if let Some(mat) = m.remove("material") {
-                        let density = mat["density_kg_m3"].as_f64().unwrap_or(0.0);
-                        m.insert(
-                            "mass_kg".into(),
-                            json!(density * rail_button_volume(el, d, height)?),
-                        );
-                    }
-                }
-            }
-            "innertube" | "tubecoupler" => {
-                length = el.req("length")?;
-                let r = ring_outer(el, "outerradius", parent.ring_r)?;
-                let wall = el.req("thickness")?;
-                if tag == "innertube" {
-                    let cluster = el.text("clusterconfiguration").unwrap_or("single");
-                    if cluster != "single" {
-                        return Err(el.refuse(&format!("a cluster of inner tubes (\"{cluster}\")")));
-                    }
-                    radial(el, &mut m)?;
-                }
-                m.insert("type".into(), json!("inner_tube"));
-                m.insert("length_m".into(), json!(length));
-                m.insert("outer_diameter_m".into(), json!(2.0 * r));
-                m.insert("wall_thickness_m".into(), json!(wall));
-                if let Some(mount) = el.child("motormount") {
-                    self.mount(el, &mount, &mut m)?;
-                }
-            }
-            "centeringring" | "engineblock" => {
-                length = el.req("length")?;
-                let r = ring_outer(el, "outerradius", parent.ring_r)?;
-                let inner = if tag == "engineblock" {
-                    r - el.req("thickness")?
-                } else {
-                    match el.auto("innerradius")? {
-                        Some(Auto::Value(v)) => v,
-                        Some(Auto::Bare) => ring_inner_auto(siblings)?,
-                        None => return Err(el.bad("innerradius", "is missing")),
-                    }
-                };
-                m.insert("type".into(), json!("centering_ring"));
-                m.insert("length_m".into(), json!(length));
-                m.insert("outer_diameter_m".into(), json!(2.0 * r));
-                m.insert("inner_diameter_m".into(), json!(2.0 * inner));
-            }
-            "bulkhead" => {
-                length = el.req("length")?;
-                let r = ring_outer(el, "outerradius", parent.ring_r)?;
-                m.insert("type".into(), json!("bulkhead"));
-                m.insert("length_m".into(), json!(length));
-                m.insert("outer_diameter_m".into(), json!(2.0 * r));
-            }
-            "masscomponent" | "parachute" | "shockcord" | "streamer" => {
-                length = el.req("packedlength")?;
-                let radius = match el.auto("packedradius")? {
-                    Some(Auto::Value(v)) => v,
-                    Some(Auto::Bare) => parent.packed_r.ok_or_else(|| {
-                        el.bad(
-                            "packedradius",
-                            "a bare auto inside a tapered part cannot be resolved; give the radius",
-                        )
-                    })?,
-                    None => return Err(el.bad("packedradius", "is missing")),
-                };
-                m.insert("length_m".into(), json!(length));
-                m.insert("radius_m".into(), json!(radius));
-                radial(el, &mut m)?;
-                let surface = |el: &El<'_, '_>| -> Result<f64, DesignError> {
-                    density(el, "material", "surface")
-                };
-                match tag {
-                    "masscomponent" => {
-                        m.insert("type".into(), json!("mass_component"));
-                        m.insert("mass_kg".into(), json!(el.req("mass")?));
-                    }
-                    "parachute" => {
-                        let d = el.req("diameter")?;
-                        let cd = match el.auto("cd")? {
-                            Some(Auto::Value(v)) => v,
-                            _ => 0.8,
-                        };
-                        let lines = el.num("linecount")?.unwrap_or(0.0)
-                            * el.num("linelength")?.unwrap_or(1.5 * d)
-                            * density(el, "linematerial", "line").unwrap_or(0.0);
-                        let canopy = std::f64::consts::PI * (d / 2.0).powi(2) * surface(el)?;
-                        m.insert("type".into(), json!("parachute"));
-                        m.insert("canopy_diameter_m".into(), json!(d));
-                        m.insert("cd".into(), json!(cd));
-                        m.insert("mass_kg".into(), json!(canopy + lines));
-                        let event = el.text("deployevent").unwrap_or("ejection");
-                        let when = match event {
-                            "apogee" => "at apogee".to_owned(),
-                            "altitude" => format!(
-                                "at {} m on the way down",
-                                el.num("deployaltitude")?.unwrap_or(0.0)
-                            ),
-                            other => format!("on \"{other}\""),
-                        };
-                        self.note(format!(
-                            "{}: OpenRocket deploys it {when}{}; hpr takes a parachute's trigger from \
-                             the scenario or fly's flags.",
-                            el.name(),
-                            match el.num("deploydelay")? {
-                                Some(d) if d > 0.0 => format!(" after {d} s"),
-                                _ => String::new(),
-                            }
-                        ));
-                    }
-                    "shockcord" => {
-                        m.insert("type".into(), json!("shock_cord"));
-                        m.insert(
-                            "linear_density_kg_m".into(),
-                            json!(density(el, "material", "line")?),
-                        );
-                        m.insert("cord_length_m".into(), json!(el.req("cordlength")?));
-                    }
-                    _ => {
-                        let area = el.req("striplength")? * el.req("stripwidth")?;
-                        m.insert("type".into(), json!("mass_component"));
-                        m.insert("mass_kg".into(), json!(area * surface(el)?));
-                        self.note(format!(
-                            "{}: a streamer is imported as its mass (its drag is not modelled).",
-                            el.name()
-                        ));
-                    }
-                }
-                m.remove("material");
-            }
-            "tubefinset" => return Err(el.refuse("a tube fin set")),
-            "podset" | "parallelstage" | "boosterset" => {
-                return Err(el.refuse("a pod or a parallel stage"))
-            }
-            "nosecone" | "bodytube" | "transition" => {
-                return Err(el.refuse("a body component inside another component"))
-            }
-            other => {
-                self.note(format!("{}: a <{other}> is not imported.", el.name()));
-                return Ok(None);
-            }
-        }
-        Ok(Some((m, length)))
+    if let Some(v) = cg {
+        o.insert("cg_m".into(), json!(v));
     }
+    o
 }
 
 /// The `<motor>` of configuration `config` (any, if `None`) anywhere under `el`.
@@ -833,148 +498,6 @@ fn shoulder(el: &El<'_, '_>, side: &str) -> Result<Option<Value>, DesignError> {
         "wall_thickness_m": el.num(&format!("{side}shoulderthickness"))?.unwrap_or(r),
         "capped": el.flag(&format!("{side}shouldercapped")),
     })))
-}
-
-fn fin_count(el: &El<'_, '_>) -> Result<u32, DesignError> {
-    let n = match el.num("fincount")? {
-        Some(n) => n,
-        None => el.req("instancecount")?,
-    };
-    if n >= 1.0 && n.fract() == 0.0 && n <= 64.0 {
-        Ok(n as u32)
-    } else {
-        Err(el.bad(
-            "fincount",
-            format!("must be a whole number of fins (got {n})"),
-        ))
-    }
-}
-
-/// A free-form fin's outline from `<finpoints>`.
-fn fin_points(el: &El<'_, '_>) -> Result<Vec<[f64; 2]>, DesignError> {
-    let points = el
-        .child("finpoints")
-        .ok_or_else(|| el.bad("finpoints", "is missing"))?;
-    let mut out = Vec::new();
-    for p in points.children().filter(|p| p.tag() == "point") {
-        let coord = |a: &str| {
-            p.attribute(a)
-                .and_then(|v| v.trim().parse::<f64>().ok())
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| el.bad("finpoints", format!("a point without a finite {a}")))
-        };
-        out.push([coord("x")?, coord("y")?]);
-    }
-    if out.len() < 3 {
-        return Err(el.bad("finpoints", "an outline needs at least three points"));
-    }
-    Ok(out)
-}
-
-/// A rail button's volume as OpenRocket computes it: the flange and the base (standoff) at
-/// the outer diameter, the waist between them at the inner, and the screw's head.
-fn rail_button_volume(el: &El<'_, '_>, d: f64, height: f64) -> Result<f64, DesignError> {
-    let inner_d = el.num("innerdiameter")?.unwrap_or(d).min(d);
-    let flange = el.num("flangeheight")?.unwrap_or(0.0);
-    let base = el.num("baseheight")?.unwrap_or(0.0);
-    let screw = el.num("screwheight")?.unwrap_or(0.0);
-    let disc = |diameter: f64, h: f64| std::f64::consts::PI * (diameter / 2.0).powi(2) * h;
-    let waist = (height - flange - base).max(0.0);
-    Ok(disc(d, flange) + disc(inner_d, waist) + disc(d, base) + 2.0 / 3.0 * disc(d, screw))
-}
-
-/// A part's axis off its parent's: OpenRocket's radial position and direction.
-fn radial(el: &El<'_, '_>, m: &mut Component) -> Result<(), DesignError> {
-    let offset = el.num("radialposition")?.unwrap_or(0.0);
-    m.insert("radial_offset_m".into(), json!(offset));
-    m.insert(
-        "radial_angle_deg".into(),
-        json!(el.num("radialdirection")?.unwrap_or(0.0)),
-    );
-    Ok(())
-}
-
-/// A part's angle about the axis, degrees (`<angleoffset>`, or the older `<radialdirection>`).
-fn angle(el: &El<'_, '_>) -> Result<f64, DesignError> {
-    Ok(match el.num("angleoffset")? {
-        Some(a) => a,
-        None => el.num("radialdirection")?.unwrap_or(0.0),
-    })
-}
-
-/// The density of material element `tag`, which must be of kind `kind` (surface, line).
-fn density(el: &El<'_, '_>, tag: &str, kind: &str) -> Result<f64, DesignError> {
-    let mat = el.child(tag).ok_or_else(|| el.bad(tag, "is missing"))?;
-    if mat.attribute("type").is_some_and(|t| t != kind) {
-        return Err(el.bad(tag, format!("must be a {kind} material")));
-    }
-    mat.attribute("density")
-        .and_then(|d| d.trim().parse::<f64>().ok())
-        .filter(|d| d.is_finite())
-        .ok_or_else(|| el.bad(tag, "has no finite density"))
-}
-
-/// A ring's outer radius: its value, or (a bare `auto`) its parent's inner radius.
-fn ring_outer(el: &El<'_, '_>, tag: &str, parent_inner: Option<f64>) -> Result<f64, DesignError> {
-    match el.auto(tag)? {
-        Some(Auto::Value(v)) => Ok(v),
-        Some(Auto::Bare) => parent_inner.ok_or_else(|| {
-            el.bad(
-                tag,
-                "a bare auto inside a tapered part cannot be resolved; give the radius",
-            )
-        }),
-        None => Err(el.bad(tag, "is missing")),
-    }
-}
-
-/// A centering ring's automatic inner radius: the largest outer radius of the inner tubes
-/// beside it that overlap it along the axis (OpenRocket's rule), 0 if none.
-fn ring_inner_auto(siblings: &[El<'_, '_>]) -> Result<f64, DesignError> {
-    let mut r: f64 = 0.0;
-    for s in siblings.iter().filter(|s| s.tag() == "innertube") {
-        if let Some(Auto::Value(v)) = s.auto("outerradius")? {
-            r = r.max(v);
-        }
-    }
-    Ok(r)
-}
-
-/// A part's position: OpenRocket's method (top, middle, bottom, after, absolute) and value.
-fn position(el: &El<'_, '_>) -> Result<(&'static str, f64), DesignError> {
-    let found = el
-        .child("axialoffset")
-        .map(|p| (p.attribute("method"), "axialoffset", p))
-        .or_else(|| {
-            el.child("position")
-                .map(|p| (p.attribute("type"), "position", p))
-        });
-    let Some((method, tag, p)) = found else {
-        let default = if el.tag().ends_with("finset") {
-            "bottom"
-        } else {
-            "top"
-        };
-        return Ok((default, 0.0));
-    };
-    let method = match method.unwrap_or("top") {
-        "top" => "top",
-        "middle" => "middle",
-        "bottom" => "bottom",
-        "after" => "after",
-        "absolute" => "absolute",
-        other => return Err(el.bad(tag, format!("unknown position method \"{other}\""))),
-    };
-    let text = p.own_text();
-    let value = if text.is_empty() {
-        0.0
-    } else {
-        text.parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite())
-            .ok_or_else(|| el.bad(tag, format!("not a finite number: \"{text}\"")))?
-    };
-    Ok((method, value))
 }
 
 /// Resolve the body components' radii: `auto` with its value as given; a bare `auto` (files

@@ -376,6 +376,11 @@ impl<'a, 'i> El<'a, 'i> {
             .ok_or_else(|| self.bad(tag, format!("not a finite number or auto: \"{t}\"")))
     }
 
+    /// Attribute `name` as a finite number, if present and one.
+    pub(crate) fn attribute_number(&self, name: &str) -> Option<f64> {
+        self.attribute(name).and_then(parse_number)
+    }
+
     /// Child `<tag>` as `true`/`false` (absent: false).
     pub(crate) fn flag(&self, tag: &str) -> bool {
         self.text(tag)
@@ -384,5 +389,5 @@ impl<'a, 'i> El<'a, 'i> {
 }
 
 fn parse_number(t: &str) -> Option<f64> {
-    t.parse::<f64>().ok().filter(|v| v.is_finite())
+    t.trim().parse::<f64>().ok().filter(|v| v.is_finite())
 }
