@@ -23,8 +23,10 @@ pub(super) struct OrkMotor {
 pub(super) struct Context {
     ids: HashMap<String, usize>,
     finishes: Vec<(String, f64)>,
-    /// The configuration id of the default motor, and whether its mount has been placed.
+    /// The configuration id of the default motor, whether the document has such a motor,
+    /// and whether its mount has been placed.
     config: Option<String>,
+    has_motor: bool,
     mount_placed: bool,
     /// The fore end of the next body component, m aft of the nose tip (stages follow each
     /// other).
@@ -74,6 +76,7 @@ impl Context {
             ids: HashMap::new(),
             finishes: Vec::new(),
             config: None,
+            has_motor: false,
             mount_placed: false,
             x_m: 0.0,
             last_radius: None,
@@ -124,7 +127,15 @@ impl Context {
             .find(|c| c.attribute("default") == Some("true"))
             .or(configs.first())
             .and_then(|c| c.attribute("configid"));
-        let motor = find_motor(rocket, default)?;
+        let Some(motor) = find_motor(rocket, default) else {
+            self.note(
+                "OpenRocket's default flight configuration has no motor: give one with --motor \
+                 or the scenario's motor."
+                    .to_owned(),
+            );
+            return None;
+        };
+        self.has_motor = true;
         // Without configurations, the first motor's own.
         self.config = default.or(motor.attribute("configid")).map(str::to_owned);
         let designation = motor.text("designation").unwrap_or("").to_owned();
@@ -405,26 +416,36 @@ impl Context {
     }
 
     /// A tube's `<motormount>`: the mount of the default configuration's motor becomes the
-    /// design's motor mount (a second motor is refused). A body tube that holds the motor
-    /// itself is not a mount in the design format: its overhang is returned, and the stage
-    /// gives the tube a massless inner tube of its bore as the mount.
+    /// design's motor mount (a second motor is refused). Where the default configuration
+    /// has no motor (a design not yet given one), the first tube OpenRocket marks as a
+    /// mount is the design's, so that a motor given to the flight has its place. A body
+    /// tube that holds the motor itself is not a mount in the design format: its overhang
+    /// is returned, and the stage gives the tube a massless inner tube of its bore as the
+    /// mount.
     fn mount(
         &mut self,
         tube: &El<'_, '_>,
         mount: &El<'_, '_>,
         m: &mut Component,
     ) -> Result<Option<f64>, DesignError> {
-        let holds_default = mount.children().any(|c| {
-            c.tag() == "motor"
-                && (self.config.is_none() || c.attribute("configid") == self.config.as_deref())
-        });
-        if !holds_default {
-            return Ok(None);
-        }
-        if self.mount_placed {
-            return Err(tube.refuse(
-                "a second motor in the default flight configuration (hpr flies one motor)",
+        if self.has_motor {
+            let holds_default = mount
+                .children()
+                .any(|c| c.tag() == "motor" && c.attribute("configid") == self.config.as_deref());
+            if !holds_default {
+                return Ok(None);
+            }
+            if self.mount_placed {
+                return Err(tube.refuse(
+                    "a second motor in the default flight configuration (hpr flies one motor)",
+                ));
+            }
+        } else if self.mount_placed {
+            self.note(format!(
+                "{}: also a motor mount in OpenRocket; hpr flies one motor, in the first.",
+                tube.name()
             ));
+            return Ok(None);
         }
         self.mount_placed = true;
         let overhang = mount.num("overhang")?.unwrap_or(0.0);

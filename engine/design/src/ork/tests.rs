@@ -382,6 +382,44 @@ fn a_body_tube_that_holds_the_motor_gets_a_massless_mount_of_its_bore() {
 }
 
 #[test]
+fn a_mount_without_a_motor_is_still_the_design_s_mount_when_the_default_configuration_has_none() {
+    // A design not yet given a motor, as OpenRocket saves it: the inner tube is marked as a
+    // mount, with its overhang, and no configuration puts a motor in it. The flight's motor
+    // (--motor, a scenario's) then goes where the motor of the original example goes.
+    let start = EXAMPLE.find("<motor configid").unwrap();
+    let end = EXAMPLE.find("</motor>").unwrap() + "</motor>".len();
+    let text = EXAMPLE.replacen(&EXAMPLE[start..end], "", 1);
+    let (got, import) = imported(text.as_bytes());
+    let (want, _) = imported(EXAMPLE.as_bytes());
+    assert_eq!(got.default_motor, None);
+    assert_eq!(want.default_motor.as_deref(), Some("Cesaroni_I175"));
+    let (g, w) = (got.motor_mount.unwrap(), want.motor_mount.unwrap());
+    assert_eq!(g.motor_aft_m, w.motor_aft_m);
+    assert_eq!(g.inner_diameter_m, w.inner_diameter_m);
+    assert!(
+        noted(&import, "default flight configuration has no motor"),
+        "{:?}",
+        import.notes
+    );
+    // A second tube marked as a mount stays a plain tube, with a note (hpr flies one motor).
+    let mount = &EXAMPLE[EXAMPLE.find("<motormount>").unwrap()
+        ..EXAMPLE.find("</motormount>").unwrap() + "</motormount>".len()];
+    let bare_mount = mount.replacen(&EXAMPLE[start..end], "", 1);
+    let twice = text.replacen(
+        "<radius>auto 0.02815</radius>",
+        &format!("<radius>auto 0.02815</radius>{bare_mount}"),
+        1,
+    );
+    let (got2, import2) = imported(twice.as_bytes());
+    assert_eq!(got2.motor_mount.unwrap().motor_aft_m, 1.16);
+    assert!(
+        noted(&import2, "also a motor mount in OpenRocket"),
+        "{:?}",
+        import2.notes
+    );
+}
+
+#[test]
 fn a_stage_s_override_covering_its_parts_becomes_the_stage_s_override() {
     let text = edited(
         "<name>Sustainer</name>",
