@@ -4,7 +4,7 @@
 //! to component ([`Context`]: ids, finishes, the motor, notes), the fields every component
 //! has, the stages and their body components; the parts on and in them are in [`parts`].
 
-mod parts;
+pub(super) mod parts;
 
 use super::{Auto, El};
 use crate::error::DesignError;
@@ -68,6 +68,9 @@ struct Parent {
     packed_r: Option<f64>,
     /// Whether the parent is a body component (fins, lugs and buttons only go there).
     on_body: bool,
+    /// A body component's outer radius at its fore and aft ends, m (a fin's root sits
+    /// there; taken as linear between them).
+    surface_r: Option<(f64, f64)>,
 }
 
 impl Context {
@@ -297,12 +300,18 @@ impl Context {
                         .map(|(f, a)| f.max(a)),
                 ),
             };
+            let surface_r = match b.kind {
+                "body_tube" => radius("outer_diameter_m").map(|r| (r, r)),
+                "nose_cone" => radius("base_diameter_m").map(|r| (0.0, r)),
+                _ => radius("fore_diameter_m").zip(radius("aft_diameter_m")),
+            };
             let parent = Parent {
                 length_m: b.length_m,
                 front_m: self.x_m,
                 ring_r,
                 packed_r,
                 on_body: true,
+                surface_r,
             };
             let mut parts = self.parts(&b.el, &parent)?;
             if let (Some(overhang), Some(bore_r)) = (b.holds_motor, ring_r) {

@@ -449,33 +449,120 @@ fn a_stage_s_override_covering_its_parts_becomes_the_stage_s_override() {
     );
 }
 
+/// One fin's two fillets' area across the axis, by integrating the corner they fill: the
+/// fin the line `x = 0` (its thickness left out), the body the circle of radius `b` about
+/// the origin, the fillet the circle of radius `r` tangent to both, centered at
+/// `(r, y_c)`, `y_c = √((b + r)² − r²)`. Between the fin and the fillet's tangent point on
+/// the body (`x = b r/(b + r)`) the fillet runs from the body up to the circle's near arc.
+fn fillets_by_integration_m2(r: f64, b: f64) -> f64 {
+    let y_c = ((b + r).powi(2) - r * r).sqrt();
+    let x_t = b * r / (b + r);
+    let height = |x: f64| y_c - (r * r - (x - r).powi(2)).sqrt() - (b * b - x * x).sqrt();
+    // The fillet's arc rises as √x from the fin: with x = u² the integrand 2u·height(u²) is
+    // smooth, and composite Simpson's rule converges at its fourth order.
+    let g = |u: f64| 2.0 * u * height(u * u);
+    let (n, top) = (2_000, x_t.sqrt());
+    let h = top / n as f64;
+    let mut sum = g(0.0) + g(top);
+    for i in 1..n {
+        sum += g(i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+    }
+    2.0 * sum * h / 3.0
+}
+
 #[test]
-fn fin_tabs_fillets_and_drag_overrides_are_left_out_with_a_note() {
+fn fin_tabs_and_fillets_weigh_what_openrocket_weighs_where_it_puts_them() {
+    // The example's three fins (root 0.12 m at the body's aft end, 1.03 to 1.15 m; 3 mm
+    // birch plywood, 630 kg/m³; body radius 0.02815 m) with a tab 0.05 × 0.01 m, 0.01 m
+    // behind the root's leading edge, and 5 mm fillets of cardboard (680 kg/m³).
     let text = edited(
         "<filletradius>0.0</filletradius>",
-        "<filletradius>0.005</filletradius><tabheight>0.01</tabheight><tablength>0.05</tablength>",
+        "<filletradius>0.005</filletradius><tabheight>0.01</tabheight><tablength>0.05</tablength>\
+         <tabposition relativeto=\"front\">0.01</tabposition>\
+         <tabposition relativeto=\"top\">0.01</tabposition>",
     )
     .replacen(
         "<length>0.9</length>",
         "<length>0.9</length><overridecd>0.5</overridecd>",
         1,
     );
-    let (_, import) = imported(text.as_bytes());
-    let notes = import.notes.join(" ");
+    let (got, import) = imported(text.as_bytes());
+    let parts = import.json["stages"][0]["components"][1]["children"]
+        .as_array()
+        .unwrap();
+    let by_id = |id: &str| parts.iter().find(|p| p["id"] == id).unwrap().clone();
+    // Tabs: 3 × 0.05 × 0.01 × 0.003 m × 630 kg/m³, from 1.04 to 1.09 m.
+    let tabs = by_id("fins_fin_tabs");
+    let tab_kg = 3.0 * 0.05 * 0.01 * 0.003 * 630.0;
     assert!(
-        notes.contains("Fins: its fin tabs are not imported"),
-        "{notes}"
+        close(tabs["mass_kg"].as_f64().unwrap(), tab_kg, 1e-15),
+        "{tabs}"
     );
+    assert_eq!(
+        tabs["position"],
+        json!({ "from": "top", "offset_m": 0.78 + 0.01 })
+    );
+    assert_eq!(tabs["length_m"], 0.05);
+    // Fillets: OpenRocket's cross-section (checked here against the corner integrated) times
+    // the root, along the whole root.
+    let area = fillets_by_integration_m2(0.005, 0.02815);
+    let or_area = super::components::parts::fillet_cross_section_m2(0.005, 0.02815);
+    assert!(close(or_area, area, 1e-10), "{or_area} {area}");
+    let fillets = by_id("fins_fillets");
+    let fillet_kg = 3.0 * area * 0.12 * 680.0;
     assert!(
-        notes.contains("Fins: its fillets are not imported"),
-        "{notes}"
+        close(fillets["mass_kg"].as_f64().unwrap(), fillet_kg, 1e-9),
+        "{fillets}"
     );
+    assert_eq!(
+        fillets["position"],
+        json!({ "from": "top", "offset_m": 0.78 })
+    );
+    // The rocket: the example's mass and first moment plus theirs (tabs centered at
+    // 1.065 m, fillets at 1.09 m).
+    let (g, w) = (dry(&got), dry(&imported(EXAMPLE.as_bytes()).0));
+    let mass = w.mass_kg + tab_kg + fillet_kg;
+    assert!(close(g.mass_kg, mass, 1e-9), "{} {}", g.mass_kg, mass);
+    let cg = (w.mass_kg * w.cg_m.x + tab_kg * 1.065 + fillet_kg * 1.09) / mass;
+    assert!(close(g.cg_m.x, cg, 1e-9), "{} {cg}", g.cg_m.x);
+    // Spread round the axis: the center of mass stays on it.
+    assert!(g.cg_m.y.abs() < 1e-15 && g.cg_m.z.abs() < 1e-15);
     assert!(
-        notes.contains("Body tube: its drag override is not imported"),
-        "{notes}"
+        noted(&import, "Body tube: its drag override is not imported"),
+        "{:?}",
+        import.notes
     );
-    // The notes travel with the design, for the reader of the JSON.
-    assert!(import.json["notes"].as_str().unwrap().contains("fin tabs"));
+
+    // A fin set whose mass OpenRocket overrides carries its tabs and fillets in it.
+    let overridden = text.replacen(
+        "<thickness>0.003</thickness>",
+        "<thickness>0.003</thickness><overridemass>0.1</overridemass>",
+        1,
+    );
+    let (_, import) = imported(overridden.as_bytes());
+    let parts = import.json["stages"][0]["components"][1]["children"]
+        .as_array()
+        .unwrap();
+    assert!(parts
+        .iter()
+        .all(|p| p["type"] != "mass_component" || !p["id"].as_str().unwrap().starts_with("fins_")));
+}
+
+#[test]
+fn a_rounded_or_airfoil_fin_weighs_openrocket_s_share_of_the_flat_plate() {
+    // OpenRocket's FinSet.CrossSection volumes: rounded 0.99, airfoil 0.85 of the plate.
+    // The example's fins: 3 × (0.12 + 0.05)/2 × 0.07 m² × 0.003 m × 630 kg/m³ as a plate.
+    let plate_kg = 3.0 * 0.5 * (0.12 + 0.05) * 0.07 * 0.003 * 630.0;
+    for (cross, share) in [("square", 1.0), ("rounded", 0.99), ("airfoil", 0.85)] {
+        let text = edited(
+            "<crosssection>square</crosssection>",
+            &format!("<crosssection>{cross}</crosssection>"),
+        );
+        let (got, _) = imported(text.as_bytes());
+        let fins = got.component_index("fins").unwrap();
+        let m = crate::mass::components::component_own(&got, fins).mass_kg;
+        assert!(close(m, share * plate_kg, 1e-13), "{cross}: {m}");
+    }
 }
 
 #[test]
