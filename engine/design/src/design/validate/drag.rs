@@ -1,7 +1,9 @@
 //! The drag model: inline Cd(Mach) tables, CSV files beside the design, or an estimate.
 //!
 //! The CSV reader is hand-written: the files are two numeric columns (`mach,cd`, RocketPy's
-//! layout), with an optional header line and `#` comments, which a split on the comma reads
+//! layout), with an optional header line and `#` comments, or the aerodynamic export of
+//! RASAero II (a header naming `Mach`, `Alpha`, `CD Power-Off` and `CD Power-On` among its
+//! columns; the rows at zero angle of attack are read). A split on the comma reads both
 //! exactly; a CSV crate would add a dependency for no gain in what is accepted.
 
 use super::{Builder, DEFAULT_ROUGHNESS_M};
@@ -45,9 +47,18 @@ impl Builder<'_> {
             };
             return Ok(DragSpec::Estimate { roughness_m });
         }
-        let power_off = match (&d.power_off, &d.power_off_csv) {
-            (Some(rows), _) => self.table(rows, Origin::Inline("power_off"))?,
-            (None, Some(csv)) => self.csv(csv)?,
+        let (power_off, rasaero_on) = match (&d.power_off, &d.power_off_csv) {
+            (Some(rows), _) => (self.table(rows, Origin::Inline("power_off"))?, None),
+            (None, Some(csv)) => {
+                let off = self.csv(csv, Curve::PowerOff)?;
+                // A RASAero export holds both curves: its power-on one unless another is given.
+                let on = if off.1 {
+                    Some(self.csv(csv, Curve::PowerOn)?.0)
+                } else {
+                    None
+                };
+                (off.0, on)
+            }
             (None, None) => {
                 return Err(self.invalid(&at, None, Rule::DragModelNotExactlyOne { given: 0 }))
             }
@@ -57,8 +68,8 @@ impl Builder<'_> {
                 return Err(self.invalid(&at, Some("power_on_csv"), Rule::PowerOnTwice))
             }
             (Some(rows), None) => self.table(rows, Origin::Inline("power_on"))?,
-            (None, Some(csv)) => self.csv(csv)?,
-            (None, None) => power_off.clone(),
+            (None, Some(csv)) => self.csv(csv, Curve::PowerOn)?.0,
+            (None, None) => rasaero_on.unwrap_or_else(|| power_off.clone()),
         };
         Ok(DragSpec::Curves {
             power_off,
@@ -72,13 +83,19 @@ impl Builder<'_> {
         base.join(name)
     }
 
-    fn csv(&self, name: &str) -> Result<Vec<(f64, f64)>, DesignError> {
+    /// A Cd(Mach) table from CSV file `name`, and whether the file is a RASAero export (then
+    /// `curve` chooses its column).
+    fn csv(&self, name: &str, curve: Curve) -> Result<(Vec<(f64, f64)>, bool), DesignError> {
         let path = self.csv_path(name);
         let file = path.display().to_string();
         let text = std::fs::read_to_string(&path).map_err(|source| DesignError::Io {
             file: file.clone(),
             source,
         })?;
+        if let Some(columns) = RasaeroColumns::of(&text, curve) {
+            let (rows, lines) = columns.read(&text, &file)?;
+            return Ok((self.table(&rows, Origin::Csv { file, lines })?, true));
+        }
         let mut rows = Vec::new();
         let mut lines = Vec::new();
         let mut header_allowed = true;
@@ -112,7 +129,7 @@ impl Builder<'_> {
             }
             header_allowed = false;
         }
-        self.table(&rows, Origin::Csv { file, lines })
+        Ok((self.table(&rows, Origin::Csv { file, lines })?, false))
     }
 
     /// Checks a Cd(Mach) table: rows present, Mach >= 0 and strictly increasing, Cd >= 0.
@@ -164,5 +181,97 @@ impl Builder<'_> {
             }
         }
         Ok(rows.iter().map(|r| (r[0], r[1])).collect())
+    }
+}
+
+/// Which of a RASAero export's drag columns a table reads.
+#[derive(Clone, Copy)]
+enum Curve {
+    PowerOff,
+    PowerOn,
+}
+
+/// Where a RASAero II export keeps what a table reads: the Mach number, the drag
+/// coefficient of one curve, and the angle of attack (degrees) if the file has it.
+struct RasaeroColumns {
+    mach: usize,
+    cd: usize,
+    alpha: Option<usize>,
+    width: usize,
+}
+
+impl RasaeroColumns {
+    /// The columns, if the first line of `text` that is not blank or a comment is a RASAero
+    /// header: it names `Mach` and both `CD Power-Off` and `CD Power-On` (any case).
+    fn of(text: &str, curve: Curve) -> Option<RasaeroColumns> {
+        let header = text
+            .lines()
+            .map(str::trim)
+            .find(|t| !t.is_empty() && !t.starts_with('#'))?;
+        let names: Vec<String> = header
+            .split(',')
+            .map(|f| f.trim().trim_matches('"').trim().to_ascii_lowercase())
+            .collect();
+        let find = |n: &str| names.iter().position(|x| x == n);
+        let (off, on) = (find("cd power-off")?, find("cd power-on")?);
+        Some(RasaeroColumns {
+            mach: find("mach")?,
+            cd: match curve {
+                Curve::PowerOff => off,
+                Curve::PowerOn => on,
+            },
+            alpha: find("alpha"),
+            width: names.len(),
+        })
+    }
+
+    /// The rows at zero angle of attack (all rows if the file has no `Alpha`), with their
+    /// line numbers.
+    fn read(&self, text: &str, file: &str) -> Result<(Vec<[f64; 2]>, Vec<usize>), DesignError> {
+        let mut rows = Vec::new();
+        let mut lines = Vec::new();
+        let mut header = true;
+        for (n, line) in text.lines().enumerate() {
+            let t = line.trim();
+            if t.is_empty() || t.starts_with('#') {
+                continue;
+            }
+            if std::mem::take(&mut header) {
+                continue;
+            }
+            let fields: Vec<&str> = t.split(',').map(|f| f.trim().trim_matches('"')).collect();
+            let bad = |message: String| DesignError::Csv {
+                file: file.to_owned(),
+                line: n + 1,
+                message,
+            };
+            if fields.len() < self.width {
+                return Err(bad(format!(
+                    "a RASAero export's row needs its {} columns (got {})",
+                    self.width,
+                    fields.len()
+                )));
+            }
+            let number = |i: usize| {
+                fields[i]
+                    .parse::<f64>()
+                    .map_err(|_| bad(format!("expected a number (got \"{}\")", fields[i])))
+            };
+            if let Some(a) = self.alpha {
+                if number(a)? != 0.0 {
+                    continue;
+                }
+            }
+            rows.push([number(self.mach)?, number(self.cd)?]);
+            lines.push(n + 1);
+        }
+        if rows.is_empty() && self.alpha.is_some() {
+            return Err(DesignError::Csv {
+                file: file.to_owned(),
+                line: 0,
+                message: "a RASAero export without rows at Alpha 0".to_owned(),
+            });
+        }
+        Ok((rows, lines))
     }
 }

@@ -507,6 +507,68 @@ fn drag_csvs_are_read_relative_to_the_design_file() {
 }
 
 #[test]
+fn a_rasaero_export_gives_its_power_off_and_power_on_curves_at_zero_angle_of_attack() {
+    // RASAero II's aerodynamic export: a row per Mach number and angle of attack, the drag
+    // with the motor off and burning in their own columns.
+    let dir = std::env::temp_dir().join(format!("hpr-design-rasaero-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let header = "Mach,Alpha,CD,CD Power-Off,CD Power-On,CA Power-Off,CA Power-On,CL,CN,\
+                  CN Potential,CN Viscous,Cn alpha (0-4 deg) (per rad),CP,CP 0-4 deg,\
+                  Reynolds Number";
+    let row = |mach: f64, alpha: f64, off: f64, on: f64| {
+        format!("{mach},{alpha},{off},{off},{on},{off},{on},0,0,0,0,10.5,30.1,30.2,1e6\n")
+    };
+    let mut text = format!("{header}\n");
+    for (mach, off, on) in [(0.01, 0.61, 0.52), (0.5, 0.55, 0.47), (1.2, 0.83, 0.71)] {
+        for alpha in [0.0, 2.0, 4.0] {
+            // At 2 and 4 degrees the drag grows: those rows must not be read.
+            text += &row(mach, alpha, off + alpha * 0.01, on + alpha * 0.01);
+        }
+    }
+    std::fs::write(dir.join("ras.csv"), &text).unwrap();
+    let design_path = dir.join("rocket.json");
+    let mut v = example_value();
+    v["drag"] = json!({"power_off_csv": "ras.csv"});
+    let d = Design::from_json_str(&v.to_string(), Some(&design_path)).expect("valid");
+    assert_eq!(
+        d.drag,
+        DragSpec::Curves {
+            power_off: vec![(0.01, 0.61), (0.5, 0.55), (1.2, 0.83)],
+            power_on: vec![(0.01, 0.52), (0.5, 0.47), (1.2, 0.71)]
+        }
+    );
+    // A power-on curve given beside it wins; the file can also give just the power-on one.
+    v["drag"] = json!({"power_off_csv": "ras.csv", "power_on": [[0.0, 0.4]]});
+    let d = Design::from_json_str(&v.to_string(), Some(&design_path)).expect("valid");
+    assert!(matches!(&d.drag, DragSpec::Curves { power_on, .. } if power_on == &vec![(0.0, 0.4)]));
+    v["drag"] = json!({"power_off": [[0.0, 0.5]], "power_on_csv": "ras.csv"});
+    let d = Design::from_json_str(&v.to_string(), Some(&design_path)).expect("valid");
+    assert!(matches!(&d.drag, DragSpec::Curves { power_on, .. }
+        if power_on == &vec![(0.01, 0.52), (0.5, 0.47), (1.2, 0.71)]));
+    // A broken row names its line; a file with no row at zero angle of attack is refused.
+    std::fs::write(
+        dir.join("bad.csv"),
+        format!(
+            "{header}\n{}0.5,0,0.5,x,0.4,0,0,0,0,0,0,0,0,0,0\n",
+            row(0.01, 0.0, 0.6, 0.5)
+        ),
+    )
+    .unwrap();
+    v["drag"] = json!({"power_off_csv": "bad.csv"});
+    let e = Design::from_json_str(&v.to_string(), Some(&design_path)).unwrap_err();
+    assert!(matches!(&e, DesignError::Csv { line: 3, .. }), "{e}");
+    std::fs::write(
+        dir.join("tilted.csv"),
+        format!("{header}\n{}", row(0.01, 2.0, 0.6, 0.5)),
+    )
+    .unwrap();
+    v["drag"] = json!({"power_off_csv": "tilted.csv"});
+    let e = Design::from_json_str(&v.to_string(), Some(&design_path)).unwrap_err();
+    assert!(e.to_string().contains("without rows at Alpha 0"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn an_override_mass_must_be_positive() {
     let (rule, loc, field) = invalid(with(|v| {
         at(v, BODY)
