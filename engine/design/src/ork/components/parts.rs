@@ -185,10 +185,11 @@ impl Context {
 
         let height = el.num("tabheight")?.unwrap_or(0.0);
         let tab_length = el.num("tablength")?.unwrap_or(0.0);
-        if height > 0.0 && tab_length > 0.0 && height * tab_length >= 1e-8 {
-            let Some(density) = material_density(el, "material")? else {
-                return Ok(out);
-            };
+        let tab_density = material_density(el, "material")?;
+        if let (true, Some(density)) = (
+            height > 0.0 && tab_length > 0.0 && height * tab_length >= 1e-8,
+            tab_density,
+        ) {
             let (method, offset) = tab_position(el)?;
             // OpenRocket's AxialMethod against the root chord. As OpenRocket's mass model
             // does, the tab is taken as saved, even where it runs past the root.
