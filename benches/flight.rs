@@ -16,7 +16,7 @@ fn setup() -> Simulation {
         .join("validation/designs/synthetic-54mm-three-fin.json");
     let design = Design::load(&path).expect("the reference design");
     let motor = hpr_design::motor::find("Cesaroni_I175").expect("bundled motor");
-    let chutes = parachutes_for(&design, None, None, 300.0, 1.0);
+    let chutes = parachutes_for(&design, None, None, Some(300.0), Some(1.0));
     assert_eq!(chutes.len(), 2, "drogue and main");
     Simulation::new(design, motor, Environment::default(), Rail::default())
         .and_then(|s| s.with_parachutes(chutes))

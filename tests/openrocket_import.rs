@@ -44,25 +44,66 @@ fn an_imported_design_inspects_and_flies_as_the_ork_it_came_from() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    // What the import leaves to the scenario is said on standard error.
+    // How the parachute deploys (taken into the design, for `fly`) is said on standard error.
     let notes = String::from_utf8(out.stderr).unwrap();
     assert!(
-        notes.contains("note: Parachute: OpenRocket deploys it at 300 m"),
+        notes.contains("note: Parachute: deploys at 300 m on the way down"),
         "{notes}"
     );
     let json = json.to_str().unwrap();
     assert_eq!(stdout_of(&["inspect", ORK]), stdout_of(&["inspect", json]));
     // A flight of the .ork says the same on standard error; of the JSON, nothing.
     let fly_ork = hpr_mc(&["fly", ORK]);
-    assert!(
-        String::from_utf8_lossy(&fly_ork.stderr).contains("note: Parachute: OpenRocket deploys it")
-    );
+    assert!(String::from_utf8_lossy(&fly_ork.stderr).contains("note: Parachute: deploys at 300 m"));
     assert!(hpr_mc(&["fly", json]).stderr.is_empty());
     let fly = |design: &str| stdout_of(&["fly", design, "--json"]);
     let (from_ork, from_json) = (fly(ORK), fly(json));
     assert_eq!(from_ork, from_json);
     let v: serde_json::Value = serde_json::from_str(&from_ork).unwrap();
     assert!(v["metrics"]["apogee_m"].as_f64().unwrap() > 100.0, "{v}");
+}
+
+/// The events of a flight's JSON as (kind, time, height).
+fn events(flight: &serde_json::Value) -> Vec<(String, f64, f64)> {
+    flight["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| {
+            (
+                e["event"].as_str().unwrap_or("").to_owned(),
+                e["time_s"].as_f64().unwrap(),
+                e["altitude_m"].as_f64().unwrap_or(f64::NAN),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn fly_deploys_an_openrocket_parachute_as_openrocket_does_unless_the_flags_say_otherwise() {
+    // The example's parachute: OpenRocket deploys it descending through 300 m, no delay.
+    let own: serde_json::Value = serde_json::from_str(&stdout_of(&["fly", ORK, "--json"])).unwrap();
+    let ev = events(&own);
+    let deploy = ev
+        .iter()
+        .find(|e| e.0.contains("deploy"))
+        .unwrap_or_else(|| panic!("{ev:?}"));
+    let trigger = ev.iter().find(|e| e.0.contains("trigger")).unwrap();
+    // Fired at 300 m and open at once (lag 0), after apogee.
+    assert!((trigger.2 - 300.0).abs() < 1e-6, "{ev:?}");
+    assert_eq!(deploy.1, trigger.1, "{ev:?}");
+    let apogee = ev.iter().find(|e| e.0 == "apogee").unwrap();
+    assert!(deploy.1 > apogee.1);
+    // Any parachute flag flies fly's drogue and main instead: the lone canopy is then the
+    // drogue, fired at apogee and open a second later.
+    let flagged: serde_json::Value =
+        serde_json::from_str(&stdout_of(&["fly", ORK, "--json", "--lag-s", "1"])).unwrap();
+    let ev = events(&flagged);
+    let trigger = ev.iter().find(|e| e.0.contains("trigger")).unwrap();
+    let deploy = ev.iter().find(|e| e.0.contains("deploy")).unwrap();
+    let apogee = ev.iter().find(|e| e.0 == "apogee").unwrap();
+    assert_eq!(trigger.1, apogee.1, "{ev:?}");
+    assert!((deploy.1 - trigger.1 - 1.0).abs() < 1e-9, "{ev:?}");
 }
 
 #[test]

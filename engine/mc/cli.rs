@@ -108,18 +108,20 @@ pub struct FlyArgs {
     /// Direction the wind blows from, degrees clockwise from north.
     #[arg(long, default_value_t = 0.0)]
     pub wind_from_deg: f64,
-    /// Drogue CdS, m², opened at apogee (default: the design's first parachute).
+    /// Drogue CdS, m², opened at apogee (default: the design's smaller parachute). Any of
+    /// the four parachute flags flies a drogue and a main by them, in place of the
+    /// design's own deployments (its parachutes' `deploy`).
     #[arg(long, value_parser = positive)]
     pub drogue_cds_m2: Option<f64>,
-    /// Main CdS, m², opened on the way down at --main-height-m (default: the design's second parachute).
+    /// Main CdS, m², opened on the way down at --main-height-m (default: the design's larger parachute).
     #[arg(long, value_parser = positive)]
     pub main_cds_m2: Option<f64>,
-    /// Height of the main's opening above ground, m.
-    #[arg(long, default_value_t = 300.0)]
-    pub main_height_m: f64,
-    /// Time from a trigger to an open canopy, s.
-    #[arg(long, default_value_t = 1.0, value_parser = not_negative)]
-    pub lag_s: f64,
+    /// Height of the main's opening above ground, m [default: 300].
+    #[arg(long, value_parser = not_negative)]
+    pub main_height_m: Option<f64>,
+    /// Time from a trigger to an open canopy, s [default: 1].
+    #[arg(long, value_parser = not_negative)]
+    pub lag_s: Option<f64>,
     /// The sampling rate of the flight computer that fires both parachutes, Hz: a trigger
     /// fires at its first sample at or after the moment its condition is met (default:
     /// watched continuously).
@@ -236,15 +238,41 @@ pub fn import(a: &ImportArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The parachutes of a `fly`: the flags, else the design's parachute components (the smaller
-/// canopy at apogee, the larger at the main height).
+/// The main's height above ground and the lag `fly` takes when no flag gives them.
+pub const MAIN_HEIGHT_M: f64 = 300.0;
+pub const LAG_S: f64 = 1.0;
+
+/// The parachutes of a `fly`. With none of the four flags given, a design whose parachutes
+/// say how they deploy (`deploy`) flies those parachutes so (one that does not say is not
+/// flown, as OpenRocket's "never"). Otherwise a drogue at apogee and a main at the main
+/// height: the flags' CdS, else the design's parachute components (the smaller canopy the
+/// drogue, the larger the main).
 pub fn parachutes_for(
     design: &Design,
     drogue: Option<f64>,
     main: Option<f64>,
-    main_height_m: f64,
-    lag_s: f64,
+    main_height_m: Option<f64>,
+    lag_s: Option<f64>,
 ) -> Vec<Parachute> {
+    let flagged = drogue.is_some() || main.is_some() || main_height_m.is_some() || lag_s.is_some();
+    let deployed: Vec<Parachute> = design
+        .components
+        .iter()
+        .filter_map(|c| match &c.kind {
+            hpr_design::ComponentKind::Parachute(p) => p.deploy.map(|d| {
+                let cds = p.cd * std::f64::consts::PI * (0.5 * p.canopy_diameter_m).powi(2);
+                Parachute::new(&c.id, cds, trigger_of(d.trigger), d.lag_s)
+            }),
+            _ => None,
+        })
+        .collect();
+    if !flagged && !deployed.is_empty() {
+        return deployed;
+    }
+    let (main_height_m, lag_s) = (
+        main_height_m.unwrap_or(MAIN_HEIGHT_M),
+        lag_s.unwrap_or(LAG_S),
+    );
     let mut from_design: Vec<f64> = design
         .components
         .iter()
@@ -323,6 +351,21 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
         emit(&format!("{head}{}", report::flight_text(&sim, &flight)))?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The flight's trigger of a design's deployment trigger.
+fn trigger_of(t: hpr_design::DeployTrigger) -> Trigger {
+    use hpr_design::DeployTrigger as D;
+    match t {
+        D::Apogee => Trigger::Apogee,
+        D::Burnout => Trigger::Burnout,
+        D::MotorDelay => Trigger::BurnoutPlusDelay { delay_s: None },
+        D::Time { time_s } => Trigger::Time { time_s },
+        D::Height { height_m } => Trigger::HeightDescending { height_m },
+        D::AfterBurnout { delay_s } => Trigger::BurnoutPlusDelay {
+            delay_s: Some(delay_s),
+        },
+    }
 }
 
 /// The flight `fly`'s options describe for `design`.

@@ -40,39 +40,74 @@ impl fmt::Display for Location {
 #[non_exhaustive]
 pub enum Rule {
     /// A length, diameter, mass or density that must be `> 0` and finite.
-    NotPositive { got: f64 },
+    NotPositive {
+        got: f64,
+    },
     /// A value that must be `>= 0` and finite.
-    Negative { got: f64 },
+    Negative {
+        got: f64,
+    },
     /// A value that must be finite.
-    NotFinite { got: f64 },
+    NotFinite {
+        got: f64,
+    },
     /// A value outside its allowed closed range.
-    OutOfRange { got: f64, min: f64, max: f64 },
+    OutOfRange {
+        got: f64,
+        min: f64,
+        max: f64,
+    },
     /// A wall thicker than the radius it belongs to.
-    WallThickerThanRadius { wall_m: f64, radius_m: f64 },
+    WallThickerThanRadius {
+        wall_m: f64,
+        radius_m: f64,
+    },
     /// Not exactly one of the ways to give a mass (`options` lists them).
-    MassSpecNotExactlyOne { options: &'static str, given: usize },
+    MassSpecNotExactlyOne {
+        options: &'static str,
+        given: usize,
+    },
     /// A field that needs another one beside it.
-    NeedsField { other: &'static str },
+    NeedsField {
+        other: &'static str,
+    },
     /// A field that must be given in this case.
-    Required { when: &'static str },
+    Required {
+        when: &'static str,
+    },
     /// A power-on drag curve without a power-off one.
     PowerOnWithoutPowerOff,
     /// A shape parameter given to a shape that takes none.
-    ShapeTakesNoParameter { shape: &'static str },
+    ShapeTakesNoParameter {
+        shape: &'static str,
+    },
     /// A fin dimension given to a planform that has no such dimension.
-    NotForPlanform { planform: &'static str },
+    NotForPlanform {
+        planform: &'static str,
+    },
     /// A free-form fin's outline that is not one: `point` (0-based) breaks `why`.
-    FinOutline { point: usize, why: &'static str },
+    FinOutline {
+        point: usize,
+        why: &'static str,
+    },
     /// An empty id.
     EmptyId,
     /// An id used twice (stages and components share one namespace).
-    DuplicateId { first: String },
+    DuplicateId {
+        first: String,
+    },
     /// A nose cone, body tube or transition placed inside another component.
-    BodyInsideComponent { kind: &'static str },
+    BodyInsideComponent {
+        kind: &'static str,
+    },
     /// A part that is not a body component at a stage's top level.
-    NotABody { kind: &'static str },
+    NotABody {
+        kind: &'static str,
+    },
     /// Fins, lugs and rail buttons sit on a body component, not inside an inner tube.
-    ExternalPartOffBody { kind: &'static str },
+    ExternalPartOffBody {
+        kind: &'static str,
+    },
     /// A part entirely outside its parent's axial extent (shoulders included).
     OutsideParent {
         top_m: f64,
@@ -82,31 +117,57 @@ pub enum Rule {
     },
     /// A part wider than its parent's inner diameter (diameters measured about the parent's
     /// axis: twice the part's largest distance from it).
-    WiderThanParent { width_m: f64, inner_diameter_m: f64 },
+    WiderThanParent {
+        width_m: f64,
+        inner_diameter_m: f64,
+    },
     /// Fins with a tip chord but no root chord.
-    FinRootChord { root_m: f64, tip_m: f64 },
+    FinRootChord {
+        root_m: f64,
+        tip_m: f64,
+    },
     /// A second inner tube marked as the motor mount.
-    TwoMotorMounts { first: String },
+    TwoMotorMounts {
+        first: String,
+    },
     /// A motor mount made of a cluster of several tubes (one motor only is flown).
-    ClusteredMotorMount { tubes: usize },
+    ClusteredMotorMount {
+        tubes: usize,
+    },
     /// A motor mount off the rocket's axis.
-    MotorMountOffAxis { offset_m: f64 },
+    MotorMountOffAxis {
+        offset_m: f64,
+    },
     /// A Mach column that is not strictly increasing.
-    MachNotIncreasing { row: usize, previous: f64, got: f64 },
+    MachNotIncreasing {
+        row: usize,
+        previous: f64,
+        got: f64,
+    },
     /// A drag table with no rows.
     EmptyTable,
     /// Not exactly one of the drag models.
-    DragModelNotExactlyOne { given: usize },
+    DragModelNotExactlyOne {
+        given: usize,
+    },
     /// Both an inline power-on table and a CSV.
     PowerOnTwice,
+    DeployTrigger {
+        got: String,
+    },
     /// A stage without a body component, or a design without stages.
     NoBodyComponent,
     /// Too many fins, or none.
-    FinCount { got: u32, max: u32 },
+    FinCount {
+        got: u32,
+        max: u32,
+    },
     /// An inner tube cluster with no tube.
     EmptyCluster,
     /// A resolved position or size that overflowed.
-    PositionNotFinite { got: f64 },
+    PositionNotFinite {
+        got: f64,
+    },
     /// `motor_fits` on a design with no motor mount.
     NoMotorMount,
     /// A motor wider than the mount's inner diameter.
@@ -115,7 +176,10 @@ pub enum Rule {
         mount_inner_diameter_m: f64,
     },
     /// A motor longer than the mount tube plus its overhang.
-    MotorTooLong { motor_length_m: f64, room_m: f64 },
+    MotorTooLong {
+        motor_length_m: f64,
+        room_m: f64,
+    },
 }
 
 impl fmt::Display for Rule {
@@ -201,6 +265,11 @@ impl fmt::Display for Rule {
                 "give exactly one of \"power_off\", \"power_off_csv\" and \"estimate\" (got {given})"
             ),
             Rule::PowerOnTwice => write!(f, "give at most one of \"power_on\" and \"power_on_csv\""),
+            Rule::DeployTrigger { got } => write!(
+                f,
+                "a trigger is \"apogee\", \"burnout\", \"motor_delay\" or one of {{\"time_s\": t}}, \
+                 {{\"height_m\": h}}, {{\"delay_s\": d}} with a number 0 or more (got {got})"
+            ),
             Rule::NoBodyComponent => write!(f, "has no body component"),
             Rule::FinCount { got, max } => {
                 write!(f, "must be between 1 and {max} (got {got})")

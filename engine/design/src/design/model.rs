@@ -350,6 +350,37 @@ pub struct Parachute {
     /// Canopy diameter, m, and drag coefficient (used when the design names its recovery).
     pub canopy_diameter_m: f64,
     pub cd: f64,
+    /// How it deploys when a flight takes its parachutes from the design, if the design says.
+    pub deploy: Option<Deploy>,
+}
+
+/// A parachute's deployment as the design says it: its trigger and the time from the
+/// trigger to the open canopy.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Deploy {
+    pub trigger: DeployTrigger,
+    pub lag_s: f64,
+}
+
+/// A design's deployment trigger (the scenario's triggers; `hpr_sim::Trigger` flies them).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DeployTrigger {
+    Apogee,
+    Burnout,
+    /// Burnout plus the motor's first listed delay.
+    MotorDelay,
+    /// After launch, s.
+    Time {
+        time_s: f64,
+    },
+    /// On the way down, through this height above the ground, m.
+    Height {
+        height_m: f64,
+    },
+    /// After burnout, s.
+    AfterBurnout {
+        delay_s: f64,
+    },
 }
 
 #[derive(Debug, Clone, PartialEq)]

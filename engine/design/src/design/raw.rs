@@ -24,6 +24,17 @@ pub struct RawDesign {
     pub stages: Vec<RawStage>,
 }
 
+/// A parachute's `deploy`: its trigger (a scenario's trigger written in JSON: `"apogee"`,
+/// `"burnout"`, `"motor_delay"`, or `{"time_s": t}`, `{"height_m": h}`, `{"delay_s": d}`)
+/// and the time from the trigger to the open canopy.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDeploy {
+    pub trigger: serde_json::Value,
+    #[serde(default)]
+    pub lag_s: Option<f64>,
+}
+
 /// `drag`: exactly one of `power_off`, `power_off_csv` and `estimate`; `power_on` or
 /// `power_on_csv` optionally beside a power-off curve (default: the power-off curve).
 #[derive(Debug, Clone, Deserialize)]
@@ -330,6 +341,9 @@ component_struct!(RawParachute {
     radius_m: f64,
     canopy_diameter_m: f64,
     cd: f64,
+    /// How the parachute deploys when a flight takes it from the design (`fly`).
+    #[serde(default)]
+    deploy: Option<RawDeploy>,
     #[serde(default)]
     radial_offset_m: f64,
     #[serde(default)]

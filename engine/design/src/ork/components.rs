@@ -28,6 +28,8 @@ pub(super) struct Context {
     config: Option<String>,
     has_motor: bool,
     mount_placed: bool,
+    /// The default motor's ejection delay, s (`None`: no motor, or plugged: "none").
+    motor_delay_s: Option<f64>,
     /// The fore end of the next body component, m aft of the nose tip (stages follow each
     /// other).
     x_m: f64,
@@ -81,6 +83,7 @@ impl Context {
             config: None,
             has_motor: false,
             mount_placed: false,
+            motor_delay_s: None,
             x_m: 0.0,
             last_radius: None,
             notes: Vec::new(),
@@ -139,6 +142,7 @@ impl Context {
             return None;
         };
         self.has_motor = true;
+        self.motor_delay_s = motor.text("delay").and_then(super::parse_number);
         // Without configurations, the first motor's own.
         self.config = default.or(motor.attribute("configid")).map(str::to_owned);
         let designation = motor.text("designation").unwrap_or("").to_owned();

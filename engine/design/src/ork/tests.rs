@@ -566,6 +566,76 @@ fn a_rounded_or_airfoil_fin_weighs_openrocket_s_share_of_the_flat_plate() {
 }
 
 #[test]
+fn a_parachute_deploys_as_the_default_configuration_deploys_it_in_openrocket() {
+    let deploy = |event: &str, altitude: f64, delay: f64, extra: &str| {
+        let text = edited(
+            "<deployevent>altitude</deployevent>\n                <deployaltitude>300.0</deployaltitude>\n                <deploydelay>0.0</deploydelay>",
+            &format!(
+                "<deployevent>{event}</deployevent><deployaltitude>{altitude}</deployaltitude>\
+                 <deploydelay>{delay}</deploydelay>{extra}"
+            ),
+        );
+        let (got, import) = imported(text.as_bytes());
+        let chute = got.component_index("parachute").unwrap();
+        match &got.components[chute].kind {
+            crate::ComponentKind::Parachute(p) => (p.deploy, import.notes),
+            other => panic!("{other:?}"),
+        }
+    };
+    use crate::{Deploy, DeployTrigger as T};
+    let with = |trigger, lag_s| Some(Deploy { trigger, lag_s });
+    assert_eq!(deploy("apogee", 0.0, 1.5, "").0, with(T::Apogee, 1.5));
+    assert_eq!(
+        deploy("altitude", 152.4, 0.0, "").0,
+        with(T::Height { height_m: 152.4 }, 0.0)
+    );
+    assert_eq!(
+        deploy("launch", 0.0, 4.0, "").0,
+        with(T::Time { time_s: 4.0 }, 0.0)
+    );
+    // Ejection: the default motor's delay after burnout (the example's I175 is saved with
+    // "none", plugged: it never deploys).
+    let (plugged, notes) = deploy("ejection", 0.0, 0.0, "");
+    assert_eq!(plugged, None);
+    assert!(notes.iter().any(|n| n.contains("plugged")), "{notes:?}");
+    let (never, notes) = deploy("never", 0.0, 0.0, "");
+    assert_eq!(never, None);
+    assert!(notes.iter().any(|n| n.contains("\"never\"")), "{notes:?}");
+    // The default configuration's own deployment wins over the parachute's default.
+    let (over, _) = deploy(
+        "apogee",
+        0.0,
+        0.0,
+        "<deploymentconfiguration configid=\"c1\"><deployevent>altitude</deployevent>\
+         <deployaltitude>200.0</deployaltitude><deploydelay>0.5</deploydelay>\
+         </deploymentconfiguration>",
+    );
+    assert_eq!(over, with(T::Height { height_m: 200.0 }, 0.5));
+    let (other, _) = deploy(
+        "apogee",
+        0.0,
+        0.0,
+        "<deploymentconfiguration configid=\"c9\"><deployevent>never</deployevent>\
+         </deploymentconfiguration>",
+    );
+    assert_eq!(other, with(T::Apogee, 0.0));
+    // With a motor delay of 6 s, ejection is 6 s after burnout.
+    let delayed = EXAMPLE
+        .replacen("<delay>none</delay>", "<delay>6.0</delay>", 1)
+        .replacen(
+            "<deployevent>altitude</deployevent>",
+            "<deployevent>ejection</deployevent>",
+            1,
+        );
+    let (got, _) = imported(delayed.as_bytes());
+    let chute = got.component_index("parachute").unwrap();
+    let crate::ComponentKind::Parachute(p) = &got.components[chute].kind else {
+        panic!()
+    };
+    assert_eq!(p.deploy, with(T::AfterBurnout { delay_s: 6.0 }, 0.0));
+}
+
+#[test]
 fn the_written_design_reads_back_as_the_same_json_with_ids_and_types_first() {
     let (_, import) = imported(EXAMPLE.as_bytes());
     let text = to_pretty_json(&import.json);

@@ -477,6 +477,10 @@ impl Builder<'_> {
                         c.canopy_diameter_m,
                     )?,
                     cd: self.positive(&at, "cd", c.cd)?,
+                    deploy: match &c.deploy {
+                        Some(d) => Some(self.deploy(&at, d)?),
+                        None => None,
+                    },
                 };
                 let half = norm(own) + packed.radius_m;
                 (
@@ -599,6 +603,46 @@ impl Builder<'_> {
             self.child(child, idx, stage, &format!("{path}.children[{j}]"))?;
         }
         Ok(())
+    }
+
+    /// A parachute's `deploy`: its trigger (the scenario's, in JSON) and lag.
+    fn deploy(&self, at: &Location, d: &RawDeploy) -> Result<Deploy, DesignError> {
+        let bad = || {
+            self.invalid(
+                at,
+                Some("deploy.trigger"),
+                Rule::DeployTrigger {
+                    got: d.trigger.to_string(),
+                },
+            )
+        };
+        let trigger = match &d.trigger {
+            serde_json::Value::String(s) => match s.as_str() {
+                "apogee" => DeployTrigger::Apogee,
+                "burnout" => DeployTrigger::Burnout,
+                "motor_delay" => DeployTrigger::MotorDelay,
+                _ => return Err(bad()),
+            },
+            serde_json::Value::Object(o) if o.len() == 1 => {
+                let (key, value) = o.iter().next().ok_or_else(bad)?;
+                let x = value
+                    .as_f64()
+                    .filter(|x| x.is_finite() && *x >= 0.0)
+                    .ok_or_else(bad)?;
+                match key.as_str() {
+                    "time_s" => DeployTrigger::Time { time_s: x },
+                    "height_m" => DeployTrigger::Height { height_m: x },
+                    "delay_s" => DeployTrigger::AfterBurnout { delay_s: x },
+                    _ => return Err(bad()),
+                }
+            }
+            _ => return Err(bad()),
+        };
+        let lag_s = match d.lag_s {
+            Some(l) => self.non_negative(at, "deploy.lag_s", l)?,
+            None => 0.0,
+        };
+        Ok(Deploy { trigger, lag_s })
     }
 
     /// A packed cylinder's shape: (shape, length, radial offset relative to the parent).

@@ -569,6 +569,74 @@ fn a_rasaero_export_gives_its_power_off_and_power_on_curves_at_zero_angle_of_att
 }
 
 #[test]
+fn a_parachute_may_say_how_it_deploys_with_a_scenario_s_trigger() {
+    let chute_with = |deploy: Value| {
+        with(|v| {
+            let chute = children(v)
+                .iter_mut()
+                .find(|c| c["id"] == "chute")
+                .expect("the example's chute");
+            chute["deploy"] = deploy;
+        })
+    };
+    let deploy_of = |d: Design| {
+        let i = d.component_index("chute").unwrap();
+        match &d.components[i].kind {
+            ComponentKind::Parachute(p) => p.deploy,
+            _ => unreachable!(),
+        }
+    };
+    let cases = [
+        (
+            json!({"trigger": "apogee", "lag_s": 1.5}),
+            DeployTrigger::Apogee,
+            1.5,
+        ),
+        (json!({"trigger": "burnout"}), DeployTrigger::Burnout, 0.0),
+        (
+            json!({"trigger": "motor_delay"}),
+            DeployTrigger::MotorDelay,
+            0.0,
+        ),
+        (
+            json!({"trigger": {"time_s": 5.0}}),
+            DeployTrigger::Time { time_s: 5.0 },
+            0.0,
+        ),
+        (
+            json!({"trigger": {"height_m": 150.0}, "lag_s": 0.5}),
+            DeployTrigger::Height { height_m: 150.0 },
+            0.5,
+        ),
+        (
+            json!({"trigger": {"delay_s": 6.0}}),
+            DeployTrigger::AfterBurnout { delay_s: 6.0 },
+            0.0,
+        ),
+    ];
+    for (json, trigger, lag_s) in cases {
+        let d = chute_with(json.clone()).unwrap_or_else(|e| panic!("{json}: {e}"));
+        assert_eq!(deploy_of(d), Some(Deploy { trigger, lag_s }), "{json}");
+    }
+    // Without `deploy` the design says nothing of it.
+    assert_eq!(deploy_of(with(|_| {}).unwrap()), None);
+    for bad in [
+        json!({"trigger": "ejection"}),
+        json!({"trigger": {"height_m": -1.0}}),
+        json!({"trigger": {"height_m": 100.0, "time_s": 2.0}}),
+        json!({"trigger": {"altitude_m": 100.0}}),
+        json!({"trigger": 3}),
+    ] {
+        let (rule, _, field) = invalid(chute_with(bad.clone()));
+        assert!(matches!(rule, Rule::DeployTrigger { .. }), "{bad}: {rule}");
+        assert_eq!(field.as_deref(), Some("deploy.trigger"), "{bad}");
+    }
+    let (rule, _, field) = invalid(chute_with(json!({"trigger": "apogee", "lag_s": -1.0})));
+    assert!(matches!(rule, Rule::Negative { .. }));
+    assert_eq!(field.as_deref(), Some("deploy.lag_s"));
+}
+
+#[test]
 fn an_override_mass_must_be_positive() {
     let (rule, loc, field) = invalid(with(|v| {
         at(v, BODY)

@@ -112,6 +112,77 @@ impl Context {
         Ok(out)
     }
 
+    /// A recovery device's deployment in the default flight configuration (its own
+    /// `<deploymentconfiguration>` for it, else its default), as the design format's
+    /// `deploy`: apogee and altitude events with OpenRocket's delay as the lag, launch as a
+    /// time after launch, ejection as the default motor's delay after burnout. `None` (with
+    /// a note) where it never deploys in hpr's flight: OpenRocket's "never", a stage
+    /// separation (stages are not separated), a plugged motor's ejection.
+    fn deployment(&mut self, el: &El<'_, '_>) -> Result<Option<Value>, DesignError> {
+        let config = self.config.clone();
+        let chosen = el
+            .children()
+            .find(|c| {
+                c.tag() == "deploymentconfiguration"
+                    && config.is_some()
+                    && c.attribute("configid") == config.as_deref()
+            })
+            .unwrap_or_else(|| el.clone());
+        let event = chosen.text("deployevent").unwrap_or("ejection").to_owned();
+        let delay = chosen.num("deploydelay")?.unwrap_or(0.0).max(0.0);
+        let altitude = chosen.num("deployaltitude")?.unwrap_or(0.0);
+        let name = el.name().to_owned();
+        let (trigger, lag, when) = match event.as_str() {
+            "apogee" => (json!("apogee"), delay, "at apogee".to_owned()),
+            "altitude" => (
+                json!({ "height_m": altitude.max(0.0) }),
+                delay,
+                format!("at {altitude} m on the way down"),
+            ),
+            "launch" => (
+                json!({ "time_s": delay }),
+                0.0,
+                format!("{delay} s after launch"),
+            ),
+            "ejection" => match (self.has_motor, self.motor_delay_s) {
+                (true, Some(d)) => (
+                    json!({ "delay_s": d }),
+                    delay,
+                    format!("at the motor's ejection, {d} s after burnout"),
+                ),
+                (true, None) => {
+                    self.note(format!(
+                        "{name}: OpenRocket deploys it at the motor's ejection, and the motor is \
+                         plugged: it does not deploy."
+                    ));
+                    return Ok(None);
+                }
+                (false, _) => (
+                    json!("motor_delay"),
+                    delay,
+                    "at the motor's ejection (the flight's motor's first delay)".to_owned(),
+                ),
+            },
+            other => {
+                self.note(format!(
+                    "{name}: OpenRocket deploys it on \"{other}\", which hpr's flight has not: it \
+                     does not deploy."
+                ));
+                return Ok(None);
+            }
+        };
+        let after = if lag > 0.0 {
+            format!(", open {lag} s later")
+        } else {
+            String::new()
+        };
+        self.note(format!(
+            "{name}: deploys {when}{after} (as `fly` flies it; a scenario lists its own \
+             parachutes)."
+        ));
+        Ok(Some(json!({ "trigger": trigger, "lag_s": lag })))
+    }
+
     /// What OpenRocket weighs with a fin set beside its plates, as parts of the parent that
     /// sit where it puts them: the fin tabs (each the rectangle `tablength × tabheight` below
     /// the root, as thick as the fin, of the fins' material) and the fillets (each root's two
@@ -404,24 +475,9 @@ impl Context {
                         m.insert("canopy_diameter_m".into(), json!(d));
                         m.insert("cd".into(), json!(cd));
                         m.insert("mass_kg".into(), json!(canopy + lines));
-                        let event = el.text("deployevent").unwrap_or("ejection");
-                        let when = match event {
-                            "apogee" => "at apogee".to_owned(),
-                            "altitude" => format!(
-                                "at {} m on the way down",
-                                el.num("deployaltitude")?.unwrap_or(0.0)
-                            ),
-                            other => format!("on \"{other}\""),
-                        };
-                        self.note(format!(
-                            "{}: OpenRocket deploys it {when}{}; hpr takes a parachute's trigger from \
-                             the scenario or fly's flags.",
-                            el.name(),
-                            match el.num("deploydelay")? {
-                                Some(d) if d > 0.0 => format!(" after {d} s"),
-                                _ => String::new(),
-                            }
-                        ));
+                        if let Some(deploy) = self.deployment(el)? {
+                            m.insert("deploy".into(), deploy);
+                        }
                     }
                     "shockcord" => {
                         m.insert("type".into(), json!("shock_cord"));
