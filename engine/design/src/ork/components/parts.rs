@@ -160,7 +160,7 @@ impl Context {
                 (false, _) => (
                     json!("motor_delay"),
                     delay,
-                    "at the motor's ejection (the flight's motor's first delay)".to_owned(),
+                    "at the motor's ejection, its first listed delay after burnout".to_owned(),
                 ),
             },
             other => {
