@@ -90,6 +90,11 @@ impl Context {
         }
     }
 
+    /// The default flight configuration's id, where the document names one.
+    pub fn config(&self) -> Option<&str> {
+        self.config.as_deref()
+    }
+
     pub fn note(&mut self, text: String) {
         if !self.notes.contains(&text) {
             self.notes.push(text);
@@ -133,6 +138,7 @@ impl Context {
             .find(|c| c.attribute("default") == Some("true"))
             .or(configs.first())
             .and_then(|c| c.attribute("configid"));
+        self.config = default.map(str::to_owned);
         let Some(motor) = find_motor(rocket, default) else {
             self.note(
                 "OpenRocket's default flight configuration has no motor: give one with --motor \
@@ -488,7 +494,7 @@ fn overrides(mass: Option<f64>, cg: Option<f64>) -> Component {
 }
 
 /// The `<motor>` of configuration `config` (any, if `None`) anywhere under `el`.
-fn find_motor<'a, 'i>(el: &El<'a, 'i>, config: Option<&str>) -> Option<El<'a, 'i>> {
+pub(super) fn find_motor<'a, 'i>(el: &El<'a, 'i>, config: Option<&str>) -> Option<El<'a, 'i>> {
     for c in el.children() {
         if c.tag() == "motor" && (config.is_none() || c.attribute("configid") == config) {
             return Some(c);

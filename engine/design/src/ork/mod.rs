@@ -25,6 +25,7 @@
 //! the container is read with the `zip` and `flate2` crates.
 
 mod components;
+mod simulation;
 #[cfg(test)]
 mod tests;
 
@@ -124,6 +125,9 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
         None => None,
     };
     let roughness = cx.roughness();
+    if let Some(n) = simulation::note(&El::new(file, root, ""), &rocket, cx.config()) {
+        cx.note(n);
+    }
     let mut notes = vec![format!(
         "Imported from {} ({creator}, file format {version}).",
         short_name(file)

@@ -636,6 +636,68 @@ fn a_parachute_deploys_as_the_default_configuration_deploys_it_in_openrocket() {
 }
 
 #[test]
+fn openrocket_s_own_simulation_is_said_as_fly_s_flags_with_what_it_found() {
+    let with_simulations = |sims: &str| {
+        let text = EXAMPLE.replacen(
+            "<simulations/>",
+            &format!("<simulations>{sims}</simulations>"),
+            1,
+        );
+        let (_, import) = imported(text.as_bytes());
+        import
+            .notes
+            .into_iter()
+            .find(|n| n.starts_with("OpenRocket's simulation"))
+    };
+    // OpenRocket 24's elements: the average wind (its direction in radians, from), the
+    // extended ISA's base temperature and pressure; a simulation of another configuration
+    // first, then the default configuration's, which is the one said.
+    let note = with_simulations(
+        r#"<simulation status="outdated"><name>Other</name><conditions><configid>c9</configid>
+             <launchrodlength>3.0</launchrodlength></conditions></simulation>
+           <simulation status="uptodate"><name>Field day</name><conditions>
+             <configid>c1</configid><launchrodlength>1.5</launchrodlength>
+             <launchrodangle>5.0</launchrodangle><launchroddirection>270.0</launchroddirection>
+             <wind model="average"><speed>4.0</speed><direction>3.141592653589793</direction>
+               <standarddeviation>0.4</standarddeviation></wind>
+             <launchaltitude>1400.0</launchaltitude>
+             <atmosphere model="extendedisa"><basetemperature>300.15</basetemperature>
+               <basepressure>86000.0</basepressure></atmosphere></conditions>
+             <flightdata maxaltitude="1234.5" timetoapogee="12.25" maxvelocity="250.0"
+               launchrodvelocity="20.5" groundhitvelocity="6.1" flighttime="95.0"/>
+           </simulation>"#,
+    )
+    .unwrap();
+    assert_eq!(
+        note,
+        "OpenRocket's simulation \"Field day\" flew it on the Cesaroni Technology I175 with \
+         --rail-length-m 1.5 --inclination-deg 85 --heading-deg 270 --wind-m-s 4 \
+         --wind-from-deg 180 --elevation-m 1400 --temperature-k 300.15 --pressure-pa 86000; \
+         not in these flags: its wind's turbulence, 10 %; it found apogee 1234.5 m at 12.25 s, \
+         max speed 250 m/s, off the rod at 20.5 m/s, landing at 6.1 m/s after 95 s."
+    );
+    // An older file's wind elements, OpenRocket's default direction (π/2, from the east), and
+    // results OpenRocket marks outdated.
+    let note = with_simulations(
+        r#"<simulation status="outdated"><name>Old</name><conditions><configid>c1</configid>
+             <launchrodlength>1.0</launchrodlength><windaverage>2.0</windaverage>
+             <launchaltitude>0.0</launchaltitude><atmosphere model="isa"/></conditions>
+             <flightdata maxaltitude="48.01"/></simulation>"#,
+    )
+    .unwrap();
+    assert!(
+        note.contains("--inclination-deg 90 --wind-m-s 2 --wind-from-deg 90 --elevation-m 0;"),
+        "{note}"
+    );
+    assert!(
+        note.ends_with("apogee 48.01 m (OpenRocket marks them outdated)."),
+        "{note}"
+    );
+    // No simulations, no note.
+    assert_eq!(with_simulations(""), None);
+}
+
+#[test]
 fn the_written_design_reads_back_as_the_same_json_with_ids_and_types_first() {
     let (_, import) = imported(EXAMPLE.as_bytes());
     let text = to_pretty_json(&import.json);
