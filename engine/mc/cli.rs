@@ -208,7 +208,7 @@ fn ork_notes(design: &PathBuf) {
     let Ok(bytes) = std::fs::read(design) else {
         return;
     };
-    if hpr_design::ork::is_ork(&bytes) {
+    if hpr_design::ork::is_ork_file(design, &bytes) {
         if let Ok(import) = hpr_design::ork::import(&bytes, &design.display().to_string()) {
             for note in &import.notes {
                 eprintln!("note: {note}");

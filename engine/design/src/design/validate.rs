@@ -48,7 +48,7 @@ impl Design {
             file: path.display().to_string(),
             source,
         })?;
-        if crate::ork::is_ork(&bytes) {
+        if crate::ork::is_ork_file(path, &bytes) {
             let import = crate::ork::import(&bytes, &path.display().to_string())?;
             return Design::from_json_str(&import.json.to_string(), Some(path));
         }

@@ -45,8 +45,7 @@ pub struct OrkImport {
 /// Whether `bytes` look like an OpenRocket file: a ZIP or a gzip stream (as OpenRocket writes
 /// them), or XML that names `<openrocket` in its first 300 bytes (never a JSON object).
 pub fn is_ork(bytes: &[u8]) -> bool {
-    let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
-    if text.trim_ascii_start().starts_with(b"{") {
+    if looks_like_json(bytes) {
         return false;
     }
     bytes.starts_with(b"PK")
@@ -56,10 +55,42 @@ pub fn is_ork(bytes: &[u8]) -> bool {
             .any(|w| w == b"<openrocket")
 }
 
+/// Whether the file at `path` holding `bytes` is to be read as an OpenRocket design: its
+/// content says so ([`is_ork`]), or its name ends in `.ork` and it is not a JSON object (a
+/// damaged `.ork` is then refused as one, not as a JSON design).
+pub fn is_ork_file(path: &std::path::Path, bytes: &[u8]) -> bool {
+    let named = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ork"));
+    is_ork(bytes) || (named && !looks_like_json(bytes))
+}
+
+/// Whether `bytes` start (after a byte-order mark and white space) with `{`.
+fn looks_like_json(bytes: &[u8]) -> bool {
+    let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    text.trim_ascii_start().starts_with(b"{")
+}
+
 /// Read the `.ork` in `bytes` (`file` names it in errors) into a design.
 pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
+    if looks_like_json(bytes) {
+        return Err(err(
+            file,
+            "document",
+            "this is JSON (a design already?), not an OpenRocket document",
+        ));
+    }
     let xml = document_text(bytes, file)?;
-    let doc = roxmltree::Document::parse(&xml).map_err(|e| err(file, "document", e))?;
+    let doc = roxmltree::Document::parse(&xml).map_err(|e| {
+        err(
+            file,
+            "document",
+            format!(
+                "not an OpenRocket document ({e}): a .ork is a ZIP, a gzip stream or XML \
+                 whose root is <openrocket>"
+            ),
+        )
+    })?;
     let root = doc.root_element();
     if root.tag_name().name() != "openrocket" {
         return Err(err(

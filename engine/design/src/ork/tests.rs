@@ -698,6 +698,30 @@ fn openrocket_s_own_simulation_is_said_as_fly_s_flags_with_what_it_found() {
 }
 
 #[test]
+fn a_file_that_is_not_an_openrocket_document_is_refused_as_such() {
+    let e = refusal(b"{ \"name\": \"a design already\" }", "rocket.ork");
+    assert!(e.contains("this is JSON"), "{e}");
+    let e = refusal(b"garbage", "rocket.ork");
+    assert!(
+        e.contains("rocket.ork: document: not an OpenRocket document"),
+        "{e}"
+    );
+    // A damaged file named .ork is read as one (its error says what a .ork is), a JSON
+    // design named .ork as JSON.
+    let dir = std::env::temp_dir().join(format!("hpr-ork-named-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let damaged = dir.join("damaged.ORK");
+    std::fs::write(&damaged, "garbage").unwrap();
+    let e = Design::load(&damaged).unwrap_err().to_string();
+    assert!(e.contains("not an OpenRocket document"), "{e}");
+    let json = dir.join("design.ork");
+    std::fs::write(&json, "{}").unwrap();
+    let e = Design::load(&json).unwrap_err().to_string();
+    assert!(e.contains("missing field"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn the_written_design_reads_back_as_the_same_json_with_ids_and_types_first() {
     let (_, import) = imported(EXAMPLE.as_bytes());
     let text = to_pretty_json(&import.json);
