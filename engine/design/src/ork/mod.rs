@@ -25,6 +25,8 @@
 //! the container is read with the `zip` and `flate2` crates.
 
 mod components;
+#[cfg(test)]
+mod fuzz;
 mod simulation;
 #[cfg(test)]
 mod tests;
