@@ -165,6 +165,9 @@ pub struct NoseCone {
     pub shape: NoseShape,
     pub base_diameter_m: f64,
     pub wall_thickness_m: f64,
+    /// Whether the wall is measured along the surface's normal (OpenRocket's convention)
+    /// rather than across the axis.
+    pub wall_along_normal: bool,
     /// Solid (filled) nose, e.g. a turned wooden one.
     pub filled: bool,
     pub shoulder: Option<Shoulder>,
@@ -203,6 +206,8 @@ pub struct Transition {
     pub fore_diameter_m: f64,
     pub aft_diameter_m: f64,
     pub wall_thickness_m: f64,
+    /// As a nose cone's.
+    pub wall_along_normal: bool,
     pub filled: bool,
     pub fore_shoulder: Option<Shoulder>,
     pub aft_shoulder: Option<Shoulder>,

@@ -209,6 +209,9 @@ component_struct!(RawNoseCone {
     base_diameter_m: f64,
     #[serde(default)]
     wall_thickness_m: Option<f64>,
+    /// The wall measured along the surface's normal (OpenRocket's) instead of across the axis.
+    #[serde(default)]
+    wall_along_normal: bool,
     #[serde(default)]
     filled: bool,
     #[serde(default)]
@@ -234,6 +237,9 @@ component_struct!(RawTransition {
     aft_diameter_m: f64,
     #[serde(default)]
     wall_thickness_m: Option<f64>,
+    /// The wall measured along the surface's normal (OpenRocket's) instead of across the axis.
+    #[serde(default)]
+    wall_along_normal: bool,
     #[serde(default)]
     filled: bool,
     #[serde(default)]

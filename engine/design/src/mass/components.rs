@@ -125,7 +125,8 @@ fn unit_shape(c: &Component, at: &Vector3<f64>) -> MassProps {
     match &c.kind {
         ComponentKind::NoseCone(n) => {
             let r = n.base_diameter_m / 2.0;
-            let wall = (!n.filled).then_some(n.wall_thickness_m);
+            let wall =
+                (!n.filled).then_some(solids::Wall::of(n.wall_thickness_m, n.wall_along_normal));
             let shape = n.shape;
             let body = solids::revolution(|x| shapes::profile_radius(shape, l, r, x), l, wall)
                 .translated(at);
@@ -136,7 +137,8 @@ fn unit_shape(c: &Component, at: &Vector3<f64>) -> MassProps {
         }
         ComponentKind::Transition(t) => {
             let (r1, r2) = (t.fore_diameter_m / 2.0, t.aft_diameter_m / 2.0);
-            let wall = (!t.filled).then_some(t.wall_thickness_m);
+            let wall =
+                (!t.filled).then_some(solids::Wall::of(t.wall_thickness_m, t.wall_along_normal));
             let shape = t.shape;
             let mut body =
                 solids::revolution(|x| shapes::transition_radius(shape, l, r1, r2, x), l, wall)

@@ -97,9 +97,34 @@ fn gauss4() -> ([f64; 4], [f64; 4]) {
     ([-b, -a, a, b], [wb, wa, wa, wb])
 }
 
+/// A shell's wall thickness and how it is measured, m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Wall {
+    /// Across the axis: the inner radius is `r − t`.
+    AcrossAxis(f64),
+    /// Along the surface's normal (OpenRocket's).
+    AlongNormal(f64),
+}
+
+impl Wall {
+    /// A wall `t` thick, along the normal or across the axis.
+    pub fn of(t: f64, along_normal: bool) -> Wall {
+        if along_normal {
+            Wall::AlongNormal(t)
+        } else {
+            Wall::AcrossAxis(t)
+        }
+    }
+}
+
 /// A body of revolution of unit density (its mass is its volume, m³), profile `r(x)` for
 /// `0 <= x <= length_m`: solid (`wall_m = None`) or a shell between `r(x)` and
 /// `max(r(x) − t, 0)` (wall measured across the axis).
+///
+/// [`Wall::AlongNormal`] measures the wall along the surface's normal, as OpenRocket does:
+/// the inner radius is then `max(r − t √(1 + r′²), 0)` (`t / cos θ` across the axis, θ the
+/// surface's slope; OpenRocket takes the slope of each of its slices, here the profile's
+/// own, by a central difference).
 ///
 /// Each slice `dx` is an annulus, `dm = π (ro² − ri²) dx`, adding `(ro² + ri²)/2 dm` about
 /// the axis and `((ro² + ri²)/4 + x²) dm` across it. The integral is over
@@ -107,7 +132,7 @@ fn gauss4() -> ([f64; 4], [f64; 4]) {
 /// have infinite slope (`r ~ sqrt(x)` at an elliptical tip, `x^¼` for von Kármán), with
 /// [`REVOLUTION_PANELS`] panels of four-point Gauss–Legendre: polynomial profiles come out
 /// exact to rounding.
-pub fn revolution(profile: impl Fn(f64) -> f64, length_m: f64, wall_m: Option<f64>) -> MassProps {
+pub fn revolution(profile: impl Fn(f64) -> f64, length_m: f64, wall_m: Option<Wall>) -> MassProps {
     let (nodes, weights) = gauss4();
     let half = length_m / 2.0;
     let h = PI / REVOLUTION_PANELS as f64;
@@ -120,7 +145,16 @@ pub fn revolution(profile: impl Fn(f64) -> f64, length_m: f64, wall_m: Option<f6
             let x = half * (1.0 - phi.cos());
             let dxdphi = half * phi.sin();
             let ro = profile(x).max(0.0);
-            let ri = wall_m.map_or(0.0, |t| (ro - t).max(0.0));
+            let ri = match wall_m {
+                None => 0.0,
+                Some(Wall::AcrossAxis(t)) => (ro - t).max(0.0),
+                Some(Wall::AlongNormal(t)) => {
+                    let d = 1e-6 * length_m;
+                    let (a, b) = ((x - d).max(0.0), (x + d).min(length_m));
+                    let slope = (profile(b) - profile(a)) / (b - a);
+                    (ro - t * (1.0 + slope * slope).sqrt()).max(0.0)
+                }
+            };
             let dm = PI * (ro * ro - ri * ri) * dxdphi * weight * h / 2.0;
             let q = ro * ro + ri * ri;
             let u = x - half;
@@ -323,7 +357,7 @@ mod tests {
         // The shell between r(x) = R x/L and max(r − t, 0) is the solid cone (R, L) less a
         // cone of base R − t and length L (R − t)/R whose apex is at t L / R.
         let (r, l, t) = (0.04, 0.3, 0.002);
-        let num = revolution(|x| r * x / l, l, Some(t));
+        let num = revolution(|x| r * x / l, l, Some(Wall::AcrossAxis(t)));
         let (ri, li) = (r - t, l * (r - t) / r);
         let outer = solid_cone(PI * r * r * l / 3.0, r, l);
         let inner = solid_cone(-PI * ri * ri * li / 3.0, ri, li).translated(&Vector3::new(
@@ -344,13 +378,47 @@ mod tests {
     }
 
     #[test]
+    fn a_conical_wall_measured_along_its_normal_is_thicker_across_the_axis_by_the_slope() {
+        // Measured along the normal, a cone's wall t is t' = t √(1 + (R/L)²) across the axis
+        // everywhere (the slope is constant): the shell is the cone less the cone inside a
+        // wall of t', as OpenRocket's frustum slices give it exactly for a cone.
+        let (r, l, t) = (0.04, 0.12, 0.002);
+        let num = revolution(|x| r * x / l, l, Some(Wall::AlongNormal(t)));
+        let tp = t * (1.0 + (r / l).powi(2)).sqrt();
+        let (ri, li) = (r - tp, l * (r - tp) / r);
+        let outer = solid_cone(PI * r * r * l / 3.0, r, l);
+        let inner = solid_cone(-PI * ri * ri * li / 3.0, ri, li).translated(&Vector3::new(
+            tp * l / r,
+            0.0,
+            0.0,
+        ));
+        let exact = outer.combine(&inner);
+        // The slope by a central difference is exact on a line; the clamp's kink as above.
+        assert!(
+            rel(num.mass_kg, exact.mass_kg) < 1e-12,
+            "{}",
+            rel(num.mass_kg, exact.mass_kg)
+        );
+        assert!(rel(num.cg_m.x, exact.cg_m.x) < 1e-12);
+        assert!(rel(num.axial_inertia(), exact.axial_inertia()) < 1e-12);
+        assert!(rel(num.transverse_inertia(), exact.transverse_inertia()) < 1e-12);
+        // Heavier than the same t across the axis, by about 1/cos θ for a thin wall.
+        let across = revolution(|x| r * x / l, l, Some(Wall::AcrossAxis(t)));
+        let ratio = num.mass_kg / across.mass_kg;
+        assert!(
+            (ratio - (1.0 + (r / l).powi(2)).sqrt()).abs() < 0.02,
+            "{ratio}"
+        );
+    }
+
+    #[test]
     fn a_thin_conical_shell_has_its_center_at_two_thirds_and_half_m_r_squared() {
         // The closed form against the integral of a very thin wall (t = 1e-6 R): they differ
         // by the wall's own thickness, t/R = 1e-6 (measured 2.5e-7 on the center, 1.0e-6 on
         // the inertias).
         let (r, l) = (0.04, 0.3);
         let t = 1e-6 * r;
-        let num = revolution(|x| r * x / l, l, Some(t));
+        let num = revolution(|x| r * x / l, l, Some(Wall::AcrossAxis(t)));
         let thin = thin_conical_shell(num.mass_kg, r, l);
         assert!(rel(num.cg_m.x, 0.2) < 5e-7);
         assert!(rel(num.axial_inertia(), thin.axial_inertia()) < 2e-6);

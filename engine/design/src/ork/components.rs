@@ -397,6 +397,8 @@ impl Context {
                     }
                     _ => {
                         m.insert("wall_thickness_m".into(), json!(el.req("thickness")?));
+                        // OpenRocket measures a shell's wall along the surface's normal.
+                        m.insert("wall_along_normal".into(), json!(true));
                     }
                 }
                 aft = Some(

@@ -20,8 +20,9 @@ fn chute_mass_kg() -> f64 {
 }
 
 /// `validation/designs/example-minimal.json` as the `.ork` says it: the drag estimated with
-/// the normal finish, the parachute's mass from its cloth and lines, each rail button's mass
-/// overriding its material's.
+/// the normal finish, the nose cone's wall measured along its normal (OpenRocket's), the
+/// parachute's mass from its cloth and lines and its deployment at 300 m, each rail button's
+/// mass overriding its material's.
 fn expected() -> Design {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -29,12 +30,14 @@ fn expected() -> Design {
     );
     let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     v["drag"] = json!({ "estimate": { "roughness_m": 60e-6 } });
+    v["stages"][0]["components"][0]["wall_along_normal"] = json!(true);
     let parts = v["stages"][0]["components"][1]["children"]
         .as_array_mut()
         .unwrap();
     for p in parts.iter_mut() {
         if p["id"] == "chute" {
             p["mass_kg"] = json!(chute_mass_kg());
+            p["deploy"] = json!({ "trigger": { "height_m": 300.0 }, "lag_s": 0.0 });
         }
     }
     Design::from_json_str(&v.to_string(), None).unwrap()

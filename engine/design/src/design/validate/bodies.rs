@@ -30,6 +30,7 @@ impl Builder<'_> {
                     shape,
                     base_diameter_m: base,
                     wall_thickness_m: wall,
+                    wall_along_normal: n.wall_along_normal,
                     filled: n.filled,
                     shoulder,
                 };
@@ -72,6 +73,7 @@ impl Builder<'_> {
                     fore_diameter_m: fore,
                     aft_diameter_m: aft,
                     wall_thickness_m: wall,
+                    wall_along_normal: t.wall_along_normal,
                     filled: t.filled,
                     fore_shoulder,
                     aft_shoulder,
