@@ -152,6 +152,9 @@ pub enum Rule {
     },
     /// Both an inline power-on table and a CSV.
     PowerOnTwice,
+    Airfoil {
+        why: &'static str,
+    },
     DeployTrigger {
         got: String,
     },
@@ -265,6 +268,7 @@ impl fmt::Display for Rule {
                 "give exactly one of \"power_off\", \"power_off_csv\" and \"estimate\" (got {given})"
             ),
             Rule::PowerOnTwice => write!(f, "give at most one of \"power_on\" and \"power_on_csv\""),
+            Rule::Airfoil { why } => write!(f, "{why}"),
             Rule::DeployTrigger { got } => write!(
                 f,
                 "a trigger is \"apogee\", \"burnout\", \"motor_delay\" or one of {{\"time_s\": t}}, \

@@ -43,7 +43,13 @@ pub struct Fins {
     /// Body radius at the fins.
     pub body_radius_m: f64,
     pub cant_rad: f64,
+    /// The fin section's lift-curve slope in incompressible 2-D flow, per rad: 2π for a flat
+    /// plate (RocketPy's `airfoil=None`), an airfoil table's slope otherwise.
+    pub lift_slope_2d_per_rad: f64,
 }
+
+/// A flat plate's 2-D lift-curve slope, per rad (thin-airfoil theory).
+pub const FLAT_PLATE_LIFT_SLOPE: f64 = 2.0 * PI;
 
 /// Derived planform numbers of a fin (the names of RocketPy's `_TrapezoidalGeometry` and
 /// `_EllipticalGeometry`).
@@ -215,6 +221,7 @@ impl Fins {
             planform: f.planform.clone(),
             body_radius_m: f.body_radius_m,
             cant_rad: f.cant_deg.to_radians(),
+            lift_slope_2d_per_rad: f.lift_slope_2d_per_rad,
         }
     }
 
@@ -304,8 +311,7 @@ impl Fins {
     pub fn cn_alpha_mach0(&self, ref_diameter_m: f64) -> f64 {
         let g = self.geometry();
         let a_ref = PI * ref_diameter_m * ref_diameter_m / 4.0;
-        let one = 2.0 * PI * g.aspect_ratio * (g.area_m2 / a_ref)
-            / (2.0 + (4.0 + (g.aspect_ratio / g.mid_chord_sweep_rad.cos()).powi(2)).sqrt());
+        let one = super::mach::single_fin_cn_alpha(&g, self.lift_slope_2d_per_rad, 0.0, a_ref);
         g.lift_interference * fin_count_factor(self.count) * one
     }
 
@@ -346,6 +352,7 @@ mod tests {
             },
             body_radius_m: 0.0563 / 2.0,
             cant_rad: 0.0,
+            lift_slope_2d_per_rad: FLAT_PLATE_LIFT_SLOPE,
         }
     }
 
@@ -402,6 +409,7 @@ mod tests {
             },
             body_radius_m: 0.0635,
             cant_rad: 0.0,
+            lift_slope_2d_per_rad: FLAT_PLATE_LIFT_SLOPE,
         };
         let g = f.geometry();
         assert!((g.area_m2 - 0.008).abs() < 1e-15);
@@ -422,6 +430,7 @@ mod tests {
             planform: FinPlanform::Elliptical,
             body_radius_m: 0.03,
             cant_rad: 0.0,
+            lift_slope_2d_per_rad: FLAT_PLATE_LIFT_SLOPE,
         }
     }
 

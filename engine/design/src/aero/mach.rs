@@ -27,6 +27,8 @@
 //!   [`super::FinRoll`]). The damping expression is RocketPy's; Barrowman's uses a 2-D
 //!   sectional slope instead of `(CNα)₁`.
 
+#[cfg(test)]
+use super::fins::FLAT_PLATE_LIFT_SLOPE;
 use super::fins::{fin_count_factor, FinGeometry, Fins};
 use std::f64::consts::PI;
 
@@ -42,15 +44,20 @@ pub fn beta(mach: f64) -> f64 {
     }
 }
 
-/// Slope of one fin at `mach`, on the reference area `ref_area_m2`.
-pub fn single_fin_cn_alpha(g: &FinGeometry, mach: f64, ref_area_m2: f64) -> f64 {
-    let fd = g.aspect_ratio * beta(mach) / g.mid_chord_sweep_rad.cos();
+/// Slope of one fin at `mach`, on the reference area `ref_area_m2`, its section's 2-D slope
+/// `cla0` per rad (2π for a flat plate): RocketPy's
+/// `cla FD (A_f/A_ref) cos γc / (2 + FD √(1 + (2/FD)²))` with `cla = cla0/β` and Diederich's
+/// `FD = 2π AR/(cla cos γc)`, which is `2π AR (A_f/A_ref)/(2 + √(4 + FD²))`.
+pub fn single_fin_cn_alpha(g: &FinGeometry, cla0: f64, mach: f64, ref_area_m2: f64) -> f64 {
+    let fd = 2.0 * PI / cla0 * g.aspect_ratio * beta(mach) / g.mid_chord_sweep_rad.cos();
     2.0 * PI * g.aspect_ratio * (g.area_m2 / ref_area_m2) / (2.0 + (4.0 + fd * fd).sqrt())
 }
 
 /// Slope of a fin set at `mach`, on the reference area `ref_area_m2`.
 pub fn fin_set_cn_alpha(fins: &Fins, g: &FinGeometry, mach: f64, ref_area_m2: f64) -> f64 {
-    fin_count_factor(fins.count) * g.lift_interference * single_fin_cn_alpha(g, mach, ref_area_m2)
+    fin_count_factor(fins.count)
+        * g.lift_interference
+        * single_fin_cn_alpha(g, fins.lift_slope_2d_per_rad, mach, ref_area_m2)
 }
 
 /// Roll forcing coefficient per radian of cant, `C_lf,δ(M)`, on `A_ref` and `d_ref`.
@@ -64,7 +71,7 @@ pub fn roll_forcing_per_cant(
     g.roll_forcing_interference
         * fins.count as f64
         * (g.y_mac_m + fins.body_radius_m)
-        * single_fin_cn_alpha(g, mach, ref_area_m2)
+        * single_fin_cn_alpha(g, fins.lift_slope_2d_per_rad, mach, ref_area_m2)
         / ref_diameter_m
 }
 
@@ -80,7 +87,7 @@ pub fn roll_damping(
     let local_area = PI * fins.body_radius_m * fins.body_radius_m;
     2.0 * g.roll_damping_interference
         * fins.count as f64
-        * single_fin_cn_alpha(g, mach, local_area)
+        * single_fin_cn_alpha(g, fins.lift_slope_2d_per_rad, mach, local_area)
         * fins.cant_rad.cos()
         * g.roll_geometric_constant_m4
         / (ref_area_m2 * ref_diameter_m * ref_diameter_m)
@@ -101,6 +108,7 @@ mod tests {
             },
             body_radius_m: 0.0635,
             cant_rad: 0.0,
+            lift_slope_2d_per_rad: FLAT_PLATE_LIFT_SLOPE,
         }
     }
 
@@ -135,12 +143,13 @@ mod tests {
         let f = calisto_fins();
         let g = f.geometry();
         let a_ref = PI * 0.0635 * 0.0635;
-        let one = single_fin_cn_alpha(&g, 0.6, a_ref);
+        let one = single_fin_cn_alpha(&g, FLAT_PLATE_LIFT_SLOPE, 0.6, a_ref);
         let fd: f64 = 2.5 * 0.8 / (0.4f64.atan().cos());
         let want = 2.0 * PI * 2.5 * (0.008 / a_ref) / (2.0 + (4.0 + fd * fd).sqrt());
         assert!((one - want).abs() < 1e-12);
         assert!((fd - 2.1540659229).abs() < 1e-9);
-        let ratio = single_fin_cn_alpha(&g, 0.6, a_ref) / single_fin_cn_alpha(&g, 0.0, a_ref);
+        let ratio = single_fin_cn_alpha(&g, FLAT_PLATE_LIFT_SLOPE, 0.6, a_ref)
+            / single_fin_cn_alpha(&g, FLAT_PLATE_LIFT_SLOPE, 0.0, a_ref);
         // Mach 0: F_D = 2.6925824036, sqrt(4 + F_D²) = 3.3541019662
         let want_ratio = (2.0 + 3.3541019662) / (2.0 + (4.0 + fd * fd).sqrt());
         assert!((ratio - want_ratio).abs() < 1e-9, "{ratio}");

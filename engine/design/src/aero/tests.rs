@@ -112,6 +112,7 @@ fn fins(
             body_radius_m: body_r,
             rotation_deg: 0.0,
             cross_section: FinCrossSection::Square,
+            lift_slope_2d_per_rad: 2.0 * std::f64::consts::PI,
         }),
     )
 }

@@ -291,6 +291,9 @@ pub struct FinSet {
     pub rotation_deg: f64,
     /// Fin cross-section for drag: square, rounded or airfoil.
     pub cross_section: FinCrossSection,
+    /// The section's 2-D lift-curve slope, per rad (2π, a flat plate, unless an airfoil's
+    /// lift table or slope is given).
+    pub lift_slope_2d_per_rad: f64,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

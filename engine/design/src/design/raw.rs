@@ -24,6 +24,19 @@ pub struct RawDesign {
     pub stages: Vec<RawStage>,
 }
 
+/// A fin's `airfoil`: exactly one of its 2-D lift-curve slope per rad, or a CSV lift table
+/// (`angle,cl` rows, RocketPy's airfoil file) with its angles' unit.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawAirfoil {
+    #[serde(default)]
+    pub lift_slope_per_rad: Option<f64>,
+    #[serde(default)]
+    pub csv: Option<String>,
+    #[serde(default)]
+    pub angles: Option<String>,
+}
+
 /// A parachute's `deploy`: its trigger (a scenario's trigger written in JSON: `"apogee"`,
 /// `"burnout"`, `"motor_delay"`, or `{"time_s": t}`, `{"height_m": h}`, `{"delay_s": d}`)
 /// and the time from the trigger to the open canopy.
@@ -269,6 +282,9 @@ component_struct!(RawFinSet {
     cant_deg: f64,
     #[serde(default)]
     cross_section: RawCrossSection,
+    /// The section's lift: its 2-D slope, or a lift table (RocketPy's `airfoil`).
+    #[serde(default)]
+    airfoil: Option<RawAirfoil>,
     #[serde(default)]
     rotation_deg: f64,
     #[serde(default)]

@@ -600,6 +600,7 @@ mod tests {
             body_radius_m: 0.04,
             rotation_deg,
             cross_section: crate::design::model::FinCrossSection::Square,
+            lift_slope_2d_per_rad: 2.0 * std::f64::consts::PI,
         }
     }
 

@@ -1,6 +1,7 @@
 //! Fin sets of every planform against RocketPy 1.13's own numbers (barrowman_reference.json).
 
 use super::*;
+use crate::aero::fins::FLAT_PLATE_LIFT_SLOPE;
 
 /// A fin set of the reference file's record `f`, of the given planform, with its cant.
 fn reference_fins(f: &serde_json::Value, planform: FinPlanform) -> Fins {
@@ -11,6 +12,9 @@ fn reference_fins(f: &serde_json::Value, planform: FinPlanform) -> Fins {
         planform,
         body_radius_m: num(f, &["rocket_radius_m"]),
         cant_rad: num(f, &["cant_angle_rad"]),
+        lift_slope_2d_per_rad: f["airfoil_2d_lift_slope_per_rad"]
+            .as_f64()
+            .unwrap_or(FLAT_PLATE_LIFT_SLOPE),
     }
 }
 
@@ -100,7 +104,13 @@ fn fins_agree_with_rocketpy(key: &str, set: &Fins, cp_tolerance_m: f64) {
 #[test]
 fn fin_sets_agree_with_rocketpy_on_lift_cp_and_roll_coefficients() {
     let r = reference();
-    for key in ["fins_n3", "fins_calisto_n4"] {
+    // The third: the fins of RocketPy's first-simulation docs, NACA 0012 lift table (its
+    // slope 6.3025 /rad where a flat plate's is 2π) and 0.5° of cant.
+    for key in [
+        "fins_n3",
+        "fins_calisto_n4",
+        "fins_calisto_docs_naca0012_cant",
+    ] {
         let f = &r[key];
         let trapezoid = FinPlanform::Trapezoidal {
             tip_chord_m: num(f, &["tip_chord_m"]),

@@ -96,40 +96,85 @@ impl Builder<'_> {
             let (rows, lines) = columns.read(&text, &file)?;
             return Ok((self.table(&rows, Origin::Csv { file, lines })?, true));
         }
-        let mut rows = Vec::new();
-        let mut lines = Vec::new();
-        let mut header_allowed = true;
-        for (n, line) in text.lines().enumerate() {
-            let t = line.trim();
-            if t.is_empty() || t.starts_with('#') {
-                continue;
-            }
-            let fields: Vec<&str> = t.split(',').map(str::trim).collect();
-            let parsed: Option<Vec<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
-            match parsed {
-                Some(v) if v.len() == 2 => {
-                    rows.push([v[0], v[1]]);
-                    lines.push(n + 1);
-                }
-                Some(v) => {
-                    return Err(DesignError::Csv {
-                        file,
-                        line: n + 1,
-                        message: format!("expected two columns, mach,cd (got {})", v.len()),
-                    });
-                }
-                None if header_allowed => {}
-                None => {
-                    return Err(DesignError::Csv {
-                        file,
-                        line: n + 1,
-                        message: format!("expected two numbers, mach,cd (got \"{t}\")"),
-                    });
-                }
-            }
-            header_allowed = false;
-        }
+        let (rows, lines) = two_columns(&text, &file, "mach,cd")?;
         Ok((self.table(&rows, Origin::Csv { file, lines })?, false))
+    }
+
+    /// A fin's `airfoil`: its 2-D lift-curve slope per rad, given, or read from its lift
+    /// table as RocketPy reads it (`Function.differentiate(1e-3)` of the linearly
+    /// interpolated table: the slope of the segment holding 0.001 in the table's own unit,
+    /// the first or last segment outside it; × 180/π for a table in degrees).
+    pub(super) fn airfoil_lift_slope(
+        &self,
+        at: &Location,
+        a: &crate::design::raw::RawAirfoil,
+    ) -> Result<f64, DesignError> {
+        let why =
+            |field: &str, why: &'static str| self.invalid(at, Some(field), Rule::Airfoil { why });
+        match (a.lift_slope_per_rad, &a.csv) {
+            (Some(slope), None) => {
+                if a.angles.is_some() {
+                    return Err(why("airfoil.angles", "goes with a lift table (\"csv\")"));
+                }
+                self.positive(at, "airfoil.lift_slope_per_rad", slope)
+            }
+            (None, Some(name)) => {
+                let per_unit = match a.angles.as_deref() {
+                    Some("radians") => 1.0,
+                    Some("degrees") => 180.0 / std::f64::consts::PI,
+                    _ => {
+                        return Err(why(
+                            "airfoil.angles",
+                            "a lift table's angles are \"radians\" or \"degrees\"",
+                        ))
+                    }
+                };
+                let path = self.csv_path(name);
+                let file = path.display().to_string();
+                let text = std::fs::read_to_string(&path).map_err(|source| DesignError::Io {
+                    file: file.clone(),
+                    source,
+                })?;
+                let (rows, lines) = two_columns(&text, &file, "angle,cl")?;
+                let bad = |line: usize, message: String| DesignError::Csv {
+                    file: file.clone(),
+                    line,
+                    message,
+                };
+                if rows.len() < 2 {
+                    return Err(bad(0, "a lift table needs at least two rows".to_owned()));
+                }
+                for (i, w) in rows.windows(2).enumerate() {
+                    if w[1][0].partial_cmp(&w[0][0]) != Some(std::cmp::Ordering::Greater) {
+                        return Err(bad(
+                            lines[i + 1],
+                            "the angles must increase strictly".to_owned(),
+                        ));
+                    }
+                }
+                // RocketPy's bisect_left of 0.001, held to the table's segments.
+                let k = rows
+                    .partition_point(|r| r[0] < 1e-3)
+                    .clamp(1, rows.len() - 1)
+                    - 1;
+                let slope = (rows[k + 1][1] - rows[k][1]) / (rows[k + 1][0] - rows[k][0]);
+                let slope = slope * per_unit;
+                if slope > 0.0 && slope.is_finite() {
+                    Ok(slope)
+                } else {
+                    Err(bad(
+                        lines[k + 1],
+                        format!(
+                            "the lift table's slope at zero angle must be positive (got {slope} per rad)"
+                        ),
+                    ))
+                }
+            }
+            _ => Err(why(
+                "airfoil",
+                "give exactly one of \"lift_slope_per_rad\" and \"csv\"",
+            )),
+        }
     }
 
     /// Checks a Cd(Mach) table: rows present, Mach >= 0 and strictly increasing, Cd >= 0.
@@ -274,4 +319,45 @@ impl RasaeroColumns {
         }
         Ok((rows, lines))
     }
+}
+
+/// The rows of a two-column CSV (`what` names the columns for errors, e.g. `mach,cd`): blank
+/// lines and `#` comments skipped, a first line that is not two numbers (a header) skipped.
+fn two_columns(
+    text: &str,
+    file: &str,
+    what: &str,
+) -> Result<(Vec<[f64; 2]>, Vec<usize>), DesignError> {
+    let mut rows = Vec::new();
+    let mut lines = Vec::new();
+    let mut header_allowed = true;
+    for (n, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> = t.split(',').map(str::trim).collect();
+        let parsed: Option<Vec<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
+        let bad = |message: String| DesignError::Csv {
+            file: file.to_owned(),
+            line: n + 1,
+            message,
+        };
+        match parsed {
+            Some(v) if v.len() == 2 => {
+                rows.push([v[0], v[1]]);
+                lines.push(n + 1);
+            }
+            Some(v) => {
+                return Err(bad(format!(
+                    "expected two columns, {what} (got {})",
+                    v.len()
+                )))
+            }
+            None if header_allowed => {}
+            None => return Err(bad(format!("expected two numbers, {what} (got \"{t}\")"))),
+        }
+        header_allowed = false;
+    }
+    Ok((rows, lines))
 }

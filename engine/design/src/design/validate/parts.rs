@@ -282,6 +282,10 @@ impl Builder<'_> {
                         RawCrossSection::Rounded => FinCrossSection::Rounded,
                         RawCrossSection::Airfoil => FinCrossSection::Airfoil,
                     },
+                    lift_slope_2d_per_rad: match &f.airfoil {
+                        Some(a) => self.airfoil_lift_slope(&at, a)?,
+                        None => 2.0 * std::f64::consts::PI,
+                    },
                 };
                 (
                     root,

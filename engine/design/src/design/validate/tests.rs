@@ -637,6 +637,69 @@ fn a_parachute_may_say_how_it_deploys_with_a_scenario_s_trigger() {
 }
 
 #[test]
+fn a_fin_s_airfoil_lift_table_gives_rocketpy_s_slope() {
+    // RocketPy's NACA 0012 table (validation/rocketpy/data), read as RocketPy reads it: the
+    // slope of the linear table at 0.001 rad, 6.302535573086407 /rad in RocketPy 1.13
+    // (barrowman_reference.json), against a flat plate's 2π.
+    let naca = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../validation/rocketpy/data/NACA0012-radians.txt"
+    );
+    let rocketpy = 6.302535573086407;
+    let fins_with = |airfoil: Value| {
+        with(|v| {
+            at(v, FINS)["airfoil"] = airfoil;
+        })
+    };
+    let slope = |d: Design| {
+        let i = d.component_index("fins").unwrap();
+        match &d.components[i].kind {
+            ComponentKind::FinSet(f) => f.lift_slope_2d_per_rad,
+            _ => unreachable!(),
+        }
+    };
+    assert_eq!(slope(with(|_| {}).unwrap()), 2.0 * std::f64::consts::PI);
+    let got = slope(fins_with(json!({"csv": naca, "angles": "radians"})).unwrap());
+    assert!((got / rocketpy - 1.0).abs() < 1e-15, "{got}");
+    // The same table in degrees gives the same slope per radian.
+    let dir = std::env::temp_dir().join(format!("hpr-airfoil-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let degrees: String = std::fs::read_to_string(naca)
+        .unwrap()
+        .lines()
+        .map(|l| {
+            let (a, cl) = l.split_once(',').unwrap();
+            format!("{},{cl}\n", a.trim().parse::<f64>().unwrap().to_degrees())
+        })
+        .collect();
+    let deg_file = dir.join("naca-deg.csv");
+    std::fs::write(&deg_file, format!("alpha_deg,cl\n{degrees}")).unwrap();
+    let got = slope(fins_with(json!({"csv": deg_file, "angles": "degrees"})).unwrap());
+    assert!((got / rocketpy - 1.0).abs() < 1e-12, "{got}");
+    let given = slope(fins_with(json!({"lift_slope_per_rad": 6.1})).unwrap());
+    assert_eq!(given, 6.1);
+    // Refusals: both, neither, no unit, a non-increasing table.
+    for bad in [
+        json!({"lift_slope_per_rad": 6.1, "csv": naca}),
+        json!({}),
+        json!({"csv": naca}),
+        json!({"lift_slope_per_rad": 6.1, "angles": "radians"}),
+    ] {
+        let (rule, _, field) = invalid(fins_with(bad.clone()));
+        assert!(matches!(rule, Rule::Airfoil { .. }), "{bad}: {rule}");
+        assert!(field.unwrap().starts_with("airfoil"), "{bad}");
+    }
+    let (rule, _, field) = invalid(fins_with(json!({"lift_slope_per_rad": -1.0})));
+    assert!(matches!(rule, Rule::NotPositive { .. }));
+    assert_eq!(field.as_deref(), Some("airfoil.lift_slope_per_rad"));
+    let back = dir.join("back.csv");
+    std::fs::write(&back, "0.0,0.0\n0.1,0.6\n0.05,0.7\n").unwrap();
+    let e = fins_with(json!({"csv": back, "angles": "radians"})).unwrap_err();
+    assert!(matches!(&e, DesignError::Csv { line: 3, .. }), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn an_override_mass_must_be_positive() {
     let (rule, loc, field) = invalid(with(|v| {
         at(v, BODY)
