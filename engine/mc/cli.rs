@@ -259,10 +259,9 @@ pub fn parachutes_for(
         .components
         .iter()
         .filter_map(|c| match &c.kind {
-            hpr_design::ComponentKind::Parachute(p) => p.deploy.map(|d| {
-                let cds = p.cd * std::f64::consts::PI * (0.5 * p.canopy_diameter_m).powi(2);
-                Parachute::new(&c.id, cds, trigger_of(d.trigger), d.lag_s)
-            }),
+            hpr_design::ComponentKind::Parachute(p) => p
+                .deploy
+                .map(|d| Parachute::new(&c.id, p.cds_m2(), Trigger::from(d.trigger), d.lag_s)),
             _ => None,
         })
         .collect();
@@ -277,9 +276,7 @@ pub fn parachutes_for(
         .components
         .iter()
         .filter_map(|c| match &c.kind {
-            hpr_design::ComponentKind::Parachute(p) => {
-                Some(p.cd * std::f64::consts::PI * (0.5 * p.canopy_diameter_m).powi(2))
-            }
+            hpr_design::ComponentKind::Parachute(p) => Some(p.cds_m2()),
             _ => None,
         })
         .collect();
@@ -351,21 +348,6 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
         emit(&format!("{head}{}", report::flight_text(&sim, &flight)))?;
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// The flight's trigger of a design's deployment trigger.
-fn trigger_of(t: hpr_design::DeployTrigger) -> Trigger {
-    use hpr_design::DeployTrigger as D;
-    match t {
-        D::Apogee => Trigger::Apogee,
-        D::Burnout => Trigger::Burnout,
-        D::MotorDelay => Trigger::BurnoutPlusDelay { delay_s: None },
-        D::Time { time_s } => Trigger::Time { time_s },
-        D::Height { height_m } => Trigger::HeightDescending { height_m },
-        D::AfterBurnout { delay_s } => Trigger::BurnoutPlusDelay {
-            delay_s: Some(delay_s),
-        },
-    }
 }
 
 /// The flight `fly`'s options describe for `design`.

@@ -53,6 +53,23 @@ impl Trigger {
     }
 }
 
+/// A design's deployment trigger (a parachute component's `deploy`) as the flight's.
+impl From<hpr_design::DeployTrigger> for Trigger {
+    fn from(t: hpr_design::DeployTrigger) -> Trigger {
+        use hpr_design::DeployTrigger as D;
+        match t {
+            D::Apogee => Trigger::Apogee,
+            D::Burnout => Trigger::Burnout,
+            D::MotorDelay => Trigger::BurnoutPlusDelay { delay_s: None },
+            D::Time { time_s } => Trigger::Time { time_s },
+            D::Height { height_m } => Trigger::HeightDescending { height_m },
+            D::AfterBurnout { delay_s } => Trigger::BurnoutPlusDelay {
+                delay_s: Some(delay_s),
+            },
+        }
+    }
+}
+
 impl fmt::Display for Trigger {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

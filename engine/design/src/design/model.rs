@@ -362,6 +362,13 @@ pub struct Parachute {
     pub deploy: Option<Deploy>,
 }
 
+impl Parachute {
+    /// The canopy's drag area, m²: `cd` times the area of its diameter.
+    pub fn cds_m2(&self) -> f64 {
+        self.cd * std::f64::consts::PI * (0.5 * self.canopy_diameter_m).powi(2)
+    }
+}
+
 /// A parachute's deployment as the design says it: its trigger and the time from the
 /// trigger to the open canopy.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -25,6 +25,33 @@ use rules::{
 };
 use std::path::{Path, PathBuf};
 
+/// What a parachute component of the design gives a scenario's parachute: its CdS (cd ×
+/// the canopy's area) and, if it says, its trigger and lag.
+struct ParachuteFromDesign {
+    cds_m2: f64,
+    deploy: Option<(Trigger, f64)>,
+}
+
+/// The parachute component `id` of `design`.
+fn design_parachute(
+    bad: &dyn Fn(&str, String) -> ScenarioError,
+    key: &str,
+    design: Option<&hpr_design::Design>,
+    id: &str,
+) -> Result<ParachuteFromDesign, ScenarioError> {
+    let design = design.expect("read before");
+    let Some(i) = design.component_index(id) else {
+        return Err(bad(key, format!("the design has no component \"{id}\"")));
+    };
+    let hpr_design::ComponentKind::Parachute(p) = &design.components[i].kind else {
+        return Err(bad(key, format!("component \"{id}\" is not a parachute")));
+    };
+    Ok(ParachuteFromDesign {
+        cds_m2: p.cds_m2(),
+        deploy: p.deploy.map(|d| (Trigger::from(d.trigger), d.lag_s)),
+    })
+}
+
 /// A scenario file that can't be read or breaks a rule.
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
@@ -474,23 +501,73 @@ impl Scenario {
         };
 
         let mut parachutes = Vec::new();
+        // The design, read only when a parachute takes its canopy from a component of it.
+        let mut design: Option<hpr_design::Design> = None;
         for (i, p) in raw.parachutes.iter().enumerate() {
             let key = |f: &str| format!("parachutes[{i}].{f}");
-            check_name(&bad, &key("name"), &p.name)?;
-            if parachutes.iter().any(|q: &ParachuteSpec| q.name == p.name) {
+            let from = match &p.component {
+                Some(id) => {
+                    if design.is_none() {
+                        design = Some(
+                            hpr_design::Design::load(&design_file)
+                                .map_err(|e| bad("design.file", format!("{e}")))?,
+                        );
+                    }
+                    Some(design_parachute(
+                        &bad,
+                        &key("component"),
+                        design.as_ref(),
+                        id,
+                    )?)
+                }
+                None => None,
+            };
+            let name = match (&p.name, &p.component) {
+                (Some(n), _) => n.clone(),
+                (None, Some(id)) => id.clone(),
+                (None, None) => {
+                    return Err(bad(&key("name"), "is missing (or give a component)".into()))
+                }
+            };
+            check_name(&bad, &key("name"), &name)?;
+            if parachutes.iter().any(|q: &ParachuteSpec| q.name == name) {
                 return Err(bad(
                     &key("name"),
-                    format!(
-                        "two parachutes are named \"{}\"; give each its own name",
-                        p.name
-                    ),
+                    format!("two parachutes are named \"{name}\"; give each its own name"),
                 ));
             }
+            let cds_m2 = match (p.cds_m2, &from) {
+                (Some(c), _) => c,
+                (None, Some(d)) => d.cds_m2,
+                (None, None) => {
+                    return Err(bad(
+                        &key("cds_m2"),
+                        "is missing (or give a component)".into(),
+                    ))
+                }
+            };
+            let (trigger, lag_s) = match (&p.trigger, &from) {
+                (Some(t), _) => (t.0, p.lag_s.unwrap_or(0.0)),
+                (
+                    None,
+                    Some(ParachuteFromDesign {
+                        deploy: Some((t, lag)),
+                        ..
+                    }),
+                ) => (*t, p.lag_s.unwrap_or(*lag)),
+                (None, Some(_)) => {
+                    return Err(bad(
+                        &key("trigger"),
+                        "is missing, and the component says no \"deploy\"".into(),
+                    ))
+                }
+                (None, None) => return Err(bad(&key("trigger"), "is missing".into())),
+            };
             parachutes.push(ParachuteSpec {
-                name: p.name.clone(),
-                cds_m2: check_param(&bad, &key("cds_m2"), Param::ParachuteCdsM2(i), p.cds_m2)?,
-                lag_s: check_param(&bad, &key("lag_s"), Param::ParachuteLagS(i), p.lag_s)?,
-                trigger: p.trigger.0,
+                name,
+                cds_m2: check_param(&bad, &key("cds_m2"), Param::ParachuteCdsM2(i), cds_m2)?,
+                lag_s: check_param(&bad, &key("lag_s"), Param::ParachuteLagS(i), lag_s)?,
+                trigger,
                 canopy: canopy_shape(&bad, &key, p)?,
                 sampling_rate_hz: match p.sampling_rate_hz {
                     Some(r) if !(r.is_finite() && r > 0.0) => {

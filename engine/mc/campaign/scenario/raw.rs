@@ -84,11 +84,14 @@ pub(super) struct RawRail {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawParachute {
-    pub(super) name: String,
-    pub(super) cds_m2: f64,
-    #[serde(default)]
-    pub(super) lag_s: f64,
-    pub(super) trigger: RawTrigger,
+    /// Default: the design component's id, with `component`.
+    pub(super) name: Option<String>,
+    /// A parachute component of the design whose canopy (cd × area) and deployment
+    /// (`deploy`) give what this table does not.
+    pub(super) component: Option<String>,
+    pub(super) cds_m2: Option<f64>,
+    pub(super) lag_s: Option<f64>,
+    pub(super) trigger: Option<RawTrigger>,
     pub(super) radius_m: Option<f64>,
     pub(super) height_m: Option<f64>,
     pub(super) porosity: Option<f64>,

@@ -567,3 +567,80 @@ porosity = 0.1
         assert!(r.contains(rule), "{line}: {r}");
     }
 }
+
+/// A scenario flying OpenRocket's example design with the parachutes `chutes` (TOML).
+fn with_ork_chutes(chutes: &str) -> Result<Scenario, ScenarioError> {
+    let text = format!(
+        "seed = 1\nvariants_per_point = 2\n[design]\nfile = \"../validation/designs/example-minimal.ork\"\n\
+         [motor]\nname = \"Cesaroni_I175\"\n{chutes}"
+    );
+    Scenario::parse(&text, &path())
+}
+
+#[test]
+fn a_parachute_may_take_its_canopy_and_deployment_from_a_component_of_the_design() {
+    // The example's parachute: cd 1.5 on a 0.6 m canopy, deployed (as OpenRocket says)
+    // descending through 300 m, at once.
+    let cds = 1.5 * std::f64::consts::PI * 0.3 * 0.3;
+    let s = with_ork_chutes("[[parachutes]]\ncomponent = \"parachute\"\n").unwrap();
+    let p = &s.parachutes[0];
+    assert_eq!(p.name, "parachute");
+    assert!((p.cds_m2 - cds).abs() < 1e-15, "{}", p.cds_m2);
+    assert_eq!(p.trigger, Trigger::HeightDescending { height_m: 300.0 });
+    assert_eq!(p.lag_s, 0.0);
+    // What the table gives wins: its name, CdS, lag, trigger.
+    let s = with_ork_chutes(
+        "[[parachutes]]\ncomponent = \"parachute\"\nname = \"main\"\ncds_m2 = 0.5\nlag_s = 1.5\n",
+    )
+    .unwrap();
+    let p = &s.parachutes[0];
+    assert_eq!((p.name.as_str(), p.cds_m2, p.lag_s), ("main", 0.5, 1.5));
+    assert_eq!(p.trigger, Trigger::HeightDescending { height_m: 300.0 });
+    let s = with_ork_chutes("[[parachutes]]\ncomponent = \"parachute\"\ntrigger = \"apogee\"\n")
+        .unwrap();
+    assert_eq!(
+        (s.parachutes[0].trigger, s.parachutes[0].lag_s),
+        (Trigger::Apogee, 0.0)
+    );
+    // Its CdS can be dispersed under its name, as any parachute's.
+    let s = with_ork_chutes(
+        "[[parachutes]]\ncomponent = \"parachute\"\n[dispersions.parachutes.parachute]\ncds_m2 = { dist = \"normal\", sigma = 0.01 }\n",
+    );
+    assert!(s.is_ok(), "{s:?}");
+    // Refused, naming the key: no such component, not a parachute, no name or CdS without a
+    // component, no trigger where the component says no deployment.
+    let cases = [
+        (
+            "[[parachutes]]\ncomponent = \"nothing\"\n",
+            "parachutes[0].component",
+            "no component \"nothing\"",
+        ),
+        (
+            "[[parachutes]]\ncomponent = \"nose_cone\"\n",
+            "parachutes[0].component",
+            "is not a parachute",
+        ),
+        (
+            "[[parachutes]]\ncds_m2 = 0.5\ntrigger = \"apogee\"\n",
+            "parachutes[0].name",
+            "is missing",
+        ),
+        (
+            "[[parachutes]]\nname = \"a\"\ntrigger = \"apogee\"\n",
+            "parachutes[0].cds_m2",
+            "is missing",
+        ),
+    ];
+    for (chutes, key, says) in cases {
+        let e = with_ork_chutes(chutes).unwrap_err();
+        assert_eq!(e.key(), key, "{e}");
+        assert!(e.to_string().contains(says), "{e}");
+    }
+    let text = concat!(
+        "seed = 1\nvariants_per_point = 2\n[design]\nfile = \"../validation/designs/crosscheck-54mm-canted-boattail.json\"\n",
+        "[motor]\nname = \"Cesaroni_I175\"\n[[parachutes]]\ncomponent = \"chute\"\n"
+    );
+    let e = Scenario::parse(text, &path()).unwrap_err();
+    assert_eq!(e.key(), "parachutes[0].trigger", "{e}");
+    assert!(e.to_string().contains("says no \"deploy\""), "{e}");
+}
