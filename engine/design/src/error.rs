@@ -155,6 +155,9 @@ pub enum Rule {
     Airfoil {
         why: &'static str,
     },
+    AtMostOneOf {
+        fields: &'static str,
+    },
     DeployTrigger {
         got: String,
     },
@@ -269,6 +272,7 @@ impl fmt::Display for Rule {
             ),
             Rule::PowerOnTwice => write!(f, "give at most one of \"power_on\" and \"power_on_csv\""),
             Rule::Airfoil { why } => write!(f, "{why}"),
+            Rule::AtMostOneOf { fields } => write!(f, "give at most one of {fields}"),
             Rule::DeployTrigger { got } => write!(
                 f,
                 "a trigger is \"apogee\", \"burnout\", \"motor_delay\" or one of {{\"time_s\": t}}, \

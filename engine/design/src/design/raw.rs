@@ -275,6 +275,10 @@ component_struct!(RawFinSet {
     span_m: Option<f64>,
     #[serde(default)]
     sweep_m: Option<f64>,
+    /// The leading edge's sweep angle, degrees (RocketPy's `sweep_angle`), in place of
+    /// `sweep_m`.
+    #[serde(default)]
+    sweep_deg: Option<f64>,
     #[serde(default)]
     points_m: Option<Vec<[f64; 2]>>,
     thickness_m: f64,

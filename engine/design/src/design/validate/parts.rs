@@ -180,6 +180,7 @@ impl Builder<'_> {
                                 ("tip_chord_m", f.tip_chord_m.is_some()),
                                 ("span_m", f.span_m.is_some()),
                                 ("sweep_m", f.sweep_m.is_some()),
+                                ("sweep_deg", f.sweep_deg.is_some()),
                             ],
                         )?;
                         let points = f.points_m.clone().ok_or_else(|| {
@@ -213,6 +214,7 @@ impl Builder<'_> {
                                 &[
                                     ("tip_chord_m", f.tip_chord_m.is_some()),
                                     ("sweep_m", f.sweep_m.is_some()),
+                                    ("sweep_deg", f.sweep_deg.is_some()),
                                 ],
                             )?;
                             FinPlanform::Elliptical
@@ -229,7 +231,23 @@ impl Builder<'_> {
                                     ))
                                 }
                             };
-                            let sweep = self.finite(&at, "sweep_m", f.sweep_m.unwrap_or(0.0))?;
+                            let sweep = match (f.sweep_m, f.sweep_deg) {
+                                (Some(_), Some(_)) => {
+                                    return Err(self.invalid(
+                                        &at,
+                                        Some("sweep_deg"),
+                                        Rule::AtMostOneOf {
+                                            fields: "\"sweep_m\" and \"sweep_deg\"",
+                                        },
+                                    ))
+                                }
+                                // RocketPy: the tip's leading edge s tan Γ behind the root's.
+                                (None, Some(deg)) => {
+                                    let deg = self.within(&at, "sweep_deg", deg, -89.0, 89.0)?;
+                                    f.span_m.unwrap_or(0.0) * deg.to_radians().tan()
+                                }
+                                (m, None) => self.finite(&at, "sweep_m", m.unwrap_or(0.0))?,
+                            };
                             FinPlanform::Trapezoidal {
                                 tip_chord_m: tip,
                                 sweep_m: sweep,

@@ -700,6 +700,39 @@ fn a_fin_s_airfoil_lift_table_gives_rocketpy_s_slope() {
 }
 
 #[test]
+fn a_trapezoidal_fin_s_sweep_may_be_its_leading_edge_angle_as_rocketpy_gives_it() {
+    // The example's fins: span 0.07 m, the tip's leading edge 0.06 m behind the root's, so
+    // Γ = atan(0.06/0.07); RocketPy's x_t = s tan Γ gives the 0.06 m back.
+    let deg = (0.06f64 / 0.07).atan().to_degrees();
+    let d = with(|v| {
+        let fins = at(v, FINS).as_object_mut().unwrap();
+        fins.remove("sweep_m");
+        fins.insert("sweep_deg".into(), json!(deg));
+    })
+    .unwrap();
+    let i = d.component_index("fins").unwrap();
+    let ComponentKind::FinSet(f) = &d.components[i].kind else {
+        unreachable!()
+    };
+    let FinPlanform::Trapezoidal { sweep_m, .. } = f.planform else {
+        unreachable!()
+    };
+    assert!((sweep_m - 0.06).abs() < 1e-15, "{sweep_m}");
+    let (rule, _, field) = invalid(with(|v| {
+        at(v, FINS)["sweep_deg"] = json!(deg);
+    }));
+    assert!(matches!(rule, Rule::AtMostOneOf { .. }), "{rule}");
+    assert_eq!(field.as_deref(), Some("sweep_deg"));
+    let (rule, _, field) = invalid(with(|v| {
+        let fins = at(v, FINS).as_object_mut().unwrap();
+        fins.remove("sweep_m");
+        fins.insert("sweep_deg".into(), json!(90.0));
+    }));
+    assert!(matches!(rule, Rule::OutOfRange { .. }), "{rule}");
+    assert_eq!(field.as_deref(), Some("sweep_deg"));
+}
+
+#[test]
 fn an_override_mass_must_be_positive() {
     let (rule, loc, field) = invalid(with(|v| {
         at(v, BODY)
