@@ -52,6 +52,15 @@ fn an_imported_design_inspects_and_flies_as_the_ork_it_came_from() {
     );
     let json = json.to_str().unwrap();
     assert_eq!(stdout_of(&["inspect", ORK]), stdout_of(&["inspect", json]));
+    // `inspect` says how the parachute deploys: CdS 1.5 × π 0.3² m², at 300 m, at once.
+    assert!(stdout_of(&["inspect", ORK]).contains(
+        "  parachute                  CdS  0.4241 m²  deploys at 300 m on the way down, open 0 s after"
+    ));
+    let inspected: serde_json::Value =
+        serde_json::from_str(&stdout_of(&["inspect", ORK, "--json"])).unwrap();
+    let chute = &inspected["parachutes"][0];
+    assert!((chute["cds_m2"].as_f64().unwrap() - 1.5 * std::f64::consts::PI * 0.09).abs() < 1e-15);
+    assert_eq!(chute["deploy"]["trigger"], "300 m on the way down");
     // A flight of the .ork says the same on standard error; of the JSON, nothing.
     let fly_ork = hpr_mc(&["fly", ORK]);
     assert!(String::from_utf8_lossy(&fly_ork.stderr).contains("note: Parachute: deploys at 300 m"));

@@ -24,6 +24,8 @@ pub struct Inspection {
     /// reference area) and center of pressure (m aft of the nose tip), as OpenRocket's
     /// component analysis lists them.
     pub surfaces: Vec<Value>,
+    /// Each parachute component: its CdS and, if it says, how it deploys (what `fly` flies).
+    pub parachutes: Vec<Value>,
 }
 
 fn mass_json(sim: &Simulation, t: f64) -> Value {
@@ -87,6 +89,21 @@ impl Inspection {
                         .collect()
                 })
                 .unwrap_or_default(),
+            parachutes: d
+                .components
+                .iter()
+                .filter_map(|c| match &c.kind {
+                    hpr_design::ComponentKind::Parachute(p) => Some(json!({
+                        "id": c.id,
+                        "cds_m2": p.cds_m2(),
+                        "deploy": p.deploy.map_or(Value::Null, |d| json!({
+                            "trigger": hpr_sim::Trigger::from(d.trigger).to_string(),
+                            "lag_s": d.lag_s,
+                        })),
+                    })),
+                    _ => None,
+                })
+                .collect(),
         }
     }
 
@@ -94,7 +111,7 @@ impl Inspection {
         json!({
             "design": self.design, "motor": self.motor, "liftoff": self.liftoff, "after_burnout": self.burnout,
             "center_of_pressure_m": self.cp_m, "reference_diameter_m": self.ref_diameter_m, "components": self.components,
-            "lifting_surfaces": self.surfaces,
+            "lifting_surfaces": self.surfaces, "parachutes": self.parachutes,
         })
     }
 
@@ -173,6 +190,27 @@ impl Inspection {
                 f("cg_m"),
                 f("subtree_mass_kg")
             );
+        }
+        if !self.parachutes.is_empty() {
+            let _ = writeln!(s, "\nparachutes");
+            for p in &self.parachutes {
+                let when = match &p["deploy"] {
+                    Value::Null => "says no deployment: fly opens the smaller at apogee, the \
+                                    larger at --main-height-m"
+                        .to_owned(),
+                    d => format!(
+                        "deploys at {}, open {} s after",
+                        d["trigger"].as_str().unwrap_or(""),
+                        d["lag_s"].as_f64().unwrap_or(f64::NAN)
+                    ),
+                };
+                let _ = writeln!(
+                    s,
+                    "  {:<26} CdS {:>7.4} m²  {when}",
+                    p["id"].as_str().unwrap_or(""),
+                    p["cds_m2"].as_f64().unwrap_or(f64::NAN),
+                );
+            }
         }
         s
     }
