@@ -377,7 +377,10 @@ pub struct Deploy {
     pub lag_s: f64,
 }
 
-/// A design's deployment trigger (the scenario's triggers; `hpr_sim::Trigger` flies them).
+/// A trigger as a design's parachute or a scenario writes it (`hpr_sim::Trigger` flies it):
+/// a word (`apogee`, `burnout`, `motor_delay`) or one named number (`time_s`, `height_m`,
+/// `delay_s`). [`DeployTrigger::named`] and [`DeployTrigger::with_number`] are the one reader
+/// of that grammar; each file format only finds the word or the number in its own values.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum DeployTrigger {
     Apogee,
@@ -412,6 +415,39 @@ pub enum ComponentKind {
     MassComponent(PackedCylinder),
     Parachute(Parachute),
     ShockCord(PackedCylinder),
+}
+
+impl DeployTrigger {
+    /// What a trigger may be written as, for errors.
+    pub const FORMS: &'static str = "a trigger is \"apogee\", \"burnout\", \"motor_delay\" (burnout plus the motor's delay), or one number: time_s (after launch), height_m (on the way down) or delay_s (after burnout)";
+
+    /// The trigger the word `word` names.
+    pub fn named(word: &str) -> Result<DeployTrigger, String> {
+        match word {
+            "apogee" => Ok(DeployTrigger::Apogee),
+            "burnout" => Ok(DeployTrigger::Burnout),
+            "motor_delay" => Ok(DeployTrigger::MotorDelay),
+            other => Err(format!("unknown trigger \"{other}\": {}", Self::FORMS)),
+        }
+    }
+
+    /// The trigger of number `x` under the name `key` (finite, not negative).
+    pub fn with_number(key: &str, x: f64) -> Result<DeployTrigger, String> {
+        if !(x.is_finite() && x >= 0.0) {
+            return Err(format!(
+                "trigger {key}: must be finite and not negative (got {x})"
+            ));
+        }
+        match key {
+            "time_s" => Ok(DeployTrigger::Time { time_s: x }),
+            "height_m" => Ok(DeployTrigger::Height { height_m: x }),
+            "delay_s" => Ok(DeployTrigger::AfterBurnout { delay_s: x }),
+            other => Err(format!(
+                "unknown trigger field \"{other}\": {}",
+                Self::FORMS
+            )),
+        }
+    }
 }
 
 impl ComponentKind {

@@ -1,6 +1,7 @@
 //! The scenario file as TOML says it: serde structs that refuse unknown keys. Only
 //! [`super`] reads them, turning them into the validated [`super::Scenario`].
 
+use hpr_design::DeployTrigger;
 use hpr_sim::Trigger;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -151,14 +152,10 @@ pub(super) struct RawTrigger(pub(super) Trigger);
 impl TryFrom<toml::Value> for RawTrigger {
     type Error = String;
     fn try_from(v: toml::Value) -> Result<Self, String> {
-        const FORMS: &str = "a trigger is \"apogee\", \"burnout\", \"motor_delay\" (burnout plus the motor's delay), or a table with one number: { time_s = .. } (after launch), { height_m = .. } (on the way down) or { delay_s = .. } (after burnout)";
-        match v {
-            toml::Value::String(s) => match s.as_str() {
-                "apogee" => Ok(RawTrigger(Trigger::Apogee)),
-                "burnout" => Ok(RawTrigger(Trigger::Burnout)),
-                "motor_delay" => Ok(RawTrigger(Trigger::BurnoutPlusDelay { delay_s: None })),
-                other => Err(format!("unknown trigger \"{other}\": {FORMS}")),
-            },
+        // The grammar is the design format's (`hpr_design::DeployTrigger`); TOML only holds
+        // the word or the table.
+        let trigger = match v {
+            toml::Value::String(s) => DeployTrigger::named(&s)?,
             toml::Value::Table(t) if t.len() == 1 => {
                 let (k, v) = t.into_iter().next().expect("one entry");
                 let x = match v {
@@ -166,20 +163,11 @@ impl TryFrom<toml::Value> for RawTrigger {
                     toml::Value::Integer(i) => i as f64,
                     other => return Err(format!("trigger {k}: must be a number (got {other})")),
                 };
-                if !(x.is_finite() && x >= 0.0) {
-                    return Err(format!(
-                        "trigger {k}: must be finite and not negative (got {x})"
-                    ));
-                }
-                match k.as_str() {
-                    "time_s" => Ok(RawTrigger(Trigger::Time { time_s: x })),
-                    "height_m" => Ok(RawTrigger(Trigger::HeightDescending { height_m: x })),
-                    "delay_s" => Ok(RawTrigger(Trigger::BurnoutPlusDelay { delay_s: Some(x) })),
-                    other => Err(format!("unknown trigger field \"{other}\": {FORMS}")),
-                }
+                DeployTrigger::with_number(&k, x)?
             }
-            _ => Err(FORMS.to_string()),
-        }
+            _ => return Err(DeployTrigger::FORMS.to_string()),
+        };
+        Ok(RawTrigger(Trigger::from(trigger)))
     }
 }
 

@@ -639,27 +639,15 @@ impl Builder<'_> {
             )
         };
         let trigger = match &d.trigger {
-            serde_json::Value::String(s) => match s.as_str() {
-                "apogee" => DeployTrigger::Apogee,
-                "burnout" => DeployTrigger::Burnout,
-                "motor_delay" => DeployTrigger::MotorDelay,
-                _ => return Err(bad()),
-            },
+            serde_json::Value::String(s) => DeployTrigger::named(s),
             serde_json::Value::Object(o) if o.len() == 1 => {
                 let (key, value) = o.iter().next().ok_or_else(bad)?;
-                let x = value
-                    .as_f64()
-                    .filter(|x| x.is_finite() && *x >= 0.0)
-                    .ok_or_else(bad)?;
-                match key.as_str() {
-                    "time_s" => DeployTrigger::Time { time_s: x },
-                    "height_m" => DeployTrigger::Height { height_m: x },
-                    "delay_s" => DeployTrigger::AfterBurnout { delay_s: x },
-                    _ => return Err(bad()),
-                }
+                let x = value.as_f64().ok_or_else(bad)?;
+                DeployTrigger::with_number(key, x)
             }
             _ => return Err(bad()),
-        };
+        }
+        .map_err(|_| bad())?;
         let lag_s = match d.lag_s {
             Some(l) => self.non_negative(at, "deploy.lag_s", l)?,
             None => 0.0,
