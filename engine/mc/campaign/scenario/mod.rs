@@ -21,36 +21,10 @@ use hpr_sim::wind::{Wind, WindError, WindRow};
 use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use raw::RawScenario;
 use rules::{
-    canopy_shape, check_name, check_param, finite, inputs, integrator, noise, one_line, sounding,
+    canopy_shape, check_name, check_param, design_parachute, finite, inputs, integrator, noise,
+    one_line, sounding, ParachuteFromDesign,
 };
 use std::path::{Path, PathBuf};
-
-/// What a parachute component of the design gives a scenario's parachute: its CdS (cd ×
-/// the canopy's area) and, if it says, its trigger and lag.
-struct ParachuteFromDesign {
-    cds_m2: f64,
-    deploy: Option<(Trigger, f64)>,
-}
-
-/// The parachute component `id` of `design`.
-fn design_parachute(
-    bad: &dyn Fn(&str, String) -> ScenarioError,
-    key: &str,
-    design: Option<&hpr_design::Design>,
-    id: &str,
-) -> Result<ParachuteFromDesign, ScenarioError> {
-    let design = design.expect("read before");
-    let Some(i) = design.component_index(id) else {
-        return Err(bad(key, format!("the design has no component \"{id}\"")));
-    };
-    let hpr_design::ComponentKind::Parachute(p) = &design.components[i].kind else {
-        return Err(bad(key, format!("component \"{id}\" is not a parachute")));
-    };
-    Ok(ParachuteFromDesign {
-        cds_m2: p.cds_m2(),
-        deploy: p.deploy.map(|d| (Trigger::from(d.trigger), d.lag_s)),
-    })
-}
 
 /// A scenario file that can't be read or breaks a rule.
 #[derive(Debug, thiserror::Error)]
@@ -507,18 +481,14 @@ impl Scenario {
             let key = |f: &str| format!("parachutes[{i}].{f}");
             let from = match &p.component {
                 Some(id) => {
-                    if design.is_none() {
-                        design = Some(
-                            hpr_design::Design::load(&design_file)
-                                .map_err(|e| bad("design.file", format!("{e}")))?,
-                        );
-                    }
-                    Some(design_parachute(
-                        &bad,
-                        &key("component"),
-                        design.as_ref(),
-                        id,
-                    )?)
+                    let d = match design.take() {
+                        Some(d) => d,
+                        None => hpr_design::Design::load(&design_file)
+                            .map_err(|e| bad("design.file", format!("{e}")))?,
+                    };
+                    let from = design_parachute(&bad, &key("component"), &d, id)?;
+                    design = Some(d);
+                    Some(from)
                 }
                 None => None,
             };

@@ -13,6 +13,32 @@ use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+/// What a parachute component of the design gives a scenario's parachute: its CdS (cd ×
+/// the canopy's area) and, if it says, its trigger and lag.
+pub(super) struct ParachuteFromDesign {
+    pub(super) cds_m2: f64,
+    pub(super) deploy: Option<(Trigger, f64)>,
+}
+
+/// The parachute component `id` of `design`.
+pub(super) fn design_parachute(
+    bad: &Bad,
+    key: &str,
+    design: &hpr_design::Design,
+    id: &str,
+) -> Result<ParachuteFromDesign, ScenarioError> {
+    let Some(i) = design.component_index(id) else {
+        return Err(bad(key, format!("the design has no component \"{id}\"")));
+    };
+    let hpr_design::ComponentKind::Parachute(p) = &design.components[i].kind else {
+        return Err(bad(key, format!("component \"{id}\" is not a parachute")));
+    };
+    Ok(ParachuteFromDesign {
+        cds_m2: p.cds_m2(),
+        deploy: p.deploy.map(|d| (Trigger::from(d.trigger), d.lag_s)),
+    })
+}
+
 /// A TOML error on one line (the crate's messages show the offending line in a box).
 pub(super) fn one_line(s: &str) -> String {
     s.lines()
