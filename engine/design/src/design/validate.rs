@@ -7,8 +7,10 @@
 //! naming the file, the component, the field and the rule. The body components are in
 //! `bodies`, the parts inside and outside them in `parts`, the drag curves in `drag`.
 
+mod airfoil;
 mod bodies;
 mod drag;
+mod files;
 mod parts;
 
 #[cfg(test)]

@@ -1,16 +1,14 @@
 //! The drag model: inline Cd(Mach) tables, CSV files beside the design, or an estimate.
 //!
-//! The CSV reader is hand-written: the files are two numeric columns (`mach,cd`, RocketPy's
-//! layout), with an optional header line and `#` comments, or the aerodynamic export of
-//! RASAero II (a header naming `Mach`, `Alpha`, `CD Power-Off` and `CD Power-On` among its
-//! columns; the rows at zero angle of attack are read). A split on the comma reads both
-//! exactly; a CSV crate would add a dependency for no gain in what is accepted.
+//! A CSV is two numeric columns (`mach,cd`, RocketPy's layout; read by [`super::files`]), or
+//! the aerodynamic export of RASAero II (a header naming `Mach`, `Alpha`, `CD Power-Off` and
+//! `CD Power-On` among its columns; the rows at zero angle of attack are read, here).
 
+use super::files::{content_lines, two_columns};
 use super::{Builder, DEFAULT_ROUGHNESS_M};
 use crate::design::model::DragSpec;
 use crate::design::raw::RawDrag;
 use crate::error::{DesignError, Location, Rule};
-use std::path::{Path, PathBuf};
 
 /// Where a table came from, for its errors.
 enum Origin<'a> {
@@ -77,104 +75,16 @@ impl Builder<'_> {
         })
     }
 
-    /// The CSV's path: relative to the design file's directory.
-    fn csv_path(&self, name: &str) -> PathBuf {
-        let base = self.source.and_then(Path::parent).unwrap_or(Path::new(""));
-        base.join(name)
-    }
-
     /// A Cd(Mach) table from CSV file `name`, and whether the file is a RASAero export (then
     /// `curve` chooses its column).
     fn csv(&self, name: &str, curve: Curve) -> Result<(Vec<(f64, f64)>, bool), DesignError> {
-        let path = self.csv_path(name);
-        let file = path.display().to_string();
-        let text = std::fs::read_to_string(&path).map_err(|source| DesignError::Io {
-            file: file.clone(),
-            source,
-        })?;
+        let (file, text) = self.read_beside(name)?;
         if let Some(columns) = RasaeroColumns::of(&text, curve) {
             let (rows, lines) = columns.read(&text, &file)?;
             return Ok((self.table(&rows, Origin::Csv { file, lines })?, true));
         }
         let (rows, lines) = two_columns(&text, &file, "mach,cd")?;
         Ok((self.table(&rows, Origin::Csv { file, lines })?, false))
-    }
-
-    /// A fin's `airfoil`: its 2-D lift-curve slope per rad, given, or read from its lift
-    /// table as RocketPy reads it (`Function.differentiate(1e-3)` of the linearly
-    /// interpolated table: the slope of the segment holding 0.001 in the table's own unit,
-    /// the first or last segment outside it; × 180/π for a table in degrees).
-    pub(super) fn airfoil_lift_slope(
-        &self,
-        at: &Location,
-        a: &crate::design::raw::RawAirfoil,
-    ) -> Result<f64, DesignError> {
-        let why =
-            |field: &str, why: &'static str| self.invalid(at, Some(field), Rule::Airfoil { why });
-        match (a.lift_slope_per_rad, &a.csv) {
-            (Some(slope), None) => {
-                if a.angles.is_some() {
-                    return Err(why("airfoil.angles", "goes with a lift table (\"csv\")"));
-                }
-                self.positive(at, "airfoil.lift_slope_per_rad", slope)
-            }
-            (None, Some(name)) => {
-                let per_unit = match a.angles.as_deref() {
-                    Some("radians") => 1.0,
-                    Some("degrees") => 180.0 / std::f64::consts::PI,
-                    _ => {
-                        return Err(why(
-                            "airfoil.angles",
-                            "a lift table's angles are \"radians\" or \"degrees\"",
-                        ))
-                    }
-                };
-                let path = self.csv_path(name);
-                let file = path.display().to_string();
-                let text = std::fs::read_to_string(&path).map_err(|source| DesignError::Io {
-                    file: file.clone(),
-                    source,
-                })?;
-                let (rows, lines) = two_columns(&text, &file, "angle,cl")?;
-                let bad = |line: usize, message: String| DesignError::Csv {
-                    file: file.clone(),
-                    line,
-                    message,
-                };
-                if rows.len() < 2 {
-                    return Err(bad(0, "a lift table needs at least two rows".to_owned()));
-                }
-                for (i, w) in rows.windows(2).enumerate() {
-                    if w[1][0].partial_cmp(&w[0][0]) != Some(std::cmp::Ordering::Greater) {
-                        return Err(bad(
-                            lines[i + 1],
-                            "the angles must increase strictly".to_owned(),
-                        ));
-                    }
-                }
-                // RocketPy's bisect_left of 0.001, held to the table's segments.
-                let k = rows
-                    .partition_point(|r| r[0] < 1e-3)
-                    .clamp(1, rows.len() - 1)
-                    - 1;
-                let slope = (rows[k + 1][1] - rows[k][1]) / (rows[k + 1][0] - rows[k][0]);
-                let slope = slope * per_unit;
-                if slope > 0.0 && slope.is_finite() {
-                    Ok(slope)
-                } else {
-                    Err(bad(
-                        lines[k + 1],
-                        format!(
-                            "the lift table's slope at zero angle must be positive (got {slope} per rad)"
-                        ),
-                    ))
-                }
-            }
-            _ => Err(why(
-                "airfoil",
-                "give exactly one of \"lift_slope_per_rad\" and \"csv\"",
-            )),
-        }
     }
 
     /// Checks a Cd(Mach) table: rows present, Mach >= 0 and strictly increasing, Cd >= 0.
@@ -249,10 +159,7 @@ impl RasaeroColumns {
     /// The columns, if the first line of `text` that is not blank or a comment is a RASAero
     /// header: it names `Mach` and both `CD Power-Off` and `CD Power-On` (any case).
     fn of(text: &str, curve: Curve) -> Option<RasaeroColumns> {
-        let header = text
-            .lines()
-            .map(str::trim)
-            .find(|t| !t.is_empty() && !t.starts_with('#'))?;
+        let (_, header) = content_lines(text).next()?;
         let names: Vec<String> = header
             .split(',')
             .map(|f| f.trim().trim_matches('"').trim().to_ascii_lowercase())
@@ -275,19 +182,11 @@ impl RasaeroColumns {
     fn read(&self, text: &str, file: &str) -> Result<(Vec<[f64; 2]>, Vec<usize>), DesignError> {
         let mut rows = Vec::new();
         let mut lines = Vec::new();
-        let mut header = true;
-        for (n, line) in text.lines().enumerate() {
-            let t = line.trim();
-            if t.is_empty() || t.starts_with('#') {
-                continue;
-            }
-            if std::mem::take(&mut header) {
-                continue;
-            }
+        for (line, t) in content_lines(text).skip(1) {
             let fields: Vec<&str> = t.split(',').map(|f| f.trim().trim_matches('"')).collect();
             let bad = |message: String| DesignError::Csv {
                 file: file.to_owned(),
-                line: n + 1,
+                line,
                 message,
             };
             if fields.len() < self.width {
@@ -308,7 +207,7 @@ impl RasaeroColumns {
                 }
             }
             rows.push([number(self.mach)?, number(self.cd)?]);
-            lines.push(n + 1);
+            lines.push(line);
         }
         if rows.is_empty() && self.alpha.is_some() {
             return Err(DesignError::Csv {
@@ -319,45 +218,4 @@ impl RasaeroColumns {
         }
         Ok((rows, lines))
     }
-}
-
-/// The rows of a two-column CSV (`what` names the columns for errors, e.g. `mach,cd`): blank
-/// lines and `#` comments skipped, a first line that is not two numbers (a header) skipped.
-fn two_columns(
-    text: &str,
-    file: &str,
-    what: &str,
-) -> Result<(Vec<[f64; 2]>, Vec<usize>), DesignError> {
-    let mut rows = Vec::new();
-    let mut lines = Vec::new();
-    let mut header_allowed = true;
-    for (n, line) in text.lines().enumerate() {
-        let t = line.trim();
-        if t.is_empty() || t.starts_with('#') {
-            continue;
-        }
-        let fields: Vec<&str> = t.split(',').map(str::trim).collect();
-        let parsed: Option<Vec<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
-        let bad = |message: String| DesignError::Csv {
-            file: file.to_owned(),
-            line: n + 1,
-            message,
-        };
-        match parsed {
-            Some(v) if v.len() == 2 => {
-                rows.push([v[0], v[1]]);
-                lines.push(n + 1);
-            }
-            Some(v) => {
-                return Err(bad(format!(
-                    "expected two columns, {what} (got {})",
-                    v.len()
-                )))
-            }
-            None if header_allowed => {}
-            None => return Err(bad(format!("expected two numbers, {what} (got \"{t}\")"))),
-        }
-        header_allowed = false;
-    }
-    Ok((rows, lines))
 }
