@@ -4,7 +4,8 @@
 //! to component ([`Context`]: ids, finishes, the motor, notes), the fields every component
 //! has, the stages and their body components; the parts on and in them are in [`parts`].
 
-pub(super) mod parts;
+pub(super) mod fins;
+mod parts;
 
 use super::{Auto, El};
 use crate::error::DesignError;

@@ -509,7 +509,7 @@ fn fin_tabs_and_fillets_weigh_what_openrocket_weighs_where_it_puts_them() {
     // Fillets: OpenRocket's cross-section (checked here against the corner integrated) times
     // the root, along the whole root.
     let area = fillets_by_integration_m2(0.005, 0.02815);
-    let or_area = super::components::parts::fillet_cross_section_m2(0.005, 0.02815);
+    let or_area = super::components::fins::fillet_cross_section_m2(0.005, 0.02815);
     assert!(close(or_area, area, 1e-10), "{or_area} {area}");
     let fillets = by_id("fins_fillets");
     let fillet_kg = 3.0 * area * 0.12 * 680.0;
