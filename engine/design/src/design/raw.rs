@@ -5,6 +5,7 @@
 //! [`super::validate`] turns a [`RawDesign`] into the validated [`super::Design`]; nothing
 //! else reads these types. The format is documented for users in `docs/design-format.md`.
 
+use super::model::NoseShape;
 use serde::Deserialize;
 
 /// The whole file.
@@ -154,6 +155,30 @@ pub enum RawNoseShape {
     Elliptical,
     PowerSeries,
     Parabolic,
+}
+
+impl RawNoseShape {
+    /// The profile this name and parameter give, the parameter defaulted as OpenRocket
+    /// defaults it (Haack `c` 0, power series `k` 0.5, parabolic `K'` 1) and not checked
+    /// (the validation checks it first); a parameter of a shape that takes none is ignored.
+    pub fn with_parameter(self, param: Option<f64>) -> NoseShape {
+        match self {
+            RawNoseShape::Conical => NoseShape::Conical,
+            RawNoseShape::Ogive => NoseShape::Ogive,
+            RawNoseShape::VonKarman => NoseShape::Haack { c: 0.0 },
+            RawNoseShape::LvHaack => NoseShape::Haack { c: 1.0 / 3.0 },
+            RawNoseShape::Elliptical => NoseShape::Elliptical,
+            RawNoseShape::Haack => NoseShape::Haack {
+                c: param.unwrap_or(0.0),
+            },
+            RawNoseShape::PowerSeries => NoseShape::PowerSeries {
+                k: param.unwrap_or(0.5),
+            },
+            RawNoseShape::Parabolic => NoseShape::Parabolic {
+                k: param.unwrap_or(1.0),
+            },
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]

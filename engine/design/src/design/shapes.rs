@@ -78,7 +78,24 @@ pub fn transition_radius(
     aft_radius_m: f64,
     x_m: f64,
 ) -> f64 {
-    let nose = transition_nose_shape(shape);
+    tapered_radius(
+        transition_nose_shape(shape),
+        length_m,
+        fore_radius_m,
+        aft_radius_m,
+        x_m,
+    )
+}
+
+/// Radius `x_m` aft of the fore end of a part tapering from `fore_radius_m` to
+/// `aft_radius_m` along the nose profile `nose` (a transition's; `x_m` clamped to the part).
+pub fn tapered_radius(
+    nose: NoseShape,
+    length_m: f64,
+    fore_radius_m: f64,
+    aft_radius_m: f64,
+    x_m: f64,
+) -> f64 {
     let x = x_m.clamp(0.0, length_m.max(0.0));
     if fore_radius_m == aft_radius_m {
         fore_radius_m

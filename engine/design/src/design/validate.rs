@@ -339,8 +339,9 @@ impl Builder<'_> {
         let Some(o) = raw else {
             return Ok(Overrides::default());
         };
+        // Zero is allowed, as in OpenRocket: the component (or its subtree) weighs nothing.
         let mass_kg = match o.mass_kg {
-            Some(m) => Some(self.positive(at, "override.mass_kg", m)?),
+            Some(m) => Some(self.non_negative(at, "override.mass_kg", m)?),
             None => None,
         };
         let cg_m = match o.cg_m {
@@ -422,6 +423,7 @@ impl Builder<'_> {
             let overrides = match &rs.overrides {
                 None => Overrides::default(),
                 Some(o) => {
+                    // A stage that weighs nothing is a mistake, not a choice.
                     let mass_kg = match o.mass_kg {
                         Some(m) => Some(self.positive(&at, "override.mass_kg", m)?),
                         None => None,

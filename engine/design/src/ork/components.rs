@@ -4,10 +4,13 @@
 //! to component ([`Context`]: ids, finishes, the motor, notes), the fields every component
 //! has, the stages and their body components; the parts on and in them are in [`parts`].
 
+mod cluster;
 pub(super) mod fins;
 mod parts;
 
 use super::{Auto, El};
+use crate::design::raw::RawNoseShape;
+use crate::design::shapes::tapered_radius;
 use crate::error::DesignError;
 use serde_json::{json, Map, Value};
 use std::collections::HashMap;
@@ -65,8 +68,11 @@ struct Parent {
     length_m: f64,
     /// The parent's fore end, m aft of the nose tip (for OpenRocket's absolute positions).
     front_m: f64,
-    /// A ring's automatic outer radius (the parent's inner radius), where known.
+    /// A ring's automatic outer radius (the parent's inner radius), where it is one number.
     ring_r: Option<f64>,
+    /// A nose cone's or transition's inner radius `x` m aft of its fore end (OpenRocket's:
+    /// the outer radius less the wall, across the axis), for a ring's automatic radius.
+    inner_at: Option<Box<dyn Fn(f64) -> f64>>,
     /// A packed part's automatic radius (OpenRocket's rule for each kind of parent).
     packed_r: Option<f64>,
     /// Whether the parent is a body component (fins, lugs and buttons only go there).
@@ -320,6 +326,7 @@ impl Context {
                 length_m: b.length_m,
                 front_m: self.x_m,
                 ring_r,
+                inner_at: shell_inner_radius(&b.json, b.kind, b.length_m),
                 packed_r,
                 on_body: true,
                 surface_r,
@@ -612,4 +619,29 @@ fn resolve_radii(
         };
     }
     Ok(())
+}
+
+/// A nose cone's or transition's inner radius along it, as OpenRocket computes it for the
+/// automatic radius of a ring inside (`max(r(x) − t, 0)`, 0 if filled), from its JSON.
+fn shell_inner_radius(
+    json: &Component,
+    kind: &str,
+    length_m: f64,
+) -> Option<Box<dyn Fn(f64) -> f64>> {
+    let shape: RawNoseShape = serde_json::from_value(json.get("shape")?.clone()).ok()?;
+    let nose = shape.with_parameter(json.get("shape_parameter").and_then(Value::as_f64));
+    let wall = if json.get("filled").and_then(Value::as_bool) == Some(true) {
+        f64::INFINITY
+    } else {
+        json.get("wall_thickness_m")?.as_f64()?
+    };
+    let radius = |k: &str| json.get(k).and_then(Value::as_f64).map(|d| d / 2.0);
+    let (fore, aft) = match kind {
+        "nose_cone" => (0.0, radius("base_diameter_m")?),
+        "transition" => (radius("fore_diameter_m")?, radius("aft_diameter_m")?),
+        _ => return None,
+    };
+    Some(Box::new(move |x| {
+        (tapered_radius(nose, length_m, fore, aft, x) - wall).max(0.0)
+    }))
 }

@@ -227,6 +227,36 @@ fn a_bare_auto_radius_of_an_older_file_is_taken_from_the_neighbouring_component(
 }
 
 #[test]
+fn a_bare_auto_ring_in_a_nose_cone_takes_the_narrower_of_the_cone_s_inner_radii_at_its_ends() {
+    // OpenRocket 15.03 writes a bulkhead in a nose cone with a bare `auto`: its radius is the
+    // cone's inner radius (outer less the 2 mm wall, across the axis) at the bulkhead's
+    // narrower end, here its fore end, each end kept within the cone (the second bulkhead
+    // runs past the cone's base into the shoulder). Tangent ogive, L 0.25, R 0.02815.
+    let text = edited(
+        "<isflipped>false</isflipped>\n          </nosecone>",
+        "<isflipped>false</isflipped><subcomponents>\
+         <bulkhead><name>Fore</name><position type=\"top\">0.2</position>\
+         <material type=\"bulk\" density=\"630.0\">Plywood</material><length>0.01</length>\
+         <radialposition>0.0</radialposition><radialdirection>0.0</radialdirection>\
+         <outerradius>auto</outerradius></bulkhead>\
+         <bulkhead><name>Aft</name><position type=\"bottom\">0.005</position>\
+         <material type=\"bulk\" density=\"630.0\">Plywood</material><length>0.01</length>\
+         <radialposition>0.0</radialposition><radialdirection>0.0</radialdirection>\
+         <outerradius>auto</outerradius></bulkhead></subcomponents></nosecone>",
+    );
+    let (_, import) = imported(text.as_bytes());
+    let (l, r): (f64, f64) = (0.25, 0.02815);
+    let rho = (r * r + l * l) / (2.0 * r);
+    let ogive = |x: f64| (rho * rho - (l - x).powi(2)).sqrt() + r - rho;
+    let nose = &import.json["stages"][0]["components"][0]["children"];
+    for (i, fore) in [(0, 0.2), (1, 0.245)] {
+        let d = nose[i]["outer_diameter_m"].as_f64().unwrap();
+        let want = 2.0 * (ogive(fore) - 0.002);
+        assert!((d - want).abs() < 1e-15, "{}: {d} vs {want}", nose[i]);
+    }
+}
+
+#[test]
 fn a_part_after_another_starts_where_that_one_ends() {
     // An old `<position type="after">`: the ballast 0.02 m after the parachute's end (0.05 +
     // 0.08 m down the body tube), as OpenRocket's AxialMethod.AFTER adds the offset.
@@ -256,6 +286,75 @@ fn a_part_after_another_starts_where_that_one_ends() {
 }
 
 #[test]
+fn a_cluster_of_inner_tubes_is_placed_and_weighed_as_openrocket_places_and_weighs_it() {
+    // Four shear-pin tubes (od 4 mm, wall 1 mm, 10 mm long, 1000 kg/m³) in OpenRocket's
+    // 4-ring at scale 2 (separation 2 × 4 mm = 8 mm) turned 45°: the square's corners
+    // (±½, ±½) land on the axes, √½ × 8 mm from the body's.
+    let pins = "<innertube><name>Shear pins</name><position type=\"top\">0.05</position>\
+        <material type=\"bulk\" density=\"1000.0\">Pins</material><length>0.01</length>\
+        <radialposition>0.0</radialposition><radialdirection>0.0</radialdirection>\
+        <outerradius>0.002</outerradius><thickness>0.001</thickness>\
+        <clusterconfiguration>4-ring</clusterconfiguration><clusterscale>2.0</clusterscale>\
+        <clusterrotation>45.0</clusterrotation></innertube><innertube>";
+    let (design, _) = imported(edited("<innertube>", pins).as_bytes());
+    let (plain, _) = imported(EXAMPLE.as_bytes());
+    let idx = design
+        .components
+        .iter()
+        .position(|c| c.name == "Shear pins")
+        .expect("the pins");
+    let crate::ComponentKind::InnerTube(t) = &design.components[idx].kind else {
+        panic!("not an inner tube")
+    };
+    let r = 0.008 * 0.5f64.sqrt();
+    let want = [[0.0, r], [r, 0.0], [0.0, -r], [-r, 0.0]];
+    assert_eq!(t.cluster_offsets_m.len(), 4);
+    for (got, want) in t.cluster_offsets_m.iter().zip(want) {
+        assert!(
+            (got[0] - want[0]).abs() < 1e-17 && (got[1] - want[1]).abs() < 1e-17,
+            "{got:?} vs {want:?}"
+        );
+    }
+    // Four tubes' mass, one tube's axial inertia each plus its offset's.
+    let one = 1000.0 * std::f64::consts::PI * (0.002f64.powi(2) - 0.001f64.powi(2)) * 0.01;
+    let own = crate::mass::component_own(&design, idx);
+    assert!(close(own.mass_kg, 4.0 * one, 1e-14), "{}", own.mass_kg);
+    assert!(own.cg_m.y.abs() < 1e-18 && own.cg_m.z.abs() < 1e-18);
+    let axial = 4.0 * one * ((0.002f64.powi(2) + 0.001f64.powi(2)) / 2.0 + r * r);
+    assert!(close(own.axial_inertia(), axial, 1e-12));
+    assert!(close(
+        dry(&design).mass_kg,
+        dry(&plain).mass_kg + 4.0 * one,
+        1e-14
+    ));
+    // A cluster of motors is still refused, a pattern OpenRocket does not have too.
+    let motors = refusal(
+        edited(
+            "<clusterconfiguration>single",
+            "<clusterconfiguration>double",
+        )
+        .as_bytes(),
+        "r.ork",
+    );
+    assert!(
+        motors.contains("innertube \"Motor mount\"") && motors.contains("a cluster of motors"),
+        "{motors}"
+    );
+    let unknown = refusal(
+        edited(
+            "<clusterconfiguration>single",
+            "<clusterconfiguration>7-ring",
+        )
+        .as_bytes(),
+        "r.ork",
+    );
+    assert!(
+        unknown.contains("<clusterconfiguration>") && unknown.contains("\"7-ring\" is not one of"),
+        "{unknown}"
+    );
+}
+
+#[test]
 fn what_a_design_cannot_hold_is_refused_with_its_element_and_reason() {
     let cases = [
         (
@@ -272,7 +371,7 @@ fn what_a_design_cannot_hold_is_refused_with_its_element_and_reason() {
                 "<clusterconfiguration>3-ring</clusterconfiguration>",
             ),
             "innertube \"Motor mount\"",
-            "cluster",
+            "a cluster of motors",
         ),
         (
             edited(

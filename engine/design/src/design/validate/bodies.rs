@@ -109,15 +109,15 @@ impl Builder<'_> {
             )),
             None => Ok(()),
         };
-        Ok(match shape {
-            RawNoseShape::Conical => none("conical").map(|_| NoseShape::Conical)?,
-            RawNoseShape::Ogive => none("ogive").map(|_| NoseShape::Ogive)?,
-            RawNoseShape::VonKarman => none("von_karman").map(|_| NoseShape::Haack { c: 0.0 })?,
-            RawNoseShape::LvHaack => none("lv_haack").map(|_| NoseShape::Haack { c: 1.0 / 3.0 })?,
-            RawNoseShape::Elliptical => none("elliptical").map(|_| NoseShape::Elliptical)?,
-            RawNoseShape::Haack => NoseShape::Haack {
-                c: self.within(at, "shape_parameter", param.unwrap_or(0.0), 0.0, 1.0)?,
-            },
+        match shape {
+            RawNoseShape::Conical => none("conical")?,
+            RawNoseShape::Ogive => none("ogive")?,
+            RawNoseShape::VonKarman => none("von_karman")?,
+            RawNoseShape::LvHaack => none("lv_haack")?,
+            RawNoseShape::Elliptical => none("elliptical")?,
+            RawNoseShape::Haack => {
+                self.within(at, "shape_parameter", param.unwrap_or(0.0), 0.0, 1.0)?;
+            }
             RawNoseShape::PowerSeries => {
                 let k = param.unwrap_or(0.5);
                 if !(k > 0.0 && k <= 1.0) {
@@ -131,12 +131,12 @@ impl Builder<'_> {
                         },
                     ));
                 }
-                NoseShape::PowerSeries { k }
             }
-            RawNoseShape::Parabolic => NoseShape::Parabolic {
-                k: self.within(at, "shape_parameter", param.unwrap_or(1.0), 0.0, 1.0)?,
-            },
-        })
+            RawNoseShape::Parabolic => {
+                self.within(at, "shape_parameter", param.unwrap_or(1.0), 0.0, 1.0)?;
+            }
+        }
+        Ok(shape.with_parameter(param))
     }
 
     /// The wall of a nose cone or transition: required unless filled (then it is the radius:

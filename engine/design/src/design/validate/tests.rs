@@ -733,18 +733,34 @@ fn a_trapezoidal_fin_s_sweep_may_be_its_leading_edge_angle_as_rocketpy_gives_it(
 }
 
 #[test]
-fn an_override_mass_must_be_positive() {
+fn a_component_s_override_may_weigh_nothing_but_not_less_and_a_stage_s_must_weigh_something() {
+    let zero = with(|v| {
+        at(v, BODY)
+            .as_object_mut()
+            .unwrap()
+            .insert("override".into(), json!({"mass_kg": 0.0}));
+    });
+    let zero = zero.unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(zero.components[1].overrides.mass_kg, Some(0.0));
     let (rule, loc, field) = invalid(with(|v| {
         at(v, BODY)
+            .as_object_mut()
+            .unwrap()
+            .insert("override".into(), json!({"mass_kg": -0.5}));
+    }));
+    assert_eq!(rule, Rule::Negative { got: -0.5 });
+    assert_eq!(
+        (loc, field.as_deref()),
+        (comp("body"), Some("override.mass_kg"))
+    );
+    let (rule, loc, _) = invalid(with(|v| {
+        at(v, "/stages/0")
             .as_object_mut()
             .unwrap()
             .insert("override".into(), json!({"mass_kg": 0.0}));
     }));
     assert_eq!(rule, Rule::NotPositive { got: 0.0 });
-    assert_eq!(
-        (loc, field.as_deref()),
-        (comp("body"), Some("override.mass_kg"))
-    );
+    assert_eq!(loc, Location::Stage("sustainer".into()));
     let (rule, loc, _) = invalid(with(|v| {
         at(v, "/stages/0")
             .as_object_mut()

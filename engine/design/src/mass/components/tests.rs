@@ -112,6 +112,31 @@ fn an_override_covering_children_replaces_the_subtree_s_total() {
 }
 
 #[test]
+fn an_override_of_zero_makes_the_component_or_its_subtree_weigh_nothing() {
+    // OpenRocket's zero override (a part drawn for its looks): the tube alone, then the tube
+    // and the weight it holds, weigh nothing; the nose (0.1 kg at 0.075 m, 3/4 of a cone
+    // 0.1 long) is all that is left of the rocket in the second case.
+    let ballast = json!([{"id": "w", "type": "mass_component", "mass_kg": 0.2, "length_m": 0.04, "radius_m": 0.02,
+        "position": {"from": "top", "offset_m": 0.0}}]);
+    let own_only = design(&simple(
+        json!({"override": {"mass_kg": 0.0}}),
+        ballast.clone(),
+    ));
+    let s = subtree(&own_only, 1);
+    assert_eq!(s.mass_kg, 0.2);
+    assert!((s.cg_m.x - 0.12).abs() < 1e-16);
+    let all = design(&simple(
+        json!({"override": {"mass_kg": 0.0, "covers_children": true}}),
+        ballast,
+    ));
+    assert_eq!(subtree(&all, 1).mass_kg, 0.0);
+    assert_eq!(subtree(&all, 1).inertia_cg, Matrix3::zeros());
+    let rocket = dry(&all);
+    assert_eq!(rocket.mass_kg, 0.1);
+    assert!((rocket.cg_m.x - 0.075).abs() < 1e-15);
+}
+
+#[test]
 fn a_stage_override_applies_to_the_whole_stage() {
     let mut v = simple(json!({}), json!([]));
     v["stages"][0]["override"] = json!({"mass_kg": 2.0, "cg_m": 0.25});

@@ -3,6 +3,7 @@
 //! parent as OpenRocket places it, one component per instance.
 
 use super::super::parse_number;
+use super::cluster;
 use super::fins::fin_area_m2;
 use super::{Auto, Component, Context, DesignError, El, Parent};
 use serde_json::{json, Value};
@@ -35,10 +36,20 @@ impl Context {
             {
                 return Err(el.refuse("an outside part on an inner tube"));
             }
-            let made = self.part(el, parent, &children)?;
+            let (method, value) = position(el)?;
+            // The fore end of a part of this length, m aft of the parent's fore end.
+            let fore_of = |length: f64| match method {
+                "top" => value,
+                "middle" => value + (parent.length_m - length) / 2.0,
+                "bottom" => value + parent.length_m - length,
+                "after" => previous.map_or(0.0, |(x, l)| x + l) + value,
+                _ => value - parent.front_m, // absolute
+            };
+            let made = self.part(el, parent, &children, &fore_of)?;
             let Some((mut part, length)) = made else {
                 continue;
             };
+            let fore = fore_of(length);
             let count = el
                 .num("instancecount")?
                 .filter(|_| {
@@ -49,14 +60,6 @@ impl Context {
                 })
                 .unwrap_or(1.0);
             let separation = el.num("instanceseparation")?.unwrap_or(0.0);
-            let (method, value) = position(el)?;
-            let fore = match method {
-                "top" => value,
-                "middle" => value + (parent.length_m - length) / 2.0,
-                "bottom" => value + parent.length_m - length,
-                "after" => previous.map_or(0.0, |(x, l)| x + l) + value,
-                _ => value - parent.front_m, // absolute
-            };
             previous = Some((fore, length));
             if matches!(el.tag(), "innertube" | "tubecoupler") {
                 let inner = part["outer_diameter_m"].as_f64().unwrap_or(0.0) / 2.0
@@ -65,6 +68,7 @@ impl Context {
                     length_m: length,
                     front_m: parent.front_m + fore,
                     ring_r: Some(inner),
+                    inner_at: None,
                     packed_r: Some(inner),
                     on_body: false,
                     surface_r: None,
@@ -191,6 +195,7 @@ impl Context {
         el: &El<'_, '_>,
         parent: &Parent,
         siblings: &[El<'_, '_>],
+        fore_of: &dyn Fn(f64) -> f64,
     ) -> Result<Option<(Component, f64)>, DesignError> {
         let tag = el.tag();
         let mut m = self.common(el)?;
@@ -301,9 +306,9 @@ impl Context {
                 let r = auto_size(el, "outerradius", parent.ring_r)?;
                 let wall = el.req("thickness")?;
                 if tag == "innertube" {
-                    let cluster = el.text("clusterconfiguration").unwrap_or("single");
-                    if cluster != "single" {
-                        return Err(el.refuse(&format!("a cluster of inner tubes (\"{cluster}\")")));
+                    let cluster = cluster::offsets(el, r)?;
+                    if cluster.len() > 1 {
+                        m.insert("cluster".into(), json!(cluster));
                     }
                     radial(el, &mut m)?;
                 }
@@ -313,11 +318,17 @@ impl Context {
                 m.insert("wall_thickness_m".into(), json!(wall));
                 if let Some(mount) = el.child("motormount") {
                     self.mount(el, &mount, &mut m)?;
+                    if m.contains_key("motor_mount") && m.contains_key("cluster") {
+                        return Err(el.refuse(&format!(
+                            "a cluster of motors (\"{}\"; hpr flies one motor)",
+                            el.text("clusterconfiguration").unwrap_or("")
+                        )));
+                    }
                 }
             }
             "centeringring" | "engineblock" => {
                 length = el.req("length")?;
-                let r = auto_size(el, "outerradius", parent.ring_r)?;
+                let r = ring_radius(el, parent, fore_of(length), length)?;
                 let inner = if tag == "engineblock" {
                     r - el.req("thickness")?
                 } else {
@@ -334,7 +345,7 @@ impl Context {
             }
             "bulkhead" => {
                 length = el.req("length")?;
-                let r = auto_size(el, "outerradius", parent.ring_r)?;
+                let r = ring_radius(el, parent, fore_of(length), length)?;
                 m.insert("type".into(), json!("bulkhead"));
                 m.insert("length_m".into(), json!(length));
                 m.insert("outer_diameter_m".into(), json!(2.0 * r));
@@ -497,6 +508,24 @@ fn auto_size(el: &El<'_, '_>, tag: &str, fallback: Option<f64>) -> Result<f64, D
         }),
         None => Err(el.bad(tag, "is missing")),
     }
+}
+
+/// A ring's or bulkhead's outer radius; a bare `auto` inside a nose cone or transition is
+/// OpenRocket's: the smaller of the parent's inner radii at the part's two ends (each kept
+/// within the parent), `fore_m` being the part's fore end aft of the parent's.
+fn ring_radius(
+    el: &El<'_, '_>,
+    parent: &Parent,
+    fore_m: f64,
+    length_m: f64,
+) -> Result<f64, DesignError> {
+    if let (Some(Auto::Bare), None, Some(inner)) =
+        (el.auto("outerradius")?, parent.ring_r, &parent.inner_at)
+    {
+        let at = |x: f64| inner(x.clamp(0.0, parent.length_m));
+        return Ok(at(fore_m).min(at(fore_m + length_m)));
+    }
+    auto_size(el, "outerradius", parent.ring_r)
 }
 
 /// A centering ring's automatic inner radius: the largest outer radius of the inner tubes
