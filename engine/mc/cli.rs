@@ -151,6 +151,9 @@ fn not_negative(text: &str) -> std::result::Result<f64, String> {
 pub fn load(design: &PathBuf, motor: &Option<String>) -> Result<(Design, Motor)> {
     let d = Design::load(design).map_err(|e| anyhow!("{e}"))?;
     ork_notes(design);
+    for warning in &d.warnings {
+        eprintln!("warning: {warning}");
+    }
     let name = match motor {
         Some(m) => m.clone(),
         None => d.default_motor.clone().ok_or_else(|| {

@@ -22,7 +22,21 @@ pub struct RawDesign {
     /// Drag model; absent means `{"estimate": {}}`.
     #[serde(default)]
     pub drag: Option<RawDrag>,
+    /// How strictly parts must sit in their parents: `strict` (the default) or `openrocket`.
+    #[serde(default)]
+    pub geometry_checks: RawGeometryChecks,
     pub stages: Vec<RawStage>,
+}
+
+/// How strictly a design's parts must sit in their parents.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RawGeometryChecks {
+    /// A part entirely outside its parent, or wider than it, is an error.
+    #[default]
+    Strict,
+    /// As OpenRocket: such a part stays where it is, weighed there, with a warning.
+    Openrocket,
 }
 
 /// A fin's `airfoil`: exactly one of its 2-D lift-curve slope per rad, or a CSV lift table

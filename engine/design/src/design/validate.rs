@@ -84,6 +84,8 @@ impl Design {
             components: Vec::new(),
             ids: HashMap::new(),
             motor_mount: None,
+            lenient_geometry: false,
+            warnings: Vec::new(),
         }
         .design(raw)
     }
@@ -168,6 +170,9 @@ struct Builder<'a> {
     /// id -> where it was first used (JSON path), for duplicate errors.
     ids: HashMap<String, String>,
     motor_mount: Option<MotorMount>,
+    /// `geometry_checks: "openrocket"`: a part outside or wider than its parent is a warning.
+    lenient_geometry: bool,
+    warnings: Vec<String>,
 }
 
 impl Builder<'_> {
@@ -177,6 +182,26 @@ impl Builder<'_> {
             at: at.clone(),
             field: field.map(str::to_owned),
             rule,
+        }
+    }
+
+    /// A part that does not sit in its parent: an error, or under `geometry_checks:
+    /// "openrocket"` (and where `tolerable`: its position is a number) a warning, the part
+    /// kept where it is, as OpenRocket keeps it.
+    fn misfit(
+        &mut self,
+        at: &Location,
+        field: Option<&str>,
+        rule: Rule,
+        tolerable: bool,
+    ) -> Result<(), DesignError> {
+        if self.lenient_geometry && tolerable {
+            let what = self.invalid(at, field, rule);
+            self.warnings
+                .push(format!("{what} (kept there, as OpenRocket keeps it)"));
+            Ok(())
+        } else {
+            Err(self.invalid(at, field, rule))
         }
     }
 
@@ -398,6 +423,7 @@ impl Builder<'_> {
     }
 
     fn design(mut self, raw: RawDesign) -> Result<Design, DesignError> {
+        self.lenient_geometry = raw.geometry_checks == RawGeometryChecks::Openrocket;
         let drag = self.drag(raw.drag.as_ref())?;
         if raw.stages.is_empty() {
             return Err(self.invalid(&Location::Design, Some("stages"), Rule::NoBodyComponent));
@@ -472,6 +498,7 @@ impl Builder<'_> {
             stages,
             components: self.components,
             drag,
+            warnings: self.warnings,
         })
     }
 }

@@ -63,6 +63,10 @@ struct Body<'a, 'i> {
 /// is 1 µm across).
 const BORE_WALL_M: f64 = 1e-7;
 
+/// The wall given a tube, ring or shoulder OpenRocket draws with none (and weighs at
+/// nothing), m: the design format's shapes need one.
+const THIN_WALL_M: f64 = 1e-7;
+
 /// What a part's position and automatic sizes read of its parent.
 struct Parent {
     length_m: f64,
@@ -542,10 +546,13 @@ fn shoulder(el: &El<'_, '_>, side: &str) -> Result<Option<Value>, DesignError> {
         return Ok(None);
     }
     let r = el.req(&format!("{side}shoulderradius"))?;
+    // A shoulder drawn with no wall weighs nothing in OpenRocket; 0.1 µm of wall weighs
+    // micrograms.
+    let wall = el.num(&format!("{side}shoulderthickness"))?.unwrap_or(r);
     Ok(Some(json!({
         "length_m": length,
         "outer_diameter_m": 2.0 * r,
-        "wall_thickness_m": el.num(&format!("{side}shoulderthickness"))?.unwrap_or(r),
+        "wall_thickness_m": if wall > 0.0 { wall } else { THIN_WALL_M },
         "capped": el.flag(&format!("{side}shouldercapped")),
     })))
 }

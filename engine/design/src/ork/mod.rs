@@ -174,6 +174,8 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
         "drag".into(),
         json!({ "estimate": { "roughness_m": roughness } }),
     );
+    // OpenRocket weighs a part where it is drawn, inside its parent or not.
+    design.insert("geometry_checks".into(), json!("openrocket"));
     design.insert("stages".into(), Value::Array(stages));
     Ok(OrkImport {
         json: Value::Object(design),

@@ -547,7 +547,7 @@ impl Builder<'_> {
         let (parent_top, parent_bottom) = extent(&p);
         let overlap = (x_top + length).min(parent_bottom) - x_top.max(parent_top);
         if overlap <= 0.0 || overlap.is_nan() {
-            return Err(self.invalid(
+            self.misfit(
                 &at,
                 Some("position"),
                 Rule::OutsideParent {
@@ -556,19 +556,21 @@ impl Builder<'_> {
                     parent_top_m: parent_top,
                     parent_bottom_m: parent_bottom,
                 },
-            ));
+                x_top.is_finite(),
+            )?;
         }
         if let Some(half) = half_width {
             let inner = inner_radius(&p);
             if half > inner + FIT_TOLERANCE_M / 2.0 {
-                return Err(self.invalid(
+                self.misfit(
                     &at,
                     None,
                     Rule::WiderThanParent {
                         width_m: 2.0 * half,
                         inner_diameter_m: 2.0 * inner,
                     },
-                ));
+                    true,
+                )?;
             }
         }
 

@@ -430,6 +430,48 @@ fn a_part_wider_than_its_parent_is_refused() {
 }
 
 #[test]
+fn with_openrocket_geometry_checks_a_misplaced_part_stays_where_it_is_drawn_with_a_warning() {
+    // The two parts the strict checks refuse: the ballast 0.06 m wide in a 0.0533 m bore,
+    // and a nose weight beyond the nose's shoulder (0.30 m aft of the tip, the shoulder
+    // ending at 0.30 m); OpenRocket weighs each where it is.
+    let d = with(|v| {
+        v["geometry_checks"] = json!("openrocket");
+        *at(v, "/stages/0/components/1/children/5/radius_m") = json!(0.03);
+        at(v, "/stages/0/components/0").as_object_mut().unwrap().insert(
+            "children".into(),
+            json!([{"id": "nose_weight", "type": "mass_component", "mass_kg": 0.05, "length_m": 0.03,
+                    "radius_m": 0.02, "position": {"from": "nose_tip", "offset_m": 0.30}}]),
+        );
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(d.warnings.len(), 2, "{:?}", d.warnings);
+    assert!(
+        d.warnings[0].starts_with(
+            "design.json: component \"nose_weight\": field \"position\": the part (0.3 m to 0.33 m"
+        ) && d.warnings[0].ends_with("(kept there, as OpenRocket keeps it)"),
+        "{}",
+        d.warnings[0]
+    );
+    assert!(
+        d.warnings[1].starts_with("design.json: component \"ballast\": the part (0.06 m across"),
+        "{}",
+        d.warnings[1]
+    );
+    let weight = d.component("nose_weight").unwrap();
+    assert!(close(weight.x_top_m, 0.30));
+    // The strict default still refuses them, and a position that is not a number is refused
+    // whatever the checks.
+    assert!(with(|v| *at(v, "/stages/0/components/1/children/5/radius_m") = json!(0.03)).is_err());
+    let loose = with(|v| v["geometry_checks"] = json!("loose"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        loose.contains("`loose`, expected `strict` or `openrocket`"),
+        "{loose}"
+    );
+}
+
+#[test]
 fn drag_tables_must_have_mach_strictly_increasing() {
     let (rule, loc, field) = invalid(with(|v| *at(v, "/drag/power_off/2/0") = json!(0.3)));
     assert_eq!(

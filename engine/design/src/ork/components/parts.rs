@@ -5,7 +5,7 @@
 use super::super::parse_number;
 use super::cluster;
 use super::fins::fin_area_m2;
-use super::{Auto, Component, Context, DesignError, El, Parent};
+use super::{Auto, Component, Context, DesignError, El, Parent, THIN_WALL_M};
 use serde_json::{json, Value};
 
 impl Context {
@@ -49,6 +49,7 @@ impl Context {
             let Some((mut part, length)) = made else {
                 continue;
             };
+            self.no_wall_weighs_nothing(el, &mut part);
             let fore = fore_of(length);
             let count = el
                 .num("instancecount")?
@@ -115,6 +116,37 @@ impl Context {
             out.extend(attached.into_iter().map(Value::Object));
         }
         Ok(out)
+    }
+
+    /// A tube with no wall, or a ring as wide inside as outside, which OpenRocket draws and
+    /// weighs at nothing: here a wall of [`THIN_WALL_M`] and no mass (an override still
+    /// weighs it), with a note; the design format's shapes need a wall.
+    fn no_wall_weighs_nothing(&mut self, el: &El<'_, '_>, part: &mut Component) {
+        let num = |p: &Component, k: &str| p.get(k).and_then(Value::as_f64);
+        let fixed = match part.get("type").and_then(Value::as_str) {
+            Some("inner_tube") if num(part, "wall_thickness_m").is_some_and(|t| t <= 0.0) => {
+                part.insert("wall_thickness_m".into(), json!(THIN_WALL_M));
+                true
+            }
+            Some("centering_ring") => {
+                match (num(part, "outer_diameter_m"), num(part, "inner_diameter_m")) {
+                    (Some(od), Some(id)) if id >= od && od > 0.0 => {
+                        part.insert("inner_diameter_m".into(), json!(od - 2.0 * THIN_WALL_M));
+                        true
+                    }
+                    _ => false,
+                }
+            }
+            _ => false,
+        };
+        if fixed {
+            part.remove("material");
+            part.insert("mass_kg".into(), json!(0.0));
+            self.note(format!(
+                "{}: no wall, so it weighs nothing (as in OpenRocket); drawn with a wall of 0.1 µm.",
+                el.name()
+            ));
+        }
     }
 
     /// A recovery device's deployment in the default flight configuration (its own
