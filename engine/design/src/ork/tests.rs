@@ -257,6 +257,49 @@ fn a_bare_auto_ring_in_a_nose_cone_takes_the_narrower_of_the_cone_s_inner_radii_
 }
 
 #[test]
+fn a_tube_a_ring_or_a_shoulder_drawn_with_no_wall_weighs_nothing_as_in_openrocket() {
+    // A coupler of no wall and an engine block of no thickness (a ring as wide inside as
+    // out), which OpenRocket weighs at nothing, and the nose's shoulder with no wall: the
+    // rocket weighs what the example weighs less the shoulder's tube (0.002 m of polypropylene,
+    // od 0.0533, 0.05 long) but for the 0.1 µm wall it keeps (under a milligram).
+    let text = edited(
+        "<aftshoulderthickness>0.002</aftshoulderthickness>",
+        "<aftshoulderthickness>0.0</aftshoulderthickness>",
+    )
+    .replacen(
+        "<parachute>",
+        "<tubecoupler><name>Coupler</name><position type=\"top\">0.3</position>\
+         <material type=\"bulk\" density=\"1850.0\">Fiberglass</material><length>0.1</length>\
+         <outerradius>0.0266</outerradius><thickness>0.0</thickness></tubecoupler>\
+         <engineblock><name>Block</name><position type=\"top\">0.5</position>\
+         <material type=\"bulk\" density=\"1850.0\">Fiberglass</material><length>0.01</length>\
+         <outerradius>0.0266</outerradius><thickness>0.0</thickness></engineblock><parachute>",
+        1,
+    );
+    let (design, import) = imported(text.as_bytes());
+    let (plain, _) = imported(EXAMPLE.as_bytes());
+    for name in ["Coupler", "Block"] {
+        let c = design
+            .components
+            .iter()
+            .find(|c| c.name == name)
+            .expect(name);
+        assert_eq!(c.mass_spec, crate::design::MassSpec::Mass(0.0), "{name}");
+        assert!(noted(
+            &import,
+            &format!("{name}: no wall, so it weighs nothing")
+        ));
+    }
+    let tube = |wall: f64| {
+        900.0 * std::f64::consts::PI * (0.02665f64.powi(2) - (0.02665 - wall).powi(2)) * 0.05
+    };
+    let lost = dry(&plain).mass_kg - dry(&design).mass_kg;
+    let want = tube(0.002) - tube(1e-7);
+    assert!((lost - want).abs() < 1e-15, "{lost} vs {want}");
+    assert!(tube(1e-7) < 1e-6);
+}
+
+#[test]
 fn a_part_after_another_starts_where_that_one_ends() {
     // An old `<position type="after">`: the ballast 0.02 m after the parachute's end (0.05 +
     // 0.08 m down the body tube), as OpenRocket's AxialMethod.AFTER adds the offset.
