@@ -290,6 +290,18 @@ impl Context {
             .iter()
             .flat_map(|s| s.children().collect::<Vec<_>>())
         {
+            // A body component of no length holding nothing, which OpenRocket draws and
+            // weighs at nothing, is left out.
+            let holds_nothing = c
+                .child("subcomponents")
+                .is_none_or(|s| s.children().next().is_none());
+            if holds_nothing && c.num("length")? == Some(0.0) {
+                self.note(format!(
+                    "{}: no length and nothing in it, left out.",
+                    c.name()
+                ));
+                continue;
+            }
             bodies.push(self.body(&c)?);
         }
         if bodies.is_empty() {

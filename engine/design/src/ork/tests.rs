@@ -300,6 +300,24 @@ fn a_tube_a_ring_or_a_shoulder_drawn_with_no_wall_weighs_nothing_as_in_openrocke
 }
 
 #[test]
+fn a_body_tube_of_no_length_holding_nothing_is_left_out() {
+    let text = edited(
+        "</bodytube>",
+        "</bodytube><bodytube><name>Cut</name><finish>normal</finish>\
+         <material type=\"bulk\" density=\"680.0\">Cardboard</material><length>0.0</length>\
+         <thickness>0.0015</thickness><radius>auto 0.02815</radius></bodytube>",
+    );
+    let (design, import) = imported(text.as_bytes());
+    let (plain, _) = imported(EXAMPLE.as_bytes());
+    assert_eq!(design.components.len(), plain.components.len());
+    assert_eq!(dry(&design), dry(&plain));
+    assert!(noted(
+        &import,
+        "Cut: no length and nothing in it, left out."
+    ));
+}
+
+#[test]
 fn a_part_after_another_starts_where_that_one_ends() {
     // An old `<position type="after">`: the ballast 0.02 m after the parachute's end (0.05 +
     // 0.08 m down the body tube), as OpenRocket's AxialMethod.AFTER adds the offset.
