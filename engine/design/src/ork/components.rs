@@ -18,7 +18,11 @@ use std::collections::HashMap;
 /// The default flight configuration's motor: how to find it in hpr's library, and how to
 /// name it to a reader.
 pub(super) struct OrkMotor {
+    /// Names to look up, in order: the maker's file of the designation, the designation.
     pub candidates: Vec<String>,
+    /// Last, the maker's file of the designation's common name (`Cesaroni_K445` for
+    /// `1635K445-17A`): the same class and average thrust, which the import says it took.
+    pub by_common_name: Option<String>,
     pub label: String,
 }
 
@@ -174,8 +178,13 @@ impl Context {
             candidates.push(format!("{maker}_{designation}"));
         }
         candidates.push(designation.clone());
+        let common = crate::motor::curve::common_name(&designation, '?', 0.0);
+        let by_common_name =
+            (!maker.is_empty() && !common.starts_with('?') && common != designation)
+                .then(|| format!("{maker}_{common}"));
         Some(OrkMotor {
             candidates,
+            by_common_name,
             label: format!("{manufacturer} {designation}").trim().to_owned(),
         })
     }

@@ -136,14 +136,19 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
     let mut design = Map::new();
     design.insert("name".into(), json!(name));
     let motor_name = match motor {
-        Some(m) => match crate::motor::find(&m.candidates[0])
-            .ok()
-            .map(|_| m.candidates[0].clone())
+        Some(m) => match m
+            .candidates
+            .iter()
+            .find(|c| crate::motor::find(c).is_ok())
+            .cloned()
             .or_else(|| {
-                m.candidates[1..]
-                    .iter()
-                    .find(|c| crate::motor::find(c).is_ok())
-                    .cloned()
+                let common = m.by_common_name.clone()?;
+                let found = crate::motor::find(&common).ok()?;
+                cx.note(format!(
+                    "the motor {} flies as the bundled {} ({}, the same maker, class and                      average thrust): check that it is the same motor, or give yours with                      --motor FILE",
+                    m.label, common, found.designation
+                ));
+                Some(common)
             }) {
             Some(found) => Some(found),
             None => {

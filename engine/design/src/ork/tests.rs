@@ -318,6 +318,44 @@ fn a_body_tube_of_no_length_holding_nothing_is_left_out() {
 }
 
 #[test]
+fn a_motor_named_as_its_maker_sells_it_flies_as_the_bundled_file_of_its_common_name_with_a_note() {
+    // Cesaroni's full name (impulse, class and average thrust, delay) of the bundled K445.
+    let text = edited(
+        "<designation>I175</designation>",
+        "<designation>1635K445-17A</designation>",
+    );
+    let import = super::import(text.as_bytes(), "r.ork").unwrap();
+    assert_eq!(import.json["motor"], "Cesaroni_K445");
+    assert!(noted(
+        &import,
+        "the motor Cesaroni Technology 1635K445-17A flies as the bundled Cesaroni_K445 (K445"
+    ));
+    // A name with no class and thrust in it, or of another maker's, is still not found.
+    for (from, to) in [
+        (
+            "<designation>I175</designation>",
+            "<designation>Mystery</designation>",
+        ),
+        (
+            "<manufacturer>Cesaroni Technology</manufacturer>",
+            "<manufacturer>AeroTech</manufacturer>",
+        ),
+    ] {
+        let import = super::import(
+            edited(from, to).replace("I175<", "K445-14A<").as_bytes(),
+            "r.ork",
+        )
+        .unwrap();
+        assert!(
+            import.json.get("motor").is_none(),
+            "{}",
+            import.json["motor"]
+        );
+        assert!(noted(&import, "is not bundled with hpr-mc"));
+    }
+}
+
+#[test]
 fn a_part_after_another_starts_where_that_one_ends() {
     // An old `<position type="after">`: the ballast 0.02 m after the parachute's end (0.05 +
     // 0.08 m down the body tube), as OpenRocket's AxialMethod.AFTER adds the offset.
