@@ -139,6 +139,7 @@ fn design(mut components: Vec<Component>, d: f64, length_m: f64, drag: DragSpec)
         drag,
         rail_guides_m: None,
         motor_mount: None,
+        openrocket_geometry: false,
         warnings: Vec::new(),
     }
 }

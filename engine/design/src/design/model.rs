@@ -30,6 +30,9 @@ pub struct Design {
     pub rail_guides_m: Option<(f64, f64)>,
     /// Motor placement, resolved from the motor-mount inner tube (`None` if no mount).
     pub motor_mount: Option<MotorMount>,
+    /// `geometry_checks: "openrocket"`: parts may sit outside or be wider than their
+    /// parents, and a motor longer than its mount sticks out past the mount's fore end.
+    pub openrocket_geometry: bool,
     /// What the validation let pass under `geometry_checks: "openrocket"` (a part outside
     /// or wider than its parent, kept where it is), one sentence each.
     pub warnings: Vec<String>,

@@ -134,7 +134,8 @@ impl Design {
         }
         let tube_bottom = self.components[mount.component].x_bottom_m();
         let room = mount.tube_length_m + (mount.motor_aft_m - tube_bottom);
-        if length_m > room + FIT_TOLERANCE_M {
+        // OpenRocket lets a longer motor stick out past the mount's fore end.
+        if length_m > room + FIT_TOLERANCE_M && !self.openrocket_geometry {
             return Err(invalid(
                 at,
                 None,
@@ -498,6 +499,7 @@ impl Builder<'_> {
             stages,
             components: self.components,
             drag,
+            openrocket_geometry: self.lenient_geometry,
             warnings: self.warnings,
         })
     }

@@ -92,6 +92,16 @@ fn a_motor_must_fit_its_mount_and_the_error_says_which_is_too_big() {
         "{e}"
     );
     assert!(e.to_string().contains("too long"), "{e}");
+    // As OpenRocket draws it, a longer motor sticks out past the mount's fore end; one too
+    // wide is still refused.
+    let openrocket = with(|v| v["geometry_checks"] = json!("openrocket")).unwrap();
+    openrocket
+        .motor_fits(0.038, 0.4)
+        .expect("sticks out forward");
+    assert!(matches!(
+        openrocket.motor_fits(0.054, 0.2).unwrap_err().rule(),
+        Some(Rule::MotorTooWide { .. })
+    ));
     let no_mount = with(|v| {
         children(v)[1]
             .as_object_mut()
