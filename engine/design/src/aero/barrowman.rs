@@ -211,6 +211,7 @@ mod tests {
             length_m: 0.06,
             fore_radius_m: 0.0635,
             aft_radius_m: 0.0435,
+            clip_m: 0.0,
         };
         let lift = body_section_lift(&s, PI * 0.0635 * 0.0635);
         // 2 ((0.0435/0.0635)² − 1) = −1.0614421229

@@ -48,7 +48,7 @@ use super::drag_formulas::{
 };
 use super::fins::Fins;
 use super::nose_drag::NosePressureDrag;
-use super::profile::{nose_shape_of, Section};
+use super::profile::Section;
 use super::table::MachTable;
 use crate::design::{ComponentKind, Design, FinCrossSection};
 use std::f64::consts::PI;
@@ -130,15 +130,9 @@ impl DragGeometry {
                     c.x_top_m,
                     Section::tube(c.length_m, t.outer_diameter_m / 2.0),
                 )),
-                ComponentKind::Transition(t) => bodies.push((
-                    c.x_top_m,
-                    Section {
-                        shape: nose_shape_of(t.shape),
-                        length_m: c.length_m,
-                        fore_radius_m: t.fore_diameter_m / 2.0,
-                        aft_radius_m: t.aft_diameter_m / 2.0,
-                    },
-                )),
+                ComponentKind::Transition(t) => {
+                    bodies.push((c.x_top_m, Section::transition(c.length_m, t)))
+                }
                 ComponentKind::FinSet(f) => {
                     let g = Fins::of(f).geometry();
                     fins.push(FinDrag {

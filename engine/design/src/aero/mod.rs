@@ -231,12 +231,7 @@ impl AeroModel {
                             "must be finite and non-negative",
                         ));
                     }
-                    let section = Section {
-                        shape: profile::nose_shape_of(t.shape),
-                        length_m: c.length_m,
-                        fore_radius_m: t.fore_diameter_m / 2.0,
-                        aft_radius_m: t.aft_diameter_m / 2.0,
-                    };
+                    let section = Section::transition(c.length_m, t);
                     let lift = barrowman::body_section_lift(&section, a_ref);
                     // Equal end diameters: no lift (a tube), nothing for the flight to sum.
                     if lift.cn_alpha != 0.0 {

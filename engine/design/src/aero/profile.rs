@@ -2,7 +2,7 @@
 //! their profiles: volume, wetted area, the slope at the joint.
 //!
 //! The profiles `r(x)` themselves are [`crate::design::shapes`] (shared with the mass code);
-//! transitions use OpenRocket's non-clipped adaptation, the nose profile of height
+//! transitions use OpenRocket's adaptation, the nose profile of height
 //! `|R_aft − R_fore|` with its tip at the smaller end.
 //!
 //! Integrals are computed by adaptive Simpson quadrature (hand-written: 30 lines, no crate in
@@ -10,8 +10,9 @@
 //! `x = L (1 − cos θ)/2`, which makes the Haack profiles smooth and softens the tip
 //! singularity of power series with small `k`.
 
+use crate::design::shapes::tapered_radius;
 pub use crate::design::shapes::{profile_radius, transition_nose_shape as nose_shape_of};
-use crate::design::NoseShape;
+use crate::design::{NoseShape, Transition};
 use std::f64::consts::PI;
 
 /// An axially symmetric body section: a nose (fore radius 0) or a transition, of one shape.
@@ -21,6 +22,8 @@ pub struct Section {
     pub length_m: f64,
     pub fore_radius_m: f64,
     pub aft_radius_m: f64,
+    /// A transition's clip length ([`crate::design::shapes::clip_length`]); 0 unclipped.
+    pub clip_m: f64,
 }
 
 impl Section {
@@ -31,6 +34,18 @@ impl Section {
             length_m,
             fore_radius_m: 0.0,
             aft_radius_m: base_radius_m,
+            clip_m: 0.0,
+        }
+    }
+
+    /// A transition `length_m` long.
+    pub fn transition(length_m: f64, t: &Transition) -> Self {
+        Section {
+            shape: nose_shape_of(t.shape),
+            length_m,
+            fore_radius_m: t.fore_diameter_m / 2.0,
+            aft_radius_m: t.aft_diameter_m / 2.0,
+            clip_m: t.clip_m,
         }
     }
 
@@ -41,20 +56,21 @@ impl Section {
             length_m,
             fore_radius_m: radius_m,
             aft_radius_m: radius_m,
+            clip_m: 0.0,
         }
     }
 
-    /// Radius at `x_m` aft of the section's fore end (non-clipped transition adaptation).
+    /// Radius at `x_m` aft of the section's fore end (OpenRocket's transition profile,
+    /// clipped or not).
     pub fn radius(&self, x_m: f64) -> f64 {
-        let (r1, r2, l) = (self.fore_radius_m, self.aft_radius_m, self.length_m);
-        if r1 == r2 {
-            return r1;
-        }
-        if r1 < r2 {
-            r1 + profile_radius(self.shape, l, r2 - r1, x_m)
-        } else {
-            r2 + profile_radius(self.shape, l, r1 - r2, l - x_m)
-        }
+        tapered_radius(
+            self.shape,
+            self.length_m,
+            self.fore_radius_m,
+            self.aft_radius_m,
+            self.clip_m,
+            x_m,
+        )
     }
 
     /// Enclosed volume `∫ π r² dx`, m³.
@@ -165,6 +181,7 @@ mod tests {
             length_m: 0.1,
             fore_radius_m: 0.03,
             aft_radius_m: 0.05,
+            clip_m: 0.0,
         };
         let v_exact = PI * 0.1 / 3.0 * (0.03f64.powi(2) + 0.03 * 0.05 + 0.05f64.powi(2));
         assert!((s.volume_m3() / v_exact - 1.0).abs() < 1e-12);
@@ -179,12 +196,14 @@ mod tests {
             length_m: 0.1,
             fore_radius_m: 0.03,
             aft_radius_m: 0.05,
+            clip_m: 0.0,
         };
         let aft = Section {
             shape: NoseShape::Elliptical,
             length_m: 0.1,
             fore_radius_m: 0.05,
             aft_radius_m: 0.03,
+            clip_m: 0.0,
         };
         for &x in &[0.0, 0.013, 0.05, 0.09, 0.1] {
             assert!((fore.radius(x) - aft.radius(0.1 - x)).abs() < 1e-15);

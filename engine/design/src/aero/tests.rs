@@ -73,6 +73,7 @@ fn tail(x_top_m: f64, length_m: f64, fore_d: f64, aft_d: f64) -> Component {
         ComponentKind::Transition(Transition {
             shape: TransitionShape::Conical,
             fore_diameter_m: fore_d,
+            clip_m: 0.0,
             aft_diameter_m: aft_d,
             wall_thickness_m: 0.002,
             wall_along_normal: false,
@@ -290,6 +291,7 @@ fn a_boattail_agrees_with_rocketpys_tail() {
         length_m: l,
         fore_radius_m: r1,
         aft_radius_m: r2,
+        clip_m: 0.0,
     };
     let lift = barrowman::body_section_lift(&s, std::f64::consts::PI * r1 * r1);
     assert!(lift.cn_alpha < 0.0);

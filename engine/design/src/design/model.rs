@@ -211,6 +211,8 @@ pub struct Transition {
     pub shape: TransitionShape,
     pub fore_diameter_m: f64,
     pub aft_diameter_m: f64,
+    /// OpenRocket's clip length, m ([`crate::design::shapes::clip_length`]); 0 unclipped.
+    pub clip_m: f64,
     pub wall_thickness_m: f64,
     /// As a nose cone's.
     pub wall_along_normal: bool,

@@ -294,6 +294,9 @@ component_struct!(RawTransition {
     wall_along_normal: bool,
     #[serde(default)]
     filled: bool,
+    /// OpenRocket's clipped profile (the rest of a nose of the larger radius).
+    #[serde(default)]
+    clipped: bool,
     #[serde(default)]
     fore_shoulder: Option<RawShoulder>,
     #[serde(default)]

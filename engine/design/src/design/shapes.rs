@@ -70,12 +70,14 @@ pub fn transition_nose_shape(shape: TransitionShape) -> NoseShape {
     }
 }
 
-/// Radius of a transition at `x_m` aft of its fore end (`x_m` clamped to `[0, length_m]`).
+/// Radius of a transition at `x_m` aft of its fore end (`x_m` clamped to `[0, length_m]`);
+/// `clip_m` is its [`clip_length`] (0 for the unclipped profile).
 pub fn transition_radius(
     shape: TransitionShape,
     length_m: f64,
     fore_radius_m: f64,
     aft_radius_m: f64,
+    clip_m: f64,
     x_m: f64,
 ) -> f64 {
     tapered_radius(
@@ -83,26 +85,85 @@ pub fn transition_radius(
         length_m,
         fore_radius_m,
         aft_radius_m,
+        clip_m,
         x_m,
     )
 }
 
 /// Radius `x_m` aft of the fore end of a part tapering from `fore_radius_m` to
-/// `aft_radius_m` along the nose profile `nose` (a transition's; `x_m` clamped to the part).
+/// `aft_radius_m` along the nose profile `nose` (`x_m` clamped to the part). Unclipped
+/// (`clip_m` 0): the nose profile of height `|r₂ − r₁|` on the smaller radius. Clipped
+/// (OpenRocket's): the nose of length `clip_m + L` and the larger radius, from `clip_m` on.
 pub fn tapered_radius(
     nose: NoseShape,
     length_m: f64,
     fore_radius_m: f64,
     aft_radius_m: f64,
+    clip_m: f64,
     x_m: f64,
 ) -> f64 {
     let x = x_m.clamp(0.0, length_m.max(0.0));
     if fore_radius_m == aft_radius_m {
-        fore_radius_m
-    } else if fore_radius_m < aft_radius_m {
-        fore_radius_m + profile_radius(nose, length_m, aft_radius_m - fore_radius_m, x)
+        return fore_radius_m;
+    }
+    // From the small end.
+    let (small, big, x) = if fore_radius_m < aft_radius_m {
+        (fore_radius_m, aft_radius_m, x)
     } else {
-        aft_radius_m + profile_radius(nose, length_m, fore_radius_m - aft_radius_m, length_m - x)
+        (aft_radius_m, fore_radius_m, length_m - x)
+    };
+    if clip_m > 0.0 {
+        profile_radius(nose, clip_m + length_m, big, clip_m + x)
+    } else {
+        small + profile_radius(nose, length_m, big - small, x)
+    }
+}
+
+/// Whether OpenRocket clips a transition of this profile when told to: the elliptical,
+/// power-series and Haack ones (for the others it makes no difference, or too little).
+pub fn clippable(nose: NoseShape) -> bool {
+    matches!(
+        nose,
+        NoseShape::Elliptical | NoseShape::PowerSeries { .. } | NoseShape::Haack { .. }
+    )
+}
+
+/// OpenRocket's clip of a transition from `small` to `big` radius over `length_m`: the
+/// length `c` at which the nose profile of length `c + L` and base radius `big` is `small`
+/// wide, so that the transition is the rest of that nose. Found as OpenRocket finds it
+/// (`Transition.calculateClip`): bracketed by doubling from `L`, then bisected until the
+/// bracket is under 0.1 mm, its midpoint taken. 0 for a pointed end or no length.
+pub fn clip_length(nose: NoseShape, length_m: f64, small: f64, big: f64) -> f64 {
+    const PRECISION_M: f64 = 1e-4;
+    let (small, big) = if small <= big {
+        (small, big)
+    } else {
+        (big, small)
+    };
+    if small == 0.0 || length_m <= 0.0 {
+        return 0.0;
+    }
+    let r = |c: f64| profile_radius(nose, c + length_m, big, c);
+    let (mut min, mut max) = (0.0, length_m);
+    let mut n = 0;
+    while r(max) - small < 0.0 {
+        min = max;
+        max *= 2.0;
+        n += 1;
+        if n > 10 {
+            break;
+        }
+    }
+    loop {
+        let c = (min + max) / 2.0;
+        if max - min < PRECISION_M {
+            return c;
+        }
+        if r(c) - small > 0.0 {
+            max = c;
+        } else {
+            min = c;
+        }
     }
 }
 
@@ -122,6 +183,7 @@ pub fn body_radius(kind: &ComponentKind, length_m: f64, x_m: f64) -> Option<f64>
             length_m,
             t.fore_diameter_m / 2.0,
             t.aft_diameter_m / 2.0,
+            t.clip_m,
             x_m,
         )),
         _ => None,
@@ -193,10 +255,38 @@ mod tests {
     fn a_transition_puts_the_nose_profile_at_its_smaller_end() {
         let s = TransitionShape::PowerSeries { k: 0.5 };
         // Growing 0.02 -> 0.04 over 0.1: at x = 0.025, r = 0.02 + 0.02 sqrt(0.25) = 0.03.
-        assert!((transition_radius(s, 0.1, 0.02, 0.04, 0.025) - 0.03).abs() < 1e-17);
+        assert!((transition_radius(s, 0.1, 0.02, 0.04, 0.0, 0.025) - 0.03).abs() < 1e-17);
         // Shrinking 0.04 -> 0.02: mirror image, at x = 0.075 the same 0.03.
-        assert!((transition_radius(s, 0.1, 0.04, 0.02, 0.075) - 0.03).abs() < 1e-17);
-        assert_eq!(transition_radius(s, 0.1, 0.04, 0.02, 0.0), 0.04);
-        assert_eq!(transition_radius(s, 0.1, 0.04, 0.02, 0.1), 0.02);
+        assert!((transition_radius(s, 0.1, 0.04, 0.02, 0.0, 0.075) - 0.03).abs() < 1e-17);
+        assert_eq!(transition_radius(s, 0.1, 0.04, 0.02, 0.0, 0.0), 0.04);
+        assert_eq!(transition_radius(s, 0.1, 0.04, 0.02, 0.0, 0.1), 0.02);
+    }
+
+    #[test]
+    fn a_clipped_transition_is_the_rest_of_the_nose_of_its_larger_radius() {
+        // Elliptical, 0.02 -> 0.04 over 0.1: the nose of length c + L reaches 0.02 at c when
+        // 0.04 sqrt(1 − (L/(c + L))²) = 0.02, c = L (1/sqrt(3/4) − 1); OpenRocket's
+        // bisection stops within 0.05 mm of it.
+        let nose = NoseShape::Elliptical;
+        let exact = 0.1 * (1.0 / 0.75f64.sqrt() - 1.0);
+        let c = clip_length(nose, 0.1, 0.02, 0.04);
+        assert!((c - exact).abs() < 5e-5, "{c} vs {exact}");
+        assert_eq!(clip_length(nose, 0.1, 0.04, 0.02), c);
+        let shape = TransitionShape::Elliptical;
+        for x in [0.0, 0.03, 0.07, 0.1] {
+            let want = 0.04 * (1.0 - ((0.1 - x) / (c + 0.1)).powi(2)).sqrt();
+            let grow = transition_radius(shape, 0.1, 0.02, 0.04, c, x);
+            assert!((grow - want).abs() < 1e-16, "{x}: {grow} vs {want}");
+            // A boattail is its mirror image.
+            let shrink = transition_radius(shape, 0.1, 0.04, 0.02, c, 0.1 - x);
+            assert!((shrink - want).abs() < 1e-16);
+        }
+        // Its ends: the larger radius exactly, the smaller within the clip's precision.
+        assert_eq!(transition_radius(shape, 0.1, 0.02, 0.04, c, 0.1), 0.04);
+        assert!((transition_radius(shape, 0.1, 0.02, 0.04, c, 0.0) - 0.02).abs() < 1e-4);
+        // A pointed end has nothing to clip; only three shapes can be clipped.
+        assert_eq!(clip_length(nose, 0.1, 0.0, 0.04), 0.0);
+        assert!(clippable(NoseShape::Haack { c: 0.0 }) && !clippable(NoseShape::Ogive));
+        assert!(!clippable(NoseShape::Conical) && !clippable(NoseShape::Parabolic { k: 1.0 }));
     }
 }

@@ -139,10 +139,9 @@ fn unit_shape(c: &Component, at: &Vector3<f64>) -> MassProps {
             let (r1, r2) = (t.fore_diameter_m / 2.0, t.aft_diameter_m / 2.0);
             let wall =
                 (!t.filled).then_some(solids::Wall::of(t.wall_thickness_m, t.wall_along_normal));
-            let shape = t.shape;
-            let mut body =
-                solids::revolution(|x| shapes::transition_radius(shape, l, r1, r2, x), l, wall)
-                    .translated(at);
+            let (shape, clip) = (t.shape, t.clip_m);
+            let radius = |x| shapes::transition_radius(shape, l, r1, r2, clip, x);
+            let mut body = solids::revolution(radius, l, wall).translated(at);
             if let Some(s) = &t.fore_shoulder {
                 body = body.combine(&shoulder(s, -s.length_m, false, at));
             }

@@ -10,7 +10,7 @@ mod parts;
 
 use super::{Auto, El};
 use crate::design::raw::RawNoseShape;
-use crate::design::shapes::tapered_radius;
+use crate::design::shapes::{clip_length, clippable, tapered_radius};
 use crate::error::DesignError;
 use serde_json::{json, Map, Value};
 use std::collections::HashMap;
@@ -417,12 +417,9 @@ impl Context {
                     m.insert("shape_parameter".into(), json!(p));
                 }
                 // OpenRocket writes `shapeclipped` for nose cones too, but clips only
-                // transitions.
-                if kind == "transition"
-                    && el.flag("shapeclipped")
-                    && matches!(shape, "elliptical" | "power_series" | "haack")
-                {
-                    return Err(el.refuse("a clipped transition"));
+                // transitions (of the shapes it can clip, which the design format checks).
+                if kind == "transition" && el.flag("shapeclipped") {
+                    m.insert("clipped".into(), json!(true));
                 }
                 match el.text("thickness") {
                     Some("filled") => {
@@ -669,7 +666,12 @@ fn shell_inner_radius(
         "transition" => (radius("fore_diameter_m")?, radius("aft_diameter_m")?),
         _ => return None,
     };
+    let clip = if json.get("clipped").and_then(Value::as_bool) == Some(true) && clippable(nose) {
+        clip_length(nose, length_m, fore, aft)
+    } else {
+        0.0
+    };
     Some(Box::new(move |x| {
-        (tapered_radius(nose, length_m, fore, aft, x) - wall).max(0.0)
+        (tapered_radius(nose, length_m, fore, aft, clip, x) - wall).max(0.0)
     }))
 }

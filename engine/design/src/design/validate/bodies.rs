@@ -4,6 +4,7 @@
 use super::Builder;
 use crate::design::model::*;
 use crate::design::raw::*;
+use crate::design::shapes;
 use crate::error::{DesignError, Location, Rule};
 
 impl Builder<'_> {
@@ -68,10 +69,18 @@ impl Builder<'_> {
                     Some(s) => Some(self.shoulder(&at, "aft_shoulder", s, aft)?),
                     None => None,
                 };
+                // Clipping changes only the shapes OpenRocket clips; others ignore it, as there.
+                let nose = shapes::transition_nose_shape(shape);
+                let clip_m = if t.clipped && shapes::clippable(nose) {
+                    shapes::clip_length(nose, length, fore / 2.0, aft / 2.0)
+                } else {
+                    0.0
+                };
                 let transition = Transition {
                     shape,
                     fore_diameter_m: fore,
                     aft_diameter_m: aft,
+                    clip_m,
                     wall_thickness_m: wall,
                     wall_along_normal: t.wall_along_normal,
                     filled: t.filled,
