@@ -514,7 +514,7 @@ impl Context {
 }
 
 /// An override's mass and CG, where given (the design format's `override` fields).
-fn overrides(mass: Option<f64>, cg: Option<f64>) -> Component {
+pub(super) fn overrides(mass: Option<f64>, cg: Option<f64>) -> Component {
     let mut o = Map::new();
     if let Some(v) = mass {
         o.insert("mass_kg".into(), json!(v));

@@ -105,9 +105,8 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
     let rocket = El::new(file, root, "")
         .child("rocket")
         .ok_or_else(|| err(file, "openrocket", "has no <rocket>"))?;
-    if rocket.text("overridemass").is_some() || rocket.text("overridecg").is_some() {
-        return Err(rocket.refuse("an override of the whole rocket"));
-    }
+    let rocket_override =
+        rocket.text("overridemass").is_some() || rocket.text("overridecg").is_some();
     let mut cx = components::Context::new();
     let motor = cx.default_motor(&rocket);
     let mut stages = Vec::new();
@@ -120,6 +119,27 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
     }
     if stages.is_empty() {
         return Err(err(file, "rocket", "has no <stage>"));
+    }
+    if rocket_override {
+        // The whole rocket's override is its one stage's (the design format overrides
+        // stages); with several stages, or over a stage's own, it has nowhere to go.
+        let covers = rocket.flag("overridesubcomponentsmass")
+            || rocket.flag("overridesubcomponentscg")
+            || rocket.flag("overridesubcomponents");
+        match stages.as_mut_slice() {
+            [only] if covers && only.get("override").is_none() => {
+                let o =
+                    components::overrides(rocket.num("overridemass")?, rocket.num("overridecg")?);
+                only["override"] = Value::Object(o);
+                cx.note("The whole rocket's mass override is its stage's.".to_owned());
+            }
+            _ => {
+                return Err(rocket.refuse(
+                    "an override of the whole rocket that does not cover its parts, or of \
+                     several stages, or over a stage's own",
+                ))
+            }
+        }
     }
     if stages.len() > 1 {
         cx.note(format!(

@@ -398,6 +398,33 @@ fn a_clipped_transition_is_imported_clipped_and_weighed_so() {
 }
 
 #[test]
+fn the_whole_rocket_s_override_becomes_its_one_stage_s() {
+    let with = |extra: &str| {
+        edited(
+            "<name>Example: minimal 54 mm rocket</name>",
+            &format!("<name>Example: minimal 54 mm rocket</name>{extra}"),
+        )
+    };
+    let text = with(
+        "<overridemass>1.5</overridemass><overridecg>0.5</overridecg>\
+         <overridesubcomponents>true</overridesubcomponents>",
+    );
+    let (design, import) = imported(text.as_bytes());
+    assert_eq!(design.stages[0].overrides.mass_kg, Some(1.5));
+    assert_eq!(design.stages[0].overrides.cg_m, Some(0.5));
+    let dry = dry(&design);
+    assert_eq!(dry.mass_kg, 1.5);
+    assert!((dry.cg_m.x - 0.5).abs() < 1e-15);
+    assert!(noted(
+        &import,
+        "The whole rocket's mass override is its stage's."
+    ));
+    // Not covering its parts (OpenRocket would add the mass on top), it is refused.
+    let e = refusal(with("<overridemass>1.5</overridemass>").as_bytes(), "r.ork");
+    assert!(e.contains("an override of the whole rocket"), "{e}");
+}
+
+#[test]
 fn a_part_after_another_starts_where_that_one_ends() {
     // An old `<position type="after">`: the ballast 0.02 m after the parachute's end (0.05 +
     // 0.08 m down the body tube), as OpenRocket's AxialMethod.AFTER adds the offset.
