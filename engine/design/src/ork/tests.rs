@@ -425,6 +425,35 @@ fn the_whole_rocket_s_override_becomes_its_one_stage_s() {
 }
 
 #[test]
+fn a_part_of_no_length_is_left_out_if_it_weighs_nothing_and_kept_as_a_point_mass_if_not() {
+    let text = edited(
+        "<parachute>",
+        "<centeringring><name>Marker</name><position type=\"absolute\">0.6</position>\
+         <material type=\"bulk\" density=\"680.0\">Cardboard</material><length>0.0</length>\
+         <outerradius>auto 0.02665</outerradius><innerradius>auto 0.02</innerradius></centeringring>\
+         <masscomponent><name>Point</name><position type=\"absolute\">0.7</position>\
+         <packedlength>0.0</packedlength><packedradius>0.01</packedradius><mass>0.1</mass>\
+         </masscomponent><parachute>",
+    );
+    let (design, import) = imported(text.as_bytes());
+    let (plain, _) = imported(EXAMPLE.as_bytes());
+    assert!(design.components.iter().all(|c| c.name != "Marker"));
+    assert!(noted(
+        &import,
+        "Marker: no length, so it weighs nothing; left out."
+    ));
+    assert!(noted(
+        &import,
+        "Point: no length; its mass is put in 0.1 µm of it"
+    ));
+    let (with, without) = (dry(&design), dry(&plain));
+    assert!((with.mass_kg - without.mass_kg - 0.1).abs() < 1e-15);
+    // The point's center: 0.7 m aft of the tip, to the 0.05 µm of its length.
+    let point_x = (with.cg_m.x * with.mass_kg - without.cg_m.x * without.mass_kg) / 0.1;
+    assert!((point_x - 0.7).abs() < 1e-7, "{point_x}");
+}
+
+#[test]
 fn a_part_after_another_starts_where_that_one_ends() {
     // An old `<position type="after">`: the ballast 0.02 m after the parachute's end (0.05 +
     // 0.08 m down the body tube), as OpenRocket's AxialMethod.AFTER adds the offset.

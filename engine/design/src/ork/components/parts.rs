@@ -49,6 +49,9 @@ impl Context {
             let Some((mut part, length)) = made else {
                 continue;
             };
+            let Some(length) = self.no_length(el, &mut part, length) else {
+                continue;
+            };
             self.no_wall_weighs_nothing(el, &mut part);
             let fore = fore_of(length);
             let count = el
@@ -146,6 +149,37 @@ impl Context {
                 "{}: no wall, so it weighs nothing (as in OpenRocket); drawn with a wall of 0.1 µm.",
                 el.name()
             ));
+        }
+    }
+
+    /// A part OpenRocket draws with no length (a marker, or a point mass): left out, with a
+    /// note, if it weighs nothing (no volume, a zero override or mass); otherwise
+    /// [`THIN_WALL_M`] long, its mass where OpenRocket puts it. The length to place it by.
+    fn no_length(&mut self, el: &El<'_, '_>, part: &mut Component, length: f64) -> Option<f64> {
+        let holds = el
+            .child("subcomponents")
+            .is_some_and(|s| s.children().next().is_some());
+        if length > 0.0 || holds || !part.contains_key("length_m") {
+            return Some(length);
+        }
+        let given = part
+            .get("override")
+            .and_then(|o| o.get("mass_kg"))
+            .or_else(|| part.get("mass_kg"))
+            .and_then(Value::as_f64);
+        if given.is_some_and(|m| m > 0.0) {
+            part.insert("length_m".into(), json!(THIN_WALL_M));
+            self.note(format!(
+                "{}: no length; its mass is put in 0.1 µm of it, where OpenRocket has it.",
+                el.name()
+            ));
+            Some(THIN_WALL_M)
+        } else {
+            self.note(format!(
+                "{}: no length, so it weighs nothing; left out.",
+                el.name()
+            ));
+            None
         }
     }
 
