@@ -375,7 +375,7 @@ fn a_clipped_transition_is_imported_clipped_and_weighed_so() {
     let json = &import.json["stages"][0]["components"][2];
     assert_eq!(json["clipped"], true, "{json}");
     let t = |d: &Design| match &d.component("tail").unwrap().kind {
-        crate::ComponentKind::Transition(t) => t.clone(),
+        crate::ComponentKind::Transition(t) => *t,
         other => panic!("{other:?}"),
     };
     let nose = crate::design::NoseShape::Haack { c: 0.0 };
