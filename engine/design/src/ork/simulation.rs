@@ -13,8 +13,9 @@
 use super::{parse_number, El};
 
 /// The note for the simulations under `root` (`<openrocket>`, whose `<rocket>` is `rocket`):
-/// the first one that flies the default configuration `config` (else the first), if there
-/// is one.
+/// of those that fly the default configuration `config` (else of all), the first up to date
+/// whose flight went on past its apogee, else the first that did (an aborted flight ends at
+/// its highest point, a few seconds in), else the first; if there is one.
 pub(super) fn note(root: &El<'_, '_>, rocket: &El<'_, '_>, config: Option<&str>) -> Option<String> {
     let sims: Vec<El<'_, '_>> = root
         .child("simulations")?
@@ -26,7 +27,25 @@ pub(super) fn note(root: &El<'_, '_>, rocket: &El<'_, '_>, config: Option<&str>)
             .and_then(|c| c.text("configid"))
             .is_some_and(|id| Some(id.trim()) == config)
     };
-    let sim = sims.iter().find(|s| flies_default(s)).or(sims.first())?;
+    let own: Vec<&El<'_, '_>> = sims.iter().filter(|s| flies_default(s)).collect();
+    let pool = if own.is_empty() {
+        sims.iter().collect()
+    } else {
+        own
+    };
+    let past_apogee = |s: &El<'_, '_>| {
+        s.child("flightdata").is_some_and(|d| {
+            let got = |a: &str| d.attribute(a).and_then(parse_number);
+            d.attribute("groundhitvelocity").is_some()
+                || matches!((got("flighttime"), got("timetoapogee")), (Some(f), Some(a)) if f > a)
+        })
+    };
+    let current = |s: &El<'_, '_>| s.attribute("status") != Some("outdated");
+    let sim = *pool
+        .iter()
+        .find(|s| current(s) && past_apogee(s))
+        .or_else(|| pool.iter().find(|s| past_apogee(s)))
+        .or(pool.first())?;
     let c = sim.child("conditions")?;
     let sim_config = c.text("configid").map(str::trim);
     let motor = super::components::find_motor(rocket, sim_config.or(config))

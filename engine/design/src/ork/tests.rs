@@ -982,6 +982,18 @@ fn openrocket_s_own_simulation_is_said_as_fly_s_flags_with_what_it_found() {
         note.ends_with("apogee 48.01 m (OpenRocket marks them outdated)."),
         "{note}"
     );
+    // A flight OpenRocket aborted (it ends at its highest point, 2 s in) is passed over for
+    // the next of the same configuration that flew on past its apogee.
+    let note = with_simulations(
+        r#"<simulation status="uptodate"><name>Aborted</name><conditions><configid>c1</configid>
+             <launchrodlength>1.0</launchrodlength></conditions>
+             <flightdata maxaltitude="88.3" timetoapogee="1.95" flighttime="1.95"/></simulation>
+           <simulation status="uptodate"><name>Flown</name><conditions><configid>c1</configid>
+             <launchrodlength>4.0</launchrodlength></conditions>
+             <flightdata maxaltitude="773.2" timetoapogee="13.35" flighttime="93.6"/></simulation>"#,
+    )
+    .unwrap();
+    assert!(note.starts_with("OpenRocket's simulation \"Flown\""), "{note}");
     // No simulations, no note.
     assert_eq!(with_simulations(""), None);
 }
