@@ -8,7 +8,10 @@
 //! metres, its angle from the vertical and its direction in degrees, the average wind's
 //! speed in m/s and its direction in radians, the direction it blows from, clockwise from
 //! north (OpenRocket's default, π/2, is "an East wind"); the launch altitude in metres above
-//! sea level, the extended ISA's base temperature (K) and pressure (Pa).
+//! sea level, the extended ISA's base temperature (K) and pressure (Pa). The rod's direction
+//! is clockwise from north from OpenRocket 22 on (the wind's when "launch into the wind" is
+//! set); before, with no wind direction saved, it was the rod's relative to the wind, 0
+//! towards it (OpenRocket 15.03's launch tab: "0° = towards the wind, 180° = downwind").
 
 use super::{parse_number, El};
 
@@ -63,11 +66,6 @@ pub(super) fn note(root: &El<'_, '_>, rocket: &El<'_, '_>, config: Option<&str>)
     }
     let angle = num(&c, "launchrodangle").unwrap_or(0.0);
     flags.push(format!("--inclination-deg {}", round(90.0 - angle)));
-    if c.text("launchintowind").map(str::trim) == Some("true") {
-        unsaid.push("its rod turned into the wind".to_owned());
-    } else if let Some(d) = num(&c, "launchroddirection") {
-        flags.push(format!("--heading-deg {}", round(d)));
-    }
     // The average wind: OpenRocket 24's <wind model="average">, or the older elements.
     let (speed, direction, turbulence) = match c.child("wind") {
         Some(w) if w.attribute("model") == Some("average") => {
@@ -92,12 +90,31 @@ pub(super) fn note(root: &El<'_, '_>, rocket: &El<'_, '_>, config: Option<&str>)
             num(&c, "windturbulence"),
         ),
     };
+    let from = direction
+        .unwrap_or(std::f64::consts::FRAC_PI_2)
+        .to_degrees()
+        .rem_euclid(360.0);
+    // The rod's direction: from OpenRocket 22 on, clockwise from north, or the wind's own
+    // when launched into the wind; before (no wind direction saved), relative to the wind,
+    // 0 towards it (the rod leaning into the wind), 180° downwind.
+    let absolute = c.child("winddirection").is_some()
+        || c.child("wind").is_some()
+        || c.child("launchintowind").is_some();
+    let rod = num(&c, "launchroddirection");
+    let heading = if !absolute {
+        Some(from + rod.unwrap_or(0.0))
+    } else if c.text("launchintowind").map(str::trim) == Some("true") {
+        Some(from)
+    } else {
+        rod
+    };
+    // A vertical rod has no heading.
+    if let Some(h) = heading.filter(|h| angle != 0.0 && h.rem_euclid(360.0) != 0.0) {
+        flags.push(format!("--heading-deg {}", round(h.rem_euclid(360.0))));
+    }
     if let Some(v) = speed {
         flags.push(format!("--wind-m-s {}", round(v)));
-        let from = direction
-            .unwrap_or(std::f64::consts::FRAC_PI_2)
-            .to_degrees();
-        flags.push(format!("--wind-from-deg {}", round(from.rem_euclid(360.0))));
+        flags.push(format!("--wind-from-deg {}", round(from)));
     }
     if let Some(t) = turbulence.filter(|t| *t > 0.0) {
         unsaid.push(format!("its wind's turbulence, {} %", round(100.0 * t)));

@@ -982,6 +982,36 @@ fn openrocket_s_own_simulation_is_said_as_fly_s_flags_with_what_it_found() {
         note.ends_with("apogee 48.01 m (OpenRocket marks them outdated)."),
         "{note}"
     );
+    // The rod's direction: before OpenRocket 22 (no wind direction saved) the rod's relative
+    // to the wind, 90° across it; after, the wind's own when launched into the wind.
+    let rod = |extra: &str| {
+        with_simulations(&format!(
+            r#"<simulation status="uptodate"><name>Rod</name><conditions><configid>c1</configid>
+                 <launchrodlength>5.0</launchrodlength><launchrodangle>6.0</launchrodangle>
+                 <launchroddirection>90.0</launchroddirection><windaverage>2.0</windaverage>
+                 {extra}</conditions></simulation>"#
+        ))
+        .unwrap()
+    };
+    let old = rod("");
+    assert!(
+        old.contains("--inclination-deg 84 --heading-deg 180 --wind-m-s 2 --wind-from-deg 90"),
+        "{old}"
+    );
+    let into = rod(
+        "<winddirection>3.141592653589793</winddirection><launchintowind>true</launchintowind>",
+    );
+    assert!(
+        into.contains("--heading-deg 180 --wind-m-s 2 --wind-from-deg 180"),
+        "{into}"
+    );
+    let set = rod(
+        "<winddirection>3.141592653589793</winddirection><launchintowind>false</launchintowind>",
+    );
+    assert!(
+        set.contains("--heading-deg 90 --wind-m-s 2 --wind-from-deg 180"),
+        "{set}"
+    );
     // A flight OpenRocket aborted (it ends at its highest point, 2 s in) is passed over for
     // the next of the same configuration that flew on past its apogee.
     let note = with_simulations(
@@ -993,7 +1023,10 @@ fn openrocket_s_own_simulation_is_said_as_fly_s_flags_with_what_it_found() {
              <flightdata maxaltitude="773.2" timetoapogee="13.35" flighttime="93.6"/></simulation>"#,
     )
     .unwrap();
-    assert!(note.starts_with("OpenRocket's simulation \"Flown\""), "{note}");
+    assert!(
+        note.starts_with("OpenRocket's simulation \"Flown\""),
+        "{note}"
+    );
     // No simulations, no note.
     assert_eq!(with_simulations(""), None);
 }
