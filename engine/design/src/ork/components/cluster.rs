@@ -26,6 +26,15 @@ fn pattern(name: &str) -> Option<Vec<[f64; 2]>> {
             .collect()
     };
     let h = sqrt3 / 2.0;
+    // A hexagon of unit side, its first corner on the pattern's second axis.
+    let ring6 = [
+        [0.0, 1.0],
+        [h, 0.5],
+        [h, -0.5],
+        [0.0, -1.0],
+        [-h, -0.5],
+        [-h, 0.5],
+    ];
     let d = 1.4 / sqrt2;
     Some(match name {
         "single" => vec![[0.0, 0.0]],
@@ -39,14 +48,7 @@ fn pattern(name: &str) -> Option<Vec<[f64; 2]>> {
         ],
         "4-ring" => vec![[-0.5, 0.5], [0.5, 0.5], [0.5, -0.5], [-0.5, -0.5]],
         "5-ring" => ring5(r5),
-        "6-ring" => vec![
-            [0.0, 1.0],
-            [h, 0.5],
-            [h, -0.5],
-            [0.0, -1.0],
-            [-h, -0.5],
-            [-h, 0.5],
-        ],
+        "6-ring" => ring6.to_vec(),
         "3-star" => vec![[0.0, 0.0], [0.0, 1.0], [h, -0.5], [-h, -0.5]],
         "4-star" => vec![
             [0.0, 0.0],
@@ -60,15 +62,11 @@ fn pattern(name: &str) -> Option<Vec<[f64; 2]>> {
             v.extend(ring5(1.0));
             v
         }
-        "6-star" => vec![
-            [0.0, 0.0],
-            [0.0, 1.0],
-            [h, 0.5],
-            [h, -0.5],
-            [0.0, -1.0],
-            [-h, -0.5],
-            [-h, 0.5],
-        ],
+        "6-star" => {
+            let mut v = vec![[0.0, 0.0]];
+            v.extend(ring6);
+            v
+        }
         "9-grid" => {
             let mut v = Vec::with_capacity(9);
             for y in [1.4, 0.0, -1.4] {
