@@ -10,7 +10,7 @@
 //!
 //! What a design cannot hold is refused with the element and the reason (pods and parallel
 //! stages, tube fins, clustered motors, flipped parts, secant ogives); what it leaves out is listed
-//! in [`OrkImport::notes`] and the design's `notes` (drag overrides, a streamer's drag, a
+//! in [`OrkImport::notes`] and the design's `notes` (drag overrides, a
 //! parachute hpr's flight never deploys; each parachute's deployment is said too). The
 //! drag is estimated from the geometry with the finish most of the outer surfaces have, as
 //! OpenRocket estimates it (a `.ork` holds no drag curve).

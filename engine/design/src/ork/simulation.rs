@@ -173,7 +173,7 @@ pub(super) fn note(root: &El<'_, '_>, rocket: &El<'_, '_>, config: Option<&str>)
 }
 
 /// A number as a person writes it: at most four decimals, no trailing zeros.
-fn round(v: f64) -> String {
+pub(super) fn round(v: f64) -> String {
     let s = format!("{:.4}", (v * 1e4).round() / 1e4);
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {

@@ -454,6 +454,49 @@ fn a_part_of_no_length_is_left_out_if_it_weighs_nothing_and_kept_as_a_point_mass
 }
 
 #[test]
+fn a_streamer_flies_as_a_canopy_of_openrocket_s_streamer_drag() {
+    // A 1 m × 0.1 m strip of 0.1 kg/m²: OpenRocket's automatic cd is
+    // 0.034 (0.1 + 0.025)/0.105 (1 + 1)/1 = 0.080952..., on the strip's 0.1 m².
+    let text = edited(
+        "<parachute>",
+        "<streamer><name>Streamer</name><position type=\"top\">0.2</position>\
+         <packedlength>0.05</packedlength><packedradius>0.015</packedradius><cd>auto</cd>\
+         <material type=\"surface\" density=\"0.1\">Mylar</material>\
+         <deployevent>apogee</deployevent><deployaltitude>200.0</deployaltitude>\
+         <deploydelay>0.5</deploydelay><striplength>1.0</striplength><stripwidth>0.1</stripwidth>\
+         </streamer><parachute>",
+    );
+    let (design, import) = imported(text.as_bytes());
+    let c = design.component("streamer").expect("the streamer");
+    let crate::ComponentKind::Parachute(p) = &c.kind else {
+        panic!("{:?}", c.kind)
+    };
+    let cd = 0.034 * (0.125 / 0.105) * 2.0;
+    assert!((p.cd - cd).abs() < 1e-15, "{}", p.cd);
+    assert!((p.cds_m2() - cd * 0.1).abs() < 1e-15, "{}", p.cds_m2());
+    assert_eq!(c.mass_spec, crate::design::MassSpec::Mass(0.1 * 0.1));
+    let deploy = p.deploy.expect("deploys");
+    assert_eq!(deploy.lag_s, 0.5);
+    assert!(noted(
+        &import,
+        "Streamer: a streamer, flown as a canopy of its drag, cd 0.081 × the strip's 0.1 m²"
+    ));
+    // A given cd is taken as it is; the automatic one is at most 0.4.
+    let given = imported(text.replace("<cd>auto</cd>", "<cd>0.6</cd>").as_bytes()).0;
+    let short = imported(
+        text.replace("<striplength>1.0<", "<striplength>0.05<")
+            .as_bytes(),
+    )
+    .0;
+    for (d, want) in [(given, 0.6), (short, 0.4)] {
+        match &d.component("streamer").unwrap().kind {
+            crate::ComponentKind::Parachute(p) => assert_eq!(p.cd, want),
+            other => panic!("{other:?}"),
+        }
+    }
+}
+
+#[test]
 fn a_part_after_another_starts_where_that_one_ends() {
     // An old `<position type="after">`: the ballast 0.02 m after the parachute's end (0.05 +
     // 0.08 m down the body tube), as OpenRocket's AxialMethod.AFTER adds the offset.

@@ -457,12 +457,34 @@ impl Context {
                         m.insert("cord_length_m".into(), json!(el.req("cordlength")?));
                     }
                     _ => {
-                        let area = el.req("striplength")? * el.req("stripwidth")?;
-                        m.insert("type".into(), json!("mass_component"));
-                        m.insert("mass_kg".into(), json!(area * surface(el)?));
+                        // OpenRocket's streamer: drag cd × the strip's area, cd by default
+                        // 0.034 (ρ + 0.025)/0.105 (L + 1)/L, at most 0.4 (`Streamer`).
+                        let (l, w) = (el.req("striplength")?, el.req("stripwidth")?);
+                        let rho = surface(el)?;
+                        let cd = match el.auto("cd")? {
+                            Some(Auto::Value(v)) => v,
+                            _ if l > 0.0 => {
+                                (0.034 * ((rho + 0.025) / 0.105) * (l + 1.0) / l).min(0.4)
+                            }
+                            _ => 0.0,
+                        };
+                        let area = l * w;
+                        m.insert("type".into(), json!("parachute"));
+                        m.insert(
+                            "canopy_diameter_m".into(),
+                            json!((4.0 * area / std::f64::consts::PI).sqrt()),
+                        );
+                        m.insert("cd".into(), json!(cd));
+                        m.insert("mass_kg".into(), json!(area * rho));
+                        if let Some(deploy) = self.deployment(el)? {
+                            m.insert("deploy".into(), deploy);
+                        }
                         self.note(format!(
-                            "{}: a streamer is imported as its mass (its drag is not modelled).",
-                            el.name()
+                            "{}: a streamer, flown as a canopy of its drag, cd {} × the strip's \
+                             {} m² (OpenRocket's).",
+                            el.name(),
+                            super::super::simulation::round(cd),
+                            super::super::simulation::round(area)
                         ));
                     }
                 }
