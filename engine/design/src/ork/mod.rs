@@ -28,6 +28,8 @@ mod components;
 #[cfg(test)]
 mod fuzz;
 mod simulation;
+
+pub use simulation::{OrkResults, OrkSimulation};
 #[cfg(test)]
 mod tests;
 
@@ -42,6 +44,8 @@ use std::io::Read;
 pub struct OrkImport {
     pub json: Value,
     pub notes: Vec<String>,
+    /// OpenRocket's own simulation of the design, as `fly` can repeat it.
+    pub simulation: Option<OrkSimulation>,
 }
 
 /// Whether `bytes` look like an OpenRocket file: a ZIP or a gzip stream (as OpenRocket writes
@@ -183,8 +187,9 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
         None => None,
     };
     let roughness = cx.roughness();
-    if let Some(n) = simulation::note(&El::new(file, root, ""), &rocket, cx.config()) {
-        cx.note(n);
+    let simulation = simulation::simulation(&El::new(file, root, ""), &rocket, cx.config());
+    if let Some(sim) = &simulation {
+        cx.note(sim.note());
     }
     let mut notes = vec![format!(
         "Imported from {} ({creator}, file format {version}).",
@@ -205,6 +210,7 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
     Ok(OrkImport {
         json: Value::Object(design),
         notes: cx.notes,
+        simulation,
     })
 }
 

@@ -15,11 +15,52 @@
 
 use super::{parse_number, El};
 
-/// The note for the simulations under `root` (`<openrocket>`, whose `<rocket>` is `rocket`):
-/// of those that fly the default configuration `config` (else of all), the first up to date
-/// whose flight went on past its apogee, else the first that did (an aborted flight ends at
-/// its highest point, a few seconds in), else the first; if there is one.
-pub(super) fn note(root: &El<'_, '_>, rocket: &El<'_, '_>, config: Option<&str>) -> Option<String> {
+/// OpenRocket's own simulation of the design, as `fly` can repeat it: its launch conditions
+/// in `fly`'s terms, what they leave out, and what OpenRocket found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OrkSimulation {
+    pub name: String,
+    /// "Maker designation" of the motor it flew, if the file names one.
+    pub motor: Option<String>,
+    pub rail_length_m: Option<f64>,
+    pub inclination_deg: f64,
+    /// `None` for a vertical rod or a heading of north.
+    pub heading_deg: Option<f64>,
+    /// The average wind's speed, if the simulation has an average wind.
+    pub wind_m_s: Option<f64>,
+    /// Where the wind blows from, clockwise from north.
+    pub wind_from_deg: f64,
+    pub elevation_m: Option<f64>,
+    /// The extended ISA's base temperature and pressure.
+    pub temperature_k: Option<f64>,
+    pub pressure_pa: Option<f64>,
+    /// What `fly` cannot repeat (turbulence, a wind table), one phrase each.
+    pub unsaid: Vec<String>,
+    /// OpenRocket marks its results outdated.
+    pub outdated: bool,
+    pub found: OrkResults,
+}
+
+/// What OpenRocket's simulation found (`<flightdata>`), each where the file gives it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct OrkResults {
+    pub apogee_m: Option<f64>,
+    pub time_to_apogee_s: Option<f64>,
+    pub max_speed_m_s: Option<f64>,
+    pub rod_speed_m_s: Option<f64>,
+    pub landing_speed_m_s: Option<f64>,
+    pub flight_time_s: Option<f64>,
+}
+
+/// The simulation under `root` (`<openrocket>`, whose `<rocket>` is `rocket`) the import
+/// reports: of those that fly the default configuration `config` (else of all), the first
+/// up to date whose flight went on past its apogee, else the first that did (an aborted
+/// flight ends at its highest point, a few seconds in), else the first; if there is one.
+pub(super) fn simulation(
+    root: &El<'_, '_>,
+    rocket: &El<'_, '_>,
+    config: Option<&str>,
+) -> Option<OrkSimulation> {
     let sims: Vec<El<'_, '_>> = root
         .child("simulations")?
         .children()
@@ -51,21 +92,14 @@ pub(super) fn note(root: &El<'_, '_>, rocket: &El<'_, '_>, config: Option<&str>)
         .or(pool.first())?;
     let c = sim.child("conditions")?;
     let sim_config = c.text("configid").map(str::trim);
-    let motor = super::components::find_motor(rocket, sim_config.or(config))
-        .and_then(|m| {
-            let d = m.text("designation")?.trim();
-            let maker = m.text("manufacturer").unwrap_or("").trim();
-            Some(format!("{maker} {d}").trim().to_owned())
-        })
-        .map_or(String::new(), |m| format!(" on the {m}"));
+    let motor = super::components::find_motor(rocket, sim_config.or(config)).and_then(|m| {
+        let d = m.text("designation")?.trim();
+        let maker = m.text("manufacturer").unwrap_or("").trim();
+        Some(format!("{maker} {d}").trim().to_owned())
+    });
     let num = |el: &El<'_, '_>, tag: &str| el.text(tag).and_then(parse_number);
-    let mut flags = Vec::new();
     let mut unsaid = Vec::new();
-    if let Some(l) = num(&c, "launchrodlength") {
-        flags.push(format!("--rail-length-m {}", round(l)));
-    }
     let angle = num(&c, "launchrodangle").unwrap_or(0.0);
-    flags.push(format!("--inclination-deg {}", round(90.0 - angle)));
     // The average wind: OpenRocket 24's <wind model="average">, or the older elements.
     let (speed, direction, turbulence) = match c.child("wind") {
         Some(w) if w.attribute("model") == Some("average") => {
@@ -108,68 +142,127 @@ pub(super) fn note(root: &El<'_, '_>, rocket: &El<'_, '_>, config: Option<&str>)
     } else {
         rod
     };
-    // A vertical rod has no heading.
-    if let Some(h) = heading.filter(|h| angle != 0.0 && h.rem_euclid(360.0) != 0.0) {
-        flags.push(format!("--heading-deg {}", round(h.rem_euclid(360.0))));
-    }
-    if let Some(v) = speed {
-        flags.push(format!("--wind-m-s {}", round(v)));
-        flags.push(format!("--wind-from-deg {}", round(from)));
-    }
     if let Some(t) = turbulence.filter(|t| *t > 0.0) {
         unsaid.push(format!("its wind's turbulence, {} %", round(100.0 * t)));
     }
-    if let Some(h) = num(&c, "launchaltitude") {
-        flags.push(format!("--elevation-m {}", round(h)));
-    }
+    let (mut temperature_k, mut pressure_pa) = (None, None);
     if let Some(a) = c.child("atmosphere") {
         if a.attribute("model") == Some("extendedisa") {
-            if let Some(t) = num(&a, "basetemperature") {
-                flags.push(format!("--temperature-k {}", round(t)));
-            }
-            if let Some(p) = num(&a, "basepressure") {
-                flags.push(format!("--pressure-pa {}", round(p)));
-            }
+            temperature_k = num(&a, "basetemperature");
+            pressure_pa = num(&a, "basepressure");
         }
     }
-    let name = sim.text("name").unwrap_or("a simulation").trim();
-    let mut text = format!(
-        "OpenRocket's simulation \"{name}\" flew it{motor} with {}",
-        flags.join(" ")
-    );
-    if !unsaid.is_empty() {
-        text += &format!("; not in these flags: {}", unsaid.join(", "));
+    let found = sim
+        .child("flightdata")
+        .map_or_else(OrkResults::default, |d| {
+            let got = |a: &str| d.attribute(a).and_then(parse_number);
+            OrkResults {
+                apogee_m: got("maxaltitude"),
+                time_to_apogee_s: got("timetoapogee"),
+                max_speed_m_s: got("maxvelocity"),
+                rod_speed_m_s: got("launchrodvelocity"),
+                landing_speed_m_s: got("groundhitvelocity"),
+                flight_time_s: got("flighttime"),
+            }
+        });
+    Some(OrkSimulation {
+        name: sim.text("name").unwrap_or("a simulation").trim().to_owned(),
+        motor,
+        rail_length_m: num(&c, "launchrodlength"),
+        inclination_deg: 90.0 - angle,
+        // A vertical rod has no heading.
+        heading_deg: heading
+            .map(|h| h.rem_euclid(360.0))
+            .filter(|h| angle != 0.0 && *h != 0.0),
+        wind_m_s: speed,
+        wind_from_deg: from,
+        elevation_m: num(&c, "launchaltitude"),
+        temperature_k,
+        pressure_pa,
+        unsaid,
+        outdated: sim.attribute("status") == Some("outdated"),
+        found,
+    })
+}
+
+impl OrkSimulation {
+    /// Its launch conditions as `hpr-mc fly`'s flags.
+    pub fn flags(&self) -> Vec<String> {
+        let mut flags = Vec::new();
+        if let Some(l) = self.rail_length_m {
+            flags.push(format!("--rail-length-m {}", round(l)));
+        }
+        flags.push(format!("--inclination-deg {}", round(self.inclination_deg)));
+        if let Some(h) = self.heading_deg {
+            flags.push(format!("--heading-deg {}", round(h)));
+        }
+        if let Some(v) = self.wind_m_s {
+            flags.push(format!("--wind-m-s {}", round(v)));
+            flags.push(format!("--wind-from-deg {}", round(self.wind_from_deg)));
+        }
+        if let Some(h) = self.elevation_m {
+            flags.push(format!("--elevation-m {}", round(h)));
+        }
+        if let Some(t) = self.temperature_k {
+            flags.push(format!("--temperature-k {}", round(t)));
+        }
+        if let Some(p) = self.pressure_pa {
+            flags.push(format!("--pressure-pa {}", round(p)));
+        }
+        flags
     }
-    if let Some(data) = sim.child("flightdata") {
-        let got = |a: &str| data.attribute(a).and_then(parse_number);
+
+    /// What OpenRocket found, as a phrase list (`apogee 1234.5 m at 12.25 s`, ...).
+    pub fn found_phrases(&self) -> Vec<String> {
+        let f = &self.found;
         let mut found = Vec::new();
-        if let Some(h) = got("maxaltitude") {
-            let at = got("timetoapogee").map_or(String::new(), |t| format!(" at {} s", round(t)));
+        if let Some(h) = f.apogee_m {
+            let at = f
+                .time_to_apogee_s
+                .map_or(String::new(), |t| format!(" at {} s", round(t)));
             found.push(format!("apogee {} m{at}", round(h)));
         }
-        if let Some(v) = got("maxvelocity") {
+        if let Some(v) = f.max_speed_m_s {
             found.push(format!("max speed {} m/s", round(v)));
         }
-        if let Some(v) = got("launchrodvelocity") {
+        if let Some(v) = f.rod_speed_m_s {
             found.push(format!("off the rod at {} m/s", round(v)));
         }
-        if let Some(v) = got("groundhitvelocity") {
-            let after =
-                got("flighttime").map_or(String::new(), |t| format!(" after {} s", round(t)));
+        if let Some(v) = f.landing_speed_m_s {
+            let after = f
+                .flight_time_s
+                .map_or(String::new(), |t| format!(" after {} s", round(t)));
             found.push(format!("landing at {} m/s{after}", round(v)));
         }
+        found
+    }
+
+    /// The import's note: the simulation as `fly`'s flags, what they leave out, what it found.
+    pub(super) fn note(&self) -> String {
+        let motor = self
+            .motor
+            .as_ref()
+            .map_or(String::new(), |m| format!(" on the {m}"));
+        let mut text = format!(
+            "OpenRocket's simulation \"{}\" flew it{motor} with {}",
+            self.name,
+            self.flags().join(" ")
+        );
+        if !self.unsaid.is_empty() {
+            text += &format!("; not in these flags: {}", self.unsaid.join(", "));
+        }
+        let found = self.found_phrases();
         if !found.is_empty() {
-            let status = sim.attribute("status").unwrap_or("");
-            let stale = if status == "outdated" {
+            let stale = if self.outdated {
                 " (OpenRocket marks them outdated)"
             } else {
                 ""
             };
             text += &format!("; it found {}{stale}", found.join(", "));
         }
+        text.push('.');
+        text
     }
-    text.push('.');
-    Some(text)
 }
 
 /// A number as a person writes it: at most four decimals, no trailing zeros.
