@@ -146,3 +146,79 @@ fn a_design_the_import_cannot_make_is_refused_and_nothing_is_written() {
         .unwrap()
         .contains("a tube fin set cannot be imported"));
 }
+
+#[test]
+fn fly_with_openrocket_conditions_flies_the_saved_simulation_s_launch_and_sets_its_results_beside()
+{
+    // The example with a simulation as OpenRocket 24 saves it: a 3 m rod 5° off vertical
+    // towards 45°, a 3 m/s wind from the south, a site 1000 m up; and what it found.
+    let text = std::fs::read_to_string(ORK).unwrap().replacen(
+        "<simulations/>",
+        r#"<simulations><simulation status="uptodate"><name>Field day</name><conditions>
+             <configid>c1</configid><launchrodlength>3.0</launchrodlength>
+             <launchrodangle>5.0</launchrodangle><launchroddirection>45.0</launchroddirection>
+             <launchintowind>false</launchintowind>
+             <wind model="average"><speed>3.0</speed><direction>3.141592653589793</direction>
+               <standarddeviation>0.3</standarddeviation></wind>
+             <launchaltitude>1000.0</launchaltitude><atmosphere model="isa"/></conditions>
+             <flightdata maxaltitude="600.0" timetoapogee="10.5" maxvelocity="150.0"
+               launchrodvelocity="20.0" groundhitvelocity="6.0" flighttime="90.0"/>
+           </simulation></simulations>"#,
+        1,
+    );
+    let dir = scratch("conditions");
+    let ork = dir.join("field.ork");
+    std::fs::write(&ork, text).unwrap();
+    let ork = ork.to_str().unwrap();
+    let json =
+        |args: &[&str]| -> serde_json::Value { serde_json::from_str(&stdout_of(args)).unwrap() };
+    let as_saved = json(&["fly", ork, "--openrocket-conditions", "--json"]);
+    let by_hand = json(&[
+        "fly",
+        ork,
+        "--json",
+        "--rail-length-m",
+        "3",
+        "--inclination-deg",
+        "85",
+        "--heading-deg",
+        "45",
+        "--wind-m-s",
+        "3",
+        "--wind-from-deg",
+        "180",
+        "--elevation-m",
+        "1000",
+    ]);
+    assert_eq!(as_saved["metrics"], by_hand["metrics"]);
+    let or = &as_saved["openrocket"];
+    assert_eq!(or["simulation"], "Field day");
+    assert_eq!(or["apogee_m"], 600.0);
+    assert_eq!(or["landing_time_s"], 90.0);
+    assert_eq!(or["not_repeated"][0], "its wind's turbulence, 10 %");
+    // The text sets each saved result beside the flight's, with the difference.
+    let text = stdout_of(&["fly", ork, "--openrocket-conditions"]);
+    let apogee = by_hand["metrics"]["apogee_m"].as_f64().unwrap();
+    let beside = text
+        .split("\nOpenRocket's simulation \"Field day\"")
+        .nth(1)
+        .expect("the section");
+    let row = beside
+        .lines()
+        .find(|l| l.trim_start().starts_with("apogee  "))
+        .unwrap();
+    assert!(
+        row.contains("600.00 m") && row.contains(&format!("{apogee:.2} m")),
+        "{row}"
+    );
+    assert!(
+        row.trim_end()
+            .ends_with(&format!("{:+.2} %", 100.0 * (apogee / 600.0 - 1.0))),
+        "{row}"
+    );
+    // It needs a .ork with a simulation, and no launch flag beside it.
+    let plain = hpr_mc(&["fly", ORK, "--openrocket-conditions"]);
+    assert!(String::from_utf8_lossy(&plain.stderr).contains("the file holds no simulation"));
+    let both = hpr_mc(&["fly", ork, "--openrocket-conditions", "--wind-m-s", "1"]);
+    assert!(!both.status.success());
+}

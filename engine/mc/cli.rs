@@ -39,7 +39,7 @@ pub struct InspectArgs {
     pub json: bool,
 }
 
-#[derive(clap::Args, Debug)]
+#[derive(clap::Args, Debug, Clone)]
 pub struct FlyArgs {
     /// The design (JSON, or an OpenRocket .ork).
     #[arg(required_unless_present = "scenario")]
@@ -127,6 +127,14 @@ pub struct FlyArgs {
     /// watched continuously).
     #[arg(long, value_parser = positive)]
     pub sampling_rate_hz: Option<f64>,
+    /// Fly an OpenRocket design (.ork) as its own saved simulation launched it (the one its
+    /// import's note names: rod, wind, site, air) and print what OpenRocket found beside
+    /// this flight. The launch flags cannot be given with it.
+    #[arg(long, conflicts_with_all = [
+        "scenario", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
+        "temperature_k", "pressure_pa", "sounding", "wind_m_s", "wind_from_deg",
+    ])]
+    pub openrocket_conditions: bool,
 }
 
 /// A flag's number that must be positive and finite (clap names the flag in its error).
@@ -314,6 +322,7 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
         ));
     }
     // With a scenario, which flight of it this is: its file and sweep point.
+    let mut openrocket = None;
     let (sim, origin) = match (&a.scenario, &a.design) {
         (Some(scenario), _) => {
             let prepared = crate::campaign::run::prepare(scenario, &Default::default())?;
@@ -327,6 +336,11 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
                 prepared.point_label(point)
             );
             (sim, Some((point, label)))
+        }
+        (None, Some(design)) if a.openrocket_conditions => {
+            let (args, sim) = as_openrocket_flew(design, a)?;
+            openrocket = Some(sim);
+            (flight_of_arguments(design, &args)?, None)
         }
         (None, Some(design)) => (flight_of_arguments(design, a)?, None),
         (None, None) => return Err(anyhow!("give a design or --scenario")),
@@ -345,12 +359,52 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
             o.insert("scenario_point".into(), (*point).into());
             o.insert("flown".into(), label.clone().into());
         }
+        if let (Some(or), Some(o)) = (&openrocket, json.as_object_mut()) {
+            o.insert("openrocket".into(), report::openrocket_json(or));
+        }
         emit(&format!("{}\n", serde_json::to_string_pretty(&json)?))?;
     } else {
         let head = origin.map_or(String::new(), |(_, label)| format!("{label}\n"));
-        emit(&format!("{head}{}", report::flight_text(&sim, &flight)))?;
+        let beside = openrocket.map_or(String::new(), |or| {
+            report::openrocket_text(&or, &flight.metrics)
+        });
+        emit(&format!(
+            "{head}{}{beside}",
+            report::flight_text(&sim, &flight)
+        ))?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `fly`'s options with the launch conditions of the OpenRocket simulation the `.ork`
+/// `design` saved (the one its import reports), and that simulation.
+fn as_openrocket_flew(
+    design: &PathBuf,
+    a: &FlyArgs,
+) -> Result<(FlyArgs, hpr_design::ork::OrkSimulation)> {
+    let file = design.display().to_string();
+    let bytes = std::fs::read(design).with_context(|| format!("{file}: can't read it"))?;
+    if !hpr_design::ork::is_ork_file(design, &bytes) {
+        return Err(anyhow!(
+            "{file}: --openrocket-conditions needs an OpenRocket design (.ork), which saves its simulations"
+        ));
+    }
+    let import = hpr_design::ork::import(&bytes, &file).map_err(|e| anyhow!("{e}"))?;
+    let sim = import
+        .simulation
+        .ok_or_else(|| anyhow!("{file}: --openrocket-conditions: the file holds no simulation"))?;
+    let mut args = a.clone();
+    if let Some(l) = sim.rail_length_m {
+        args.rail_length_m = l;
+    }
+    args.inclination_deg = sim.inclination_deg;
+    args.heading_deg = sim.heading_deg.unwrap_or(0.0);
+    args.wind_m_s = sim.wind_m_s.unwrap_or(0.0);
+    args.wind_from_deg = sim.wind_from_deg;
+    args.elevation_m = sim.elevation_m;
+    args.temperature_k = sim.temperature_k;
+    args.pressure_pa = sim.pressure_pa;
+    Ok((args, sim))
 }
 
 /// The flight `fly`'s options describe for `design`.

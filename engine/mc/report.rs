@@ -246,6 +246,97 @@ pub fn flight_json(sim: &Simulation, f: &Flight) -> Value {
     })
 }
 
+/// What an OpenRocket simulation found beside this flight's metrics, for `fly
+/// --openrocket-conditions`: each quantity the file saved, both values and the difference.
+pub fn openrocket_text(
+    or: &hpr_design::ork::OrkSimulation,
+    m: &hpr_sim::flight::Metrics,
+) -> String {
+    let mut out = format!("\nOpenRocket's simulation \"{}\"", or.name);
+    if let Some(motor) = &or.motor {
+        let _ = write!(out, " on the {motor}");
+    }
+    let _ = writeln!(out, " ({}):", or.flags().join(" "));
+    let _ = writeln!(
+        out,
+        "  {:<18}{:>14}{:>14}{:>12}",
+        "", "OpenRocket", "hpr-mc", "difference"
+    );
+    let f = &or.found;
+    let rows: [(&str, Option<f64>, Option<f64>, &str, bool); 6] = [
+        ("apogee", f.apogee_m, m.apogee_m, "m", true),
+        (
+            "time to apogee",
+            f.time_to_apogee_s,
+            m.apogee_time_s,
+            "s",
+            false,
+        ),
+        (
+            "max speed",
+            f.max_speed_m_s,
+            Some(m.max_speed_m_s),
+            "m/s",
+            true,
+        ),
+        (
+            "off the rod",
+            f.rod_speed_m_s,
+            m.rail_exit_speed_m_s,
+            "m/s",
+            true,
+        ),
+        (
+            "landing speed",
+            f.landing_speed_m_s,
+            m.landing_speed_m_s,
+            "m/s",
+            true,
+        ),
+        ("flight time", f.flight_time_s, m.landing_time_s, "s", false),
+    ];
+    for (what, theirs, ours, unit, relative) in rows {
+        let Some(theirs) = theirs else { continue };
+        let ours_text = ours.map_or("-".to_owned(), |v| format!("{v:.2} {unit}"));
+        let diff = match ours {
+            Some(v) if relative && theirs != 0.0 => format!("{:+.2} %", 100.0 * (v / theirs - 1.0)),
+            Some(v) => format!("{:+.2} {unit}", v - theirs),
+            None => String::new(),
+        };
+        let _ = writeln!(
+            out,
+            "  {what:<18}{:>14}{ours_text:>14}{diff:>12}",
+            format!("{theirs:.2} {unit}")
+        );
+    }
+    if or.outdated {
+        out.push_str("  (OpenRocket marks its results outdated)\n");
+    }
+    if !or.unsaid.is_empty() {
+        let _ = writeln!(out, "  not repeated here: {}", or.unsaid.join(", "));
+    }
+    out
+}
+
+/// An OpenRocket simulation for `fly --openrocket-conditions --json`: its name, motor, the
+/// flags it was flown with, what they leave out, and what it found (null where not saved).
+pub fn openrocket_json(or: &hpr_design::ork::OrkSimulation) -> Value {
+    let f = &or.found;
+    json!({
+        "simulation": or.name,
+        "motor": or.motor,
+        "flags": or.flags(),
+        "not_repeated": or.unsaid,
+        "outdated": or.outdated,
+        "apogee_m": f.apogee_m,
+        "apogee_time_s": f.time_to_apogee_s,
+        "max_speed_m_s": f.max_speed_m_s,
+        "rail_exit_speed_m_s": f.rod_speed_m_s,
+        "landing_speed_m_s": f.landing_speed_m_s,
+        "landing_time_s": f.flight_time_s,
+    })
+}
+
 pub fn flight_text(sim: &Simulation, f: &Flight) -> String {
     let m = &f.metrics;
     let mut s = String::new();
