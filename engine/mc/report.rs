@@ -263,7 +263,9 @@ pub fn openrocket_text(
         "", "OpenRocket", "hpr-mc", "difference"
     );
     let f = &or.found;
-    let rows: [(&str, Option<f64>, Option<f64>, &str, bool); 6] = [
+    // Quantity, OpenRocket's, this flight's, unit, whether the difference is relative.
+    type Row<'a> = (&'a str, Option<f64>, Option<f64>, &'a str, bool);
+    let rows: [Row; 6] = [
         ("apogee", f.apogee_m, m.apogee_m, "m", true),
         (
             "time to apogee",
