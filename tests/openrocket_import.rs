@@ -151,7 +151,7 @@ fn a_design_the_import_cannot_make_is_refused_and_nothing_is_written() {
 fn fly_with_openrocket_conditions_flies_the_saved_simulation_s_launch_and_sets_its_results_beside()
 {
     // The example with a simulation as OpenRocket 24 saves it: a 3 m rod 5° off vertical
-    // towards 45°, a 3 m/s wind from the south, a site 1000 m up; and what it found.
+    // towards 45°, a 3 m/s wind from the south, a site 1000 m up at 40° N; what it found.
     let text = std::fs::read_to_string(ORK).unwrap().replacen(
         "<simulations/>",
         r#"<simulations><simulation status="uptodate"><name>Field day</name><conditions>
@@ -160,7 +160,8 @@ fn fly_with_openrocket_conditions_flies_the_saved_simulation_s_launch_and_sets_i
              <launchintowind>false</launchintowind>
              <wind model="average"><speed>3.0</speed><direction>3.141592653589793</direction>
                <standarddeviation>0.3</standarddeviation></wind>
-             <launchaltitude>1000.0</launchaltitude><atmosphere model="isa"/></conditions>
+             <launchaltitude>1000.0</launchaltitude><launchlatitude>40.0</launchlatitude>
+             <geodeticmethod>spherical</geodeticmethod><atmosphere model="isa"/></conditions>
              <flightdata maxaltitude="600.0" timetoapogee="10.5" maxvelocity="150.0"
                launchrodvelocity="20.0" groundhitvelocity="6.0" flighttime="90.0"/>
            </simulation></simulations>"#,
@@ -189,6 +190,10 @@ fn fly_with_openrocket_conditions_flies_the_saved_simulation_s_launch_and_sets_i
         "180",
         "--elevation-m",
         "1000",
+        "--latitude-deg",
+        "40",
+        "--gravity",
+        "somigliana",
     ]);
     assert_eq!(as_saved["metrics"], by_hand["metrics"]);
     let or = &as_saved["openrocket"];

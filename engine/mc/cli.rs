@@ -132,7 +132,8 @@ pub struct FlyArgs {
     /// this flight. The launch flags cannot be given with it.
     #[arg(long, conflicts_with_all = [
         "scenario", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
-        "temperature_k", "pressure_pa", "sounding", "wind_m_s", "wind_from_deg",
+        "latitude_deg", "gravity", "temperature_k", "pressure_pa", "sounding", "wind_m_s",
+        "wind_from_deg",
     ])]
     pub openrocket_conditions: bool,
 }
@@ -402,6 +403,10 @@ fn as_openrocket_flew(
     args.wind_m_s = sim.wind_m_s.unwrap_or(0.0);
     args.wind_from_deg = sim.wind_from_deg;
     args.elevation_m = sim.elevation_m;
+    if let Some(lat) = sim.latitude_deg {
+        args.latitude_deg = Some(lat);
+        args.gravity = GravityModel::Somigliana;
+    }
     args.temperature_k = sim.temperature_k;
     args.pressure_pa = sim.pressure_pa;
     Ok((args, sim))

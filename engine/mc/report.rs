@@ -263,6 +263,9 @@ pub fn openrocket_text(
         "", "OpenRocket", "hpr-mc", "difference"
     );
     let f = &or.found;
+    // OpenRocket's flight time is its landing's only if it landed (a simulation may stop
+    // at apogee).
+    let landed = f.landing_speed_m_s.and(f.flight_time_s);
     // Quantity, OpenRocket's, this flight's, unit, whether the difference is relative.
     type Row<'a> = (&'a str, Option<f64>, Option<f64>, &'a str, bool);
     let rows: [Row; 6] = [
@@ -295,7 +298,7 @@ pub fn openrocket_text(
             "m/s",
             true,
         ),
-        ("flight time", f.flight_time_s, m.landing_time_s, "s", false),
+        ("flight time", landed, m.landing_time_s, "s", false),
     ];
     for (what, theirs, ours, unit, relative) in rows {
         let Some(theirs) = theirs else { continue };
@@ -335,7 +338,7 @@ pub fn openrocket_json(or: &hpr_design::ork::OrkSimulation) -> Value {
         "max_speed_m_s": f.max_speed_m_s,
         "rail_exit_speed_m_s": f.rod_speed_m_s,
         "landing_speed_m_s": f.landing_speed_m_s,
-        "landing_time_s": f.flight_time_s,
+        "landing_time_s": f.landing_speed_m_s.and(f.flight_time_s),
     })
 }
 

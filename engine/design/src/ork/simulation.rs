@@ -8,7 +8,10 @@
 //! metres, its angle from the vertical and its direction in degrees, the average wind's
 //! speed in m/s and its direction in radians, the direction it blows from, clockwise from
 //! north (OpenRocket's default, π/2, is "an East wind"); the launch altitude in metres above
-//! sea level, the extended ISA's base temperature (K) and pressure (Pa). The rod's direction
+//! sea level, the launch latitude in degrees (OpenRocket turns its launch frame with the Earth
+//! unless its geodetic method is `flat`, and takes the WGS 84 gravity there: `fly`'s
+//! `--latitude-deg` with `--gravity somigliana`), the extended ISA's base temperature (K) and
+//! pressure (Pa). The rod's direction
 //! is clockwise from north from OpenRocket 22 on (the wind's when "launch into the wind" is
 //! set); before, with no wind direction saved, it was the rod's relative to the wind, 0
 //! towards it (OpenRocket 15.03's launch tab: "0° = towards the wind, 180° = downwind").
@@ -31,6 +34,9 @@ pub struct OrkSimulation {
     /// Where the wind blows from, clockwise from north.
     pub wind_from_deg: f64,
     pub elevation_m: Option<f64>,
+    /// The site's latitude, where OpenRocket turned the launch frame with the Earth
+    /// (Coriolis; its geodetic method not `flat`) and took the WGS 84 gravity there.
+    pub latitude_deg: Option<f64>,
     /// The extended ISA's base temperature and pressure.
     pub temperature_k: Option<f64>,
     pub pressure_pa: Option<f64>,
@@ -145,6 +151,14 @@ pub(super) fn simulation(
     if let Some(t) = turbulence.filter(|t| *t > 0.0) {
         unsaid.push(format!("its wind's turbulence, {} %", round(100.0 * t)));
     }
+    let latitude = num(&c, "launchlatitude");
+    let flat = c.text("geodeticmethod").map(str::trim) == Some("flat");
+    if let (true, Some(lat)) = (flat, latitude) {
+        unsaid.push(format!(
+            "its gravity at latitude {}° without the Earth's rotation",
+            round(lat)
+        ));
+    }
     let (mut temperature_k, mut pressure_pa) = (None, None);
     if let Some(a) = c.child("atmosphere") {
         if a.attribute("model") == Some("extendedisa") {
@@ -177,6 +191,7 @@ pub(super) fn simulation(
         wind_m_s: speed,
         wind_from_deg: from,
         elevation_m: num(&c, "launchaltitude"),
+        latitude_deg: latitude.filter(|_| !flat),
         temperature_k,
         pressure_pa,
         unsaid,
@@ -202,6 +217,12 @@ impl OrkSimulation {
         }
         if let Some(h) = self.elevation_m {
             flags.push(format!("--elevation-m {}", round(h)));
+        }
+        if let Some(lat) = self.latitude_deg {
+            flags.push(format!(
+                "--latitude-deg {} --gravity somigliana",
+                round(lat)
+            ));
         }
         if let Some(t) = self.temperature_k {
             flags.push(format!("--temperature-k {}", round(t)));

@@ -1051,6 +1051,20 @@ fn openrocket_s_own_simulation_is_said_as_fly_s_flags_with_what_it_found() {
     let set = rod(
         "<winddirection>3.141592653589793</winddirection><launchintowind>false</launchintowind>",
     );
+    // The site's latitude: the Earth's rotation and its gravity, unless OpenRocket's geodetic
+    // method was flat (then only the gravity, which `fly` does not take without the other).
+    let round =
+        rod("<launchlatitude>32.99</launchlatitude><geodeticmethod>spherical</geodeticmethod>");
+    assert!(
+        round.contains("--latitude-deg 32.99 --gravity somigliana"),
+        "{round}"
+    );
+    let flat = rod("<launchlatitude>32.99</launchlatitude><geodeticmethod>flat</geodeticmethod>");
+    assert!(!flat.contains("--latitude-deg"), "{flat}");
+    assert!(
+        flat.contains("its gravity at latitude 32.99° without the Earth's rotation"),
+        "{flat}"
+    );
     assert!(
         set.contains("--heading-deg 90 --wind-m-s 2 --wind-from-deg 180"),
         "{set}"
