@@ -47,6 +47,11 @@ pub fn apply_override(props: &MassProps, o: &Overrides) -> MassProps {
 /// override, in the station frame.
 pub fn component_own(design: &Design, idx: ComponentIdx) -> MassProps {
     let c = &design.components[idx];
+    own_of(c, c.mass_spec)
+}
+
+/// Component `c` alone with mass spec `spec`, in the station frame.
+fn own_of(c: &Component, spec: MassSpec) -> MassProps {
     let at = Vector3::new(c.x_top_m, c.radial_offset_m[0], c.radial_offset_m[1]);
     // A packed cylinder with a measured inertia keeps it whatever its mass spec.
     if let ComponentKind::MassComponent(p)
@@ -54,7 +59,7 @@ pub fn component_own(design: &Design, idx: ComponentIdx) -> MassProps {
     | ComponentKind::Parachute(Parachute { packed: p, .. }) = &c.kind
     {
         let volume = solids::hollow_cylinder_volume(p.radius_m, 0.0, c.length_m);
-        let mass = spec_mass(&c.mass_spec, volume);
+        let mass = spec_mass(&spec, volume);
         let shape = solids::solid_cylinder(mass, p.radius_m, c.length_m).translated(&at);
         return match p.inertia_kg_m2 {
             Some((axial, transverse)) => MassProps {
@@ -65,7 +70,7 @@ pub fn component_own(design: &Design, idx: ComponentIdx) -> MassProps {
         };
     }
     let unit = unit_shape(c, &at);
-    let own = match c.mass_spec {
+    let own = match spec {
         MassSpec::Density(rho) => unit.scaled(rho),
         spec => unit.with_mass(spec_mass(&spec, unit.mass_kg)),
     };
@@ -200,13 +205,21 @@ fn unit_shape(c: &Component, at: &Vector3<f64>) -> MassProps {
 pub fn subtree(design: &Design, idx: ComponentIdx) -> MassProps {
     let c = &design.components[idx];
     let own = component_own(design, idx);
+    // An override's mass on what weighs nothing has no distribution to scale: it is spread
+    // as the component's shape spreads it, as OpenRocket puts it at the component's center.
+    let nothing_overridden = |props: &MassProps| match c.overrides.mass_kg {
+        Some(m) if props.mass_kg == 0.0 && m > 0.0 => Some(own_of(c, MassSpec::Mass(m))),
+        _ => None,
+    };
     if c.overrides.covers_children {
         let all = c
             .children
             .iter()
             .fold(own, |acc, &ch| acc.combine(&subtree(design, ch)));
+        let all = nothing_overridden(&all).unwrap_or(all);
         apply_override(&all, &c.overrides)
     } else {
+        let own = nothing_overridden(&own).unwrap_or(own);
         let own = apply_override(&own, &c.overrides);
         c.children
             .iter()

@@ -497,6 +497,35 @@ fn a_streamer_flies_as_a_canopy_of_openrocket_s_streamer_drag() {
 }
 
 #[test]
+fn a_part_with_no_wall_weighs_its_mass_override() {
+    // OpenRocket weighs a coupler drawn with no wall at its override, 0.2 kg at its center.
+    let text = edited(
+        "<parachute>",
+        "<tubecoupler><name>Coupler</name><position type=\"top\">0.3</position>\
+         <overridemass>0.2</overridemass><overridesubcomponentsmass>false</overridesubcomponentsmass>\
+         <material type=\"bulk\" density=\"1850.0\">Fiberglass</material><length>0.1</length>\
+         <outerradius>0.0266</outerradius><thickness>0.0</thickness></tubecoupler><parachute>",
+    );
+    let (design, _) = imported(text.as_bytes());
+    let (plain, _) = imported(EXAMPLE.as_bytes());
+    let idx = design
+        .components
+        .iter()
+        .position(|c| c.name == "Coupler")
+        .unwrap();
+    let coupler = crate::mass::subtree(&design, idx);
+    assert!((coupler.mass_kg - 0.2).abs() < 1e-15);
+    // Its center: the tube's, 0.35 m below the body's top (0.3 + 0.05).
+    let body_top = design.components[design.components[idx].parent.unwrap()].x_top_m;
+    assert!(
+        (coupler.cg_m.x - (body_top + 0.35)).abs() < 1e-12,
+        "{}",
+        coupler.cg_m.x
+    );
+    assert!((dry(&design).mass_kg - dry(&plain).mass_kg - 0.2).abs() < 1e-12);
+}
+
+#[test]
 fn a_part_after_another_starts_where_that_one_ends() {
     // An old `<position type="after">`: the ballast 0.02 m after the parachute's end (0.05 +
     // 0.08 m down the body tube), as OpenRocket's AxialMethod.AFTER adds the offset.

@@ -137,6 +137,24 @@ fn an_override_of_zero_makes_the_component_or_its_subtree_weigh_nothing() {
 }
 
 #[test]
+fn an_override_of_what_weighs_nothing_spreads_its_mass_as_the_shape_does() {
+    // A tube drawn weighing nothing, its mass given by an override (OpenRocket puts the
+    // override at the component's center): the same tube as one of that mass (to rounding),
+    // covering its (empty) children or not.
+    let given = subtree(&design(&simple(json!({"mass_kg": 0.5}), json!([]))), 1);
+    for covers in [false, true] {
+        let over = design(&simple(
+            json!({"mass_kg": 0.0, "override": {"mass_kg": 0.5, "covers_children": covers}}),
+            json!([]),
+        ));
+        let got = subtree(&over, 1);
+        assert!(rel(got.mass_kg, 0.5) < 1e-15, "covers_children {covers}");
+        assert_eq!(got.cg_m, given.cg_m);
+        assert!((got.inertia_cg - given.inertia_cg).amax() < 1e-17);
+    }
+}
+
+#[test]
 fn a_stage_override_applies_to_the_whole_stage() {
     let mut v = simple(json!({}), json!([]));
     v["stages"][0]["override"] = json!({"mass_kg": 2.0, "cg_m": 0.25});
