@@ -227,3 +227,42 @@ fn fly_with_openrocket_conditions_flies_the_saved_simulation_s_launch_and_sets_i
     let both = hpr_mc(&["fly", ork, "--openrocket-conditions", "--wind-m-s", "1"]);
     assert!(!both.status.success());
 }
+
+#[test]
+fn a_part_openrocket_draws_outside_its_parent_is_kept_there_with_a_warning_inspect_reports() {
+    // A weight OpenRocket lets sit 20 cm past the body tube's aft end.
+    let text = std::fs::read_to_string(ORK).unwrap().replacen(
+        "<parachute>",
+        "<masscomponent><name>Stray</name><position type=\"bottom\">0.25</position>\
+         <packedlength>0.05</packedlength><packedradius>0.02</packedradius><mass>0.1</mass>\
+         </masscomponent><parachute>",
+        1,
+    );
+    let dir = scratch("stray");
+    let ork = dir.join("stray.ork");
+    std::fs::write(&ork, text).unwrap();
+    let ork = ork.to_str().unwrap();
+    let out = hpr_mc(&["inspect", ork, "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("warning: ") && stderr.contains("component \"stray\""),
+        "{stderr}"
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let warning = json["warnings"][0].as_str().unwrap();
+    assert!(
+        warning.contains("component \"stray\": field \"position\"")
+            && warning.contains("lies entirely outside its parent")
+            && warning.ends_with("(kept there, as OpenRocket keeps it)"),
+        "{warning}"
+    );
+    // The plain example has none.
+    let plain: serde_json::Value =
+        serde_json::from_str(&stdout_of(&["inspect", ORK, "--json"])).unwrap();
+    assert_eq!(plain["warnings"], serde_json::json!([]));
+}

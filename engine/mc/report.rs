@@ -26,6 +26,8 @@ pub struct Inspection {
     pub surfaces: Vec<Value>,
     /// Each parachute component: its CdS and, if it says, how it deploys (what `fly` flies).
     pub parachutes: Vec<Value>,
+    /// What the design's validation let pass (`geometry_checks: "openrocket"`).
+    pub warnings: Vec<String>,
 }
 
 fn mass_json(sim: &Simulation, t: f64) -> Value {
@@ -104,6 +106,7 @@ impl Inspection {
                     _ => None,
                 })
                 .collect(),
+            warnings: d.warnings.clone(),
         }
     }
 
@@ -112,6 +115,7 @@ impl Inspection {
             "design": self.design, "motor": self.motor, "liftoff": self.liftoff, "after_burnout": self.burnout,
             "center_of_pressure_m": self.cp_m, "reference_diameter_m": self.ref_diameter_m, "components": self.components,
             "lifting_surfaces": self.surfaces, "parachutes": self.parachutes,
+            "warnings": self.warnings,
         })
     }
 
