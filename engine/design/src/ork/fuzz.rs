@@ -14,6 +14,52 @@ const CASES: u32 = 2000;
 
 const EXAMPLE: &str = include_str!("../../../../validation/designs/example-minimal.ork");
 
+/// The example with one of each part teams' files brought that it lacks: a cluster of inner
+/// tubes, a coupler with no wall and a mass override, a ring of no length, a streamer, a
+/// bare `auto` bulkhead in the nose cone, a clipped Haack tail, a zero mass override.
+fn rich() -> String {
+    EXAMPLE
+        .replacen(
+            "<parachute>",
+            "<innertube><name>Pins</name><position type=\"top\">0.05</position>\
+             <material type=\"bulk\" density=\"1000.0\">Pins</material><length>0.01</length>\
+             <outerradius>0.002</outerradius><thickness>0.001</thickness>\
+             <clusterconfiguration>4-ring</clusterconfiguration><clusterscale>2.0</clusterscale>\
+             <clusterrotation>45.0</clusterrotation></innertube>\
+             <tubecoupler><name>Coupler</name><position type=\"top\">0.3</position>\
+             <overridemass>0.2</overridemass><material type=\"bulk\" density=\"1850.0\">G</material>\
+             <length>0.1</length><outerradius>0.0266</outerradius><thickness>0.0</thickness>\
+             </tubecoupler>\
+             <centeringring><name>Marker</name><position type=\"absolute\">0.6</position>\
+             <overridemass>0.0</overridemass><material type=\"bulk\" density=\"680.0\">C</material>\
+             <length>0.0</length><outerradius>auto</outerradius><innerradius>auto</innerradius>\
+             </centeringring>\
+             <streamer><name>Streamer</name><position type=\"top\">0.2</position>\
+             <packedlength>0.05</packedlength><packedradius>0.015</packedradius><cd>auto</cd>\
+             <material type=\"surface\" density=\"0.1\">Mylar</material>\
+             <deployevent>apogee</deployevent><deploydelay>0.5</deploydelay>\
+             <striplength>1.0</striplength><stripwidth>0.1</stripwidth></streamer><parachute>",
+            1,
+        )
+        .replacen(
+            "<isflipped>false</isflipped>\n          </nosecone>",
+            "<isflipped>false</isflipped><subcomponents><bulkhead><name>Fore</name>\
+             <position type=\"top\">0.2</position><material type=\"bulk\" density=\"630.0\">P</material>\
+             <length>0.01</length><outerradius>auto</outerradius></bulkhead></subcomponents>\
+             </nosecone>",
+            1,
+        )
+        .replacen(
+            "</bodytube>",
+            "</bodytube><transition><name>Tail</name><length>0.05</length>\
+             <material type=\"bulk\" density=\"680.0\">Cardboard</material>\
+             <thickness>0.002</thickness><shape>haack</shape><shapeparameter>0.0</shapeparameter>\
+             <shapeclipped>true</shapeclipped><foreradius>auto 0.02815</foreradius>\
+             <aftradius>0.02</aftradius></transition>",
+            1,
+        )
+}
+
 /// The import of `bytes`, and of what it writes, answered without a panic.
 fn exercise(bytes: &[u8]) -> Result<(), TestCaseError> {
     let Ok(imported) = import(bytes, "fuzz.ork") else {
@@ -145,14 +191,26 @@ proptest! {
 
     #[test]
     fn random_edits_of_a_valid_document_never_panic_the_import(
+        seed in prop_oneof![Just(false), Just(true)],
         edits in proptest::collection::vec(edit(), 1..4),
     ) {
-        let mut xml = EXAMPLE.to_owned();
+        let mut xml = if seed { rich() } else { EXAMPLE.to_owned() };
         for e in &edits {
             xml = apply(&xml, e);
         }
         exercise(xml.as_bytes())?;
     }
+}
+
+#[test]
+fn the_rich_seed_imports_with_every_part_it_adds() {
+    let imported = import(rich().as_bytes(), "rich.ork").unwrap_or_else(|e| panic!("{e}"));
+    let d =
+        Design::from_json_str(&imported.json.to_string(), None).unwrap_or_else(|e| panic!("{e}"));
+    for name in ["Pins", "Coupler", "Streamer", "Fore", "Tail"] {
+        assert!(d.components.iter().any(|c| c.name == name), "{name}");
+    }
+    assert!(d.components.iter().all(|c| c.name != "Marker"));
 }
 
 #[test]
