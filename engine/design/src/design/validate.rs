@@ -84,7 +84,7 @@ impl Design {
             components: Vec::new(),
             ids: HashMap::new(),
             motor_mount: None,
-            lenient_geometry: false,
+            openrocket_geometry: false,
             warnings: Vec::new(),
         }
         .design(raw)
@@ -172,7 +172,7 @@ struct Builder<'a> {
     ids: HashMap<String, String>,
     motor_mount: Option<MotorMount>,
     /// `geometry_checks: "openrocket"`: a part outside or wider than its parent is a warning.
-    lenient_geometry: bool,
+    openrocket_geometry: bool,
     warnings: Vec<String>,
 }
 
@@ -196,7 +196,7 @@ impl Builder<'_> {
         rule: Rule,
         tolerable: bool,
     ) -> Result<(), DesignError> {
-        if self.lenient_geometry && tolerable {
+        if self.openrocket_geometry && tolerable {
             let what = self.invalid(at, field, rule);
             self.warnings
                 .push(format!("{what} (kept there, as OpenRocket keeps it)"));
@@ -366,11 +366,26 @@ impl Builder<'_> {
             return Ok(Overrides::default());
         };
         // Zero is allowed, as in OpenRocket: the component (or its subtree) weighs nothing.
-        let mass_kg = match o.mass_kg {
+        self.override_of(at, o.mass_kg, o.cg_m, x_top, false, o.covers_children)
+    }
+
+    /// An override's mass (`stage`: above 0, a stage that weighs nothing being a mistake;
+    /// else 0 or more) and center (`cg_m` aft of `x_top`, made absolute).
+    fn override_of(
+        &self,
+        at: &Location,
+        mass_kg: Option<f64>,
+        cg_m: Option<f64>,
+        x_top: f64,
+        stage: bool,
+        covers_children: bool,
+    ) -> Result<Overrides, DesignError> {
+        let mass_kg = match mass_kg {
+            Some(m) if stage => Some(self.positive(at, "override.mass_kg", m)?),
             Some(m) => Some(self.non_negative(at, "override.mass_kg", m)?),
             None => None,
         };
-        let cg_m = match o.cg_m {
+        let cg_m = match cg_m {
             Some(c) => {
                 let c = self.finite(at, "override.cg_m", c)?;
                 Some(self.resolved(at, "override.cg_m", x_top + c)?)
@@ -380,7 +395,7 @@ impl Builder<'_> {
         Ok(Overrides {
             mass_kg,
             cg_m,
-            covers_children: o.covers_children,
+            covers_children,
         })
     }
 
@@ -424,7 +439,7 @@ impl Builder<'_> {
     }
 
     fn design(mut self, raw: RawDesign) -> Result<Design, DesignError> {
-        self.lenient_geometry = raw.geometry_checks == RawGeometryChecks::Openrocket;
+        self.openrocket_geometry = raw.geometry_checks == RawGeometryChecks::Openrocket;
         let drag = self.drag(raw.drag.as_ref())?;
         if raw.stages.is_empty() {
             return Err(self.invalid(&Location::Design, Some("stages"), Rule::NoBodyComponent));
@@ -449,25 +464,8 @@ impl Builder<'_> {
             }
             let overrides = match &rs.overrides {
                 None => Overrides::default(),
-                Some(o) => {
-                    // A stage that weighs nothing is a mistake, not a choice.
-                    let mass_kg = match o.mass_kg {
-                        Some(m) => Some(self.positive(&at, "override.mass_kg", m)?),
-                        None => None,
-                    };
-                    let cg_m = match o.cg_m {
-                        Some(c) => {
-                            let c = self.finite(&at, "override.cg_m", c)?;
-                            Some(self.resolved(&at, "override.cg_m", stage_top + c)?)
-                        }
-                        None => None,
-                    };
-                    Overrides {
-                        mass_kg,
-                        cg_m,
-                        covers_children: true,
-                    }
-                }
+                // A stage's override always covers the whole stage.
+                Some(o) => self.override_of(&at, o.mass_kg, o.cg_m, stage_top, true, true)?,
             };
             stages.push(Stage {
                 id: rs.id.clone(),
@@ -499,7 +497,7 @@ impl Builder<'_> {
             stages,
             components: self.components,
             drag,
-            openrocket_geometry: self.lenient_geometry,
+            openrocket_geometry: self.openrocket_geometry,
             warnings: self.warnings,
         })
     }
