@@ -217,16 +217,21 @@ pub struct ImportArgs {
 /// What the import of an OpenRocket design left out, on standard error (nothing for a JSON
 /// design): a flight of a `.ork` says what it does not fly.
 fn ork_notes(design: &PathBuf) {
-    let Ok(bytes) = std::fs::read(design) else {
-        return;
-    };
-    if hpr_design::ork::is_ork_file(design, &bytes) {
-        if let Ok(import) = hpr_design::ork::import(&bytes, &design.display().to_string()) {
-            for note in &import.notes {
-                eprintln!("note: {note}");
-            }
+    if let Some(Ok(import)) = ork_import(design) {
+        for note in &import.notes {
+            eprintln!("note: {note}");
         }
     }
+}
+
+/// The import of `design` if it is an OpenRocket file; `None` for a JSON design or a file
+/// that cannot be read (`Design::load` says why).
+fn ork_import(
+    design: &PathBuf,
+) -> Option<std::result::Result<hpr_design::ork::OrkImport, hpr_design::DesignError>> {
+    let bytes = std::fs::read(design).ok()?;
+    hpr_design::ork::is_ork_file(design, &bytes)
+        .then(|| hpr_design::ork::import(&bytes, &design.display().to_string()))
 }
 
 /// `hpr-mc import`: an OpenRocket design as hpr's design JSON, checked as a hand-written
@@ -384,13 +389,14 @@ fn as_openrocket_flew(
     a: &FlyArgs,
 ) -> Result<(FlyArgs, hpr_design::ork::OrkSimulation)> {
     let file = design.display().to_string();
-    let bytes = std::fs::read(design).with_context(|| format!("{file}: can't read it"))?;
-    if !hpr_design::ork::is_ork_file(design, &bytes) {
-        return Err(anyhow!(
-            "{file}: --openrocket-conditions needs an OpenRocket design (.ork), which saves its simulations"
-        ));
-    }
-    let import = hpr_design::ork::import(&bytes, &file).map_err(|e| anyhow!("{e}"))?;
+    std::fs::metadata(design).with_context(|| format!("{file}: can't read it"))?;
+    let import = ork_import(design)
+        .ok_or_else(|| {
+            anyhow!(
+                "{file}: --openrocket-conditions needs an OpenRocket design (.ork), which saves its simulations"
+            )
+        })?
+        .map_err(|e| anyhow!("{e}"))?;
     let sim = import
         .simulation
         .ok_or_else(|| anyhow!("{file}: --openrocket-conditions: the file holds no simulation"))?;
