@@ -21,9 +21,10 @@ use super::model::{ComponentKind, NoseShape, TransitionShape};
 use std::f64::consts::PI;
 
 /// Radius of a nose cone of the given shape, length and base radius at `x_m` aft of its tip.
-/// `x_m` is clamped to `[0, length_m]`. Returns 0 for a non-positive length.
+/// `x_m` is clamped to `[0, length_m]`. Returns 0 for a length or radius that is not
+/// positive (or not a number).
 pub fn profile_radius(shape: NoseShape, length_m: f64, base_radius_m: f64, x_m: f64) -> f64 {
-    if length_m <= 0.0 || base_radius_m <= 0.0 {
+    if !(length_m > 0.0 && base_radius_m > 0.0) {
         return 0.0;
     }
     let x = x_m.clamp(0.0, length_m);

@@ -610,7 +610,8 @@ fn ring_radius(
     if let (Some(Auto::Bare), None, Some(inner)) =
         (el.auto("outerradius")?, parent.ring_r, &parent.inner_at)
     {
-        let at = |x: f64| inner(x.clamp(0.0, parent.length_m));
+        // (A parent of no or negative length, which the validation refuses, keeps its fore end.)
+        let at = |x: f64| inner(x.clamp(0.0, parent.length_m.max(0.0)));
         return Ok(at(fore_m).min(at(fore_m + length_m)));
     }
     auto_size(el, "outerradius", parent.ring_r)
