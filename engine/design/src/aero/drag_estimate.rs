@@ -69,9 +69,13 @@ pub struct DragGeometry {
     pub ref_area_m2: f64,
     pub length_m: f64,
     pub ref_diameter_m: f64,
+    /// The default surface roughness (of the skins that give none, and of launch lugs), m.
     pub roughness_m: f64,
     /// Body sections fore to aft.
     pub sections: Vec<Section>,
+    /// Each section's own surface roughness, m, in the order of `sections`; `None` (or no
+    /// entry) is `roughness_m`.
+    pub section_roughness_m: Vec<Option<f64>>,
     pub fins: Vec<FinDrag>,
     /// Launch guides.
     pub guides: Vec<Guide>,
@@ -104,6 +108,8 @@ pub struct FinDrag {
     pub mac_m: f64,
     pub leading_edge_sweep_rad: f64,
     pub cross_section: FinCrossSection,
+    /// The fins' own surface roughness, m; `None` is the estimate's.
+    pub roughness_m: Option<f64>,
 }
 
 /// Power-off and power-on `C_D(M)` tables.
@@ -117,7 +123,7 @@ impl DragGeometry {
     /// Collects the geometry of `design` (body components sorted fore to aft).
     pub fn from_design(design: &Design, roughness_m: f64) -> Self {
         let d = design.reference_diameter_m;
-        let mut bodies: Vec<(f64, Section)> = Vec::new();
+        let mut bodies: Vec<(f64, Section, Option<f64>)> = Vec::new();
         let mut fins = Vec::new();
         let mut guides = Vec::new();
         for c in &design.components {
@@ -125,13 +131,15 @@ impl DragGeometry {
                 ComponentKind::NoseCone(n) => bodies.push((
                     c.x_top_m,
                     Section::nose(n.shape, c.length_m, n.base_diameter_m / 2.0),
+                    c.roughness_m,
                 )),
                 ComponentKind::BodyTube(t) => bodies.push((
                     c.x_top_m,
                     Section::tube(c.length_m, t.outer_diameter_m / 2.0),
+                    c.roughness_m,
                 )),
                 ComponentKind::Transition(t) => {
-                    bodies.push((c.x_top_m, Section::transition(c.length_m, t)))
+                    bodies.push((c.x_top_m, Section::transition(c.length_m, t), c.roughness_m))
                 }
                 ComponentKind::FinSet(f) => {
                     let g = Fins::of(f).geometry();
@@ -143,6 +151,7 @@ impl DragGeometry {
                         mac_m: g.mac_length_m,
                         leading_edge_sweep_rad: g.leading_edge_sweep_rad,
                         cross_section: f.cross_section,
+                        roughness_m: c.roughness_m,
                     })
                 }
                 ComponentKind::LaunchLug(l) => guides.push(Guide::Lug {
@@ -165,6 +174,7 @@ impl DragGeometry {
             length_m: design.length_m,
             ref_diameter_m: d,
             roughness_m,
+            section_roughness_m: bodies.iter().map(|b| b.2).collect(),
             sections: bodies.into_iter().map(|b| b.1).collect(),
             fins,
             guides,
@@ -183,14 +193,36 @@ impl DragGeometry {
             .map(|s| s.fore_radius_m.max(s.aft_radius_m))
             .fold(0.0, f64::max);
         let fineness = (self.length_m + 1e-4) / max_r;
-        let body_wet: f64 = self.sections.iter().map(Section::wetted_area_m2).sum();
-        let fin_wet: f64 = self
-            .fins
+        // Skin friction part by part, as OpenRocket's `calculateFrictionDrag`: each skin's
+        // coefficient is the larger of the smooth one and its own finish's roughness-limited
+        // one. The skins are grouped by roughness (a design of one finish is one group, summed
+        // as one), each group's wetted area referred to `A_ref`.
+        let mut groups: Vec<(f64, f64, f64)> = Vec::new(); // (roughness, body wet, fin wet)
+        let mut add = |roughness_m: Option<f64>, body: f64, fin: f64| {
+            let r = roughness_m.unwrap_or(self.roughness_m);
+            match groups.iter_mut().find(|g| g.0 == r) {
+                Some(g) => {
+                    g.1 += body;
+                    g.2 += fin;
+                }
+                None => groups.push((r, body, fin)),
+            }
+        };
+        for (i, s) in self.sections.iter().enumerate() {
+            let r = self.section_roughness_m.get(i).copied().flatten();
+            add(r, s.wetted_area_m2(), 0.0);
+        }
+        for f in &self.fins {
+            let wet = (1.0 + 2.0 * f.thickness_m / f.mac_m) * 2.0 * f.count as f64 * f.area_m2;
+            add(f.roughness_m, 0.0, wet);
+        }
+        let friction_parts: Vec<(f64, f64)> = groups
             .iter()
-            .map(|f| (1.0 + 2.0 * f.thickness_m / f.mac_m) * 2.0 * f.count as f64 * f.area_m2)
-            .sum();
-        let friction_area = ((1.0 + 1.0 / (2.0 * fineness)) * body_wet + fin_wet) / a_ref;
-        let rel_roughness = self.roughness_m / self.length_m;
+            .map(|&(r, body_wet, fin_wet)| {
+                let area = ((1.0 + 1.0 / (2.0 * fineness)) * body_wet + fin_wet) / a_ref;
+                (r / self.length_m, area)
+            })
+            .collect();
 
         // Pressure drag of every radius change, per A_ref, as closures over Mach.
         enum Pressure {
@@ -230,7 +262,10 @@ impl DragGeometry {
 
         let common = |mach: f64| {
             let re = reynolds_per_metre(mach.max(0.01)) * self.length_m;
-            let friction = skin_friction(re, mach, rel_roughness) * friction_area;
+            let friction: f64 = friction_parts
+                .iter()
+                .map(|&(rel_roughness, area)| skin_friction(re, mach, rel_roughness) * area)
+                .sum();
             let body: f64 = pressure
                 .iter()
                 .map(|p| match p {
@@ -313,6 +348,7 @@ mod tests {
                 Section::nose(NoseShape::Conical, 0.3, 0.05),
                 Section::tube(0.7, 0.05),
             ],
+            section_roughness_m: vec![],
             fins: vec![],
             guides: vec![],
         }
@@ -372,5 +408,53 @@ mod tests {
             cf * (wet_cone_tube + 2.0 * PI * 0.05 * 0.2) * body_factor_plain / a_ref;
         let want = plain - plain_base - friction_plain + friction + face + aft_base;
         assert!((with_step - want).abs() < 1e-12, "{with_step} vs {want}");
+    }
+
+    #[test]
+    fn each_skin_s_friction_is_taken_at_its_own_roughness_as_openrocket_takes_each_part_s_finish() {
+        // The cone and tube with the tube rough (500 µm: roughness-limited, 0.032 (5e-4)^0.2
+        // = 0.0070 against the smooth 0.0030) and the cone smooth, and a fin set of its own
+        // 20 µm: the drag differs from the all-smooth rocket's by the tube's and the fins'
+        // friction taken at their roughness instead of smooth, nothing else.
+        let fins = FinDrag {
+            count: 3,
+            area_m2: 0.01,
+            span_m: 0.1,
+            thickness_m: 0.003,
+            mac_m: 0.1,
+            leading_edge_sweep_rad: 0.5,
+            cross_section: FinCrossSection::Square,
+            roughness_m: None,
+        };
+        let mut smooth = cone_and_tube();
+        smooth.fins.push(fins);
+        let mut mixed = smooth.clone();
+        mixed.section_roughness_m = vec![None, Some(500e-6)];
+        mixed.fins[0].roughness_m = Some(20e-6);
+        let a_ref = PI * 0.05 * 0.05;
+        let body_factor = 1.0 + 1.0 / (2.0 * (1.0 + 1e-4) / 0.05);
+        let wet_tube = 2.0 * PI * 0.05 * 0.7;
+        let wet_fins = (1.0 + 2.0 * 0.003 / 0.1) * 2.0 * 3.0 * 0.01;
+        for mach in [0.3, 0.8, 1.0, 2.0] {
+            let re = reynolds_per_metre(mach) * 1.0;
+            let cf0 = skin_friction(re, mach, 0.0);
+            let want = (skin_friction(re, mach, 500e-6) - cf0) * wet_tube * body_factor / a_ref
+                + (skin_friction(re, mach, 20e-6) - cf0) * wet_fins / a_ref;
+            let got = mixed.estimate().power_off.at(mach) - smooth.estimate().power_off.at(mach);
+            assert!(
+                (got - want).abs() < 1e-12 && want > 0.05,
+                "Mach {mach}: {got} vs {want}"
+            );
+        }
+        // Giving every skin the estimate's own roughness changes no bit.
+        let mut same = smooth.clone();
+        same.section_roughness_m = vec![Some(0.0), Some(0.0)];
+        same.fins[0].roughness_m = Some(0.0);
+        for mach in [0.0, 0.3, 1.05, 3.0] {
+            assert_eq!(
+                same.estimate().power_off.at(mach).to_bits(),
+                smooth.estimate().power_off.at(mach).to_bits()
+            );
+        }
     }
 }

@@ -31,6 +31,7 @@ fn part(
         kind,
         mass_spec: MassSpec::Mass(0.1),
         overrides: Overrides::default(),
+        roughness_m: None,
     }
 }
 

@@ -93,6 +93,9 @@ pub struct Component {
     /// What the component is made of, or its explicit mass.
     pub mass_spec: MassSpec,
     pub overrides: Overrides,
+    /// The skin's own surface roughness for the drag estimate, m (nose cones, body tubes,
+    /// transitions and fin sets only); `None`: the estimate's.
+    pub roughness_m: Option<f64>,
 }
 
 impl Component {

@@ -254,6 +254,10 @@ macro_rules! component_struct {
 }
 
 component_struct!(RawNoseCone {
+    /// Surface roughness of this part's skin for the drag estimate, m (OpenRocket's finish
+    /// of the part); absent: the estimate's `roughness_m`.
+    #[serde(default)]
+    roughness_m: Option<f64>,
     shape: RawNoseShape,
     #[serde(default)]
     shape_parameter: Option<f64>,
@@ -273,6 +277,10 @@ component_struct!(RawNoseCone {
 });
 
 component_struct!(RawBodyTube {
+    /// Surface roughness of this part's skin for the drag estimate, m (OpenRocket's finish
+    /// of the part); absent: the estimate's `roughness_m`.
+    #[serde(default)]
+    roughness_m: Option<f64>,
     length_m: f64,
     outer_diameter_m: f64,
     wall_thickness_m: f64,
@@ -281,6 +289,10 @@ component_struct!(RawBodyTube {
 });
 
 component_struct!(RawTransition {
+    /// Surface roughness of this part's skin for the drag estimate, m (OpenRocket's finish
+    /// of the part); absent: the estimate's `roughness_m`.
+    #[serde(default)]
+    roughness_m: Option<f64>,
     shape: RawNoseShape,
     #[serde(default)]
     shape_parameter: Option<f64>,
@@ -306,6 +318,10 @@ component_struct!(RawTransition {
 });
 
 component_struct!(RawFinSet {
+    /// Surface roughness of this part's skin for the drag estimate, m (OpenRocket's finish
+    /// of the part); absent: the estimate's `roughness_m`.
+    #[serde(default)]
+    roughness_m: Option<f64>,
     count: u32,
     #[serde(default)]
     planform: RawFinPlanform,
@@ -502,6 +518,18 @@ impl RawComponent {
             mass_kg: c.mass_kg,
             overrides: c.overrides.as_ref(),
         })
+    }
+
+    /// The part's own surface roughness, m, for the parts whose skin meets the air (nose
+    /// cones, body tubes, transitions, fin sets); `None` for the others or when not given.
+    pub fn roughness_m(&self) -> Option<f64> {
+        match self {
+            RawComponent::NoseCone(c) => c.roughness_m,
+            RawComponent::BodyTube(c) => c.roughness_m,
+            RawComponent::Transition(c) => c.roughness_m,
+            RawComponent::FinSet(c) => c.roughness_m,
+            _ => None,
+        }
     }
 
     /// The components inside this one (body components and inner tubes hold children).

@@ -418,6 +418,10 @@ impl Builder<'_> {
         let common = raw.common();
         let mass_spec = self.mass_spec(at, &common, cord)?;
         let overrides = self.overrides(at, common.overrides, x_top_m)?;
+        let roughness_m = match raw.roughness_m() {
+            Some(r) => Some(self.non_negative(at, "roughness_m", r)?),
+            None => None,
+        };
         let idx = self.components.len();
         self.components.push(Component {
             id: common.id.to_owned(),
@@ -431,6 +435,7 @@ impl Builder<'_> {
             kind,
             mass_spec,
             overrides,
+            roughness_m,
         });
         if let Some(p) = parent {
             self.components[p].children.push(idx);

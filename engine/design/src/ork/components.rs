@@ -117,8 +117,10 @@ impl Context {
     }
 
     /// The surface roughness of the finish most outer components have (OpenRocket's
-    /// roughness of each finish), 60 µm ("normal") if none is given.
-    pub fn roughness(&mut self) -> f64 {
+    /// roughness of each finish), 60 µm ("normal") if none is given: the drag estimate's
+    /// default, for the skins that give none and for launch lugs (each nose cone, body
+    /// tube, transition and fin set carries its own finish's roughness).
+    pub fn roughness(&self) -> f64 {
         let mut counts: Vec<(String, f64, usize)> = Vec::new();
         for (name, r) in &self.finishes {
             match counts.iter_mut().find(|c| &c.0 == name) {
@@ -129,16 +131,6 @@ impl Context {
         let Some(most) = counts.iter().max_by_key(|c| c.2) else {
             return 60e-6;
         };
-        if counts.len() > 1 {
-            let all: Vec<String> = counts.iter().map(|c| c.0.clone()).collect();
-            self.note(format!(
-                "The parts' finishes differ ({}): the drag estimate takes \"{}\" ({} µm) for \
-                 all of them.",
-                all.join(", "),
-                most.0,
-                most.1 * 1e6
-            ));
-        }
         most.1
     }
 
@@ -241,6 +233,18 @@ impl Context {
                 other => return Err(el.bad("finish", format!("unknown finish \"{other}\""))),
             };
             self.finishes.push((finish.to_owned(), roughness_m));
+            // The skins whose friction OpenRocket takes at their own finish.
+            if matches!(
+                el.tag(),
+                "nosecone"
+                    | "bodytube"
+                    | "transition"
+                    | "trapezoidfinset"
+                    | "ellipticalfinset"
+                    | "freeformfinset"
+            ) {
+                m.insert("roughness_m".into(), json!(roughness_m));
+            }
         }
         let mass = el.num("overridemass")?;
         let cg = el.num("overridecg")?;

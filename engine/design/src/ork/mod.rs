@@ -12,8 +12,8 @@
 //! stages, tube fins, clustered motors, flipped parts, secant ogives); what it leaves out is listed
 //! in [`OrkImport::notes`] and the design's `notes` (drag overrides, a
 //! parachute hpr's flight never deploys; each parachute's deployment is said too). The
-//! drag is estimated from the geometry with the finish most of the outer surfaces have, as
-//! OpenRocket estimates it (a `.ork` holds no drag curve).
+//! drag is estimated from the geometry, each skin (nose cone, body tube, transition, fin set)
+//! at its own finish's roughness, as OpenRocket estimates it (a `.ork` holds no drag curve).
 //!
 //! The element names and their meaning (units, `auto` values, position methods, override
 //! flags, material kinds) are those of OpenRocket's own loader and savers (openrocket/

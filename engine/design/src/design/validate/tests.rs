@@ -901,3 +901,18 @@ fn shapes_take_only_their_own_parameter() {
         }
     );
 }
+
+#[test]
+fn a_skin_s_own_roughness_must_not_be_negative_and_only_skins_may_give_one() {
+    let d = with(|v| at(v, FINS)["roughness_m"] = json!(2e-6))
+        .expect("a fin set's own roughness is accepted");
+    let fins = d.component_index("fins").unwrap();
+    assert_eq!(d.components[fins].roughness_m, Some(2e-6));
+    let (rule, loc, f) = invalid(with(|v| at(v, BODY)["roughness_m"] = json!(-1e-6)));
+    assert_eq!(rule, Rule::Negative { got: -1e-6 });
+    assert_eq!((loc, f.as_deref()), (comp("body"), Some("roughness_m")));
+    // A part inside has no skin in the air: the field is unknown there.
+    let e = with(|v| at(v, &format!("{BODY}/children/5"))["roughness_m"] = json!(2e-6))
+        .expect_err("a mass component gives no roughness");
+    assert!(e.to_string().contains("roughness_m"), "{e}");
+}
