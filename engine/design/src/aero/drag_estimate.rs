@@ -27,15 +27,19 @@
 //! is not reduced for the exhaust), and so does the estimate: `power_on` is `power_off`. A
 //! team with a power-on curve (RASAero's, a wind tunnel's) gives the curves instead.
 //!
-//! **Air properties.** The flight uses these tables at any altitude; the Reynolds number of
-//! each Mach row is the sea-level one of the International Standard Atmosphere:
-//! `Re/L = M a₀/ν₀`, `a₀ = 340.294 m/s`, `ν₀ = μ₀/ρ₀ = 1.7894e-5/1.225 = 1.46073e-5 m²/s`,
-//! on the rocket's length `L` (OpenRocket takes the flight's speed and the air where it
-//! flies). (The Mach-0 row, a rocket at rest, takes the Reynolds number of the Mach-0.01 row
-//! so that the table does not jump to the `R < 10⁴` value.) With the default 60 µm finish
-//! the friction of a high-power rocket is roughness-limited above about 12 m/s, where the
-//! Reynolds number does not enter; for a polished rocket at altitude the skin friction is a
-//! few per cent higher than this.
+//! **Air properties.** The skin friction (and a launch lug's bore and a rail button's
+//! boundary layer) depend on the Reynolds number, which OpenRocket takes from the flight's
+//! airspeed and the air where it flies. The estimate is tabulated against Mach and the
+//! Reynolds number's scale `k`, the flight's Reynolds number over that of the International
+//! Standard Atmosphere at sea level at the same Mach (`Re/L = k M a₀/ν₀`, `a₀ = 340.294 m/s`,
+//! `ν₀ = μ₀/ρ₀ = 1.7894e-5/1.225 = 1.46073e-5 m²/s`, on the rocket's length `L`): eleven
+//! Mach tables at `ln k` = −4.5, −4, ..., 0.5 ([`ReynoldsTables`]), which the flight reads at
+//! the `k` of the air around it (`(a/a₀)(ν₀/ν)`, Sutherland's viscosity). `power_off` is
+//! the table at `k = 1`, sea level's. (The Mach-0 row, a rocket at rest, takes the Reynolds
+//! number of the Mach-0.01 row so that the table does not jump to the `R < 10⁴` value.) With
+//! the default 60 µm finish the friction of a high-power rocket is roughness-limited above
+//! about 12 m/s, where the Reynolds number does not enter; a polished skin's friction rises
+//! a few per cent with altitude.
 //!
 //! Not modelled: OpenRocket's "perfect finish" (partly laminar) friction, fin–body
 //! interference drag, fin-tip vortices, the angle of attack (OpenRocket multiplies the axial
@@ -49,7 +53,7 @@ use super::drag_formulas::{
 use super::fins::Fins;
 use super::nose_drag::NosePressureDrag;
 use super::profile::Section;
-use super::table::MachTable;
+use super::table::{MachTable, ReynoldsTables};
 use crate::design::{ComponentKind, Design, FinCrossSection};
 use std::f64::consts::PI;
 
@@ -57,6 +61,9 @@ use std::f64::consts::PI;
 pub const SEA_LEVEL_SPEED_OF_SOUND_M_S: f64 = 340.294;
 /// Sea-level kinematic viscosity of the ISA, m²/s (`1.7894e-5 Pa·s / 1.225 kg/m³`).
 pub const SEA_LEVEL_KINEMATIC_VISCOSITY_M2_S: f64 = 1.7894e-5 / 1.225;
+
+/// The table of [`ReynoldsTables`] at `k = 1` (`ln k = 0`): sea-level standard air.
+const SEA_LEVEL_TABLE: usize = 9;
 
 /// Reynolds number per metre at `mach` in sea-level standard air.
 pub fn reynolds_per_metre(mach: f64) -> f64 {
@@ -112,11 +119,15 @@ pub struct FinDrag {
     pub roughness_m: Option<f64>,
 }
 
-/// Power-off and power-on `C_D(M)` tables.
+/// Power-off and power-on `C_D(M)` tables in sea-level standard air, and `C_D` against Mach
+/// and the Reynolds number's scale (the flight's Reynolds number over sea level's at the same
+/// Mach), for the flight to read where it flies.
 #[derive(Debug, Clone)]
 pub struct DragEstimate {
     pub power_off: MachTable,
     pub power_on: MachTable,
+    /// `C_D(M, k)`, power off and on alike; its table at `k = 1` is `power_off`.
+    pub reynolds: ReynoldsTables,
 }
 
 impl DragGeometry {
@@ -260,8 +271,9 @@ impl DragGeometry {
         }
         steps_down += PI * before * before / a_ref;
 
-        let common = |mach: f64| {
-            let re = reynolds_per_metre(mach.max(0.01)) * self.length_m;
+        // `k` scales the Reynolds number from sea level's at this Mach (1 there).
+        let common = |mach: f64, k: f64| {
+            let re = reynolds_per_metre(mach.max(0.01)) * k * self.length_m;
             let friction: f64 = friction_parts
                 .iter()
                 .map(|&(rel_roughness, area)| skin_friction(re, mach, rel_roughness) * area)
@@ -284,7 +296,7 @@ impl DragGeometry {
                         / a_ref
                 })
                 .sum();
-            let per_m = reynolds_per_metre(mach.max(0.01));
+            let per_m = reynolds_per_metre(mach.max(0.01)) * k;
             let guides: f64 = self
                 .guides
                 .iter()
@@ -316,10 +328,12 @@ impl DragGeometry {
                 + stagnation_cd(mach) * steps_up
                 + base_cd(mach) * steps_down
         };
-        let power_off = MachTable::from_fn(common);
+        let reynolds = ReynoldsTables::from_fn(common);
+        let power_off = reynolds.table(SEA_LEVEL_TABLE).clone();
         DragEstimate {
             power_on: power_off.clone(),
             power_off,
+            reynolds,
         }
     }
 }
@@ -456,5 +470,43 @@ mod tests {
                 smooth.estimate().power_off.at(mach).to_bits()
             );
         }
+    }
+
+    #[test]
+    fn the_skin_friction_follows_the_reynolds_number_of_the_air_the_rocket_flies_in() {
+        // The finless cone and tube (smooth skin, so the friction is the smooth-turbulent
+        // one at every Reynolds number): its table at ln k = −1 (a Reynolds number e times
+        // smaller than sea level's at the same Mach, air about 9 km up) differs from sea
+        // level's by the friction coefficients' difference on the body's 34.934746395 A_ref
+        // of fineness-corrected wetted area, and nothing else; the table at k = 1 is the
+        // sea-level curve, bit for bit.
+        let est = cone_and_tube().estimate();
+        let (j_sea, j_thin) = (9, 7);
+        assert_eq!(ReynoldsTables::ln_scale_of(j_sea), 0.0);
+        assert_eq!(ReynoldsTables::ln_scale_of(j_thin), -1.0);
+        for mach in [0.0, 0.3, 0.95, 2.0] {
+            let sea = est.reynolds.table(j_sea).at(mach);
+            assert_eq!(sea.to_bits(), est.power_off.at(mach).to_bits());
+            let re = reynolds_per_metre(f64::max(mach, 0.01)) * 1.0;
+            let want = (skin_friction(re * (-1.0f64).exp(), mach, 0.0)
+                - skin_friction(re, mach, 0.0))
+                * 34.934746395;
+            let got = est.reynolds.at(mach, -1.0) - sea;
+            assert!(
+                (got - want).abs() < 1e-9 * want && want > 0.0,
+                "Mach {mach}: {got} vs {want}"
+            );
+        }
+        // Between two tables, linear in ln k: halfway between ln k = −1 and −0.5.
+        let mid = est.reynolds.at(0.3, -0.75);
+        let ends = (est.reynolds.at(0.3, -1.0) + est.reynolds.at(0.3, -0.5)) / 2.0;
+        assert!((mid - ends).abs() < 1e-15, "{mid} vs {ends}");
+        // Beyond the ends, the end tables.
+        assert_eq!(est.reynolds.at(0.3, -9.0), est.reynolds.table(0).at(0.3));
+        assert_eq!(est.reynolds.at(0.3, 3.0), est.reynolds.table(10).at(0.3));
+        assert_eq!(
+            est.reynolds.at(0.3, f64::NEG_INFINITY),
+            est.reynolds.table(0).at(0.3)
+        );
     }
 }

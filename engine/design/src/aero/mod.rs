@@ -28,7 +28,7 @@ mod tests;
 pub use barrowman::Lift;
 pub use fins::{FinGeometry, Fins};
 pub use profile::Section;
-pub use table::{Curve, MachTable};
+pub use table::{Curve, MachTable, ReynoldsTables};
 
 use crate::design::{ComponentIdx, ComponentKind, Design, DragSpec, FinPlanform};
 use std::f64::consts::PI;
@@ -161,6 +161,9 @@ pub struct AeroModel {
     pub drag_source: DragSource,
     pub drag_power_off: DragCurve,
     pub drag_power_on: DragCurve,
+    /// For an estimated drag, `C_D` against Mach and the Reynolds number's scale (the
+    /// curves above are its sea-level table); `None` for curves a design gives.
+    pub drag_reynolds: Option<ReynoldsTables>,
     cn_alpha_total: MachTable,
     cp_total: MachTable,
     roll_forcing_total: MachTable,
@@ -326,7 +329,7 @@ impl AeroModel {
                 .sum()
         });
 
-        let (drag_source, drag_power_off, drag_power_on) = match &design.drag {
+        let (drag_source, drag_power_off, drag_power_on, drag_reynolds) = match &design.drag {
             DragSpec::Curves {
                 power_off,
                 power_on,
@@ -342,6 +345,7 @@ impl AeroModel {
                     DragSource::Curves,
                     curve(power_off, "power_off")?,
                     curve(power_on, "power_on")?,
+                    None,
                 )
             }
             DragSpec::Estimate { roughness_m } => {
@@ -357,6 +361,7 @@ impl AeroModel {
                     DragSource::Estimate,
                     DragCurve::Table(est.power_off),
                     DragCurve::Table(est.power_on),
+                    Some(est.reynolds),
                 )
             }
         };
@@ -368,6 +373,7 @@ impl AeroModel {
             drag_source,
             drag_power_off,
             drag_power_on,
+            drag_reynolds,
             cn_alpha_total,
             cp_total,
             roll_forcing_total,

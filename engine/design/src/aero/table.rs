@@ -152,6 +152,67 @@ impl Curve {
     }
 }
 
+/// Natural logarithm of the smallest Reynolds-number scale [`ReynoldsTables`] tabulates (its
+/// first table; `k` ≈ 0.011, air about 25 km up).
+pub const LN_RE_SCALE_MIN: f64 = -4.5;
+/// Spacing of [`ReynoldsTables`] in `ln k`.
+pub const LN_RE_SCALE_STEP: f64 = 0.5;
+/// Number of tables: `ln k` from [`LN_RE_SCALE_MIN`] to +0.5 (`k` ≈ 1.65, cold dense air);
+/// table 9 is `k = 1` exactly.
+pub const LN_RE_SCALE_NODES: usize = 11;
+
+/// A function of Mach number and of the Reynolds number's scale `k`, the flight's Reynolds
+/// number over that of sea-level standard air at the same Mach number: one [`MachTable`] per
+/// `ln k` = [`LN_RE_SCALE_MIN`] + j [`LN_RE_SCALE_STEP`], linear in `ln k` between them
+/// (the skin friction, `1/(1.5 ln Re − 5.6)²`, is smooth in `ln Re`), constant beyond the
+/// first and the last.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReynoldsTables {
+    tables: Vec<MachTable>,
+}
+
+impl ReynoldsTables {
+    /// `ln k` of table `j`.
+    pub fn ln_scale_of(j: usize) -> f64 {
+        LN_RE_SCALE_MIN + j as f64 * LN_RE_SCALE_STEP
+    }
+
+    /// Samples `f(mach, k)` at every Mach node of every table.
+    pub fn from_fn(mut f: impl FnMut(f64, f64) -> f64) -> Self {
+        let tables = (0..LN_RE_SCALE_NODES)
+            .map(|j| {
+                let k = Self::ln_scale_of(j).exp();
+                MachTable::from_fn(|m| f(m, k))
+            })
+            .collect();
+        ReynoldsTables { tables }
+    }
+
+    /// Table `j` (`ln k` = [`ReynoldsTables::ln_scale_of`]`(j)`).
+    pub fn table(&self, j: usize) -> &MachTable {
+        &self.tables[j]
+    }
+
+    /// The value at `mach` and `ln k` = `ln_scale`: the two tables about `ln_scale` read at
+    /// `mach` and interpolated; below the first table (or NaN) the first, above the last the
+    /// last.
+    #[inline]
+    pub fn at(&self, mach: f64, ln_scale: f64) -> f64 {
+        let v = (ln_scale - LN_RE_SCALE_MIN) / LN_RE_SCALE_STEP;
+        if !(v > 0.0) {
+            return self.tables[0].at(mach);
+        }
+        let last = LN_RE_SCALE_NODES - 1;
+        if v >= last as f64 {
+            return self.tables[last].at(mach);
+        }
+        let j = v as usize;
+        let w = v - j as f64;
+        let (a, b) = (self.tables[j].at(mach), self.tables[j + 1].at(mach));
+        a + (b - a) * w
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

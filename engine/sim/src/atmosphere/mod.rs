@@ -54,6 +54,24 @@
 use std::sync::Arc;
 use thiserror::Error;
 
+/// The natural logarithm of the Reynolds number's scale in air of `density_kg_m3` and
+/// `speed_of_sound_m_s`: the Reynolds number at a Mach number there over that in sea-level
+/// standard air at the same Mach, `k = (a/a₀)(ν₀/ν)`, with `ν = μ(T)/ρ`, Sutherland's
+/// viscosity and `T = a²/(γR)` (the drag estimate's `hpr_design::aero::ReynoldsTables` are
+/// read at it). About 0 at sea level (Sutherland's `μ(288.15 K)` is 1.78938e-5 Pa·s against
+/// the estimate's 1.7894e-5), −0.47 at 5 km; −∞ in a vacuum.
+#[inline]
+pub fn reynolds_ln_scale(density_kg_m3: f64, speed_of_sound_m_s: f64) -> f64 {
+    use hpr_design::aero::drag_estimate::{
+        SEA_LEVEL_KINEMATIC_VISCOSITY_M2_S, SEA_LEVEL_SPEED_OF_SOUND_M_S,
+    };
+    let a = speed_of_sound_m_s;
+    let t = a * a / (GAMMA_AIR * R_AIR_J_KG_K);
+    let mu = SUTHERLAND_BETA * t * t.sqrt() / (t + SUTHERLAND_S_K);
+    (a / SEA_LEVEL_SPEED_OF_SOUND_M_S * SEA_LEVEL_KINEMATIC_VISCOSITY_M2_S * density_kg_m3 / mu)
+        .ln()
+}
+
 /// Standard gravity used by the geopotential definition, m/s².
 pub const G0_M_S2: f64 = 9.80665;
 /// Specific gas constant of air, R*/M0 = 8314.32 / 28.9644 ≈ 287.05287 J/(kg·K).

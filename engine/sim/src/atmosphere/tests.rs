@@ -153,3 +153,22 @@ fn an_unusable_launch_elevation_is_a_typed_error() {
         assert!(err.to_string().contains("launch_elevation_m"));
     }
 }
+
+#[test]
+fn the_reynolds_scale_is_one_at_sea_level_and_that_of_the_published_air_at_five_kilometres() {
+    // Sea level: Sutherland's 1.78938e-5 Pa·s at 288.15 K against the estimate's 1.7894e-5.
+    assert!(reynolds_ln_scale(1.225, 340.294).abs() < 2e-5);
+    // 5 km (US Standard Atmosphere 1976, as published to five digits): a = 320.55 m/s,
+    // ρ = 0.73643 kg/m³, μ = 1.6283e-5 Pa·s, so ν = 2.2111e-5 m²/s and the Reynolds number at
+    // a Mach number is (a/a₀)(ν₀/ν) = 0.6223 of sea level's.
+    let want = (320.55f64 / 340.294 * (1.7894e-5 / 1.225) / (1.6283e-5 / 0.73643)).ln();
+    let got = reynolds_ln_scale(0.73643, 320.55);
+    assert!((got - want).abs() < 2e-4, "{got} vs {want}");
+    assert!((got - -0.4743).abs() < 1e-3, "{got}");
+    // From the model's own air at 5 km, the same to the published table's digits.
+    let air = Atmosphere::standard(0.0).unwrap().at_msl(5_000.0);
+    let model = reynolds_ln_scale(air.density_kg_m3, air.speed_of_sound_m_s);
+    assert!((model - want).abs() < 3e-4, "{model} vs {want}");
+    // A vacuum has no Reynolds number: the drag's first table then (q is 0 anyway).
+    assert_eq!(reynolds_ln_scale(0.0, 300.0), f64::NEG_INFINITY);
+}

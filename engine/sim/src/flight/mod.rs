@@ -396,6 +396,7 @@ impl DesignTables {
                 .collect(),
             cd_power_off: MachTable::from_fn(|m| aero_model.cd_power_off(m)),
             cd_power_on: MachTable::from_fn(|m| aero_model.cd_power_on(m)),
+            cd_reynolds: aero_model.drag_reynolds.clone(),
             roll_forcing: MachTable::from_fn(|m| aero_model.roll_forcing_coefficient(m)),
             roll_damping: MachTable::from_fn(|m| aero_model.roll_damping_coefficient(m)),
             cp_mach0_m: aero_model.cp_m(0.0),
