@@ -199,7 +199,7 @@ impl ReynoldsTables {
     #[inline]
     pub fn at(&self, mach: f64, ln_scale: f64) -> f64 {
         let v = (ln_scale - LN_RE_SCALE_MIN) / LN_RE_SCALE_STEP;
-        if !(v > 0.0) {
+        if v.is_nan() || v <= 0.0 {
             return self.tables[0].at(mach);
         }
         let last = LN_RE_SCALE_NODES - 1;
