@@ -67,7 +67,7 @@ pub fn reynolds_ln_scale(density_kg_m3: f64, speed_of_sound_m_s: f64) -> f64 {
     };
     let a = speed_of_sound_m_s;
     let t = a * a / (GAMMA_AIR * R_AIR_J_KG_K);
-    let mu = SUTHERLAND_BETA * t * t.sqrt() / (t + SUTHERLAND_S_K);
+    let mu = sutherland_viscosity_pa_s(t);
     (a / SEA_LEVEL_SPEED_OF_SOUND_M_S * SEA_LEVEL_KINEMATIC_VISCOSITY_M2_S * density_kg_m3 / mu)
         .ln()
 }
@@ -569,8 +569,14 @@ fn air_state(t: f64, p: f64) -> AirState {
         pressure_pa: p,
         density_kg_m3: p / (R_AIR_J_KG_K * t),
         speed_of_sound_m_s: (GAMMA_AIR * R_AIR_J_KG_K * t).sqrt(),
-        dynamic_viscosity_pa_s: SUTHERLAND_BETA * t * t.sqrt() / (t + SUTHERLAND_S_K),
+        dynamic_viscosity_pa_s: sutherland_viscosity_pa_s(t),
     }
+}
+
+/// Dynamic viscosity of air at `t` K by Sutherland's law, Pa·s.
+#[inline]
+fn sutherland_viscosity_pa_s(t: f64) -> f64 {
+    SUTHERLAND_BETA * t * t.sqrt() / (t + SUTHERLAND_S_K)
 }
 
 mod table;

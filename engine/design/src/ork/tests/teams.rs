@@ -347,26 +347,22 @@ fn a_cluster_of_inner_tubes_is_placed_and_weighed_as_openrocket_places_and_weigh
         1e-14
     ));
     // A cluster of motors is still refused, a pattern OpenRocket does not have too.
-    let motors = refusal(
-        edited(
-            "<clusterconfiguration>single",
-            "<clusterconfiguration>double",
+    let mount_as = |pattern: &str| {
+        refusal(
+            edited(
+                "<clusterconfiguration>single",
+                &format!("<clusterconfiguration>{pattern}"),
+            )
+            .as_bytes(),
+            "r.ork",
         )
-        .as_bytes(),
-        "r.ork",
-    );
+    };
+    let motors = mount_as("double");
     assert!(
         motors.contains("innertube \"Motor mount\"") && motors.contains("a cluster of motors"),
         "{motors}"
     );
-    let unknown = refusal(
-        edited(
-            "<clusterconfiguration>single",
-            "<clusterconfiguration>7-ring",
-        )
-        .as_bytes(),
-        "r.ork",
-    );
+    let unknown = mount_as("7-ring");
     assert!(
         unknown.contains("<clusterconfiguration>") && unknown.contains("\"7-ring\" is not one of"),
         "{unknown}"
