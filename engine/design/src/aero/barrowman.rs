@@ -196,6 +196,29 @@ mod tests {
     }
 
     #[test]
+    fn a_secant_ogive_has_its_center_of_pressure_where_its_closed_form_volume_puts_it() {
+        // x_cp = L − V/A. The secant ogive of L = 0.3, R = 0.05, p = 0.5 is the arc of
+        // radius ρ centred at (λ, −y₀) = (0.6, −2.675) (see `shapes`), so with u = λ − x
+        // V/π = ∫ (sqrt(ρ² − u²) − y₀)² du over [λ − L, λ]
+        //     = (ρ² + y₀²) L − (λ³ − (λ − L)³)/3 − 2 y₀ [F(λ) − F(λ − L)],
+        // F(u) = (u sqrt(ρ² − u²) + ρ² asin(u/ρ))/2. Then x_cp/L = 0.605801543 (between the
+        // cone's 2/3 and the tangent ogive's 0.4643).
+        let (l, r, lambda, y0): (f64, f64, f64, f64) = (0.3, 0.05, 0.6, 2.675);
+        let rho2 = lambda * lambda + y0 * y0;
+        let f = |u: f64| (u * (rho2 - u * u).sqrt() + rho2 * (u / rho2.sqrt()).asin()) / 2.0;
+        let a = lambda - l;
+        let v = PI
+            * ((rho2 + y0 * y0) * l
+                - (lambda.powi(3) - a.powi(3)) / 3.0
+                - 2.0 * y0 * (f(lambda) - f(a)));
+        let want = 1.0 - v / (PI * r * r * l);
+        assert!((want - 0.605_801_543).abs() < 1e-8, "{want}");
+        let got = nose_cone_lift(NoseShape::SecantOgive { p: 0.5 }, l, r, PI * r * r);
+        assert_rel(got.x_cp_m / l, want, 1e-8, "secant ogive");
+        assert!((got.cn_alpha - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
     fn a_nose_smaller_than_the_reference_diameter_lifts_in_proportion_to_its_base_area() {
         // CNα = 2 (A_base/A_ref) = 2 (0.05/0.06)² = 1.388888...
         let lift = nose_cone_lift(NoseShape::Conical, L, R, PI * 0.06 * 0.06);

@@ -206,9 +206,17 @@ impl NosePressureDrag {
         };
         let sin_eps = 1.0 / (1.0 + 4.0 * fineness * fineness).sqrt();
         let blend = |a: Base, b: Base, p: f64| (a, Some(b), p.clamp(0.0, 1.0));
+        // OpenRocket's ogive family (`calculateOgiveNoseInterpolator`): the conical formula
+        // at the joint's angle, times 0.72 (p − 0.5)² + 0.82 (1 for the cone, p = 0, and the
+        // tangent ogive, p = 1; 0.82 at p = 0.5).
+        let mut ogive_mul = 1.0;
         let (one, two, p, direct) = match shape {
             NoseShape::Conical => (Base::Cone(sin_phi), None, 0.0, true),
             NoseShape::Ogive => (Base::Cone(sin_phi), None, 0.0, true),
+            NoseShape::SecantOgive { p } => {
+                ogive_mul = 0.72 * (p - 0.5) * (p - 0.5) + 0.82;
+                (Base::Cone(sin_phi), None, 0.0, true)
+            }
             NoseShape::Elliptical => (Base::Data(ELLIPSOID), None, 0.0, false),
             NoseShape::PowerSeries { k } => {
                 let (a, b, p) = if k <= 0.25 {
@@ -269,7 +277,7 @@ impl NosePressureDrag {
             .map(|&m| {
                 let v = blended(m);
                 if direct {
-                    (m, v)
+                    (m, ogive_mul * v)
                 } else {
                     let stag = stagnation_cd(m);
                     (m, stag * (v / stag).powf(exponent))
@@ -352,6 +360,24 @@ mod tests {
             n.at(1.16)
         );
         assert!((want - 0.0580741).abs() < 1e-7);
+    }
+
+    #[test]
+    fn a_secant_ogive_has_the_cone_s_drag_at_its_joint_angle_times_openrocket_s_factor() {
+        // OpenRocket's ogive family above Mach 1: the conical formula at the joint's sine,
+        // times 0.72 (p − 0.5)² + 0.82: 0.82 at p = 0.5, 0.8362 at p = 0.35. Below Mach 1
+        // the same fit toward 0.8 sin²φ at Mach 0.
+        let s = 0.11;
+        let cone = NosePressureDrag::new(NoseShape::Conical, 3.0, s);
+        for (p, mul) in [(0.5, 0.82), (0.35, 0.8362)] {
+            let ogive = NosePressureDrag::new(NoseShape::SecantOgive { p }, 3.0, s);
+            for m in [1.0, 1.1, 1.3, 1.5, 2.5] {
+                let want = mul * cone.at(m);
+                assert!((ogive.at(m) - want).abs() < 1e-15, "p {p}, Mach {m}");
+            }
+            assert!((ogive.at(0.0) - 0.8 * s * s).abs() < 1e-15);
+            assert!(ogive.at(0.6) > ogive.at(0.0) && ogive.at(0.6) < cone.at(0.6));
+        }
     }
 
     #[test]

@@ -154,6 +154,12 @@ pub enum NoseShape {
     Conical,
     /// Tangent ogive.
     Ogive,
+    /// Secant ogive: OpenRocket's ogive of shape parameter `p` in `[0, 1)`, the fore part
+    /// `p` of the tangent ogive of length `L/p` through the same base radius (`p` → 1 the
+    /// tangent ogive, `p` → 0 the cone); it meets the body at an angle.
+    SecantOgive {
+        p: f64,
+    },
     /// Haack series with parameter `c` (0 = von Kármán / LD-Haack, 1/3 = LV-Haack).
     Haack {
         c: f64,
@@ -203,6 +209,7 @@ pub struct BodyTube {
 pub enum TransitionShape {
     Conical,
     Ogive,
+    SecantOgive { p: f64 },
     Elliptical,
     PowerSeries { k: f64 },
     Haack { c: f64 },

@@ -173,12 +173,16 @@ pub enum RawNoseShape {
 
 impl RawNoseShape {
     /// The profile this name and parameter give, the parameter defaulted as OpenRocket
-    /// defaults it (Haack `c` 0, power series `k` 0.5, parabolic `K'` 1) and not checked
+    /// defaults it (ogive 1, the tangent ogive; Haack `c` 0, power series `k` 0.5,
+    /// parabolic `K'` 1) and not checked
     /// (the validation checks it first); a parameter of a shape that takes none is ignored.
     pub fn with_parameter(self, param: Option<f64>) -> NoseShape {
         match self {
             RawNoseShape::Conical => NoseShape::Conical,
-            RawNoseShape::Ogive => NoseShape::Ogive,
+            RawNoseShape::Ogive => match param {
+                Some(p) if p < 1.0 => NoseShape::SecantOgive { p },
+                _ => NoseShape::Ogive,
+            },
             RawNoseShape::VonKarman => NoseShape::Haack { c: 0.0 },
             RawNoseShape::LvHaack => NoseShape::Haack { c: 1.0 / 3.0 },
             RawNoseShape::Elliptical => NoseShape::Elliptical,

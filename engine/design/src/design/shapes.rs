@@ -8,6 +8,7 @@
 //! |---|---|
 //! | conical | `R ξ` |
 //! | tangent ogive | `sqrt(ρ² − (L − x)²) + R − ρ`, `ρ = (R² + L²)/(2R)` (for `L < R` the hemisphere is stretched: `x → x R/L`, `L → R`) |
+//! | secant ogive `p` | `sqrt(ρ² − (λ − x)²) − sqrt(ρ² − λ²)`, `λ = L/p`, `ρ² = (L² + R²)((2 − p)² L² + p² R²)/(4 p² R²)` (stretched as the tangent ogive for `L < R`; a cone for `p < 0.001`; OpenRocket's `Transition.Shape.OGIVE`) |
 //! | Haack series `c` | `R sqrt((θ − sin 2θ / 2 + c sin³θ)/π)`, `θ = acos(1 − 2ξ)` (`c = 0` von Kármán, `1/3` LV-Haack) |
 //! | elliptical | `R sqrt(1 − (1 − ξ)²)` |
 //! | power series `k` | `R ξᵏ` |
@@ -43,6 +44,23 @@ pub fn profile_radius(shape: NoseShape, length_m: f64, base_radius_m: f64, x_m: 
             let d = l - x;
             (rho * rho - d * d).max(0.0).sqrt() + big_r - rho
         }
+        NoseShape::SecantOgive { p } => {
+            let (l, x) = if length_m < big_r {
+                (big_r, x * big_r / length_m)
+            } else {
+                (length_m, x)
+            };
+            if p < 0.001 {
+                big_r * x / l
+            } else {
+                let (l2, r2, pr) = (l * l, big_r * big_r, p * big_r);
+                let rho2 = (l2 + r2) * ((2.0 - p) * (2.0 - p) * l2 + pr * pr) / (4.0 * pr * pr);
+                let lambda = l / p;
+                let y0 = (rho2 - lambda * lambda).max(0.0).sqrt();
+                let d = lambda - x;
+                (rho2 - d * d).max(0.0).sqrt() - y0
+            }
+        }
         NoseShape::Haack { c } => {
             let theta = (1.0 - 2.0 * xi).clamp(-1.0, 1.0).acos();
             let s = theta.sin();
@@ -64,6 +82,7 @@ pub fn transition_nose_shape(shape: TransitionShape) -> NoseShape {
     match shape {
         TransitionShape::Conical => NoseShape::Conical,
         TransitionShape::Ogive => NoseShape::Ogive,
+        TransitionShape::SecantOgive { p } => NoseShape::SecantOgive { p },
         TransitionShape::Elliptical => NoseShape::Elliptical,
         TransitionShape::PowerSeries { k } => NoseShape::PowerSeries { k },
         TransitionShape::Haack { c } => NoseShape::Haack { c },
@@ -198,9 +217,10 @@ pub fn body_radius(kind: &ComponentKind, length_m: f64, x_m: f64) -> Option<f64>
 mod tests {
     use super::*;
 
-    const ALL: [NoseShape; 8] = [
+    const ALL: [NoseShape; 9] = [
         NoseShape::Conical,
         NoseShape::Ogive,
+        NoseShape::SecantOgive { p: 0.5 },
         NoseShape::Haack { c: 0.0 },
         NoseShape::Haack { c: 1.0 / 3.0 },
         NoseShape::Elliptical,
@@ -216,6 +236,50 @@ mod tests {
             let base = profile_radius(shape, 0.3, 0.05, 0.3);
             assert!((base - 0.05).abs() <= 1e-15, "{shape:?} base {base}");
         }
+    }
+
+    #[test]
+    fn a_secant_ogive_is_the_arc_through_tip_and_base_centred_at_the_length_over_p() {
+        // OpenRocket's secant ogive of parameter p: a circle through the tip (0, 0) and the
+        // base (L, R) whose center is at x = λ = L/p, below the axis by y₀. The two points
+        // give λ² + y₀² = ρ² = (λ − L)² + (R + y₀)², so y₀ = (2λL − L² − R²)/(2R).
+        // L = 0.3, R = 0.05, p = 0.5: λ = 0.6, y₀ = 0.2675/0.1 = 2.675, ρ² = 7.515625.
+        let (l, r, p) = (0.3, 0.05, 0.5);
+        let (lambda, y0): (f64, f64) = (0.6, 2.675);
+        let rho2 = lambda * lambda + y0 * y0;
+        for x in [0.03, 0.15, 0.27] {
+            let want = (rho2 - (lambda - x) * (lambda - x)).sqrt() - y0;
+            let got = profile_radius(NoseShape::SecantOgive { p }, l, r, x);
+            assert!((got - want).abs() < 1e-15, "x {x}: {got} vs {want}");
+        }
+        // At mid-length, by hand: sqrt(7.515625 − 0.2025) − 2.675 = 0.0292790167.
+        let mid = profile_radius(NoseShape::SecantOgive { p }, l, r, 0.15);
+        assert!((mid - 0.029_279_016_67).abs() < 1e-11, "{mid}");
+        // It meets the body at an angle: the slope at the base is (λ − L)/(R + y₀) = 0.1101.
+        let h = 1e-6;
+        let slope = (r - profile_radius(NoseShape::SecantOgive { p }, l, r, l - h)) / h;
+        assert!((slope - 0.3 / 2.725).abs() < 1e-5, "{slope}");
+    }
+
+    #[test]
+    fn a_secant_ogive_tends_to_the_tangent_ogive_at_one_and_is_the_cone_below_a_thousandth() {
+        let (l, r) = (0.4, 0.05);
+        for x in [0.05, 0.2, 0.35] {
+            let tangent = profile_radius(NoseShape::Ogive, l, r, x);
+            let near = profile_radius(NoseShape::SecantOgive { p: 1.0 - 1e-9 }, l, r, x);
+            assert!((near - tangent).abs() < 1e-9, "x {x}: {near} vs {tangent}");
+            let cone = profile_radius(NoseShape::Conical, l, r, x);
+            let flat = profile_radius(NoseShape::SecantOgive { p: 0.0005 }, l, r, x);
+            assert!((flat - cone).abs() < 1e-17, "x {x}: {flat} vs {cone}");
+            // Between the two, the profile lies between the cone and the tangent ogive.
+            let mid = profile_radius(NoseShape::SecantOgive { p: 0.5 }, l, r, x);
+            assert!(cone < mid && mid < tangent, "x {x}: {cone} {mid} {tangent}");
+        }
+        // Shorter than its radius it is stretched, as the tangent ogive: r(L/2) of a 0.03 m
+        // long, 0.05 m radius one is r(R/2) of the one as long as its radius.
+        let short = profile_radius(NoseShape::SecantOgive { p: 0.5 }, 0.03, 0.05, 0.015);
+        let long = profile_radius(NoseShape::SecantOgive { p: 0.5 }, 0.05, 0.05, 0.025);
+        assert_eq!(short, long);
     }
 
     #[test]

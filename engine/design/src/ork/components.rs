@@ -547,12 +547,8 @@ fn shape(el: &El<'_, '_>) -> Result<(&'static str, Option<f64>), DesignError> {
     let p = el.num("shapeparameter")?;
     Ok(match el.text("shape").unwrap_or("conical") {
         "conical" => ("conical", None),
-        "ogive" => {
-            if p.is_some_and(|p| p != 1.0) {
-                return Err(el.refuse("a secant ogive (shape parameter below 1)"));
-            }
-            ("ogive", None)
-        }
+        // OpenRocket's ogive parameter: 1 the tangent ogive (its default), below 1 a secant.
+        "ogive" => ("ogive", p.filter(|&p| p != 1.0)),
         "ellipsoid" => ("elliptical", None),
         "power" => ("power_series", Some(p.unwrap_or(0.5))),
         "parabolic" => ("parabolic", Some(p.unwrap_or(1.0))),

@@ -102,8 +102,8 @@ impl Builder<'_> {
         self.push(&at, rc, None, stage, x_top, length, [0.0, 0.0], kind, None)
     }
 
-    /// The shape with its parameter checked and defaulted (Haack `c` 0, power series `k`
-    /// 0.5, parabolic `K'` 1, as OpenRocket defaults them).
+    /// The shape with its parameter checked and defaulted (ogive 1, Haack `c` 0, power
+    /// series `k` 0.5, parabolic `K'` 1, as OpenRocket defaults them).
     fn nose_shape(
         &self,
         at: &Location,
@@ -120,7 +120,9 @@ impl Builder<'_> {
         };
         match shape {
             RawNoseShape::Conical => none("conical")?,
-            RawNoseShape::Ogive => none("ogive")?,
+            RawNoseShape::Ogive => {
+                self.within(at, "shape_parameter", param.unwrap_or(1.0), 0.0, 1.0)?;
+            }
             RawNoseShape::VonKarman => none("von_karman")?,
             RawNoseShape::LvHaack => none("lv_haack")?,
             RawNoseShape::Elliptical => none("elliptical")?,
@@ -210,6 +212,7 @@ fn transition_shape(shape: NoseShape) -> TransitionShape {
     match shape {
         NoseShape::Conical => TransitionShape::Conical,
         NoseShape::Ogive => TransitionShape::Ogive,
+        NoseShape::SecantOgive { p } => TransitionShape::SecantOgive { p },
         NoseShape::Haack { c } => TransitionShape::Haack { c },
         NoseShape::Elliptical => TransitionShape::Elliptical,
         NoseShape::PowerSeries { k } => TransitionShape::PowerSeries { k },

@@ -874,9 +874,40 @@ fn a_mass_is_given_exactly_one_way() {
 #[test]
 fn shapes_take_only_their_own_parameter() {
     let (rule, ..) = invalid(with(|v| {
-        at(v, "/stages/0/components/0")["shape_parameter"] = json!(0.5)
+        let nose = at(v, "/stages/0/components/0");
+        nose["shape"] = json!("elliptical");
+        nose["shape_parameter"] = json!(0.5);
     }));
-    assert_eq!(rule, Rule::ShapeTakesNoParameter { shape: "ogive" });
+    assert_eq!(
+        rule,
+        Rule::ShapeTakesNoParameter {
+            shape: "elliptical"
+        }
+    );
+    // An ogive's parameter is OpenRocket's: 1 (the default) the tangent ogive, below it a
+    // secant ogive, above it refused.
+    let ogive = |p: f64| {
+        with(|v| at(v, "/stages/0/components/0")["shape_parameter"] = json!(p)).map(|d| {
+            let ComponentKind::NoseCone(n) = &d.components[0].kind else {
+                panic!()
+            };
+            n.shape
+        })
+    };
+    assert_eq!(ogive(1.0).unwrap(), NoseShape::Ogive);
+    assert_eq!(ogive(0.4).unwrap(), NoseShape::SecantOgive { p: 0.4 });
+    let (rule, _, field) = invalid(with(|v| {
+        at(v, "/stages/0/components/0")["shape_parameter"] = json!(1.2)
+    }));
+    assert_eq!(
+        rule,
+        Rule::OutOfRange {
+            got: 1.2,
+            min: 0.0,
+            max: 1.0
+        }
+    );
+    assert_eq!(field.as_deref(), Some("shape_parameter"));
     let d = with(|v| {
         let nose = at(v, "/stages/0/components/0");
         nose["shape"] = json!("power_series");
