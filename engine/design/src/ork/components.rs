@@ -387,12 +387,23 @@ impl Context {
 
     /// A nose cone, body tube or transition (its parts are read once its radii are known).
     fn body<'a, 'i>(&mut self, el: &El<'a, 'i>) -> Result<Body<'a, 'i>, DesignError> {
+        // A flipped nose cone (OpenRocket 23.09's tail cone) is OpenRocket's transition
+        // from its base radius, fore, to a point, aft, its shoulder fore (`NoseCone.
+        // setFlipped`); its file keeps the base and shoulder in the `aft` elements.
+        let flipped = el.tag() == "nosecone" && el.flag("isflipped");
         let kind = match el.tag() {
+            "nosecone" if flipped => "transition",
             "nosecone" => "nose_cone",
             "bodytube" => "body_tube",
             "transition" => "transition",
             other => return Err(el.refuse(&format!("a <{other}> among a stage's body components"))),
         };
+        if flipped {
+            self.note(format!(
+                "{}: a flipped nose cone (a tail cone), imported as a transition to a point.",
+                el.name()
+            ));
+        }
         let mut m = self.common(el)?;
         m.insert("type".into(), json!(kind));
         let length = el.req("length")?;
@@ -412,9 +423,6 @@ impl Context {
                 m.insert("wall_thickness_m".into(), json!(wall));
             }
             _ => {
-                if el.flag("isflipped") {
-                    return Err(el.refuse("a flipped nose cone (a tail cone)"));
-                }
                 let (shape, param) = shape(el)?;
                 m.insert("shape".into(), json!(shape));
                 if let Some(p) = param {
@@ -422,7 +430,7 @@ impl Context {
                 }
                 // OpenRocket writes `shapeclipped` for nose cones too, but clips only
                 // transitions (of the shapes it can clip, which the design format checks).
-                if kind == "transition" && el.flag("shapeclipped") {
+                if kind == "transition" && !flipped && el.flag("shapeclipped") {
                     m.insert("clipped".into(), json!(true));
                 }
                 match el.text("thickness") {
@@ -435,11 +443,16 @@ impl Context {
                         m.insert("wall_along_normal".into(), json!(true));
                     }
                 }
-                aft = Some(
-                    el.auto("aftradius")?
-                        .ok_or_else(|| el.bad("aftradius", "is missing"))?,
-                );
-                if kind == "transition" {
+                let base = el
+                    .auto("aftradius")?
+                    .ok_or_else(|| el.bad("aftradius", "is missing"))?;
+                if flipped {
+                    (fore, aft) = (Some(base), Some(Auto::Value(0.0)));
+                    if let Some(s) = shoulder(el, "aft")? {
+                        m.insert("fore_shoulder".into(), s);
+                    }
+                } else if kind == "transition" {
+                    aft = Some(base);
                     fore = Some(
                         el.auto("foreradius")?
                             .ok_or_else(|| el.bad("foreradius", "is missing"))?,
@@ -450,8 +463,11 @@ impl Context {
                     if let Some(s) = shoulder(el, "aft")? {
                         m.insert("aft_shoulder".into(), s);
                     }
-                } else if let Some(s) = shoulder(el, "aft")? {
-                    m.insert("shoulder".into(), s);
+                } else {
+                    aft = Some(base);
+                    if let Some(s) = shoulder(el, "aft")? {
+                        m.insert("shoulder".into(), s);
+                    }
                 }
             }
         }

@@ -9,7 +9,7 @@
 //! the result is the JSON of a design, validated afterwards exactly as a hand-written one.
 //!
 //! What a design cannot hold is refused with the element and the reason (pods and parallel
-//! stages, tube fins, clustered motors, flipped parts); what it leaves out is listed
+//! stages, tube fins, clustered motors); what it leaves out is listed
 //! in [`OrkImport::notes`] and the design's `notes` (drag overrides, a
 //! parachute hpr's flight never deploys; each parachute's deployment is said too). The
 //! drag is estimated from the geometry, each skin (nose cone, body tube, transition, fin set)
