@@ -416,11 +416,19 @@ impl Context {
                     .auto("radius")?
                     .ok_or_else(|| el.bad("radius", "is missing"))?;
                 (fore, aft) = (Some(r), Some(r));
-                let wall = match el.text("thickness") {
-                    Some("filled") => return Err(el.refuse("a filled body tube")),
-                    _ => el.req("thickness")?,
-                };
-                m.insert("wall_thickness_m".into(), json!(wall));
+                match el.text("thickness") {
+                    // A solid rod: its wall is its radius, set once the radius is resolved.
+                    Some("filled") => {
+                        m.insert("wall_thickness_m".into(), Value::Null);
+                        self.note(format!(
+                            "{}: a filled body tube, a solid rod (its wall its radius).",
+                            el.name()
+                        ));
+                    }
+                    _ => {
+                        m.insert("wall_thickness_m".into(), json!(el.req("thickness")?));
+                    }
+                }
             }
             _ => {
                 let (shape, param) = shape(el)?;
@@ -645,7 +653,12 @@ fn resolve_radii(
             ));
         };
         match b.kind {
-            "body_tube" => b.json.insert("outer_diameter_m".into(), json!(2.0 * aft)),
+            "body_tube" => {
+                if b.json.get("wall_thickness_m") == Some(&Value::Null) {
+                    b.json.insert("wall_thickness_m".into(), json!(aft));
+                }
+                b.json.insert("outer_diameter_m".into(), json!(2.0 * aft))
+            }
             "nose_cone" => b.json.insert("base_diameter_m".into(), json!(2.0 * aft)),
             _ => {
                 let fore = fore.ok_or_else(|| {

@@ -348,6 +348,34 @@ fn a_flipped_nose_cone_is_a_tail_cone_from_its_base_to_a_point_with_its_shoulder
 }
 
 #[test]
+fn a_filled_body_tube_is_a_solid_rod_of_its_radius() {
+    // The example's body tube filled: its wall becomes its radius, 0.02815 m, and it weighs
+    // a solid cylinder's mass, ρ π r² L, with the parts it holds unchanged.
+    let start = EXAMPLE.find("<bodytube>").unwrap();
+    let at = start + EXAMPLE[start..].find("<thickness>").unwrap();
+    let end = at + EXAMPLE[at..].find("</thickness>").unwrap() + "</thickness>".len();
+    let filled = format!(
+        "{}<thickness>filled</thickness>{}",
+        &EXAMPLE[..at],
+        &EXAMPLE[end..]
+    );
+    let (design, import) = imported(filled.as_bytes());
+    let tube = &import.json["stages"][0]["components"][1];
+    assert_eq!(tube["type"], "body_tube");
+    assert_eq!(tube["wall_thickness_m"], 0.02815);
+    assert!(noted(&import, "solid rod"), "{:?}", import.notes);
+    let i = design
+        .components
+        .iter()
+        .position(|c| c.name == "Body tube")
+        .unwrap();
+    let got = crate::mass::components::component_own(&design, i).mass_kg;
+    let density = tube["material"]["density_kg_m3"].as_f64().unwrap();
+    let want = density * std::f64::consts::PI * 0.02815f64.powi(2) * 0.9;
+    assert!(close(got, want, 1e-12), "{got} vs {want}");
+}
+
+#[test]
 fn what_a_design_cannot_hold_is_refused_with_its_element_and_reason() {
     let cases = [
         (
