@@ -124,6 +124,9 @@ pub fn prepare(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<Prepared> {
 pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunReport> {
     let started = Instant::now();
     let prepared = prepare(scenario, cfg)?;
+    if !cfg.quiet {
+        crate::cli::motor_notes(prepared.motor());
+    }
     let shard = cfg.shard.unwrap_or(Shard::ALL);
     let dir = cfg
         .out

@@ -1,19 +1,33 @@
 //! The rules every thrust curve obeys, whatever file it came from, and the numbers derived
-//! from it: the implicit (0 s, 0 N) start, strictly increasing times, no negative thrust, a
-//! final zero, trapezoidal impulse, the NAR/TRA impulse class and the common name.
+//! from it: the implicit (0 s, 0 N) start, strictly increasing times, no negative thrust,
+//! trapezoidal impulse, the NAR/TRA impulse class and the common name.
+//!
+//! Real files have a few slips that OpenRocket's loader mends (`AbstractMotorLoader.
+//! finalizeThrustCurve`) and RocketPy reads past; they are mended here the same way, each
+//! with a note naming the line: a zero-thrust sample at 0 s followed by another at 0 s (the
+//! zero one dropped), a sample repeating the one before (dropped), the last two samples at
+//! the same time with one of them zero (the zero one dropped). A curve whose last sample is
+//! not zero stops there: the thrust drops to nothing at that time, as both simulators read
+//! it. Any other pair of samples at one time, or a time going back, is refused.
 //!
 //! Both parsers feed their samples through `CurveBuilder` so that an `.eng` and an `.rse`
-//! of the same motor are checked, and fail, in the same way.
+//! of the same motor are checked, mended and refused in the same way.
 
 use super::error::{parse_error, MotorError, Rule};
 
-/// Collects samples, checking each as it comes, and remembers the line of the last one for
-/// the final-zero check.
+/// Collects samples, checking each as it comes, and remembers the line of the last one.
 pub(crate) struct CurveBuilder<'f> {
     file: &'f str,
     times_s: Vec<f64>,
     thrust_n: Vec<f64>,
     last_line: usize,
+    /// The line of the sample before the last.
+    line_before: usize,
+    /// A sample at the same time as the one before it, with another thrust: allowed only
+    /// as the curve's last pair (its line and the time before it).
+    same_time: Option<(usize, f64)>,
+    /// What was mended, for [`Curve::notes`].
+    notes: Vec<String>,
 }
 
 impl<'f> CurveBuilder<'f> {
@@ -23,6 +37,9 @@ impl<'f> CurveBuilder<'f> {
             times_s: Vec::new(),
             thrust_n: Vec::new(),
             last_line: 0,
+            line_before: 0,
+            same_time: None,
+            notes: Vec::new(),
         }
     }
 
@@ -57,12 +74,47 @@ impl<'f> CurveBuilder<'f> {
                 Rule::Negative { value: thrust_n },
             ));
         }
-        match self.times_s.last() {
+        // A pair at one time is allowed only as the last pair: a sample after it refuses it.
+        if let Some((step_line, previous_s)) = self.same_time {
+            return Err(parse_error(
+                self.file,
+                step_line,
+                time_field,
+                Rule::NonIncreasingTime {
+                    previous_s,
+                    time_s: previous_s,
+                },
+            ));
+        }
+        let previous = self
+            .times_s
+            .last()
+            .copied()
+            .zip(self.thrust_n.last().copied());
+        match previous {
             None if time_s > 0.0 => {
                 self.times_s.push(0.0);
                 self.thrust_n.push(0.0);
             }
-            Some(&previous_s) if time_s <= previous_s => {
+            Some((previous_s, previous_n)) if time_s == previous_s => {
+                if thrust_n == previous_n {
+                    self.notes.push(format!(
+                        "line {line}: the sample repeats the one before it; dropped"
+                    ));
+                    return Ok(());
+                }
+                if time_s == 0.0 && previous_n == 0.0 && self.times_s.len() == 1 {
+                    self.notes.push(format!(
+                        "line {line}: a second sample at 0 s; the zero-thrust one before it \
+                         dropped"
+                    ));
+                    self.times_s.clear();
+                    self.thrust_n.clear();
+                } else {
+                    self.same_time = Some((line, previous_s));
+                }
+            }
+            Some((previous_s, _)) if time_s < previous_s => {
                 return Err(parse_error(
                     self.file,
                     line,
@@ -74,17 +126,47 @@ impl<'f> CurveBuilder<'f> {
         }
         self.times_s.push(time_s);
         self.thrust_n.push(thrust_n);
+        self.line_before = self.last_line;
         self.last_line = line;
         Ok(())
     }
 
-    /// The finished curve: it must have samples, end at zero thrust and deliver impulse.
-    /// `header_line` is where the motor began (reported when there are no samples).
+    /// The finished curve: it must have samples and deliver impulse. `header_line` is where
+    /// the motor began (reported when there are no samples).
     pub(crate) fn finish(
-        self,
+        mut self,
         header_line: usize,
-        thrust_field: &str,
+        time_field: &str,
     ) -> Result<Curve, MotorError> {
+        if let Some((line, previous_s)) = self.same_time {
+            // The last two samples share a time: mended if one of them is zero.
+            let n = self.thrust_n.len();
+            let (before, last) = (self.thrust_n[n - 2], self.thrust_n[n - 1]);
+            let drop = if before == 0.0 {
+                n - 2
+            } else if last == 0.0 {
+                n - 1
+            } else {
+                return Err(parse_error(
+                    self.file,
+                    line,
+                    time_field,
+                    Rule::NonIncreasingTime {
+                        previous_s,
+                        time_s: previous_s,
+                    },
+                ));
+            };
+            self.notes.push(format!(
+                "line {line}: the last two samples are both at {previous_s} s, one of them \
+                 zero; the zero one dropped"
+            ));
+            self.times_s.remove(drop);
+            self.thrust_n.remove(drop);
+            if drop == n - 1 {
+                self.last_line = self.line_before;
+            }
+        }
         let Some(&last) = self.thrust_n.last() else {
             return Err(parse_error(
                 self.file,
@@ -94,11 +176,11 @@ impl<'f> CurveBuilder<'f> {
             ));
         };
         if last != 0.0 {
-            return Err(parse_error(
-                self.file,
-                self.last_line,
-                thrust_field,
-                Rule::MissingFinalZero { thrust_n: last },
+            let t = self.times_s.last().copied().unwrap_or(0.0);
+            self.notes.push(format!(
+                "line {}: the curve ends at {last} N; the thrust stops at {t} s, its last \
+                 sample (as OpenRocket and RocketPy read it)",
+                self.last_line
             ));
         }
         let impulse_ns = trapezoid(&self.times_s, &self.thrust_n);
@@ -122,17 +204,20 @@ impl<'f> CurveBuilder<'f> {
             times_s: self.times_s,
             thrust_n: self.thrust_n,
             total_impulse_ns: impulse_ns,
+            notes: self.notes,
         })
     }
 }
 
-/// A checked curve: times start at 0 and strictly increase, thrust is non-negative, the last
-/// thrust is 0 and the impulse is positive.
+/// A checked curve: times start at 0 and strictly increase, thrust is non-negative and the
+/// impulse is positive; after the last sample there is no thrust.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Curve {
     pub(crate) times_s: Vec<f64>,
     pub(crate) thrust_n: Vec<f64>,
     pub(crate) total_impulse_ns: f64,
+    /// What was mended in the file's samples (see the module docs).
+    pub(crate) notes: Vec<String>,
 }
 
 /// ∫F dt of a piecewise-linear curve (exact for it).

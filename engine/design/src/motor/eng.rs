@@ -142,7 +142,7 @@ impl<'f> Block<'f> {
     }
 
     fn finish(self, file: &str) -> Result<Motor, MotorError> {
-        let curve = self.curve.finish(self.header_line, "thrust")?;
+        let curve = self.curve.finish(self.header_line, "time")?;
         Ok(Motor::assemble(
             self.designation,
             self.manufacturer,
@@ -200,6 +200,51 @@ mod tests {
     }
 
     #[test]
+    fn the_slips_openrocket_mends_are_mended_and_noted_with_their_line() {
+        // OpenRocket's `finalizeThrustCurve`: a zero at 0 s before another sample at 0 s,
+        // a repeated sample, and the last two samples at one time with one zero.
+        let m = &parse_eng(
+            "X 29 100 0 0.05 0.1 A\n0 0\n0 120\n0.5 140\n0.5 140\n1.2 100\n1.2 0\n",
+            "t.eng",
+        )
+        .unwrap()[0];
+        assert_eq!(m.times_s(), [0.0, 0.5, 1.2]);
+        assert_eq!(m.thrust_n(), [120.0, 140.0, 100.0]);
+        // 0.5 (120 + 140)/2 + 0.7 (140 + 100)/2 = 65 + 84.
+        assert!((m.total_impulse_ns() - 149.0).abs() < 1e-12);
+        assert_eq!(m.burn_time_s(), 1.2);
+        assert_eq!(
+            m.notes,
+            [
+                "line 3: a second sample at 0 s; the zero-thrust one before it dropped",
+                "line 5: the sample repeats the one before it; dropped",
+                "line 7: the last two samples are both at 1.2 s, one of them zero; the zero one \
+                 dropped",
+                "line 6: the curve ends at 100 N; the thrust stops at 1.2 s, its last sample (as \
+                 OpenRocket and RocketPy read it)",
+            ]
+        );
+        // A clean file has no notes.
+        let clean = &parse_eng("X 29 100 0 0.05 0.1 A\n1 10\n2 0\n", "t.eng").unwrap()[0];
+        assert!(clean.notes.is_empty());
+    }
+
+    #[test]
+    fn a_curve_that_stops_at_a_thrust_burns_out_there_and_its_tables_drop_to_nothing() {
+        use crate::motor::{MotorOptions, MotorTables};
+        let m = &parse_eng("X 29 100 0 0.05 0.1 A\n1 10\n2 10\n", "t.eng").unwrap()[0];
+        assert_eq!(m.burn_time_s(), 2.0);
+        assert_eq!(m.total_impulse_ns(), 15.0);
+        let tables = MotorTables::new(m, &MotorOptions::default()).unwrap();
+        let before = tables.eval(2.0 - 1e-9);
+        assert!((before.thrust_n - 10.0).abs() < 1e-9);
+        // Propellant burns with the impulse: 1e-8 N·s of 15 left, of 0.05 kg.
+        assert!((before.propellant_kg - 0.05 * 1e-8 / 15.0).abs() < 1e-12);
+        let after = tables.eval(2.0);
+        assert_eq!((after.thrust_n, after.propellant_kg), (0.0, 0.0));
+    }
+
+    #[test]
     fn two_blocks_give_two_motors() {
         let motors = parse_eng(
             "A1 29 100 0 0.05 0.1 A\n1 10\n2 0\nB2 38 200 0 0.1 0.2 B\n1 20\n3 0\n",
@@ -238,9 +283,15 @@ mod tests {
             err("X 29 100 0 0.05 0.1 A\n1 inf\n2 0"),
             "test.eng, line 2, thrust: `inf` is not a finite number"
         );
+        // A pair at one time with no zero, at the end, is refused as one in the middle is.
         assert_eq!(
-            err("X 29 100 0 0.05 0.1 A\n1 10\n2 1\n"),
-            "test.eng, line 3, thrust: the last sample has thrust 1 N; a curve must end with a zero-thrust sample at burnout"
+            err("X 29 100 0 0.05 0.1 A\n1 10\n2 10\n2 5\n"),
+            "test.eng, line 4, time: time 2 s does not exceed the previous time 2 s (times must strictly increase)"
+        );
+        // A zero at 0 s then a second sample at 0 s is mended; a third at 0 s is not.
+        assert_eq!(
+            err("X 29 100 0 0.05 0.1 A\n0 0\n0 5\n0 6\n1 0\n"),
+            "test.eng, line 4, time: time 0 s does not exceed the previous time 0 s (times must strictly increase)"
         );
         assert_eq!(
             err("X 0 100 0 0.05 0.1 A\n1 10\n2 0"),

@@ -87,8 +87,6 @@ pub enum Rule {
     NonIncreasingTime { previous_s: f64, time_s: f64 },
     /// The propellant mass exceeds the loaded motor mass.
     PropellantExceedsTotal { propellant_kg: f64, total_kg: f64 },
-    /// The last sample of a curve must have zero thrust (it marks burnout).
-    MissingFinalZero { thrust_n: f64 },
     /// The file has no header line (only comments or nothing).
     NoHeader,
     /// A motor has a header but no thrust samples.
@@ -123,10 +121,6 @@ impl fmt::Display for Rule {
             Rule::PropellantExceedsTotal { propellant_kg, total_kg } => write!(
                 f,
                 "propellant mass {propellant_kg} kg exceeds the total motor mass {total_kg} kg"
-            ),
-            Rule::MissingFinalZero { thrust_n } => write!(
-                f,
-                "the last sample has thrust {thrust_n} N; a curve must end with a zero-thrust sample at burnout"
             ),
             Rule::NoHeader => write!(f, "no motor header line (the file holds only comments or nothing)"),
             Rule::NoSamples => write!(f, "the motor has no thrust samples"),

@@ -3,7 +3,8 @@
 //!
 //! - [`eng`] and [`rse`] parse RASP `.eng` and RockSim `.rse` files into [`Motor`]s, checking
 //!   the rules of [`curve`] (implicit (0 s, 0 N) start, strictly increasing times, no negative
-//!   thrust, a final zero) and reporting a broken rule as a [`MotorError`] naming the file,
+//!   thrust; the slips OpenRocket mends mended, with a note) and reporting a broken rule as a
+//!   [`MotorError`] naming the file,
 //!   line, field and rule. No input makes them panic (a property test feeds them random bytes
 //!   and mutated real files).
 //! - [`library`] embeds the files of `engine/design/motors/` in the binary and finds a motor
@@ -77,7 +78,7 @@ impl MotorFormat {
 ///
 /// The metadata fields are public; the thrust curve is private so that it always obeys the
 /// rules the parsers check (times start at 0 and strictly increase, thrust is non-negative,
-/// the last thrust is 0, the impulse is positive and within the class letters).
+/// the impulse is positive and within the class letters; no thrust after the last sample).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Motor {
     /// Designation as the file writes it (`.eng` header name, `.rse` `code`), e.g.
@@ -100,6 +101,10 @@ pub struct Motor {
     /// The file's stem (`Cesaroni_I175`).
     pub source: String,
     pub format: MotorFormat,
+    /// What the reader mended in the file's samples, as OpenRocket's loader does (a
+    /// repeated sample, a doubled sample at 0 s or at burnout), each naming its line; empty
+    /// for a clean file.
+    pub notes: Vec<String>,
     times_s: Vec<f64>,
     thrust_n: Vec<f64>,
     total_impulse_ns: f64,
@@ -139,6 +144,7 @@ impl Motor {
             total_mass_kg,
             source,
             format,
+            notes: curve.notes,
             times_s: curve.times_s,
             thrust_n: curve.thrust_n,
             total_impulse_ns: curve.total_impulse_ns,
@@ -187,7 +193,8 @@ impl Motor {
         &self.times_s
     }
 
-    /// Thrust at each of [`Motor::times_s`], N; the last is 0.
+    /// Thrust at each of [`Motor::times_s`], N; none after the last (which is 0 in a clean
+    /// file).
     pub fn thrust_n(&self) -> &[f64] {
         &self.thrust_n
     }
@@ -197,7 +204,7 @@ impl Motor {
         self.total_impulse_ns
     }
 
-    /// Time of the last (zero-thrust) sample, s.
+    /// Time of the last sample, s: burnout.
     pub fn burn_time_s(&self) -> f64 {
         self.times_s.last().copied().unwrap_or(0.0)
     }
