@@ -36,7 +36,7 @@ pub enum MotorError {
     #[error("{file}: unknown motor file type (expected a RASP `.eng` or RockSim `.rse` file)")]
     UnknownFormat { file: String },
     /// A single motor was asked for but the file describes several.
-    #[error("{file}: holds {} motors ({}); a motor file used by name must hold exactly one", designations.len(), designations.join(", "))]
+    #[error("{file}: holds {} motors ({}); name one as `{file}#DESIGNATION`, or `{file}#K` by its place in the file (from 1)", designations.len(), designations.join(", "))]
     SeveralMotors {
         file: String,
         designations: Vec<String>,
@@ -50,6 +50,20 @@ pub enum MotorError {
     NotFound {
         name: String,
         available: Vec<String>,
+    },
+    /// `FILE#NAME` names no motor of the file.
+    #[error("{file}: no motor named `{name}` (it holds {}); name one as `{file}#DESIGNATION`, or `{file}#K` by its place in the file (from 1)", designations.join(", "))]
+    NotInFile {
+        file: String,
+        name: String,
+        designations: Vec<String>,
+    },
+    /// `FILE#NAME` names several motors of the file (test runs of one motor).
+    #[error("{file}: {count} motors are named `{name}`; name one by its place in the file, `{file}#K` (from 1)")]
+    AmbiguousInFile {
+        file: String,
+        name: String,
+        count: usize,
     },
     /// The name matches more than one distinct motor.
     #[error("motor name `{name}` is ambiguous between {}; name one by its file stem or full designation", join_and(candidates))]

@@ -105,6 +105,40 @@ pub fn bundled() -> Vec<(&'static str, Motor)> {
     list
 }
 
+/// The motor named `wanted` (designation or common name) in the file at `path`.
+fn from_file_by_name(path: &str, wanted: &str) -> Result<Motor, MotorError> {
+    let bytes = std::fs::read(path).map_err(|source| MotorError::Io {
+        file: path.to_string(),
+        source,
+    })?;
+    let all = Motor::parse_all(&bytes, path)?;
+    let key = normalized(wanted);
+    let mut hits: Vec<Motor> = all
+        .iter()
+        .filter(|m| {
+            !key.is_empty()
+                && (normalized(&m.designation) == key || normalized(&m.common_name) == key)
+        })
+        .cloned()
+        .collect();
+    match hits.len() {
+        1 => Ok(hits.remove(0)),
+        0 => match wanted.trim().parse::<usize>() {
+            Ok(k) if (1..=all.len()).contains(&k) => Ok(all[k - 1].clone()),
+            _ => Err(MotorError::NotInFile {
+                file: path.to_string(),
+                name: wanted.to_string(),
+                designations: all.iter().map(|m| m.designation.clone()).collect(),
+            }),
+        },
+        count => Err(MotorError::AmbiguousInFile {
+            file: path.to_string(),
+            name: wanted.to_string(),
+            count,
+        }),
+    }
+}
+
 /// Upper-case letters and digits only: `411-I175-WH-14A` and `411i175wh14a` compare equal.
 fn normalized(name: &str) -> String {
     name.chars()
@@ -116,7 +150,10 @@ fn normalized(name: &str) -> String {
 /// A motor by file path, bundled file name or stem, designation or common name.
 ///
 /// In order, the first that matches wins:
-/// 1. an existing file (`.eng` or `.rse`, holding exactly one motor);
+/// 1. an existing file (`.eng` or `.rse`, holding exactly one motor), or `FILE#NAME`, the
+///    motor of that file whose designation or common name is `NAME` (ignoring case and
+///    punctuation), or `FILE#K`, its K-th (from 1), for a file of several (ThrustCurve's
+///    downloads can hold one per test);
 /// 2. a bundled file name, case-insensitive (`Cesaroni_I175.rse`);
 /// 3. a bundled file stem, case-insensitive (`cesaroni_i175`, the `.eng`);
 /// 4. a designation, ignoring case and punctuation (`411-I175-WH-14A`, `I175WS`, `M1670-BS`);
@@ -128,6 +165,11 @@ pub fn find(name_or_path: &str) -> Result<Motor, MotorError> {
     let name = name_or_path.trim();
     if !name.is_empty() && Path::new(name).is_file() {
         return Motor::from_file(name);
+    }
+    if let Some((path, wanted)) = name.rsplit_once('#') {
+        if Path::new(path).is_file() {
+            return from_file_by_name(path, wanted);
+        }
     }
     if let Some(e) = entries()
         .iter()

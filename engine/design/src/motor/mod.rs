@@ -154,6 +154,18 @@ impl Motor {
     /// The one motor in `bytes`, a file called `file_name` whose extension (`.eng`, `.rse`)
     /// chooses the parser.
     pub fn parse(bytes: &[u8], file_name: &str) -> Result<Motor, MotorError> {
+        let mut motors = Motor::parse_all(bytes, file_name)?;
+        if motors.len() != 1 {
+            return Err(MotorError::SeveralMotors {
+                file: file_name.to_string(),
+                designations: motors.iter().map(|m| m.designation.clone()).collect(),
+            });
+        }
+        Ok(motors.remove(0))
+    }
+
+    /// Every motor in `bytes`, a file called `file_name` (as [`Motor::parse`]).
+    pub fn parse_all(bytes: &[u8], file_name: &str) -> Result<Vec<Motor>, MotorError> {
         let format = MotorFormat::of_file(file_name).ok_or_else(|| MotorError::UnknownFormat {
             file: file_name.to_string(),
         })?;
@@ -164,17 +176,10 @@ impl Motor {
                 .count();
             parse_error(file_name, line, "text", Rule::NotUtf8)
         })?;
-        let mut motors = match format {
-            MotorFormat::Eng => parse_eng(text, file_name)?,
-            MotorFormat::Rse => parse_rse(text, file_name)?,
-        };
-        if motors.len() != 1 {
-            return Err(MotorError::SeveralMotors {
-                file: file_name.to_string(),
-                designations: motors.iter().map(|m| m.designation.clone()).collect(),
-            });
+        match format {
+            MotorFormat::Eng => parse_eng(text, file_name),
+            MotorFormat::Rse => parse_rse(text, file_name),
         }
-        Ok(motors.remove(0))
     }
 
     /// The one motor in the `.eng` or `.rse` file at `path`.

@@ -286,6 +286,45 @@ fn a_path_to_a_file_is_read_from_disk() {
 }
 
 #[test]
+fn a_motor_of_a_file_of_several_is_named_after_a_hash_by_designation_or_place() {
+    // ThrustCurve's downloads can hold several curves: two tests of one motor and another.
+    let path = std::env::temp_dir().join(format!(
+        "hpr_design_motor_several_{}.eng",
+        std::process::id()
+    ));
+    std::fs::write(
+        &path,
+        "H128W 29 194 0 0.09 0.2 AT\n0.1 150\n1.2 0\n\
+         H128W 29 194 0 0.09 0.2 AT\n0.1 140\n1.3 0\n\
+         G80T 29 124 7 0.06 0.12 AT\n0.5 100\n2 0\n",
+    )
+    .unwrap();
+    let file = path.to_str().unwrap().to_owned();
+    let by = |name: &str| find(&format!("{file}#{name}"));
+    let g80 = by("g-80t");
+    let g80_common = by("G80");
+    let second = by("2");
+    let ambiguous = by("H128W").unwrap_err().to_string();
+    let missing = by("K550").unwrap_err().to_string();
+    let whole = find(&file).unwrap_err();
+    std::fs::remove_file(&path).unwrap();
+    // By designation, ignoring case and punctuation; by common name too (G80).
+    assert_eq!(g80.unwrap().designation, "G80T");
+    assert_eq!(g80_common.unwrap().designation, "G80T");
+    // By place: the second H128W test, known by its own burn time.
+    assert_eq!(second.unwrap().burn_time_s(), 1.3);
+    assert_eq!(
+        ambiguous,
+        format!("{file}: 2 motors are named `H128W`; name one by its place in the file, `{file}#K` (from 1)")
+    );
+    assert_eq!(
+        missing,
+        format!("{file}: no motor named `K550` (it holds H128W, H128W, G80T); name one as `{file}#DESIGNATION`, or `{file}#K` by its place in the file (from 1)")
+    );
+    assert!(matches!(whole, MotorError::SeveralMotors { .. }), "{whole}");
+}
+
+#[test]
 fn an_unknown_name_lists_the_bundled_motors() {
     let err = find("Z9000").unwrap_err().to_string();
     assert!(
@@ -337,7 +376,8 @@ fn a_file_with_two_motors_is_refused_by_name_and_bad_utf8_is_reported() {
         .to_string();
     assert_eq!(
         err,
-        "two.eng: holds 2 motors (A1, B2); a motor file used by name must hold exactly one"
+        "two.eng: holds 2 motors (A1, B2); name one as `two.eng#DESIGNATION`, or `two.eng#K` by \
+         its place in the file (from 1)"
     );
     let err = Motor::parse(b"; ok\n\xff\xfe", "bad.eng")
         .unwrap_err()

@@ -311,6 +311,12 @@ impl Scenario {
             }
         }
         let motor_path = dir.join(&raw.motor.name);
+        // `FILE#NAME`: one motor of a file of several, the file relative to the scenario.
+        let in_file = raw
+            .motor
+            .name
+            .rsplit_once('#')
+            .filter(|(file, _)| dir.join(file).is_file());
         let motor = if raw.motor.name.trim().is_empty() {
             return Err(bad(
                 "motor.name",
@@ -319,6 +325,8 @@ impl Scenario {
             ));
         } else if motor_path.is_file() {
             motor_path.display().to_string()
+        } else if let Some((file, name)) = in_file {
+            format!("{}#{name}", dir.join(file).display())
         } else {
             raw.motor.name.clone()
         };

@@ -270,6 +270,35 @@ fn a_value_of_the_wrong_kind_is_named_in_plain_words() {
 }
 
 #[test]
+fn a_motor_named_in_a_file_after_a_hash_is_found_relative_to_the_scenario() {
+    let named = "../engine/design/motors/Cesaroni_I175.eng#411-I175-WH-14A";
+    let s = Scenario::parse(&BASE.replace("Cesaroni_I175", named), &path()).unwrap();
+    let dir = path().parent().unwrap().to_path_buf();
+    assert_eq!(
+        s.motor,
+        format!(
+            "{}#411-I175-WH-14A",
+            dir.join("../engine/design/motors/Cesaroni_I175.eng")
+                .display()
+        )
+    );
+    let prepared = Prepared::new(s).unwrap();
+    assert_eq!(prepared.motor().designation, "411-I175-WH-14A");
+    // A name the file does not hold is the motor's key's error, listing what it holds.
+    let wrong = BASE.replace(
+        "Cesaroni_I175",
+        "../engine/design/motors/Cesaroni_I175.eng#K550",
+    );
+    let e = Prepared::new(Scenario::parse(&wrong, &path()).unwrap()).unwrap_err();
+    assert_eq!(e.key(), "motor.name");
+    assert!(
+        e.to_string()
+            .contains("no motor named `K550` (it holds 411-I175-WH-14A)"),
+        "{e}"
+    );
+}
+
+#[test]
 fn rules_that_need_the_design_and_motor_name_their_key() {
     let prep = |extra: &str| Prepared::new(parse(extra).unwrap()).unwrap_err();
     let e = Prepared::new(
