@@ -209,12 +209,12 @@ impl NosePressureDrag {
         // OpenRocket's ogive family (`calculateOgiveNoseInterpolator`): the conical formula
         // at the joint's angle, times 0.72 (p − 0.5)² + 0.82 (1 for the cone, p = 0, and the
         // tangent ogive, p = 1; 0.82 at p = 0.5).
-        let mut ogive_mul = 1.0;
+        let ogive_mul = match shape {
+            NoseShape::SecantOgive { p } => 0.72 * (p - 0.5) * (p - 0.5) + 0.82,
+            _ => 1.0,
+        };
         let (one, two, p, direct) = match shape {
-            NoseShape::Conical => (Base::Cone(sin_phi), None, 0.0, true),
-            NoseShape::Ogive => (Base::Cone(sin_phi), None, 0.0, true),
-            NoseShape::SecantOgive { p } => {
-                ogive_mul = 0.72 * (p - 0.5) * (p - 0.5) + 0.82;
+            NoseShape::Conical | NoseShape::Ogive | NoseShape::SecantOgive { .. } => {
                 (Base::Cone(sin_phi), None, 0.0, true)
             }
             NoseShape::Elliptical => (Base::Data(ELLIPSOID), None, 0.0, false),

@@ -33,32 +33,28 @@ pub fn profile_radius(shape: NoseShape, length_m: f64, base_radius_m: f64, x_m: 
     let xi = x / length_m;
     let r = match shape {
         NoseShape::Conical => big_r * xi,
-        NoseShape::Ogive => {
-            // A tangent ogive shorter than its radius does not exist: stretch a hemisphere.
+        NoseShape::SecantOgive { p } if p < 0.001 => big_r * xi,
+        NoseShape::Ogive | NoseShape::SecantOgive { .. } => {
+            // An ogive shorter than its radius does not exist: stretch one as long as it.
             let (l, x) = if length_m < big_r {
                 (big_r, x * big_r / length_m)
             } else {
                 (length_m, x)
             };
-            let rho = (big_r * big_r + l * l) / (2.0 * big_r);
-            let d = l - x;
-            (rho * rho - d * d).max(0.0).sqrt() + big_r - rho
-        }
-        NoseShape::SecantOgive { p } => {
-            let (l, x) = if length_m < big_r {
-                (big_r, x * big_r / length_m)
-            } else {
-                (length_m, x)
-            };
-            if p < 0.001 {
-                big_r * x / l
-            } else {
-                let (l2, r2, pr) = (l * l, big_r * big_r, p * big_r);
-                let rho2 = (l2 + r2) * ((2.0 - p) * (2.0 - p) * l2 + pr * pr) / (4.0 * pr * pr);
-                let lambda = l / p;
-                let y0 = (rho2 - lambda * lambda).max(0.0).sqrt();
-                let d = lambda - x;
-                (rho2 - d * d).max(0.0).sqrt() - y0
+            match shape {
+                NoseShape::SecantOgive { p } => {
+                    let (l2, r2, pr) = (l * l, big_r * big_r, p * big_r);
+                    let rho2 = (l2 + r2) * ((2.0 - p) * (2.0 - p) * l2 + pr * pr) / (4.0 * pr * pr);
+                    let lambda = l / p;
+                    let y0 = (rho2 - lambda * lambda).max(0.0).sqrt();
+                    let d = lambda - x;
+                    (rho2 - d * d).max(0.0).sqrt() - y0
+                }
+                _ => {
+                    let rho = (big_r * big_r + l * l) / (2.0 * big_r);
+                    let d = l - x;
+                    (rho * rho - d * d).max(0.0).sqrt() + big_r - rho
+                }
             }
         }
         NoseShape::Haack { c } => {

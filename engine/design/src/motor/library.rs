@@ -107,11 +107,7 @@ pub fn bundled() -> Vec<(&'static str, Motor)> {
 
 /// The motor named `wanted` (designation or common name) in the file at `path`.
 fn from_file_by_name(path: &str, wanted: &str) -> Result<Motor, MotorError> {
-    let bytes = std::fs::read(path).map_err(|source| MotorError::Io {
-        file: path.to_string(),
-        source,
-    })?;
-    let all = Motor::parse_all(&bytes, path)?;
+    let all = Motor::all_from_file(path)?;
     let key = normalized(wanted);
     let mut hits: Vec<Motor> = all
         .iter()

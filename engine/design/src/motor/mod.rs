@@ -154,7 +154,11 @@ impl Motor {
     /// The one motor in `bytes`, a file called `file_name` whose extension (`.eng`, `.rse`)
     /// chooses the parser.
     pub fn parse(bytes: &[u8], file_name: &str) -> Result<Motor, MotorError> {
-        let mut motors = Motor::parse_all(bytes, file_name)?;
+        Motor::only_one(Motor::parse_all(bytes, file_name)?, file_name)
+    }
+
+    /// The one motor of a file's `motors`.
+    fn only_one(mut motors: Vec<Motor>, file_name: &str) -> Result<Motor, MotorError> {
         if motors.len() != 1 {
             return Err(MotorError::SeveralMotors {
                 file: file_name.to_string(),
@@ -184,13 +188,19 @@ impl Motor {
 
     /// The one motor in the `.eng` or `.rse` file at `path`.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Motor, MotorError> {
+        let file = path.as_ref().display().to_string();
+        Motor::only_one(Motor::all_from_file(path)?, &file)
+    }
+
+    /// Every motor in the `.eng` or `.rse` file at `path`.
+    pub fn all_from_file(path: impl AsRef<Path>) -> Result<Vec<Motor>, MotorError> {
         let path = path.as_ref();
         let file = path.display().to_string();
         let bytes = std::fs::read(path).map_err(|source| MotorError::Io {
             file: file.clone(),
             source,
         })?;
-        Motor::parse(&bytes, &file)
+        Motor::parse_all(&bytes, &file)
     }
 
     /// Sample times, s: start at 0, strictly increasing, the implicit (0, 0) point included.

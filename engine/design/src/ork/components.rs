@@ -60,6 +60,8 @@ struct Body<'a, 'i> {
     kind: &'static str,
     /// The overhang of the motor this body tube holds itself (a minimum-diameter rocket).
     holds_motor: Option<f64>,
+    /// A filled body tube: a solid rod, its wall its radius once that is resolved.
+    solid: bool,
 }
 
 /// The wall of the massless tube that stands for a body tube's bore when the tube holds the
@@ -409,6 +411,7 @@ impl Context {
         let length = el.req("length")?;
         m.insert("length_m".into(), json!(length));
         let mut fore = None;
+        let mut solid = false;
         let aft;
         match kind {
             "body_tube" => {
@@ -417,9 +420,8 @@ impl Context {
                     .ok_or_else(|| el.bad("radius", "is missing"))?;
                 (fore, aft) = (Some(r), Some(r));
                 match el.text("thickness") {
-                    // A solid rod: its wall is its radius, set once the radius is resolved.
                     Some("filled") => {
-                        m.insert("wall_thickness_m".into(), Value::Null);
+                        solid = true;
                         self.note(format!(
                             "{}: a filled body tube, a solid rod (its wall its radius).",
                             el.name()
@@ -491,6 +493,7 @@ impl Context {
             aft,
             kind,
             holds_motor,
+            solid,
         })
     }
 
@@ -654,7 +657,7 @@ fn resolve_radii(
         };
         match b.kind {
             "body_tube" => {
-                if b.json.get("wall_thickness_m") == Some(&Value::Null) {
+                if b.solid {
                     b.json.insert("wall_thickness_m".into(), json!(aft));
                 }
                 b.json.insert("outer_diameter_m".into(), json!(2.0 * aft))

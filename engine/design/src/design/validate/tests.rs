@@ -873,11 +873,19 @@ fn a_mass_is_given_exactly_one_way() {
 
 #[test]
 fn shapes_take_only_their_own_parameter() {
-    let (rule, ..) = invalid(with(|v| {
-        let nose = at(v, "/stages/0/components/0");
-        nose["shape"] = json!("elliptical");
-        nose["shape_parameter"] = json!(0.5);
-    }));
+    // The nose of the example with `shape` and `shape_parameter`.
+    let nose = |shape: &str, p: f64| {
+        with(|v| {
+            let nose = at(v, "/stages/0/components/0");
+            nose["shape"] = json!(shape);
+            nose["shape_parameter"] = json!(p);
+        })
+    };
+    let shape_of = |d: Design| match &d.components[0].kind {
+        ComponentKind::NoseCone(n) => n.shape,
+        _ => panic!("the first component is the nose cone"),
+    };
+    let (rule, ..) = invalid(nose("elliptical", 0.5));
     assert_eq!(
         rule,
         Rule::ShapeTakesNoParameter {
@@ -886,19 +894,12 @@ fn shapes_take_only_their_own_parameter() {
     );
     // An ogive's parameter is OpenRocket's: 1 (the default) the tangent ogive, below it a
     // secant ogive, above it refused.
-    let ogive = |p: f64| {
-        with(|v| at(v, "/stages/0/components/0")["shape_parameter"] = json!(p)).map(|d| {
-            let ComponentKind::NoseCone(n) = &d.components[0].kind else {
-                panic!()
-            };
-            n.shape
-        })
-    };
-    assert_eq!(ogive(1.0).unwrap(), NoseShape::Ogive);
-    assert_eq!(ogive(0.4).unwrap(), NoseShape::SecantOgive { p: 0.4 });
-    let (rule, _, field) = invalid(with(|v| {
-        at(v, "/stages/0/components/0")["shape_parameter"] = json!(1.2)
-    }));
+    assert_eq!(shape_of(nose("ogive", 1.0).unwrap()), NoseShape::Ogive);
+    assert_eq!(
+        shape_of(nose("ogive", 0.4).unwrap()),
+        NoseShape::SecantOgive { p: 0.4 }
+    );
+    let (rule, _, field) = invalid(nose("ogive", 1.2));
     assert_eq!(
         rule,
         Rule::OutOfRange {
@@ -908,21 +909,11 @@ fn shapes_take_only_their_own_parameter() {
         }
     );
     assert_eq!(field.as_deref(), Some("shape_parameter"));
-    let d = with(|v| {
-        let nose = at(v, "/stages/0/components/0");
-        nose["shape"] = json!("power_series");
-        nose["shape_parameter"] = json!(0.75);
-    })
-    .unwrap();
-    let ComponentKind::NoseCone(n) = &d.components[0].kind else {
-        panic!()
-    };
-    assert_eq!(n.shape, NoseShape::PowerSeries { k: 0.75 });
-    let (rule, ..) = invalid(with(|v| {
-        let nose = at(v, "/stages/0/components/0");
-        nose["shape"] = json!("haack");
-        nose["shape_parameter"] = json!(1.5);
-    }));
+    assert_eq!(
+        shape_of(nose("power_series", 0.75).unwrap()),
+        NoseShape::PowerSeries { k: 0.75 }
+    );
+    let (rule, ..) = invalid(nose("haack", 1.5));
     assert_eq!(
         rule,
         Rule::OutOfRange {
