@@ -46,6 +46,7 @@ impl Inspection {
     pub fn of(sim: &Simulation) -> Inspection {
         let d = sim.design();
         let m = sim.motor();
+        let motors = sim.model().motor.motors();
         let burnout = sim.model().burnout_s;
         let components = mass::mass_table(d)
             .iter()
@@ -62,11 +63,12 @@ impl Inspection {
         Inspection {
             design: d.name.clone(),
             motor: json!({
+                "motors": motors,
                 "designation": m.designation, "common_name": m.common_name, "manufacturer": m.manufacturer_name(),
                 "file": m.source, "class": m.impulse_class().to_string(),
                 "total_impulse_ns": m.total_impulse_ns(), "burn_time_s": m.burn_time_s(), "average_thrust_n": m.average_thrust_n(),
-                "peak_thrust_n": m.peak_thrust_n(), "propellant_mass_kg": sim.model().motor.propellant_mass_kg(),
-                "loaded_mass_kg": sim.model().motor.ignition_mass_kg(), "diameter_m": m.diameter_m, "length_m": m.length_m,
+                "peak_thrust_n": m.peak_thrust_n(), "propellant_mass_kg": sim.model().motor.propellant_mass_kg() / motors as f64,
+                "loaded_mass_kg": sim.model().motor.ignition_mass_kg() / motors as f64, "diameter_m": m.diameter_m, "length_m": m.length_m,
             }),
             liftoff: mass_json(sim, 0.0),
             burnout: mass_json(sim, burnout),
@@ -123,9 +125,11 @@ impl Inspection {
         let mut s = String::new();
         let m = &self.motor;
         let _ = writeln!(s, "design  {}", self.design);
+        let motors = m["motors"].as_u64().unwrap_or(1);
         let _ = writeln!(
             s,
-            "motor   {} {} ({}): class {}, {:.1} N·s over {:.3} s, average {:.1} N, peak {:.1} N, propellant {:.4} kg of {:.4} kg",
+            "motor   {}{} {} ({}): class {}, {:.1} N·s over {:.3} s, average {:.1} N, peak {:.1} N, propellant {:.4} kg of {:.4} kg{}",
+            if motors > 1 { format!("a cluster of {motors} × ") } else { String::new() },
             m["manufacturer"].as_str().unwrap_or(""),
             m["designation"].as_str().unwrap_or(""),
             m["file"].as_str().unwrap_or(""),
@@ -136,6 +140,7 @@ impl Inspection {
             m["peak_thrust_n"].as_f64().unwrap_or(f64::NAN),
             m["propellant_mass_kg"].as_f64().unwrap_or(f64::NAN),
             m["loaded_mass_kg"].as_f64().unwrap_or(f64::NAN),
+            if motors > 1 { ", each" } else { "" },
         );
         let _ = writeln!(
             s,
@@ -229,6 +234,7 @@ pub fn flight_json(sim: &Simulation, f: &Flight) -> Value {
     json!({
         "design": sim.design().name,
         "motor": sim.motor().designation,
+        "motors": sim.model().motor.motors(),
         "metrics": {
             "apogee_m": opt(m.apogee_m), "apogee_time_s": opt(m.apogee_time_s),
             "max_speed_m_s": m.max_speed_m_s, "max_mach": m.max_mach, "max_accel_m_s2": m.max_accel_m_s2,
@@ -352,7 +358,16 @@ pub fn flight_text(sim: &Simulation, f: &Flight) -> String {
     let o = |v: Option<f64>, unit: &str, digits: usize| {
         v.map_or("—".to_string(), |x| format!("{x:.digits$} {unit}"))
     };
-    let _ = writeln!(s, "{} on {}", sim.design().name, sim.motor().designation);
+    let motors = match sim.model().motor.motors() {
+        1 => String::new(),
+        n => format!("a cluster of {n} × "),
+    };
+    let _ = writeln!(
+        s,
+        "{} on {motors}{}",
+        sim.design().name,
+        sim.motor().designation
+    );
     let _ = writeln!(
         s,
         "apogee              {} at {}",

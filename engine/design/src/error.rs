@@ -130,13 +130,11 @@ pub enum Rule {
     TwoMotorMounts {
         first: String,
     },
-    /// A motor mount made of a cluster of several tubes (one motor only is flown).
-    ClusteredMotorMount {
-        tubes: usize,
-    },
-    /// A motor mount off the rocket's axis.
+    /// A motor mount (a cluster's centre, for a cluster) off the rocket's axis.
     MotorMountOffAxis {
         offset_m: f64,
+        /// Tubes in the mount (1: a single tube).
+        motors: usize,
     },
     /// A Mach column that is not strictly increasing.
     MachNotIncreasing {
@@ -252,14 +250,16 @@ impl fmt::Display for Rule {
             Rule::TwoMotorMounts { first } => {
                 write!(f, "a design has one motor mount and component \"{first}\" already is it")
             }
-            Rule::ClusteredMotorMount { tubes } => write!(
+            Rule::MotorMountOffAxis { offset_m, motors: 1 } => write!(
                 f,
-                "a motor mount holds one motor; this one is a cluster of {tubes} tubes \
-                 (clustered motors are not supported)"
+                "the motor mount must be on the rocket's axis (it is {offset_m} m off it): \
+                 thrust off the axis would turn the rocket, which hpr does not fly"
             ),
-            Rule::MotorMountOffAxis { offset_m } => write!(
+            Rule::MotorMountOffAxis { offset_m, motors } => write!(
                 f,
-                "the motor mount must be on the rocket's axis (it is {offset_m} m off it)"
+                "the centre of a cluster of {motors} motors must be on the rocket's axis \
+                 (it is {offset_m} m off it): their thrust would turn the rocket, which hpr \
+                 does not fly"
             ),
             Rule::MachNotIncreasing { row, previous, got } => write!(
                 f,

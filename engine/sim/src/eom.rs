@@ -98,6 +98,26 @@ impl Nozzle {
             s_noz: Matrix3::from_diagonal(&Vector3::new(s11, s11, s33)),
         }
     }
+
+    /// The nozzles of a cluster, one at each offset `[y, z]` off the axis (station frame,
+    /// m), each carrying an equal share of the mass flow: the gyration tensor is the mean of
+    /// the nozzles', and a nozzle whose exit is centred `d` off the axis has its disc's
+    /// tensor plus `J(d) = |d|² 1 − d dᵀ` (the terms linear in the disc's points vanish
+    /// over the disc, those linear in `d` over the cluster, whose mean offset is on the
+    /// axis). The nozzles stay at the axial station of `r_noz`. One offset `[0, 0]` changes
+    /// nothing.
+    pub fn clustered(mut self, offsets_m: &[[f64; 2]]) -> Nozzle {
+        if offsets_m.is_empty() {
+            return self;
+        }
+        let mean = offsets_m
+            .iter()
+            .map(|o| point_inertia(&Vector3::new(0.0, o[0], o[1])))
+            .fold(Matrix3::zeros(), |s, j| s + j)
+            / offsets_m.len() as f64;
+        self.s_noz += frames::tensor_station_to_body(&mean);
+        self
+    }
 }
 
 /// External loads but gravity: force (body axes, N) and its moment about O (N·m).

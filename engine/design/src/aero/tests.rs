@@ -408,6 +408,7 @@ fn calisto(roughness_m: f64) -> Design {
     );
     d.motor_mount = Some(MotorMount {
         component: 4,
+        motors: 1,
         motor_aft_m: 2.533,
         inner_diameter_m: 0.075,
         tube_length_m: 0.6,

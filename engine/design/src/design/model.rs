@@ -48,6 +48,19 @@ impl Design {
     pub fn component(&self, id: &str) -> Option<&Component> {
         self.components.iter().find(|c| c.id == id)
     }
+
+    /// Where the motors sit across the airframe: each motor's axis as `[y, z]` off the
+    /// rocket's, m (station frame), one per tube of the mount's cluster; `[[0, 0]]` for a
+    /// single motor, empty with no motor mount. Their mean is on the axis (validation).
+    pub fn motor_offsets_m(&self) -> &[[f64; 2]] {
+        match self.motor_mount {
+            Some(m) => match &self.components[m.component].kind {
+                ComponentKind::InnerTube(t) => &t.cluster_offsets_m,
+                _ => &[],
+            },
+            None => &[],
+        }
+    }
 }
 
 /// A stage: a group of top-level body components, with an optional mass override.
@@ -65,6 +78,9 @@ pub struct Stage {
 pub struct MotorMount {
     /// The inner tube that holds the motor.
     pub component: ComponentIdx,
+    /// Motors it holds: one, or one in each tube of a cluster (their offsets:
+    /// [`Design::motor_offsets_m`]).
+    pub motors: usize,
     /// The motor's aft end, m aft of the nose tip (tube's aft end plus overhang).
     pub motor_aft_m: f64,
     /// Inner diameter of the mount, m (the motor's diameter must not exceed it).

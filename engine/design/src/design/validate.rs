@@ -32,6 +32,11 @@ use std::path::Path;
 /// binary).
 pub const FIT_TOLERANCE_M: f64 = 1e-6;
 
+/// How far a motor mount's centre (a cluster's mean tube position) may sit off the rocket's
+/// axis, m: a nanometre, far below any build's accuracy and far above the rounding of an
+/// OpenRocket pattern's sines and cosines (about 1e-18 m).
+pub const CLUSTER_CENTRE_TOLERANCE_M: f64 = 1e-9;
+
 /// Largest fin count of a fin set.
 pub const MAX_FINS: u32 = 32;
 

@@ -17,11 +17,17 @@
 //!
 //! Dispersion: with impulse scale `k_I` and time scale `k_t` the thrust is
 //! `F_s(t) = (k_I/k_t) F(t/k_t)`: the impulse scales by `k_I`, the burn time by `k_t`.
+//!
+//! A cluster ([`MotorTables::clustered`]) is `n` of these motors lit together, their axes
+//! parallel to the rocket's at offsets `d_i` across it whose mean is on the axis: thrust,
+//! impulse and masses are `n` times one motor's, and each motor adds its mass times
+//! `J(d_i) = |d_i|² 1 − d_i d_iᵀ` to the inertia (parallel axes), so the propellant's inertia
+//! stays proportional to its mass.
 
 use nalgebra::{Matrix3, Vector3};
 
 use super::{Motor, MotorError};
-use crate::mass::MassProps;
+use crate::mass::{point_inertia, MassProps};
 
 /// Overrides and dispersion applied when the tables are built. The default changes nothing.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -122,6 +128,8 @@ pub struct MotorTables {
     casing_inertia: Matrix3<f64>,
     /// Propellant inertia about the motor's center per kilogram of propellant.
     propellant_inertia_per_kg: Matrix3<f64>,
+    /// Motors lit together (1, or a cluster's tubes).
+    motors: usize,
 }
 
 impl MotorTables {
@@ -219,7 +227,42 @@ impl MotorTables {
             diameter_m,
             casing_inertia,
             propellant_inertia_per_kg,
+            motors: 1,
         })
+    }
+
+    /// A cluster of these motors (as built, options applied), one on each axis at
+    /// `offsets_m` (`[y, z]` off the rocket's axis, m, station frame; their mean on the axis,
+    /// which the design's validation ensures): `n` times the thrust, impulse and masses, and
+    /// each motor's inertia carried to the rocket's axis. One offset `[0, 0]` leaves the
+    /// tables as they are, bit for bit; no offsets at all is taken as one motor on the axis.
+    pub fn clustered(mut self, offsets_m: &[[f64; 2]]) -> MotorTables {
+        let n = offsets_m.len().max(1);
+        let k = n as f64;
+        let spread = offsets_m
+            .iter()
+            .map(|o| point_inertia(&Vector3::new(0.0, o[0], o[1])))
+            .fold(Matrix3::zeros(), |s, j| s + j);
+        for v in self
+            .thrust_n
+            .iter_mut()
+            .chain(self.slope_n_per_s.iter_mut())
+            .chain(self.impulse_ns.iter_mut())
+        {
+            *v *= k;
+        }
+        self.total_impulse_ns *= k;
+        self.casing_inertia = self.casing_inertia * k + spread * self.dry_mass_kg;
+        self.propellant_inertia_per_kg += spread / k;
+        self.propellant_mass_kg *= k;
+        self.dry_mass_kg *= k;
+        self.motors = n;
+        self
+    }
+
+    /// Motors lit together: 1, or the tubes of a cluster ([`MotorTables::clustered`]).
+    pub fn motors(&self) -> usize {
+        self.motors
     }
 
     /// The segment holding `t_s` (`t_i ≤ t < t_{i+1}`), for `0 ≤ t < burn time`.

@@ -202,6 +202,83 @@ fn the_motor_at_ignition_is_a_shell_casing_and_a_solid_propellant_cylinder_at_mi
 }
 
 #[test]
+fn a_cluster_of_three_is_three_times_the_thrust_and_mass_with_each_motor_s_inertia_carried_to_the_axis(
+) {
+    // Three I175s 30 mm off the axis at 90°, 210° and 330° (OpenRocket's 3-ring turned):
+    // hand calculation of the parallel axes, Σ m J(d_i) with J(d) = |d|² 1 − d dᵀ.
+    let m = find("Cesaroni_I175").unwrap();
+    let one = MotorTables::from_motor(&m).unwrap();
+    let d = 0.03;
+    let at = |deg: f64| {
+        let a = deg.to_radians();
+        [d * a.cos(), d * a.sin()]
+    };
+    let offsets = [at(90.0), at(210.0), at(330.0)];
+    let three = one.clone().clustered(&offsets);
+    assert_eq!(three.motors(), 3);
+    assert!(close(
+        three.total_impulse_ns(),
+        3.0 * one.total_impulse_ns(),
+        1e-15
+    ));
+    assert_eq!(three.burn_time_s(), one.burn_time_s());
+    for t in [0.05, 0.7, 1.9, 2.2] {
+        let (a, b) = (three.eval(t), one.eval(t));
+        assert!(close(a.thrust_n, 3.0 * b.thrust_n, 1e-15), "{t}");
+        assert!(close(a.propellant_kg, 3.0 * b.propellant_kg, 1e-14), "{t}");
+        assert!(close(
+            a.propellant_rate_kg_s,
+            3.0 * b.propellant_rate_kg_s,
+            1e-14
+        ));
+        assert!(close(three.impulse_ns(t), 3.0 * one.impulse_ns(t), 1e-15));
+    }
+    // At ignition: Σ |d_i|² = 3 d² about the axis; across it Σ y_i² = Σ z_i² = 3 d²/2 (a
+    // symmetric ring), and Σ y_i z_i = 0.
+    let (a, b) = (three.mass_props(0.0, 1.5), one.mass_props(0.0, 1.5));
+    let m0 = b.mass_kg;
+    assert!(close(a.mass_kg, 3.0 * m0, 1e-15));
+    assert_eq!(a.cg_m, b.cg_m);
+    let i = |p: &crate::mass::MassProps, r: usize, c: usize| p.inertia_cg[(r, c)];
+    assert!(close(
+        i(&a, 0, 0),
+        3.0 * i(&b, 0, 0) + m0 * 3.0 * d * d,
+        1e-12
+    ));
+    assert!(close(
+        i(&a, 1, 1),
+        3.0 * i(&b, 1, 1) + m0 * 1.5 * d * d,
+        1e-12
+    ));
+    assert!(close(
+        i(&a, 2, 2),
+        3.0 * i(&b, 2, 2) + m0 * 1.5 * d * d,
+        1e-12
+    ));
+    assert!(i(&a, 1, 2).abs() < 1e-15 * i(&a, 1, 1), "{}", i(&a, 1, 2));
+    // At burnout the casings alone, each carried to the axis too.
+    let (a, b) = (three.mass_props(9.0, 1.5), one.mass_props(9.0, 1.5));
+    assert!(close(
+        a.axial_inertia(),
+        3.0 * b.axial_inertia() + b.mass_kg * 3.0 * d * d,
+        1e-12
+    ));
+    // The propellant's inertia stays proportional to its mass, so the rates follow it.
+    let s = three.eval(0.7);
+    let rates = three.mass_rates(&s);
+    let prop_inertia =
+        three.mass_props_of(&s, 1.5).inertia_cg - three.mass_props(9.0, 1.5).inertia_cg;
+    assert!(
+        (rates.inertia_rate_kg_m2_s - prop_inertia * (s.propellant_rate_kg_s / s.propellant_kg))
+            .norm()
+            < 1e-12 * rates.inertia_rate_kg_m2_s.norm()
+    );
+    // One motor on the axis is the motor itself, bit for bit.
+    assert_eq!(one.clone().clustered(&[[0.0, 0.0]]), one);
+    assert_eq!(one.clone().clustered(&[]), one);
+}
+
+#[test]
 fn the_motor_at_burnout_is_its_casing_alone() {
     let m = find("Cesaroni_I175").unwrap();
     let t = MotorTables::from_motor(&m).unwrap();

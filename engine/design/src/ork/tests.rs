@@ -380,14 +380,6 @@ fn what_a_design_cannot_hold_is_refused_with_its_element_and_reason() {
     let cases = [
         (
             edited(
-                "<clusterconfiguration>single</clusterconfiguration>",
-                "<clusterconfiguration>3-ring</clusterconfiguration>",
-            ),
-            "innertube \"Motor mount\"",
-            "a cluster of motors",
-        ),
-        (
-            edited(
                 "<parachute>",
                 "<tubefinset><name>Tubes</name></tubefinset><parachute>",
             ),

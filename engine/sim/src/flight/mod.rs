@@ -447,7 +447,7 @@ pub fn build_model(
     design
         .motor_fits(motor.diameter_m, motor.length_m)
         .map_err(|e| SimError::MotorDoesNotFit(e.to_string()))?;
-    let motor_tables = MotorTables::new(motor, motor_options)?;
+    let motor_tables = MotorTables::new(motor, motor_options)?.clustered(design.motor_offsets_m());
     let burnout = motor_tables.burn_time_s();
     let full = motor_tables.mass_props(0.0, mount.motor_aft_m);
     let casing = motor_tables.mass_props(burnout, mount.motor_aft_m);
@@ -486,7 +486,8 @@ pub fn build_model(
         mount.motor_aft_m,
         0.5 * motor.diameter_m * NOZZLE_RADIUS_FRACTION,
         mount.motor_aft_m - fixed_cg_m,
-    );
+    )
+    .clustered(design.motor_offsets_m());
 
     // Checks the site elevation (the flight reads the shared table) and latitude.
     Atmosphere::standard(env.elevation_m)

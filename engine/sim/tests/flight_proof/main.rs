@@ -9,6 +9,7 @@
 
 mod batch_rockets;
 mod calisto;
+mod clusters;
 mod common;
 mod coriolis;
 mod crosscheck;

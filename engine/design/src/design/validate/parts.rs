@@ -2,7 +2,7 @@
 //! rings, bulkheads, masses, parachutes and shock cords (inside). Each is placed along its
 //! parent by its `position` and must overlap its parent's axial extent and fit inside it.
 
-use super::{Builder, FIT_TOLERANCE_M, MAX_CANT_DEG, MAX_FINS};
+use super::{Builder, CLUSTER_CENTRE_TOLERANCE_M, FIT_TOLERANCE_M, MAX_CANT_DEG, MAX_FINS};
 use crate::design::model::*;
 use crate::design::raw::*;
 use crate::design::shapes;
@@ -377,21 +377,29 @@ impl Builder<'_> {
                 let motor_mount = match &t.motor_mount {
                     Some(m) => {
                         let overhang = self.finite(&at, "motor_mount.overhang_m", m.overhang_m)?;
-                        if cluster.len() > 1 {
+                        // Each tube of a cluster holds one motor; their thrusts, all
+                        // alike and parallel to the axis, turn the rocket unless their
+                        // centre is on the axis (within the rounding of a pattern's
+                        // trigonometry).
+                        let n = cluster.len() as f64;
+                        let centre = cluster.iter().fold([0.0, 0.0], |s, c| {
+                            let o = add(absolute, *c);
+                            [s[0] + o[0] / n, s[1] + o[1] / n]
+                        });
+                        let off = norm(centre);
+                        if off > CLUSTER_CENTRE_TOLERANCE_M {
+                            let field = if cluster.len() > 1 {
+                                "cluster"
+                            } else {
+                                "radial_offset_m"
+                            };
                             return Err(self.invalid(
                                 &at,
-                                Some("cluster"),
-                                Rule::ClusteredMotorMount {
-                                    tubes: cluster.len(),
+                                Some(field),
+                                Rule::MotorMountOffAxis {
+                                    offset_m: off,
+                                    motors: cluster.len(),
                                 },
-                            ));
-                        }
-                        let off = norm(add(absolute, cluster[0]));
-                        if off != 0.0 {
-                            return Err(self.invalid(
-                                &at,
-                                Some("radial_offset_m"),
-                                Rule::MotorMountOffAxis { offset_m: off },
                             ));
                         }
                         if let Some(first) = self.motor_mount {
@@ -609,7 +617,7 @@ impl Builder<'_> {
             motor_mount: Some(m),
             outer_diameter_m,
             wall_thickness_m,
-            ..
+            cluster_offsets_m,
         }) = &self.components[idx].kind
         {
             let c = &self.components[idx];
@@ -617,6 +625,7 @@ impl Builder<'_> {
                 self.resolved(&at, "motor_mount.overhang_m", c.x_bottom_m() + m.overhang_m)?;
             self.motor_mount = Some(MotorMount {
                 component: idx,
+                motors: cluster_offsets_m.len(),
                 motor_aft_m,
                 inner_diameter_m: outer_diameter_m - 2.0 * wall_thickness_m,
                 tube_length_m: c.length_m,

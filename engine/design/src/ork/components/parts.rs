@@ -384,12 +384,6 @@ impl Context {
                 m.insert("wall_thickness_m".into(), json!(wall));
                 if let Some(mount) = el.child("motormount") {
                     self.mount(el, &mount, &mut m)?;
-                    if m.contains_key("motor_mount") && m.contains_key("cluster") {
-                        return Err(el.refuse(&format!(
-                            "a cluster of motors (\"{}\"; hpr flies one motor)",
-                            el.text("clusterconfiguration").unwrap_or("")
-                        )));
-                    }
                 }
             }
             "centeringring" | "engineblock" => {

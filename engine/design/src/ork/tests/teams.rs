@@ -346,23 +346,20 @@ fn a_cluster_of_inner_tubes_is_placed_and_weighed_as_openrocket_places_and_weigh
         dry(&plain).mass_kg + 4.0 * one,
         1e-14
     ));
-    // A cluster of motors is still refused, a pattern OpenRocket does not have too.
+    // The motor mount as a cluster: OpenRocket's "double" (points ∓½ across, times the
+    // 40 mm tube's diameter) holds two motors either side of the axis; a pattern OpenRocket
+    // does not have is refused.
     let mount_as = |pattern: &str| {
-        refusal(
-            edited(
-                "<clusterconfiguration>single",
-                &format!("<clusterconfiguration>{pattern}"),
-            )
-            .as_bytes(),
-            "r.ork",
+        edited(
+            "<clusterconfiguration>single",
+            &format!("<clusterconfiguration>{pattern}"),
         )
     };
-    let motors = mount_as("double");
-    assert!(
-        motors.contains("innertube \"Motor mount\"") && motors.contains("a cluster of motors"),
-        "{motors}"
-    );
-    let unknown = mount_as("7-ring");
+    let (pair, _) = imported(mount_as("double").as_bytes());
+    let mount = pair.motor_mount.expect("a mount");
+    assert_eq!(mount.motors, 2);
+    assert_eq!(pair.motor_offsets_m(), &[[-0.02, 0.0], [0.02, 0.0]]);
+    let unknown = refusal(mount_as("7-ring").as_bytes(), "r.ork");
     assert!(
         unknown.contains("<clusterconfiguration>") && unknown.contains("\"7-ring\" is not one of"),
         "{unknown}"

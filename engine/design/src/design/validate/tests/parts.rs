@@ -29,7 +29,7 @@ fn fins_with_a_tip_chord_need_a_root_chord() {
 }
 
 #[test]
-fn a_design_has_one_motor_mount_holding_one_motor_on_the_axis() {
+fn a_design_has_one_motor_mount_whose_motors_are_centred_on_the_axis() {
     let (rule, loc, _) = invalid(with(|v| {
         let mut second = children(v)[1].clone();
         second["id"] = json!("mmt2");
@@ -42,15 +42,36 @@ fn a_design_has_one_motor_mount_holding_one_motor_on_the_axis() {
         }
     );
     assert_eq!(loc, comp("mmt2"));
-    let (rule, ..) = invalid(with(|v| {
-        children(v)[1]["cluster"] = json!([[0.0, 0.01], [0.0, -0.01]]);
+    // Two tubes either side of the axis hold two motors.
+    let d = with(|v| {
+        children(v)[1]["cluster"] = json!([[0.0, 0.004], [0.0, -0.004]]);
+    })
+    .expect("a centred pair");
+    assert_eq!(d.motor_mount.unwrap().motors, 2);
+    assert_eq!(d.motor_offsets_m(), &[[0.0, 0.004], [0.0, -0.004]]);
+    // Their centre 3 mm off the axis: refused, naming the cluster.
+    let (rule, loc, field) = invalid(with(|v| {
+        children(v)[1]["cluster"] = json!([[0.0, 0.0], [0.0, 0.006]]);
     }));
-    assert_eq!(rule, Rule::ClusteredMotorMount { tubes: 2 });
-    let (rule, ..) = invalid(with(|v| children(v)[1]["radial_offset_m"] = json!(0.005)));
     assert!(
-        matches!(rule, Rule::MotorMountOffAxis { offset_m } if close(offset_m, 0.005)),
+        matches!(rule, Rule::MotorMountOffAxis { offset_m, motors: 2 } if close(offset_m, 0.003)),
         "{rule:?}"
     );
+    assert_eq!((loc, field.as_deref()), (comp("mmt"), Some("cluster")));
+    assert!(
+        rule.to_string().contains("centre of a cluster of 2 motors"),
+        "{rule}"
+    );
+    // A single tube off the axis: refused, naming its offset.
+    let (rule, _, field) = invalid(with(|v| children(v)[1]["radial_offset_m"] = json!(0.005)));
+    assert!(
+        matches!(rule, Rule::MotorMountOffAxis { offset_m, motors: 1 } if close(offset_m, 0.005)),
+        "{rule:?}"
+    );
+    assert_eq!(field.as_deref(), Some("radial_offset_m"));
+    let single = with(|_| {}).expect("the example");
+    assert_eq!(single.motor_mount.unwrap().motors, 1);
+    assert_eq!(single.motor_offsets_m(), &[[0.0, 0.0]]);
 }
 
 #[test]
