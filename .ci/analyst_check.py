@@ -13,7 +13,8 @@ Checks, with pyarrow, Polars and DuckDB (pip install pyarrow polars duckdb):
     variants per point (from that metadata);
   * Polars: no nulls in the flight metrics of landed rows (the shift_* metrics may be null:
     a shift whose trigger never fired), and the per-point mean of every metric recomputed
-    from the landed rows equal to summary.parquet's to 1e-9 relative;
+    from the landed rows equal to summary.parquet's to 1e-9 relative, and each count of
+    requirements.parquet (variants meeting a requirement) recounted from the rows;
   * DuckDB: every shard part read as one table with a glob: each variant id once, the count
     right, and (when there is an unsharded file too) the same rows.
 
@@ -112,6 +113,28 @@ def check_means(variants_path, summary_path):
     return checked
 
 
+def check_requirements(variants_path, requirements_path):
+    """Polars: each requirement's count of variants meeting it, recounted from the rows (all
+    statuses; a null metric does not meet it), and the fraction met / variants."""
+    if not os.path.exists(requirements_path):
+        fail(f"{requirements_path}: missing")
+    v = pl.read_parquet(variants_path)
+    r = pl.read_parquet(requirements_path)
+    for row in r.iter_rows(named=True):
+        rows = v.filter(pl.col("point") == row["point"])
+        ok = pl.col(row["metric"]).is_not_null()
+        if row["min"] is not None:
+            ok = ok & (pl.col(row["metric"]) >= row["min"])
+        if row["max"] is not None:
+            ok = ok & (pl.col(row["metric"]) <= row["max"])
+        met = rows.filter(ok).height
+        if (met, rows.height) != (row["met"], row["variants"]):
+            fail(f"{requirements_path}: point {row['point']} {row['metric']}: {row['met']} of {row['variants']} written, {met} of {rows.height} in the rows")
+        if not (row["fraction_low_95"] <= row["fraction"] <= row["fraction_high_95"]) or not math.isclose(row["fraction"], met / rows.height, rel_tol=1e-15):
+            fail(f"{requirements_path}: point {row['point']} {row['metric']}: fraction {row['fraction']} or its interval is wrong")
+    return r.height
+
+
 def main():
     if len(sys.argv) != 2:
         print(__doc__, file=sys.stderr)
@@ -125,7 +148,8 @@ def main():
     if os.path.exists(whole):
         kv, total = check_file(whole)
         checked = check_means(whole, os.path.join(d, "summary.parquet"))
-        print(f"{whole}: {total} rows, schema and units ok, {checked} summary means match")
+        reqs = check_requirements(whole, os.path.join(d, "requirements.parquet"))
+        print(f"{whole}: {total} rows, schema and units ok, {checked} summary means match, {reqs} requirement counts match")
     if shards:
         ns = {os.path.basename(p).rsplit("-of-", 1)[1] for p in shards}
         if len(ns) != 1:
@@ -136,6 +160,7 @@ def main():
         for p in shards:
             kv_s, total_s = check_file(p)
             check_means(p, p.replace("variants-shard", "summary-shard"))
+            check_requirements(p, p.replace("variants-shard", "requirements-shard"))
             total = total_s if total is None else total
             if total_s != total:
                 fail(f"{p}: {total_s} variants in its run, {total} in the others")

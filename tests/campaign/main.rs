@@ -315,6 +315,8 @@ fn the_summary_s_means_are_the_means_of_the_landed_rows() {
             mean.value(row)
         );
     }
+    // Requirements: none in this scenario, so the file holds no rows.
+    assert_eq!(read(&report.outputs.requirements).num_rows(), 0);
     // Ellipses at 1, 2 and 3 sigma for each point.
     let e = read(&report.outputs.ellipses);
     assert_eq!(e.num_rows(), 6);
@@ -685,4 +687,64 @@ fn assert_rows_flown_by_hand_in(
             );
         }
     }
+}
+
+#[test]
+fn each_requirement_s_count_is_the_rows_that_meet_it_whatever_their_status() {
+    // tiny(5) refuses some variants (a negative lag): they have no apogee and do not meet
+    // the apogee requirement; the margin's requirement sits between the two points' values.
+    let text = format!(
+        "{}[requirements]\napogee_m = {{ min = 100.0 }}\nshift_ballast_margin_after_cal = {{ min = 1.0, max = 50.0 }}\n",
+        tiny(5)
+    );
+    let (dir, file) = setup(&text);
+    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+    let v = read(&report.outputs.variants);
+    let r = read(&report.outputs.requirements);
+    assert_eq!(r.num_rows(), 4, "two points × two requirements");
+    let point = |b: &RecordBatch| {
+        b.column_by_name("point")
+            .unwrap()
+            .as_any()
+            .downcast_ref::<UInt32Array>()
+            .unwrap()
+            .clone()
+    };
+    let u64s = |name: &str| {
+        r.column_by_name(name)
+            .unwrap()
+            .as_any()
+            .downcast_ref::<arrow::array::UInt64Array>()
+            .unwrap()
+            .clone()
+    };
+    let (vp, rp) = (point(&v), point(&r));
+    let (met, variants) = (u64s("met"), u64s("variants"));
+    let (metric, fraction) = (strings(&r, "metric"), f64s(&r, "fraction"));
+    let (min, max) = (f64s(&r, "min"), f64s(&r, "max"));
+    let mut refused_seen = false;
+    for k in 0..r.num_rows() {
+        let col = f64s(&v, metric.value(k));
+        let rows: Vec<usize> = (0..v.num_rows())
+            .filter(|&i| vp.value(i) == rp.value(k))
+            .collect();
+        let meets = |i: usize| {
+            col.is_valid(i)
+                && (min.is_null(k) || col.value(i) >= min.value(k))
+                && (max.is_null(k) || col.value(i) <= max.value(k))
+        };
+        let want = rows.iter().filter(|&&i| meets(i)).count() as u64;
+        assert_eq!(
+            (met.value(k), variants.value(k)),
+            (want, rows.len() as u64),
+            "row {k}"
+        );
+        assert_eq!(fraction.value(k), want as f64 / rows.len() as f64);
+        refused_seen |= rows.iter().any(|&i| !col.is_valid(i));
+    }
+    assert!(
+        refused_seen,
+        "some variant without a value, counted as not meeting"
+    );
+    assert!(!min.is_null(0) && max.is_null(0), "apogee_m has a min only");
 }

@@ -151,11 +151,12 @@ pub fn summary_text(r: &RunReport) -> String {
     }
     let _ = writeln!(
         s,
-        "wrote {}, {}, {}, {}",
+        "wrote {}, {}, {}, {}, {}",
         r.outputs.variants.display(),
         r.outputs.summary.display(),
         r.outputs.ellipses.display(),
-        r.outputs.sensitivity.display()
+        r.outputs.sensitivity.display(),
+        r.outputs.requirements.display()
     );
     if !r.warned.is_empty() {
         let counts: Vec<String> = r.warned.iter().map(|(k, n)| format!("{n} {k}")).collect();
@@ -194,6 +195,19 @@ pub fn summary_text(r: &RunReport) -> String {
             "point {}{at}  ({} variants, {} did not land)",
             st.point, st.variants, st.failures
         );
+        for ((m, req), c) in p.requirements.iter().zip(&st.requirements) {
+            let _ = writeln!(
+                s,
+                "  requirement {} {}: met by {} of {} ({:.1} %; 95 % interval {:.1}–{:.1} %)",
+                req.metric,
+                req.bounds_text(p.metrics[*m].unit),
+                c.met,
+                c.variants,
+                100.0 * c.fraction,
+                100.0 * c.low,
+                100.0 * c.high
+            );
+        }
         if st.variants == st.failures {
             continue;
         }

@@ -18,7 +18,7 @@
 mod setup;
 
 use super::params::Param;
-use super::scenario::{trigger_value, Scenario, ScenarioError};
+use super::scenario::{trigger_value, RequirementSpec, Scenario, ScenarioError};
 use super::variants::{Plan, PlanInput, Variant};
 use hpr_design::design::model::Design;
 use hpr_design::mass;
@@ -90,6 +90,9 @@ pub struct Prepared {
     /// margin just before and just after its move, then per parachute its opening time and
     /// speed.
     pub metrics: Vec<Column>,
+    /// The scenario's requirements, each with its metric's index in [`Prepared::metrics`],
+    /// in the metrics' order.
+    pub requirements: Vec<(usize, RequirementSpec)>,
     design: Design,
     motor: Motor,
     nominal: Setup,
@@ -247,6 +250,21 @@ impl Prepared {
                     per_chute.map(|(n, u)| column(format!("parachute_{}_{n}", c.name), u))
                 }))
                 .collect();
+        let mut requirements = vec![];
+        for r in &scenario.requirements {
+            let Some(m) = metrics.iter().position(|c| c.name == r.metric) else {
+                let names: Vec<&str> = metrics.iter().map(|c| c.name.as_str()).collect();
+                return Err(bad(
+                    &format!("requirements.{}", r.metric),
+                    format!(
+                        "is not a metric of this scenario; its metrics are {}",
+                        names.join(", ")
+                    ),
+                ));
+            };
+            requirements.push((m, r.clone()));
+        }
+        requirements.sort_by_key(|(m, _)| *m);
         let fixed = Fixed {
             scenario: &scenario,
             design: &design,
@@ -304,6 +322,7 @@ impl Prepared {
             scenario,
             plan,
             metrics,
+            requirements,
             design,
             motor,
             nominal,

@@ -10,7 +10,8 @@
 //! - [`variants`]: the sweep grid × variants per point, shards and chunks.
 //! - [`fly`]: a chunk of variants turned into the batch engine's columns and flown as lanes
 //!   of one base flight ([`fly::fly_chunk`]).
-//! - [`stats`]: percentiles, landing ellipses, sensitivity (faer).
+//! - [`stats`]: percentiles, landing ellipses, sensitivity (faer), the share of variants meeting
+//!   each requirement (Wilson interval).
 //! - [`parquet`]: the output files, written atomically and streamed by row groups.
 //! - [`run`]: the loop (rayon, shards, resume, progress) and [`cli`]: arguments, printed
 //!   summary, exit codes.

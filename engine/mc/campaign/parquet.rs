@@ -586,3 +586,67 @@ pub fn sensitivity_batch(
     cols.push(opt(rows.iter().map(|r| r.8)));
     Ok(RecordBatch::try_new(schema, cols)?)
 }
+
+/// requirements.parquet: per sweep point and requirement (`[requirements]`; no rows without
+/// any), its metric and bounds, how many of the point's variants meet it, the fraction and its
+/// 95 % Wilson score interval (see `stats`).
+pub fn requirements_batch(
+    p: &Prepared,
+    meta: &RunMeta,
+    stats: &[PointStats],
+) -> anyhow::Result<RecordBatch> {
+    let mut fields = vec![field("point", DataType::UInt32, false, None)];
+    fields.extend(sweep_fields(p));
+    fields.push(field("metric", DataType::Utf8, false, None));
+    fields.push(field("unit", DataType::Utf8, false, None));
+    fields.push(field("min", DataType::Float64, true, None));
+    fields.push(field("max", DataType::Float64, true, None));
+    fields.push(field("variants", DataType::UInt64, false, None));
+    fields.push(field("met", DataType::UInt64, false, None));
+    for f in ["fraction", "fraction_low_95", "fraction_high_95"] {
+        fields.push(field(f, DataType::Float64, false, Some("1")));
+    }
+    let schema = Arc::new(Schema::new_with_metadata(
+        fields,
+        meta.pairs().into_iter().collect(),
+    ));
+    let rows: Vec<(usize, usize)> = stats
+        .iter()
+        .flat_map(|s| (0..p.requirements.len()).map(move |k| (s.point, k)))
+        .collect();
+    let pts: Vec<usize> = rows.iter().map(|r| r.0).collect();
+    let spec = |r: &(usize, usize)| &p.requirements[r.1].1;
+    let got = |r: &(usize, usize)| stats[r.0].requirements[r.1];
+    let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(
+        pts.iter().map(|&x| x as u32),
+    ))];
+    cols.extend(sweep_columns(p, &pts));
+    cols.push(Arc::new(StringArray::from_iter_values(
+        rows.iter().map(|r| spec(r).metric.clone()),
+    )));
+    cols.push(Arc::new(StringArray::from_iter_values(
+        rows.iter().map(|r| p.metrics[p.requirements[r.1].0].unit),
+    )));
+    cols.push(Arc::new(Float64Array::from_iter(
+        rows.iter().map(|r| spec(r).min),
+    )));
+    cols.push(Arc::new(Float64Array::from_iter(
+        rows.iter().map(|r| spec(r).max),
+    )));
+    cols.push(Arc::new(UInt64Array::from_iter_values(
+        rows.iter().map(|r| got(r).variants),
+    )));
+    cols.push(Arc::new(UInt64Array::from_iter_values(
+        rows.iter().map(|r| got(r).met),
+    )));
+    cols.push(Arc::new(Float64Array::from_iter_values(
+        rows.iter().map(|r| got(r).fraction),
+    )));
+    cols.push(Arc::new(Float64Array::from_iter_values(
+        rows.iter().map(|r| got(r).low),
+    )));
+    cols.push(Arc::new(Float64Array::from_iter_values(
+        rows.iter().map(|r| got(r).high),
+    )));
+    Ok(RecordBatch::try_new(schema, cols)?)
+}

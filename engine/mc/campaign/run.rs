@@ -54,6 +54,7 @@ pub struct Outputs {
     pub summary: PathBuf,
     pub ellipses: PathBuf,
     pub sensitivity: PathBuf,
+    pub requirements: PathBuf,
     pub parts: PathBuf,
 }
 
@@ -73,6 +74,7 @@ impl Outputs {
             summary: f("summary"),
             ellipses: f("ellipses"),
             sensitivity: f("sensitivity"),
+            requirements: f("requirements"),
             parts: dir.join("parts").join(format!("variants{suffix}")),
         }
     }
@@ -262,7 +264,13 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
         .iter()
         .map(|i| i.dispersion.is_some())
         .collect();
-    report.stats = stats::compute(table, p.plan.points(), &dispersed, LANDING_XY);
+    report.stats = stats::compute(
+        table,
+        p.plan.points(),
+        &dispersed,
+        LANDING_XY,
+        &p.requirements,
+    );
     // Statuses other than landed were counted from the variants file above.
     report.landed = table.landed.iter().filter(|l| **l).count() as u64;
     let out = &report.outputs;
@@ -279,6 +287,10 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
     let sens = pq::sensitivity_batch(p, meta, &report.stats)?;
     pq::write_atomic(&out.sensitivity, &sens.schema(), &pairs, rg, |w| {
         Ok(w.write(&sens)?)
+    })?;
+    let reqs = pq::requirements_batch(p, meta, &report.stats)?;
+    pq::write_atomic(&out.requirements, &reqs.schema(), &pairs, rg, |w| {
+        Ok(w.write(&reqs)?)
     })?;
     Ok(())
 }

@@ -18,11 +18,51 @@
 //!   16 inputs we saw 1.58), while Pratt's shares cannot. A share may come out slightly
 //!   negative for an input that does nothing.
 //!
-//! Only variants that landed enter the statistics; `failures` counts the others. Missing
-//! values are NaN here (a metric is never NaN otherwise: see `fly`).
+//! - Requirements: the share of a point's variants, all of them whatever their status, whose
+//!   metric has a value within the requirement's bounds (a variant without one does not meet
+//!   it), with its 95 % Wilson score interval: for k of n, p̂ = k/n and z = 1.959964,
+//!   `(p̂ + z²/2n ± z √(p̂(1 − p̂)/n + z²/4n²)) / (1 + z²/n)`. Unlike p̂ ± z √(p̂(1 − p̂)/n) it
+//!   stays inside [0, 1] and is not of zero width when every variant (or none) meets it: 500
+//!   of 500 gives [0.9924, 1].
+//!
+//! Only variants that landed enter the other statistics; `failures` counts the others.
+//! Missing values are NaN here (a metric is never NaN otherwise: see `fly`).
 
+use super::scenario::RequirementSpec;
 use faer::linalg::solvers::SolveLstsq;
 use faer::Mat;
+
+/// The two-sided 95 % quantile of the standard normal distribution.
+pub const Z95: f64 = 1.959963984540054;
+
+/// How many of a point's variants meet one requirement.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Compliance {
+    pub variants: u64,
+    pub met: u64,
+    /// met / variants (NaN for no variants).
+    pub fraction: f64,
+    /// The 95 % Wilson score interval of the fraction.
+    pub low: f64,
+    pub high: f64,
+}
+
+/// `met` of `variants`, with the 95 % Wilson score interval (see the module docs).
+pub fn compliance(met: u64, variants: u64) -> Compliance {
+    let n = variants as f64;
+    let p = met as f64 / n;
+    let z2 = Z95 * Z95;
+    let denom = 1.0 + z2 / n;
+    let centre = (p + z2 / (2.0 * n)) / denom;
+    let half = Z95 * (p * (1.0 - p) / n + z2 / (4.0 * n * n)).sqrt() / denom;
+    Compliance {
+        variants,
+        met,
+        fraction: p,
+        low: (centre - half).max(0.0),
+        high: (centre + half).min(1.0),
+    }
+}
 
 /// The distribution of one metric's values.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -249,15 +289,19 @@ pub struct PointStats {
     pub ellipse: Option<Ellipse>,
     /// Per metric (fits on the dispersed inputs).
     pub sensitivity: Vec<Option<Sensitivity>>,
+    /// Per requirement, in the order given.
+    pub requirements: Vec<Compliance>,
 }
 
 /// Statistics of every sweep point. `dispersed[j]` says whether input j is dispersed;
-/// `landing` gives the metric indices of the landing x and y.
+/// `landing` gives the metric indices of the landing x and y; `requirements` the metric index
+/// of each requirement and its bounds.
 pub fn compute(
     table: &Table,
     points: usize,
     dispersed: &[bool],
     landing: (usize, usize),
+    requirements: &[(usize, RequirementSpec)],
 ) -> Vec<PointStats> {
     let mut rows_of: Vec<Vec<usize>> = vec![vec![]; points];
     for (r, &p) in table.point.iter().enumerate() {
@@ -290,6 +334,16 @@ pub fn compute(
                         } else {
                             sensitivity(&x_refs, m)
                         }
+                    })
+                    .collect(),
+                requirements: requirements
+                    .iter()
+                    .map(|(m, r)| {
+                        let met = rows
+                            .iter()
+                            .filter(|&&row| r.met_by(table.metrics[*m][row]))
+                            .count();
+                        compliance(met as u64, rows.len() as u64)
                     })
                     .collect(),
             }
@@ -411,9 +465,67 @@ mod tests {
                 vec![0.0; 5],
             ],
         };
-        let st = compute(&table, 2, &[true], (1, 2));
+        let st = compute(&table, 2, &[true], (1, 2), &[]);
         assert_eq!((st[0].variants, st[0].failures), (3, 1));
         assert_eq!(st[0].summaries[0].unwrap().mean, 15.0);
         assert_eq!(st[1].summaries[0].unwrap().mean, 2.0);
+    }
+
+    #[test]
+    fn a_requirement_counts_every_variant_of_its_point_and_a_missing_value_does_not_meet_it() {
+        let table = Table {
+            point: vec![0, 0, 0, 0, 1, 1],
+            landed: vec![true, true, false, false, true, true],
+            inputs: vec![],
+            // Variant 2 failed (no value); variant 3 hit the time limit with a value.
+            metrics: vec![vec![1.4, 1.5, f64::NAN, 2.0, 1.0, 9.0]],
+        };
+        let spec = |min, max| RequirementSpec {
+            metric: "static_margin_min_cal".into(),
+            min,
+            max,
+        };
+        let reqs = [
+            (0, spec(Some(1.5), None)),
+            (0, spec(None, Some(1.5))),
+            (0, spec(Some(1.0), Some(2.0))),
+        ];
+        let st = compute(&table, 2, &[], (0, 0), &reqs);
+        let met = |p: usize| -> Vec<(u64, u64)> {
+            st[p]
+                .requirements
+                .iter()
+                .map(|c| (c.met, c.variants))
+                .collect()
+        };
+        // Bounds are inclusive: 1.5 meets both ≥ 1.5 and ≤ 1.5.
+        assert_eq!(met(0), vec![(2, 4), (2, 4), (3, 4)]);
+        assert_eq!(met(1), vec![(1, 2), (1, 2), (1, 2)]);
+        assert_eq!(st[0].requirements[2].fraction, 0.75);
+    }
+
+    #[test]
+    fn the_wilson_interval_matches_its_hand_calculation_and_stays_inside_zero_and_one() {
+        // 487 of 500 by hand: p = 0.974, z² = 3.8414588, denominator 1.0076829,
+        // centre (0.974 + 0.0038415)/1.0076829 = 0.9703861, half
+        // z √(0.974·0.026/500 + 3.8414588/10⁶)/1.0076829 = 0.0143576.
+        let c = compliance(487, 500);
+        assert_eq!(c.fraction, 0.974);
+        assert!((c.low - 0.9560285).abs() < 2e-7, "{}", c.low);
+        assert!((c.high - 0.9847436).abs() < 2e-7, "{}", c.high);
+        // All of n: [1/(1 + z²/n), 1] = [1/1.0076829, 1] = [0.9923757, 1]; none: [0, 1 − that].
+        let all = compliance(500, 500);
+        assert!((all.low - 0.9923757).abs() < 2e-7, "{}", all.low);
+        assert_eq!(all.high, 1.0);
+        let none = compliance(0, 500);
+        assert!(none.low.abs() < 1e-15, "{}", none.low);
+        assert!((none.high - 0.0076242).abs() < 2e-7, "{}", none.high);
+        // The interval of one variant is wide, and still inside [0, 1].
+        let one = compliance(1, 1);
+        // 1 of 1: [1/(1 + z²), 1] = [0.2065493, 1].
+        assert!(
+            (one.low - 0.2065493).abs() < 2e-7 && one.high == 1.0,
+            "{one:?}"
+        );
     }
 }

@@ -192,6 +192,43 @@ pub struct Scenario {
     pub chunk_size: usize,
     /// Rows per row group of the output files.
     pub row_group_rows: usize,
+    /// What a flight must meet (`[requirements]`), by metric name in name order; each sweep
+    /// point's share of the variants that meet each is reported.
+    pub requirements: Vec<RequirementSpec>,
+}
+
+/// Bounds a metric must keep: `min ≤ value ≤ max` (either may be absent, not both). A
+/// variant whose metric has no value (a flight that failed, or never reached what the metric
+/// measures) does not meet it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RequirementSpec {
+    pub metric: String,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+}
+
+impl RequirementSpec {
+    /// Whether `value` (NaN: none) meets the bounds.
+    pub fn met_by(&self, value: f64) -> bool {
+        !value.is_nan()
+            && self.min.is_none_or(|m| value >= m)
+            && self.max.is_none_or(|m| value <= m)
+    }
+
+    /// The bounds as a reader writes them: `≥ 1.5`, `≤ 3048`, `in [2900, 3200]`.
+    pub fn bounds_text(&self, unit: &str) -> String {
+        let u = if unit == "1" {
+            String::new()
+        } else {
+            format!(" {unit}")
+        };
+        match (self.min, self.max) {
+            (Some(a), Some(b)) => format!("in [{a}, {b}]{u}"),
+            (Some(a), None) => format!("≥ {a}{u}"),
+            (None, Some(b)) => format!("≤ {b}{u}"),
+            (None, None) => "anything".to_string(),
+        }
+    }
 }
 
 /// The field of a trigger's number (`time_s`, `height_m`, `delay_s`), if it has one.
@@ -598,6 +635,29 @@ impl Scenario {
             ));
         }
 
+        let mut requirements = vec![];
+        for (metric, r) in raw.requirements.take().unwrap_or_default() {
+            let key = format!("requirements.{metric}");
+            if r.min.is_none() && r.max.is_none() {
+                return Err(bad(&key, "needs min, max or both".into()));
+            }
+            for (field, v) in [("min", r.min), ("max", r.max)] {
+                if let Some(v) = v {
+                    finite(&bad, &format!("{key}.{field}"), v)?;
+                }
+            }
+            if let (Some(a), Some(b)) = (r.min, r.max) {
+                if a > b {
+                    return Err(bad(&key, format!("min ({a}) is above max ({b})")));
+                }
+            }
+            requirements.push(RequirementSpec {
+                metric,
+                min: r.min,
+                max: r.max,
+            });
+        }
+
         let mut scenario = Scenario {
             file: path.to_path_buf(),
             dir,
@@ -624,6 +684,7 @@ impl Scenario {
             inputs: vec![],
             chunk_size: chunk_size as usize,
             row_group_rows: row_group_rows as usize,
+            requirements,
         };
         scenario.inputs = inputs(&scenario, &bad, raw.sweep.take(), raw.dispersions.take())?;
         if scenario.environment.wind_profile.is_some() {

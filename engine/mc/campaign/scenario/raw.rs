@@ -27,6 +27,16 @@ pub(super) struct RawScenario {
     pub(super) sweep: Option<RawParams<Vec<f64>>>,
     pub(super) dispersions: Option<RawParams<RawDist>>,
     pub(super) run: Option<RawRun>,
+    /// Metric name → bounds.
+    pub(super) requirements: Option<std::collections::BTreeMap<String, RawRequirement>>,
+}
+
+/// A requirement on a metric: `{ min = 1.5 }`, `{ max = 3048.0 }` or both.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawRequirement {
+    pub(super) min: Option<f64>,
+    pub(super) max: Option<f64>,
 }
 
 #[derive(Deserialize)]

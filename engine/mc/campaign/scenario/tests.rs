@@ -673,3 +673,78 @@ fn a_parachute_may_take_its_canopy_and_deployment_from_a_component_of_the_design
     assert_eq!(e.key(), "parachutes[0].trigger", "{e}");
     assert!(e.to_string().contains("says no \"deploy\""), "{e}");
 }
+
+#[test]
+fn a_requirement_needs_a_bound_finite_bounds_and_min_at_most_max() {
+    let s = parse("[requirements]\napogee_m = { max = 3048.0 }\nrail_exit_speed_m_s = { min = 15.0, max = 15.0 }\n")
+        .expect("two requirements");
+    assert_eq!(
+        s.requirements,
+        vec![
+            RequirementSpec {
+                metric: "apogee_m".into(),
+                min: None,
+                max: Some(3048.0)
+            },
+            RequirementSpec {
+                metric: "rail_exit_speed_m_s".into(),
+                min: Some(15.0),
+                max: Some(15.0)
+            },
+        ]
+    );
+    let r = &s.requirements[0];
+    assert!(r.met_by(3048.0) && !r.met_by(3048.0001) && !r.met_by(f64::NAN));
+    assert_eq!(r.bounds_text("m"), "≤ 3048 m");
+    assert_eq!(s.requirements[1].bounds_text("1"), "in [15, 15]");
+    let (k, r) = refused("[requirements]\napogee_m = {}\n");
+    assert_eq!(
+        (k.as_str(), r.as_str()),
+        ("requirements.apogee_m", "needs min, max or both")
+    );
+    let (k, r) = refused("[requirements]\napogee_m = { min = 2.0, max = 1.0 }\n");
+    assert_eq!(k, "requirements.apogee_m");
+    assert!(r.contains("min (2) is above max (1)"), "{r}");
+    let (k, _) = refused("[requirements]\napogee_m = { min = nan }\n");
+    assert_eq!(k, "requirements.apogee_m.min");
+    let (k, r) = refused("[requirements]\napogee_m = { below = 3.0 }\n");
+    assert_eq!(k, "requirements.apogee_m.below");
+    assert!(r.contains("unknown field"), "{r}");
+}
+
+#[test]
+fn a_requirement_on_a_metric_the_scenario_does_not_have_is_refused_listing_its_metrics() {
+    // BASE has a parachute named main and a shift named ballast: their metrics exist.
+    let ok = Prepared::new(
+        parse("[requirements]\nparachute_main_deploy_speed_m_s = { max = 30.0 }\nshift_ballast_margin_after_cal = { min = 1.5 }\napogee_m = { min = 1.0 }\n")
+            .unwrap(),
+    )
+    .expect("metrics of this scenario");
+    // In the metrics' order, each with its column.
+    let order: Vec<&str> = ok
+        .requirements
+        .iter()
+        .map(|(_, r)| r.metric.as_str())
+        .collect();
+    assert_eq!(
+        order,
+        [
+            "apogee_m",
+            "shift_ballast_margin_after_cal",
+            "parachute_main_deploy_speed_m_s"
+        ]
+    );
+    for (m, r) in &ok.requirements {
+        assert_eq!(ok.metrics[*m].name, r.metric);
+    }
+    let e = Prepared::new(
+        parse("[requirements]\nparachute_drogue_deploy_speed_m_s = { max = 30.0 }\n").unwrap(),
+    )
+    .unwrap_err();
+    assert_eq!(e.key(), "requirements.parachute_drogue_deploy_speed_m_s");
+    assert!(
+        e.to_string().contains("is not a metric of this scenario")
+            && e.to_string().contains("parachute_main_deploy_speed_m_s"),
+        "{e}"
+    );
+}
