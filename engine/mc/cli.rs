@@ -4,7 +4,7 @@
 use crate::campaign::scenario::GravityModel;
 use crate::report;
 use anyhow::{anyhow, Context, Result};
-use hpr_design::motor::{self, Motor};
+use hpr_design::motor::{self, Motor, MotorOptions};
 use hpr_design::Design;
 use hpr_sim::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
 use hpr_sim::trigger::Trigger;
@@ -34,9 +34,33 @@ pub struct InspectArgs {
     /// the design's own motor.
     #[arg(long)]
     pub motor: Option<String>,
+    #[command(flatten)]
+    pub motor_masses: MotorMasses,
     /// Print JSON instead of tables.
     #[arg(long)]
     pub json: bool,
+}
+
+/// The motor's masses in place of its file's (RocketPy's `SolidMotor` gives its own: the
+/// grains' mass and `dry_mass`), each motor's for a cluster.
+#[derive(clap::Args, Debug, Clone, Copy, Default)]
+pub struct MotorMasses {
+    /// Propellant mass of the motor at ignition, kg (default: its file's).
+    #[arg(long, value_parser = not_negative, allow_negative_numbers = true)]
+    pub propellant_mass_kg: Option<f64>,
+    /// Casing (dry) mass of the motor, kg (default: its file's loaded less propellant mass).
+    #[arg(long, value_parser = not_negative, allow_negative_numbers = true)]
+    pub motor_dry_mass_kg: Option<f64>,
+}
+
+impl MotorMasses {
+    pub fn options(&self) -> MotorOptions {
+        MotorOptions {
+            propellant_mass_kg: self.propellant_mass_kg,
+            dry_mass_kg: self.motor_dry_mass_kg,
+            ..MotorOptions::default()
+        }
+    }
 }
 
 #[derive(clap::Args, Debug, Clone)]
@@ -50,7 +74,7 @@ pub struct FlyArgs {
         "design", "motor", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
         "latitude_deg", "gravity", "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2",
         "main_height_m", "lag_s", "sampling_rate_hz", "temperature_k", "pressure_pa",
-        "sounding",
+        "sounding", "propellant_mass_kg", "motor_dry_mass_kg",
     ])]
     pub scenario: Option<PathBuf>,
     /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary;
@@ -60,6 +84,8 @@ pub struct FlyArgs {
     /// Motor (see `inspect --motor`).
     #[arg(long)]
     pub motor: Option<String>,
+    #[command(flatten)]
+    pub motor_masses: MotorMasses,
     /// Print JSON instead of tables.
     #[arg(long)]
     pub json: bool,
@@ -194,9 +220,10 @@ fn roomy_rail(design: &Design) -> Rail {
 
 pub fn inspect(a: &InspectArgs) -> Result<ExitCode> {
     let (design, motor) = load(&a.design, &a.motor)?;
-    let sim = Simulation::new(
+    let sim = Simulation::with_motor_options(
         design.clone(),
         motor.clone(),
+        a.motor_masses.options(),
         Environment::default(),
         roomy_rail(&design),
     )
@@ -480,7 +507,7 @@ fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
         ..p
     })
     .collect();
-    Simulation::new(design, motor, env, rail)
+    Simulation::with_motor_options(design, motor, a.motor_masses.options(), env, rail)
         .and_then(|s| s.with_parachutes(chutes))
         .and_then(|s| s.with_options(SimOptions::default()))
         .map_err(|e| anyhow!("{e}"))

@@ -26,7 +26,7 @@ enum Command {
     Inspect(hpr_mc::cli::InspectArgs),
     /// Fly one flight and print its metrics and events.
     #[command(allow_negative_numbers = true)]
-    Fly(hpr_mc::cli::FlyArgs),
+    Fly(Box<hpr_mc::cli::FlyArgs>),
     /// Run a scenario (sweeps × dispersions) and write Parquet.
     Run(hpr_mc::cli::RunCommand),
     /// Read an OpenRocket design (.ork) into hpr's design format (JSON).

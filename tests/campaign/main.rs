@@ -6,6 +6,7 @@
 
 mod canopy;
 mod fly;
+mod motor;
 mod outputs;
 mod site;
 mod wind;

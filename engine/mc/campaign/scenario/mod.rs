@@ -178,6 +178,10 @@ pub struct Scenario {
     pub ballast: Option<String>,
     /// A motor file (resolved against the scenario's directory) or a bundled motor's name.
     pub motor: String,
+    /// The motor's propellant and casing (dry) masses, kg, in place of its file's
+    /// (`motor.propellant_mass_kg`, `motor.dry_mass_kg`; a cluster's are each motor's).
+    pub motor_propellant_mass_kg: Option<f64>,
+    pub motor_dry_mass_kg: Option<f64>,
     pub environment: EnvironmentSpec,
     pub rail: RailSpec,
     pub parachutes: Vec<ParachuteSpec>,
@@ -367,6 +371,19 @@ impl Scenario {
         } else {
             raw.motor.name.clone()
         };
+        for (key, v) in [
+            ("motor.propellant_mass_kg", raw.motor.propellant_mass_kg),
+            ("motor.dry_mass_kg", raw.motor.dry_mass_kg),
+        ] {
+            if let Some(v) = v {
+                if !(v.is_finite() && v >= 0.0) {
+                    return Err(bad(
+                        key,
+                        format!("must be finite and not negative (got {v})"),
+                    ));
+                }
+            }
+        }
 
         let mut env = raw.environment.take().unwrap_or_default();
         // A sounding gives the air and the wind: read here, it becomes the air profile and
@@ -675,6 +692,8 @@ impl Scenario {
             design_file,
             ballast: raw.design.ballast.take(),
             motor,
+            motor_propellant_mass_kg: raw.motor.propellant_mass_kg,
+            motor_dry_mass_kg: raw.motor.dry_mass_kg,
             environment,
             rail,
             parachutes,

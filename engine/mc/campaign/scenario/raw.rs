@@ -50,6 +50,8 @@ pub(super) struct RawDesign {
 #[serde(deny_unknown_fields)]
 pub(super) struct RawMotor {
     pub(super) name: String,
+    pub(super) propellant_mass_kg: Option<f64>,
+    pub(super) dry_mass_kg: Option<f64>,
 }
 
 #[derive(Deserialize, Default)]

@@ -748,3 +748,34 @@ fn a_requirement_on_a_metric_the_scenario_does_not_have_is_refused_listing_its_m
         "{e}"
     );
 }
+
+#[test]
+fn a_motor_s_masses_are_read_and_a_negative_or_non_finite_one_refused_by_key() {
+    let with = |lines: &str| BASE.replace("[motor]\n", &format!("[motor]\n{lines}\n"));
+    assert_ne!(with("x = 1"), BASE, "BASE has a [motor] table");
+    let s = Scenario::parse(
+        &with("propellant_mass_kg = 2.95591\ndry_mass_kg = 1.815"),
+        &path(),
+    )
+    .unwrap();
+    assert_eq!(
+        (s.motor_propellant_mass_kg, s.motor_dry_mass_kg),
+        (Some(2.95591), Some(1.815))
+    );
+    let plain = Scenario::parse(BASE, &path()).unwrap();
+    assert_eq!(
+        (plain.motor_propellant_mass_kg, plain.motor_dry_mass_kg),
+        (None, None)
+    );
+    for (line, key) in [
+        ("dry_mass_kg = -0.1", "motor.dry_mass_kg"),
+        ("propellant_mass_kg = inf", "motor.propellant_mass_kg"),
+    ] {
+        let e = Scenario::parse(&with(line), &path()).unwrap_err();
+        assert_eq!(e.key(), key);
+        assert!(
+            e.to_string().contains("must be finite and not negative"),
+            "{e}"
+        );
+    }
+}

@@ -1,0 +1,102 @@
+//! A scenario's motor masses (`[motor] propellant_mass_kg`, `dry_mass_kg`) through a whole
+//! campaign, with the motor's impulse scattered too: each row is the flight `Simulation`
+//! flies with the same masses and impulse scale given by hand.
+
+use super::*;
+use hpr_design::motor::MotorOptions;
+use hpr_sim::{Environment, Parachute, Rail, SimOptions, Simulation, Trigger};
+
+#[test]
+fn a_scenario_s_motor_masses_fly_as_the_simulator_given_them_by_hand() {
+    let plain = windy("wind_speed_m_s = 0.0", "drag_scale = [1.0]").replace(
+        "[dispersions]\n",
+        "[dispersions]\nmotor_impulse_ns = { dist = \"normal\", sigma = 0.03, relative = true }\n",
+    );
+    let massed = plain.replace(
+        "name = \"Cesaroni_I175\"\n",
+        "name = \"Cesaroni_I175\"\npropellant_mass_kg = 0.25\ndry_mass_kg = 0.16\n",
+    );
+    assert_ne!(plain, massed);
+    let names = ["drag_scale", "motor_impulse_ns", "apogee_m"];
+    let rows = landed_rows(&massed, names);
+    let motor = hpr_design::motor::find("Cesaroni_I175").unwrap();
+    let nominal_ns = motor.total_impulse_ns();
+    let design = hpr_design::Design::load(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("validation/designs/synthetic-54mm-three-fin.json"),
+    )
+    .unwrap();
+    for row in &rows {
+        let options = MotorOptions::default()
+            .with_propellant_mass_kg(0.25)
+            .with_dry_mass_kg(0.16)
+            .with_impulse_scale(row[1] / nominal_ns);
+        let by_hand = Simulation::with_motor_options(
+            design.clone(),
+            motor.clone(),
+            options,
+            Environment::default(),
+            Rail {
+                inclination_deg: 85.0,
+                ..Rail::default()
+            },
+        )
+        .and_then(|s| s.with_parachutes(vec![Parachute::new("main", 0.9, Trigger::Apogee, 1.0)]))
+        .and_then(|s| s.with_drag_scale(row[0]))
+        .and_then(|s| {
+            s.with_options(SimOptions {
+                max_time_s: 900.0,
+                ..SimOptions::default()
+            })
+        })
+        .unwrap();
+        assert!((by_hand.model().motor.ignition_mass_kg() - 0.41).abs() < 1e-15);
+        let apogee = by_hand.run(&mut ()).unwrap().metrics.apogee_m.unwrap();
+        // Equal to rounding: the scale is read back from its column (1e-9 relative).
+        assert!(
+            (row[2] - apogee).abs() <= 1e-9 * apogee,
+            "campaign {} against by hand {apogee}",
+            row[2]
+        );
+    }
+    // The file's masses (0.2289 kg of propellant, 0.2086 kg dry) fly otherwise: 27.5 g
+    // lighter at ignition, 21.1 g more propellant burnt to the same impulse.
+    let file_masses = landed_rows(&plain, names);
+    for (a, b) in rows.iter().zip(&file_masses) {
+        assert_eq!(a[..2], b[..2], "the same draws");
+        assert!((a[2] - b[2]).abs() > 1.0, "{} against {}", a[2], b[2]);
+    }
+}
+
+#[test]
+fn inspect_and_fly_take_the_motor_s_masses_and_refuse_a_negative_one() {
+    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    let design = design.to_str().unwrap();
+    let masses = [
+        "--propellant-mass-kg",
+        "0.25",
+        "--motor-dry-mass-kg",
+        "0.16",
+    ];
+    let (code, out, err) = hpr_mc(&[&["inspect", design, "--json"][..], &masses].concat());
+    assert_eq!(code, 0, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(j["motor"]["propellant_mass_kg"].as_f64(), Some(0.25));
+    assert!((j["motor"]["loaded_mass_kg"].as_f64().unwrap() - 0.41).abs() < 1e-15);
+    let (_, plain, _) = hpr_mc(&["inspect", design, "--json"]);
+    let p: serde_json::Value = serde_json::from_str(&plain).unwrap();
+    // The liftoff mass moves by the motor's: 0.41 kg against the file's 0.4375 kg.
+    let liftoff = |v: &serde_json::Value| v["liftoff"]["mass_kg"].as_f64().unwrap();
+    assert!((liftoff(&p) - liftoff(&j) - 0.0275).abs() < 1e-12);
+    let (code, out, err) = hpr_mc(&[&["fly", design, "--json"][..], &masses].concat());
+    assert_eq!(code, 0, "{err}");
+    let f: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(f["metrics"]["apogee_m"].as_f64().unwrap() > 100.0);
+    let (code, _, err) = hpr_mc(&["fly", design, "--propellant-mass-kg", "-0.1"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--propellant-mass-kg") && err.contains("must be 0 or more"),
+        "{err}"
+    );
+}
