@@ -248,6 +248,7 @@ pub fn flight_json(sim: &Simulation, f: &Flight) -> Value {
             "landing_time_s": opt(m.landing_time_s),
             "landing_x_m": opt(m.landing_position_m.map(|p| p[0])), "landing_y_m": opt(m.landing_position_m.map(|p| p[1])),
             "landing_speed_m_s": opt(m.landing_speed_m_s),
+            "air_brakes_open_time_s": opt(m.air_brakes_open_time_s), "air_brakes_max_opening": opt(m.air_brakes_max_opening),
         },
         "warnings": f.warnings().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
         "events": f.events.iter().map(|e| json!({"event": e.kind.name(), "time_s": e.time_s, "altitude_m": e.altitude_m, "speed_m_s": e.speed_m_s})).collect::<Vec<_>>(),
@@ -418,6 +419,19 @@ pub fn flight_text(sim: &Simulation, f: &Flight) -> String {
         o(m.landing_position_m.map(|p| p[0]), "m", 1),
         o(m.landing_position_m.map(|p| p[1]), "m", 1)
     );
+    if let Some(b) = sim.design().air_brakes {
+        let _ = writeln!(
+            s,
+            "air brakes          aiming at {:.1} m: {}, widest opening {}",
+            b.target_apogee_m,
+            m.air_brakes_open_time_s
+                .map_or("never opened".to_string(), |t| format!(
+                    "opened at {t:.3} s"
+                )),
+            m.air_brakes_max_opening
+                .map_or("—".to_string(), |u| format!("{:.1} %", 100.0 * u))
+        );
+    }
     for w in f.warnings() {
         let _ = writeln!(s, "warning             {w}");
     }

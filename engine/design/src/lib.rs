@@ -18,6 +18,6 @@ pub mod mass;
 pub mod motor;
 pub mod ork;
 
-pub use design::{Component, ComponentKind, Deploy, DeployTrigger, Design};
+pub use design::{AirBrakes, Component, ComponentKind, Deploy, DeployTrigger, Design};
 pub use error::DesignError;
 pub use mass::MassProps;

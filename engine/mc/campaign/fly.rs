@@ -88,7 +88,8 @@ pub struct Prepared {
     pub plan: Plan,
     /// The output metrics: [`FIXED_METRICS`], then per shift its start time and the static
     /// margin just before and just after its move, then per parachute its opening time and
-    /// speed.
+    /// speed, then, for a design with air brakes, when they first opened and their widest
+    /// opening.
     pub metrics: Vec<Column>,
     /// The scenario's requirements, each with its metric's index in [`Prepared::metrics`],
     /// in the metrics' order.
@@ -248,6 +249,12 @@ impl Prepared {
                 }))
                 .chain(scenario.parachutes.iter().flat_map(|c| {
                     per_chute.map(|(n, u)| column(format!("parachute_{}_{n}", c.name), u))
+                }))
+                .chain(design.air_brakes.iter().flat_map(|_| {
+                    [
+                        column("air_brakes_open_time_s".into(), "s"),
+                        column("air_brakes_max_opening".into(), "1"),
+                    ]
                 }))
                 .collect();
         let mut requirements = vec![];
@@ -447,6 +454,9 @@ impl Prepared {
         for k in 0..self.scenario.parachutes.len() {
             let chute = lane.parachutes.get(k).copied().unwrap_or_default();
             out.extend([chute.deploy_time_s, chute.deploy_speed_m_s]);
+        }
+        if self.design.air_brakes.is_some() {
+            out.extend([m.air_brakes_open_time_s, m.air_brakes_max_opening]);
         }
         let warnings = (!lane.warnings.is_empty()).then(|| {
             let w: Vec<String> = lane.warnings.iter().map(|w| w.to_string()).collect();

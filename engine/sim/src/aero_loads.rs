@@ -113,6 +113,7 @@ pub fn aero_loads(
         air.speed_of_sound_m_s,
         powered,
         drag_scale,
+        0.0,
     );
     Loads {
         force_b: f.to_na(),
@@ -124,7 +125,9 @@ pub fn aero_loads(
 /// axes. `v_o_b` is O's velocity over the ground and `wind_b_at(x)` the wind, both in body
 /// axes, at the surface whose center of pressure is `x` m aft of the tip; `v_cm_air_b` is the
 /// velocity through the air of the airframe's point at the center of mass. The tables are
-/// shared by every lane; look-ups and `atan2` run lane by lane.
+/// shared by every lane; look-ups and `atan2` run lane by lane. `brake_cd` is the air brakes'
+/// drag coefficient as they stand, on the rocket's reference area (0 when closed or absent:
+/// the drag is then the rocket's alone, to the bit).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn loads<S: Real>(
@@ -137,6 +140,7 @@ pub fn loads<S: Real>(
     speed_of_sound: S,
     powered: S::Mask,
     drag_scale: S,
+    brake_cd: S,
 ) -> (V3<S>, V3<S>) {
     let zero = S::splat(0.0);
     let one = S::splat(1.0);
@@ -201,7 +205,7 @@ pub fn loads<S: Real>(
     let axial = S::select(x.gt(one), one, S::select((-one).gt(x), -one, turning));
     force.z = S::select(
         moving,
-        force.z - q * area * drag_scale * cd * axial,
+        force.z - q * area * drag_scale * cd * axial - q * area * brake_cd * axial,
         force.z,
     );
     moment.z = S::select(moving, moment.z + (forcing - damping), moment.z);
@@ -270,7 +274,11 @@ mod tests {
         };
         let none = V3::<f64>::zero();
         let v = V3::new(0.0, 0.0, 150.0);
-        let axial = |rho: f64, a: f64| loads(&t, &v, |_| none, &v, &none, rho, a, false, 1.0).0.z;
+        let axial = |rho: f64, a: f64| {
+            loads(&t, &v, |_| none, &v, &none, rho, a, false, 1.0, 0.0)
+                .0
+                .z
+        };
         let q_a = 0.5 * 0.73643 * 150.0 * 150.0 * AREA_M2;
         let ln_k = crate::atmosphere::reynolds_ln_scale(0.73643, 320.55);
         assert!((ln_k - -0.4743).abs() < 1e-3, "{ln_k}");
@@ -296,6 +304,7 @@ mod tests {
             lanes(|a| a.1),
             [false; 4],
             F64x4::splat(1.0),
+            F64x4::splat(0.0),
         );
         for (l, &(rho, a)) in airs.iter().enumerate() {
             assert_eq!(f4.z.0[l].to_bits(), axial(rho, a).to_bits(), "lane {l}");
@@ -336,9 +345,12 @@ mod tests {
                 340.0,
                 false,
                 1.0,
+                0.0,
             )
         };
-        let (f, m) = loads(&two, &v_o, wind_at, &v_o, &none, 1.225, 340.0, false, 1.0);
+        let (f, m) = loads(
+            &two, &v_o, wind_at, &v_o, &none, 1.225, 340.0, false, 1.0, 0.0,
+        );
         let ((f1, m1), (f2, m2)) = (alone(0.2), alone(0.8));
         // Lateral force and moment: the sum of the two alone, to rounding (1e-12 relative).
         assert!(

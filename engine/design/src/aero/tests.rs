@@ -143,6 +143,7 @@ fn design(mut components: Vec<Component>, d: f64, length_m: f64, drag: DragSpec)
         motor_mount: None,
         openrocket_geometry: false,
         warnings: Vec::new(),
+        air_brakes: None,
     }
 }
 

@@ -36,6 +36,24 @@ pub struct Design {
     /// What the validation let pass under `geometry_checks: "openrocket"` (a part outside
     /// or wider than its parent, kept where it is), one sentence each.
     pub warnings: Vec<String>,
+    /// Air brakes, if the rocket has them.
+    pub air_brakes: Option<AirBrakes>,
+}
+
+/// Air brakes and their controller (`air_brakes` in the design file). From burnout to
+/// apogee, at each of the controller's samples, the brakes open to the fraction of their
+/// travel that makes the predicted apogee the target, and hold it to the next sample; they
+/// close at apogee.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AirBrakes {
+    /// Drag coefficient of the brakes fully open, on [`AirBrakes::reference_area_m2`].
+    pub cd: f64,
+    /// The area `cd` is referred to, m² (the rocket's reference area unless given).
+    pub reference_area_m2: f64,
+    /// The apogee the controller aims at, m above the launch site.
+    pub target_apogee_m: f64,
+    /// Samples per second of the controller (from burnout on).
+    pub sampling_rate_hz: f64,
 }
 
 impl Design {

@@ -25,7 +25,22 @@ pub struct RawDesign {
     /// How strictly parts must sit in their parents: `strict` (the default) or `openrocket`.
     #[serde(default)]
     pub geometry_checks: RawGeometryChecks,
+    /// Air brakes and the controller that opens them.
+    #[serde(default)]
+    pub air_brakes: Option<RawAirBrakes>,
     pub stages: Vec<RawStage>,
+}
+
+/// Air brakes: their drag coefficient fully open (on `reference_area_m2`, the rocket's by
+/// default) and the controller's target apogee and sampling rate.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawAirBrakes {
+    pub cd: f64,
+    #[serde(default)]
+    pub reference_area_m2: Option<f64>,
+    pub target_apogee_m: f64,
+    pub sampling_rate_hz: f64,
 }
 
 /// How strictly a design's parts must sit in their parents.

@@ -496,6 +496,32 @@ impl Builder<'_> {
             })
             .fold(0.0, f64::max);
 
+        let air_brakes = match &raw.air_brakes {
+            None => None,
+            Some(b) => {
+                let at = Location::Design;
+                let area = match b.reference_area_m2 {
+                    Some(a) => self.positive(&at, "air_brakes.reference_area_m2", a)?,
+                    None => {
+                        std::f64::consts::PI * 0.25 * reference_diameter_m * reference_diameter_m
+                    }
+                };
+                Some(AirBrakes {
+                    cd: self.non_negative(&at, "air_brakes.cd", b.cd)?,
+                    reference_area_m2: area,
+                    target_apogee_m: self.positive(
+                        &at,
+                        "air_brakes.target_apogee_m",
+                        b.target_apogee_m,
+                    )?,
+                    sampling_rate_hz: self.positive(
+                        &at,
+                        "air_brakes.sampling_rate_hz",
+                        b.sampling_rate_hz,
+                    )?,
+                })
+            }
+        };
         Ok(Design {
             name: raw.name,
             source: self.source.map(Path::to_path_buf),
@@ -509,6 +535,7 @@ impl Builder<'_> {
             drag,
             openrocket_geometry: self.openrocket_geometry,
             warnings: self.warnings,
+            air_brakes,
         })
     }
 }

@@ -371,6 +371,8 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
     let mut four: Option<Option<FourModels<'_>>> = None;
     let mut ms = pack_mass([&MassLanes::ZERO; 4]);
     let mut thrust = F64x4::splat(0.0);
+    // Each slot's air brakes, as they stand for the whole step.
+    let mut brake = F64x4::splat(0.0);
     // Serial of the mass state each slot holds (refreshed only when it changes).
     let mut serial = [u64::MAX; 4];
     let outcomes = step_on_lanes::<N6, Paused<'_, ()>>(
@@ -386,6 +388,7 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                     continue;
                 }
                 let p = Paused::of(&mut group[slots.lane[l]]);
+                brake.0[l] = p.brake_cd();
                 let (m, th, sn) = p.mass_at(slots.t[l]);
                 if sn != serial[l] {
                     ms.set_lane(l, m);
@@ -394,7 +397,7 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                 thrust.0[l] = th;
             }
             match four {
-                Some(four) => eval_four(four, &ms, thrust, ys, dy),
+                Some(four) => eval_four(four, &ms, thrust, brake, ys, dy),
                 None => {
                     // Lanes that do not share their aerodynamic tables: one at a time.
                     for (l, lane) in group.iter_mut().enumerate() {
@@ -403,9 +406,10 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                         }
                         let p = Paused::of(lane);
                         let model = p.model();
+                        let brake_cd = p.brake_cd();
                         let (m, th, _) = p.mass_at(slots.t[l]);
                         let mut d = [0.0; N6];
-                        derivative_6dof_lanes(model, m, th, &lane_of(ys, l), &mut d);
+                        derivative_6dof_lanes(model, m, th, brake_cd, &lane_of(ys, l), &mut d);
                         for k in 0..N6 {
                             dy[k].0[l] = d[k];
                         }
@@ -528,11 +532,12 @@ pub fn eval_four(
     four: &FourModels<'_>,
     ms: &MassLanes<F64x4>,
     thrust: F64x4,
+    brake_cd: F64x4,
     y: &[F64x4; N6],
     dy: &mut [F64x4; N6],
 ) {
     with_avx2(
         #[inline(always)]
-        || derivative_6dof_lanes(four, ms, thrust, y, dy),
+        || derivative_6dof_lanes(four, ms, thrust, brake_cd, y, dy),
     );
 }

@@ -528,6 +528,11 @@ pub fn build_model(
         motor: motor_tables,
         settled: Vec::new(),
         sensor_seed: 0,
+        air_brakes: design.air_brakes.map(|b| model::BrakeModel {
+            cd_open: b.cd * b.reference_area_m2 / tables.aero.ref_area_m2,
+            target_apogee_m: b.target_apogee_m,
+            period_s: 1.0 / b.sampling_rate_hz,
+        }),
     }
     .with_settled_states())
 }

@@ -87,6 +87,73 @@ pub struct FlightModel {
     pub settled: Vec<MassState>,
     /// The seed of the parachutes' sensor noise ([`crate::sensor`]).
     pub sensor_seed: u64,
+    /// Air brakes and their controller, if the rocket has them.
+    pub air_brakes: Option<BrakeModel>,
+}
+
+/// Air brakes as the flight reads them ([`hpr_design::AirBrakes`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BrakeModel {
+    /// The brakes' drag coefficient fully open, on the rocket's reference area.
+    pub cd_open: f64,
+    /// The apogee the controller aims at, m above the launch site.
+    pub target_apogee_m: f64,
+    /// Time between the controller's samples, s.
+    pub period_s: f64,
+}
+
+impl BrakeModel {
+    /// The opening (0 closed, 1 fully open) the controller asks for, from the state it reads
+    /// at a sample: the center of mass `height_m` above the site climbing at `climb_m_s`,
+    /// the rocket's `mass_kg`, the air's `density_kg_m3` and `g_m_s2`, and the rocket's own
+    /// drag coefficient `cd_rocket` (on `area_m2`). It predicts the apogee of a vertical coast
+    /// against gravity and a drag `k v²` per unit mass, `k = ρ A (cd_rocket + u cd_open)/2m`,
+    /// in air of the density it reads: `h + ln(1 + k v²/g)/(2k)`, and takes the opening `u`
+    /// that makes it the target (bisection to 2⁻⁴⁰), 0 when even closed the rocket falls
+    /// short of it or no longer climbs, 1 when even fully open it overshoots.
+    #[allow(clippy::too_many_arguments)]
+    pub fn opening(
+        &self,
+        height_m: f64,
+        climb_m_s: f64,
+        mass_kg: f64,
+        density_kg_m3: f64,
+        g_m_s2: f64,
+        cd_rocket: f64,
+        area_m2: f64,
+    ) -> f64 {
+        let climbing = climb_m_s > 0.0 && mass_kg > 0.0;
+        if !climbing {
+            return 0.0;
+        }
+        let apogee = |u: f64| {
+            let k = 0.5 * density_kg_m3 * area_m2 * (cd_rocket + u * self.cd_open) / mass_kg;
+            let v2 = climb_m_s * climb_m_s;
+            if k > 0.0 {
+                height_m + (k * v2 / g_m_s2).ln_1p() / (2.0 * k)
+            } else {
+                height_m + v2 / (2.0 * g_m_s2)
+            }
+        };
+        let target = self.target_apogee_m;
+        let overshoots = apogee(0.0) > target;
+        if !overshoots {
+            return 0.0;
+        }
+        if apogee(1.0) >= target {
+            return 1.0;
+        }
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if apogee(mid) > target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
 }
 
 /// Most shifts for which [`FlightModel::settled`] is tabulated (2⁴ = 16 states).
@@ -306,23 +373,25 @@ impl FlightModel {
         ModelLanes::<f64>::wind(self, h).to_na()
     }
 
-    /// The 6-DOF derivative (free flight) at `(t, y)`.
+    /// The 6-DOF derivative (free flight) at `(t, y)`, air brakes closed.
     #[inline]
     pub fn derivative_6dof(&self, starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]) {
         let inst = self.instant(starts, t);
-        self.derivative_6dof_at(&inst.mass, inst.motor.thrust_n, y, dy);
+        self.derivative_6dof_at(&inst.mass, inst.motor.thrust_n, 0.0, y, dy);
     }
 
-    /// [`FlightModel::derivative_6dof`] given the mass state and the thrust.
+    /// [`FlightModel::derivative_6dof`] given the mass state, the thrust and the air brakes'
+    /// drag coefficient on the reference area (0: closed).
     #[inline]
     pub fn derivative_6dof_at(
         &self,
         ms: &MassState,
         thrust_n: f64,
+        brake_cd: f64,
         y: &[f64; N6],
         dy: &mut [f64; N6],
     ) {
-        derivative_6dof_lanes(self, &MassLanes::of(ms), thrust_n, y, dy);
+        derivative_6dof_lanes(self, &MassLanes::of(ms), thrust_n, brake_cd, y, dy);
     }
 
     /// The rail's derivative: O slides along the rail; attitude fixed, no rotation.

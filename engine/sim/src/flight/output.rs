@@ -92,6 +92,12 @@ pub struct Metrics {
     /// Landing point of the center of mass, east and north of the rail's foot, m.
     pub landing_position_m: Option<[f64; 2]>,
     pub landing_speed_m_s: Option<f64>,
+    /// The first controller sample that opened the air brakes, s (`None` without brakes or
+    /// if they never opened).
+    pub air_brakes_open_time_s: Option<f64>,
+    /// The widest opening the controller asked for, 0 (closed) to 1 (fully open) (`None`
+    /// without brakes or before their first sample).
+    pub air_brakes_max_opening: Option<f64>,
 }
 
 /// A flown flight.

@@ -5,7 +5,8 @@
 
 use super::config::Integrator;
 use super::model::{
-    CenterLanes, EndFigures, FlightAux, FlightModel, InstantMemo, ShiftStarts, MAX_SHIFTS,
+    CenterLanes, EndFigures, FlightAux, FlightModel, InstantMemo, ModelLanes, ShiftStarts,
+    MAX_SHIFTS,
 };
 use super::output::{Flight, Metrics, Observer, Phase, Sample};
 use super::SimError;
@@ -182,6 +183,11 @@ struct Run<'a, O: Observer> {
     /// [`FlightAux::alpha_rad`]'s `atan2` (crossflow speed ≥ 0, axial air velocity): angles in
     /// [0, π] compare by a cross product, and the one `atan2` is taken when the flight ends.
     steepest: Option<(f64, f64)>,
+    /// The air brakes' drag coefficient as they stand, on the reference area (0: closed),
+    /// held from one controller sample to the next.
+    brake_cd: f64,
+    /// The controller's next sample, s (infinite without brakes; burnout, then every period).
+    brake_next_s: f64,
 }
 
 /// A parachute's noisy barometer through one flight: its noise, the pressure at its trigger
@@ -380,6 +386,49 @@ impl<'a, O: Observer> Run<'a, O> {
             }
         }
         Ok(opened)
+    }
+
+    /// The air brakes' controller at a step's end `t` in free flight, the center of mass at
+    /// `pos` moving at `vel`: at or after its sample time (and before apogee) it reads the
+    /// state, sets the brakes' opening ([`BrakeModel::opening`]) until its next sample (a stop
+    /// time) and returns whether the drag changed (the stepper must start again there).
+    fn control_brakes(
+        &mut self,
+        t: f64,
+        pos: Vector3<f64>,
+        vel: Vector3<f64>,
+        aux: &FlightAux,
+    ) -> bool {
+        let m = self.model;
+        let Some(b) = m.air_brakes else {
+            return false;
+        };
+        if self.apogee_done || t < self.brake_next_s {
+            return false;
+        }
+        let mach = aux.air_speed_m_s / aux.speed_of_sound_m_s;
+        let u = b.opening(
+            pos.z,
+            vel.z,
+            aux.mass_kg,
+            aux.density_kg_m3,
+            ModelLanes::<f64>::gravity(m, pos.z),
+            m.aero.cd(mach, false) * m.drag_scale,
+            m.aero.ref_area_m2,
+        );
+        while self.brake_next_s <= t {
+            self.brake_next_s += b.period_s;
+        }
+        self.stops.push(self.brake_next_s);
+        let mx = &mut self.metrics;
+        mx.air_brakes_max_opening = Some(mx.air_brakes_max_opening.unwrap_or(0.0).max(u));
+        if u > 0.0 && mx.air_brakes_open_time_s.is_none() {
+            mx.air_brakes_open_time_s = Some(t);
+        }
+        let cd = u * b.cd_open;
+        let changed = cd != self.brake_cd;
+        self.brake_cd = cd;
+        changed
     }
 
     /// Whether parachute `i`'s trigger still watches for its condition.

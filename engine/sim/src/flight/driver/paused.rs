@@ -229,6 +229,12 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         burnout_done: false,
         max_climb_m_s: 0.0,
         steepest: None,
+        brake_cd: 0.0,
+        brake_next_s: if model.air_brakes.is_some() {
+            model.burnout_s
+        } else {
+            f64::INFINITY
+        },
     };
 
     let (rtol, atol6, atol3) = tolerances(&model.options.integrator);
@@ -446,6 +452,12 @@ impl<'a, O: Observer> Paused<'a, O> {
     ) -> Result<Option<StepEnd>, SimError> {
         self.free
             .after_step(&mut self.run, &mut self.s6.stepper, outcome, Some(ep1))
+    }
+
+    /// The air brakes' drag coefficient as they stand (0: closed), for the step in progress.
+    #[inline]
+    pub(crate) fn brake_cd(&self) -> f64 {
+        self.run.brake_cd
     }
 
     /// The mass state (as the equations read it) and the thrust at `t`, and a serial number

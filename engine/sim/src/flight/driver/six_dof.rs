@@ -60,7 +60,8 @@ impl G {
 }
 
 /// The derivative of the rail or the free flight, its instant read through the flight's
-/// memo (`changes` counts the changes of `starts`).
+/// memo (`changes` counts the changes of `starts`), the air brakes' drag coefficient
+/// `brake_cd` (0: closed; never on the rail).
 #[inline]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn derivative(
@@ -69,6 +70,7 @@ pub(super) fn derivative(
     memo: &mut InstantMemo,
     starts: &ShiftStarts,
     changes: u64,
+    brake_cd: f64,
     t: f64,
     y: &[f64; N6],
     dy: &mut [f64; N6],
@@ -77,7 +79,7 @@ pub(super) fn derivative(
     if rail {
         model.derivative_rail_at(ms, thrust_n, y, dy)
     } else {
-        model.derivative_6dof_at(ms, thrust_n, y, dy)
+        model.derivative_6dof_at(ms, thrust_n, brake_cd, y, dy)
     }
 }
 
@@ -106,10 +108,10 @@ impl SixDof {
     ) -> Result<SixDof, SimError> {
         let model = run.model;
         let rail = phase == Phase::Rail;
-        let (starts, changes) = (run.starts, run.starts_changed);
+        let (starts, changes, brake) = (run.starts, run.starts_changed, run.brake_cd);
         let memo = &mut run.memo;
         let mut evals = 0u64;
-        each!(stepper, s => s.init(|t, y, dy| { evals += 1; derivative(model, rail, memo, &starts, changes, t, y, dy); }, t0, y0))
+        each!(stepper, s => s.init(|t, y, dy| { evals += 1; derivative(model, rail, memo, &starts, changes, brake, t, y, dy); }, t0, y0))
             .map_err(|e| integ_at(t0, y0, e, phase.name()))?;
         run.evaluations += evals;
         let ms = run.memo.get(model, &starts, changes, t0).0;
@@ -277,6 +279,9 @@ impl SixDof {
                 }
                 EventKind::Apogee => {
                     run.apogee_done = true;
+                    // The brakes close at the top (the stepper restarts below, as after
+                    // every event).
+                    run.brake_cd = 0.0;
                     run.metrics.apogee_m = Some(alt);
                     run.metrics.apogee_time_s = Some(te);
                     run.push_event(EventKind::Apogee, te, alt, speed);
@@ -303,11 +308,12 @@ impl SixDof {
             run.push_event(EventKind::TimeLimit, t_end, alt, speed);
             return Ok(Some((t_end, y_end, PhaseEnd::TimeLimit)));
         }
-        if found.is_some() {
-            let (starts, changes) = (run.starts, run.starts_changed);
+        let braked = phase == Phase::Free && run.control_brakes(t_end, pos, vel, &ep.aux);
+        if found.is_some() || braked {
+            let (starts, changes, brake) = (run.starts, run.starts_changed, run.brake_cd);
             let memo = &mut run.memo;
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; derivative(model, rail, memo, &starts, changes, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; derivative(model, rail, memo, &starts, changes, brake, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
         }
         Ok(None)
@@ -322,11 +328,11 @@ impl SixDof {
         let model = run.model;
         let rail = self.phase == Phase::Rail;
         let t_stop = self.next_stop(run, stepper);
-        let (starts, changes) = (run.starts, run.starts_changed);
+        let (starts, changes, brake) = (run.starts, run.starts_changed, run.brake_cd);
         let memo = &mut run.memo;
         let mut evals = 0u64;
         let outcome = stepper.checked_step(
-            |t, y, dy| derivative(model, rail, memo, &starts, changes, t, y, dy),
+            |t, y, dy| derivative(model, rail, memo, &starts, changes, brake, t, y, dy),
             t_stop,
             self.phase.name(),
             &mut evals,
@@ -344,7 +350,7 @@ fn end_point_at<O: Observer>(
     te: f64,
 ) -> ([f64; N6], EndPoint) {
     let model = run.model;
-    let (starts, changes) = (run.starts, run.starts_changed);
+    let (starts, changes, brake) = (run.starts, run.starts_changed, run.brake_cd);
     let ye = each!(stepper, s => s.dense(te));
     let mut dy = [0.0; N6];
     derivative(
@@ -353,6 +359,7 @@ fn end_point_at<O: Observer>(
         &mut run.memo,
         &starts,
         changes,
+        brake,
         te,
         &ye,
         &mut dy,

@@ -317,13 +317,15 @@ pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
     }
 }
 
-/// The 6-DOF derivative on lanes, given each lane's mass state and thrust: the one copy of
-/// the free-flight equations (frames, air, wind, loads, gravity, Coriolis, EoM v1).
+/// The 6-DOF derivative on lanes, given each lane's mass state, thrust and air brakes' drag
+/// coefficient (0: closed): the one copy of the free-flight equations (frames, air, wind,
+/// loads, gravity, Coriolis, EoM v1).
 #[inline(always)]
 pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
     lanes: &L,
     ms: &MassLanes<S>,
     thrust_n: S,
+    brake_cd: S,
     y: &[S; N6],
     dy: &mut [S; N6],
 ) {
@@ -331,8 +333,8 @@ pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
     // test inside the kernel cost the inertial flights 3 % of the batch's instructions (the
     // compiler computed the terms and dropped them).
     match lanes.earth_rate() {
-        Some(earth) => derivative_6dof_in(lanes, ms, thrust_n, y, Some(earth), dy),
-        None => derivative_6dof_in(lanes, ms, thrust_n, y, None, dy),
+        Some(earth) => derivative_6dof_in(lanes, ms, thrust_n, brake_cd, y, Some(earth), dy),
+        None => derivative_6dof_in(lanes, ms, thrust_n, brake_cd, y, None, dy),
     }
 }
 
@@ -343,6 +345,7 @@ fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     lanes: &L,
     ms: &MassLanes<S>,
     thrust_n: S,
+    brake_cd: S,
     y: &[S; N6],
     earth_n: Option<V3<S>>,
     dy: &mut [S; N6],
@@ -388,6 +391,7 @@ fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
         speed_of_sound,
         thrust_n.gt(zero),
         lanes.drag_scale(),
+        brake_cd,
     );
     force.z = force.z + thrust_n;
     let mut g_b = r.tr_mul_v(&V3::new(zero, zero, -lanes.gravity(h)));
