@@ -4,6 +4,7 @@
 //! turned (`wind`), the site (`site`), canopy shapes (`canopy`) and `fly --scenario` (`fly`) on a
 //! small windy scenario.
 
+mod brakes;
 mod canopy;
 mod fly;
 mod motor;

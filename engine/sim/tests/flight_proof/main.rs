@@ -7,6 +7,7 @@
 //! An integration test (not a `#[cfg(test)]` module) because it needs nothing private: the
 //! public `Simulation`, `FlightModel` and `eom` are enough, which is also what users get.
 
+mod air_brakes;
 mod batch_rockets;
 mod calisto;
 mod clusters;

@@ -938,3 +938,45 @@ fn a_skin_s_own_roughness_must_not_be_negative_and_only_skins_may_give_one() {
         .expect_err("a mass component gives no roughness");
     assert!(e.to_string().contains("roughness_m"), "{e}");
 }
+
+#[test]
+fn air_brakes_take_their_area_from_the_rocket_unless_given_and_refuse_bad_numbers_by_field() {
+    let d = with(|v| {
+        v["air_brakes"] = json!({"cd": 1.1, "target_apogee_m": 1500.0, "sampling_rate_hz": 20.0});
+    })
+    .expect("brakes");
+    let b = d.air_brakes.expect("the design's brakes");
+    let area = std::f64::consts::PI * 0.25 * d.reference_diameter_m * d.reference_diameter_m;
+    assert_eq!(
+        (
+            b.cd,
+            b.reference_area_m2,
+            b.target_apogee_m,
+            b.sampling_rate_hz
+        ),
+        (1.1, area, 1500.0, 20.0)
+    );
+    assert!(with(|_| {}).unwrap().air_brakes.is_none());
+    for (field, value) in [
+        ("cd", json!(-0.1)),
+        ("reference_area_m2", json!(0.0)),
+        ("target_apogee_m", json!(-5.0)),
+        ("sampling_rate_hz", json!(0.0)),
+    ] {
+        let (_, loc, got) = invalid(with(|v| {
+            v["air_brakes"] =
+                json!({"cd": 1.1, "target_apogee_m": 1500.0, "sampling_rate_hz": 20.0});
+            v["air_brakes"][field] = value.clone();
+        }));
+        assert_eq!(loc, Location::Design);
+        assert_eq!(got.as_deref(), Some(format!("air_brakes.{field}").as_str()));
+    }
+    let e = with(|v| {
+        v["air_brakes"] = json!({"cd": 1.1, "target_apogee_m": 1500.0, "sampling_rate": 20.0});
+    })
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("unknown field `sampling_rate`"),
+        "{e}"
+    );
+}
