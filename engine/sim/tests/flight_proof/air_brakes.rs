@@ -4,7 +4,6 @@
 
 use crate::common::*;
 use hpr_design::Design;
-use hpr_sim::batch::{Batch, Columns, Status};
 use hpr_sim::flight::model::BrakeModel;
 use hpr_sim::flight::{Environment, Metrics, Rail, Simulation};
 use serde_json::{json, Value};
@@ -172,30 +171,11 @@ fn braked_rockets_fly_in_the_batch_bit_for_bit_as_their_single_flights() {
         Rail::default(),
     )
     .unwrap();
-    let n = 8;
-    let spread = |lo: f64, hi: f64, m: usize| -> Vec<f64> {
-        (0..n)
-            .map(|i| lo + (hi - lo) * ((i * m) % n) as f64 / (n - 1) as f64)
-            .collect()
-    };
-    let columns = Columns {
-        len: n,
-        impulse_scale: spread(0.9, 1.1, 1),
-        drag_scale: spread(0.9, 1.1, 3),
-        rail_inclination_deg: spread(84.0, 89.0, 5),
-        ..Columns::default()
-    };
-    let batch = Batch::new(sim, None).expect("batch");
-    let mut results = Vec::new();
-    batch
-        .run(n, 3, 2, |rows| columns.slice(rows), |l| results.push(l))
-        .expect("runs");
-    let mut opened = 0;
-    for (i, lane) in results.iter().enumerate() {
-        let single = batch.variant(&columns, i).unwrap().run(&mut ()).unwrap();
-        assert_eq!(lane.status, Status::Landed, "variant {i}");
-        assert_eq!(lane.metrics, single.metrics, "variant {i}: bit for bit");
-        opened += usize::from(lane.metrics.air_brakes_open_time_s.is_some());
-    }
-    assert_eq!(opened, n, "every variant's brakes opened");
+    let lanes = batch_flies_as_singles(sim);
+    assert!(
+        lanes
+            .iter()
+            .all(|l| l.metrics.air_brakes_open_time_s.is_some()),
+        "every variant's brakes opened"
+    );
 }

@@ -7,7 +7,6 @@ use crate::common::*;
 use hpr_design::mass::point_inertia;
 use hpr_design::motor::Motor;
 use hpr_design::Design;
-use hpr_sim::batch::{Batch, Columns, Status};
 use hpr_sim::flight::{Environment, Rail, Simulation};
 use nalgebra::{Matrix3, Vector3};
 use serde_json::{json, Value};
@@ -194,28 +193,5 @@ fn a_ring_of_motors_flies_in_the_batch_bit_for_bit_as_its_single_flight() {
         Rail::default(),
     )
     .unwrap();
-    let n = 8;
-    let spread = |lo: f64, hi: f64, m: usize| -> Vec<f64> {
-        (0..n)
-            .map(|i| lo + (hi - lo) * ((i * m) % n) as f64 / (n - 1) as f64)
-            .collect()
-    };
-    let columns = Columns {
-        len: n,
-        impulse_scale: spread(0.95, 1.05, 1),
-        time_scale: spread(0.97, 1.03, 3),
-        rail_inclination_deg: spread(84.0, 89.0, 5),
-        ..Columns::default()
-    };
-    let batch = Batch::new(sim, None).expect("batch");
-    let mut results = Vec::new();
-    batch
-        .run(n, 3, 2, |rows| columns.slice(rows), |l| results.push(l))
-        .expect("runs");
-    assert_eq!(results.len(), n);
-    for (i, lane) in results.iter().enumerate() {
-        let single = batch.variant(&columns, i).unwrap().run(&mut ()).unwrap();
-        assert_eq!(lane.status, Status::Landed, "variant {i}");
-        assert_eq!(lane.metrics, single.metrics, "variant {i}: bit for bit");
-    }
+    batch_flies_as_singles(sim);
 }

@@ -135,3 +135,36 @@ pub fn reference_flight_in_wind(
     .run(&mut ())
     .expect("flies")
 }
+
+/// Eight variants of `sim` (impulse, burn time, drag and rail inclination spread evenly
+/// between their bounds) flown through the batch in chunks of 3 on 2 threads; every lane
+/// must land with the metrics of its single flight, bit for bit. Returns the lanes.
+pub fn batch_flies_as_singles(sim: Simulation) -> Vec<hpr_sim::batch::LaneResult> {
+    use hpr_sim::batch::{Batch, Columns, Status};
+    let n = 8;
+    let spread = |lo: f64, hi: f64, m: usize| -> Vec<f64> {
+        (0..n)
+            .map(|i| lo + (hi - lo) * ((i * m) % n) as f64 / (n - 1) as f64)
+            .collect()
+    };
+    let columns = Columns {
+        len: n,
+        impulse_scale: spread(0.9, 1.1, 1),
+        time_scale: spread(0.97, 1.03, 3),
+        drag_scale: spread(0.9, 1.1, 5),
+        rail_inclination_deg: spread(84.0, 89.0, 7),
+        ..Columns::default()
+    };
+    let batch = Batch::new(sim, None).expect("batch");
+    let mut lanes = Vec::new();
+    batch
+        .run(n, 3, 2, |rows| columns.slice(rows), |l| lanes.push(l))
+        .expect("runs");
+    assert_eq!(lanes.len(), n);
+    for (i, lane) in lanes.iter().enumerate() {
+        let single = batch.variant(&columns, i).unwrap().run(&mut ()).unwrap();
+        assert_eq!(lane.status, Status::Landed, "variant {i}");
+        assert_eq!(lane.metrics, single.metrics, "variant {i}: bit for bit");
+    }
+    lanes
+}
