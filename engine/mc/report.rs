@@ -28,6 +28,8 @@ pub struct Inspection {
     pub parachutes: Vec<Value>,
     /// What the design's validation let pass (`geometry_checks: "openrocket"`).
     pub warnings: Vec<String>,
+    /// The design's air brakes (null without).
+    pub air_brakes: Value,
 }
 
 fn mass_json(sim: &Simulation, t: f64) -> Value {
@@ -109,6 +111,12 @@ impl Inspection {
                 })
                 .collect(),
             warnings: d.warnings.clone(),
+            air_brakes: d.air_brakes.map_or(Value::Null, |b| {
+                json!({
+                    "cd": b.cd, "reference_area_m2": b.reference_area_m2,
+                    "target_apogee_m": b.target_apogee_m, "sampling_rate_hz": b.sampling_rate_hz,
+                })
+            }),
         }
     }
 
@@ -117,7 +125,7 @@ impl Inspection {
             "design": self.design, "motor": self.motor, "liftoff": self.liftoff, "after_burnout": self.burnout,
             "center_of_pressure_m": self.cp_m, "reference_diameter_m": self.ref_diameter_m, "components": self.components,
             "lifting_surfaces": self.surfaces, "parachutes": self.parachutes,
-            "warnings": self.warnings,
+            "warnings": self.warnings, "air_brakes": self.air_brakes,
         })
     }
 
@@ -220,6 +228,18 @@ impl Inspection {
                     p["cds_m2"].as_f64().unwrap_or(f64::NAN),
                 );
             }
+        }
+        let b = &self.air_brakes;
+        if !b.is_null() {
+            let f = |k: &str| b[k].as_f64().unwrap_or(f64::NAN);
+            let _ = writeln!(
+                s,
+                "\nair brakes: Cd {} on {} m² fully open, aiming at {} m, sampled at {} Hz from burnout",
+                f("cd"),
+                f("reference_area_m2"),
+                f("target_apogee_m"),
+                f("sampling_rate_hz")
+            );
         }
         s
     }

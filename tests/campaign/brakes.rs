@@ -15,6 +15,12 @@ fn a_campaign_of_a_braked_rocket_writes_its_brakes_columns_and_holds_its_apogee_
     let dir = tempfile::tempdir().unwrap();
     let braked = dir.path().join("braked.json");
     std::fs::write(&braked, design.to_string()).unwrap();
+    // `inspect` lists them, with the area given.
+    let (code, out, err) = hpr_mc(&["inspect", braked.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(j["air_brakes"]["reference_area_m2"].as_f64(), Some(0.003));
+    assert_eq!(j["air_brakes"]["target_apogee_m"].as_f64(), Some(1500.0));
     let text = windy("wind_speed_m_s = 0.0", "drag_scale = [1.0]")
         .replace(&source.display().to_string(), &braked.display().to_string());
     let rows = landed_rows(
