@@ -44,3 +44,44 @@ fn a_campaign_of_a_braked_rocket_writes_its_brakes_columns_and_holds_its_apogee_
         assert!(r[3] > 0.0 && r[3] <= 1.0, "{}", r[3]);
     }
 }
+
+#[test]
+fn a_sweep_of_the_brakes_target_moves_each_point_s_apogee_to_it() {
+    let source = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    let mut design: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&source).unwrap()).unwrap();
+    design["air_brakes"] = serde_json::json!({
+        "cd": 1.2, "reference_area_m2": 0.003, "target_apogee_m": 1500.0, "sampling_rate_hz": 20.0
+    });
+    let dir = tempfile::tempdir().unwrap();
+    let braked = dir.path().join("braked.json");
+    std::fs::write(&braked, design.to_string()).unwrap();
+    let text = windy(
+        "wind_speed_m_s = 0.0",
+        "air_brakes_target_apogee_m = [1300.0, 1600.0]",
+    )
+    .replace(&source.display().to_string(), &braked.display().to_string());
+    let rows = landed_rows(&text, ["air_brakes_target_apogee_m", "apogee_m"]);
+    assert_eq!(rows.len(), 8, "two points of four");
+    for r in &rows {
+        assert!([1300.0, 1600.0].contains(&r[0]), "{}", r[0]);
+        // Off the 85° rail: within a few centimetres, as above.
+        assert!(
+            (r[1] - r[0]).abs() < 0.1,
+            "apogee {} for target {}",
+            r[1],
+            r[0]
+        );
+    }
+    // Without brakes in the design there is nothing to aim: refused by key.
+    let plain = windy(
+        "wind_speed_m_s = 0.0",
+        "air_brakes_target_apogee_m = [1300.0]",
+    );
+    let e = refusal(&plain);
+    assert!(
+        e.contains("sweep.air_brakes_target_apogee_m") && e.contains("no air brakes"),
+        "{e}"
+    );
+}

@@ -115,6 +115,22 @@ impl Prepared {
             Design::load(&scenario.design_file).map_err(|e| bad("design.file", e.to_string()))?;
         let motor = motor::find(&scenario.motor).map_err(|e| bad("motor.name", e.to_string()))?;
 
+        if let Some(i) = scenario
+            .inputs
+            .iter()
+            .find(|i| i.param == Param::AirBrakesTargetM)
+            .filter(|_| design.air_brakes.is_none())
+        {
+            let section = if i.sweep.is_some() {
+                "sweep"
+            } else {
+                "dispersions"
+            };
+            return Err(bad(
+                &format!("{section}.air_brakes_target_apogee_m"),
+                "the design has no air brakes to aim (its \"air_brakes\")".into(),
+            ));
+        }
         let uses_ballast = scenario.inputs.iter().find(|i| i.param == Param::BallastKg);
         let ballast = match &scenario.ballast {
             None => {
@@ -201,6 +217,7 @@ impl Prepared {
             impulse_ns: motor.total_impulse_ns(),
             burn_time_s: motor.burn_time_s(),
             drag_scale: 1.0,
+            brake_target_m: design.air_brakes.map_or(f64::NAN, |b| b.target_apogee_m),
             elevation_m: scenario.environment.elevation_m,
             temperature_k,
             pressure_pa,

@@ -37,6 +37,8 @@ pub enum Param {
     RailLengthM,
     RailInclinationDeg,
     RailHeadingDeg,
+    /// The air brakes' target apogee, m above the site (nominal: the design's).
+    AirBrakesTargetM,
     ParachuteCdsM2(usize),
     ParachuteLagS(usize),
     /// The number in the parachute's trigger (its time, height or delay).
@@ -49,7 +51,7 @@ pub enum Param {
 
 /// The global inputs, in their canonical order (the order of the output's columns and of the
 /// sweep's axes), with their key and unit.
-pub const GLOBAL: [(Param, &str, &str); 16] = [
+pub const GLOBAL: [(Param, &str, &str); 17] = [
     (Param::StructureMassKg, "structure_mass_kg", "kg"),
     (Param::StructureCgM, "structure_cg_m", "m"),
     (Param::BallastKg, "ballast_kg", "kg"),
@@ -66,6 +68,7 @@ pub const GLOBAL: [(Param, &str, &str); 16] = [
     (Param::RailLengthM, "rail_length_m", "m"),
     (Param::RailInclinationDeg, "rail_inclination_deg", "deg"),
     (Param::RailHeadingDeg, "rail_heading_deg", "deg"),
+    (Param::AirBrakesTargetM, "air_brakes_target_apogee_m", "m"),
 ];
 
 /// The rule a value of an input must obey.
@@ -128,7 +131,8 @@ impl Param {
             | Param::MotorImpulseNs
             | Param::MotorBurnTimeS
             | Param::DragScale
-            | Param::RailLengthM => Domain::Positive,
+            | Param::RailLengthM
+            | Param::AirBrakesTargetM => Domain::Positive,
             // A ballast's mass scales its mass distribution, which needs a mass to scale.
             Param::BallastKg => Domain::Positive,
             Param::WindSpeedMS | Param::WindScale | Param::ParachuteLagS(_) => Domain::NonNegative,

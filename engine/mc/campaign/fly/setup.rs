@@ -28,6 +28,8 @@ pub(super) struct Setup {
     pub(super) wind_scale: f64,
     pub(super) wind_rotation_deg: f64,
     pub(super) rail: [f64; 3],
+    /// The air brakes' target apogee, m (NaN without brakes).
+    pub(super) brake_target_m: f64,
     /// Per parachute: CdS, lag, trigger number (NaN if none).
     pub(super) parachutes: Vec<[f64; 3]>,
     /// Per shift: travel, duration, trigger number (NaN if none).
@@ -55,6 +57,7 @@ impl Setup {
             Param::RailLengthM => self.rail[0],
             Param::RailInclinationDeg => self.rail[1],
             Param::RailHeadingDeg => self.rail[2],
+            Param::AirBrakesTargetM => self.brake_target_m,
             Param::ParachuteCdsM2(i) => self.parachutes[i][0],
             Param::ParachuteLagS(i) => self.parachutes[i][1],
             Param::ParachuteTrigger(i) => self.parachutes[i][2],
@@ -82,6 +85,7 @@ impl Setup {
             Param::RailLengthM => &mut self.rail[0],
             Param::RailInclinationDeg => &mut self.rail[1],
             Param::RailHeadingDeg => &mut self.rail[2],
+            Param::AirBrakesTargetM => &mut self.brake_target_m,
             Param::ParachuteCdsM2(i) => &mut self.parachutes[i][0],
             Param::ParachuteLagS(i) => &mut self.parachutes[i][1],
             Param::ParachuteTrigger(i) => &mut self.parachutes[i][2],
@@ -203,6 +207,9 @@ impl Fixed<'_> {
             if s.drag_scale != 1.0 {
                 c.drag_scale(s.drag_scale)?;
             }
+            if s.brake_target_m != self.nominal.brake_target_m && !s.brake_target_m.is_nan() {
+                c.air_brakes_target(s.brake_target_m)?;
+            }
             if let Some(id) = ballast {
                 c.part_mass(id, s.ballast_kg)?;
             }
@@ -295,6 +302,7 @@ impl Fixed<'_> {
             rail_length_m: col(rail, &|s| s.rail[0]),
             rail_inclination_deg: col(rail, &|s| s.rail[1]),
             rail_heading_deg: col(rail, &|s| s.rail[2]),
+            air_brakes_target_m: col(has(AirBrakesTargetM), &|s| s.brake_target_m),
             chute_cds_m2: per(chutes, ParachuteCdsM2, |s, k| s.parachutes[k][0]),
             chute_lag_s: per(chutes, ParachuteLagS, |s, k| s.parachutes[k][1]),
             chute_trigger: per(chutes, ParachuteTrigger, |s, k| s.parachutes[k][2]),

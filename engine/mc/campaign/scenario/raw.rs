@@ -203,6 +203,7 @@ pub(super) struct RawParams<T> {
     pub(super) rail_length_m: Option<T>,
     pub(super) rail_inclination_deg: Option<T>,
     pub(super) rail_heading_deg: Option<T>,
+    pub(super) air_brakes_target_apogee_m: Option<T>,
     #[serde(default = "BTreeMap::new")]
     pub(super) parachutes: BTreeMap<String, RawParachuteParams<T>>,
     #[serde(default = "BTreeMap::new")]
@@ -211,7 +212,7 @@ pub(super) struct RawParams<T> {
 
 impl<T> RawParams<T> {
     /// The global entries in [`GLOBAL`] order.
-    pub(super) fn globals(&mut self) -> [Option<T>; 16] {
+    pub(super) fn globals(&mut self) -> [Option<T>; 17] {
         [
             self.structure_mass_kg.take(),
             self.structure_cg_m.take(),
@@ -229,6 +230,7 @@ impl<T> RawParams<T> {
             self.rail_length_m.take(),
             self.rail_inclination_deg.take(),
             self.rail_heading_deg.take(),
+            self.air_brakes_target_apogee_m.take(),
         ]
     }
 }

@@ -110,6 +110,8 @@ pub struct Columns {
     pub rail_length_m: Vec<f64>,
     pub rail_inclination_deg: Vec<f64>,
     pub rail_heading_deg: Vec<f64>,
+    /// The air brakes' target apogee, m ([`Simulation::with_air_brakes_target`]).
+    pub air_brakes_target_m: Vec<f64>,
     pub chute_cds_m2: Vec<Vec<f64>>,
     pub chute_lag_s: Vec<Vec<f64>>,
     /// The number in a parachute's trigger (its time, height or delay).
@@ -212,6 +214,7 @@ impl Columns {
             rail_length_m: flat(&self.rail_length_m),
             rail_inclination_deg: flat(&self.rail_inclination_deg),
             rail_heading_deg: flat(&self.rail_heading_deg),
+            air_brakes_target_m: flat(&self.air_brakes_target_m),
             chute_cds_m2: nested(&self.chute_cds_m2),
             chute_lag_s: nested(&self.chute_lag_s),
             chute_trigger: nested(&self.chute_trigger),
@@ -283,7 +286,7 @@ impl Batch {
     /// nested one empty or one column per parachute (shift) of the base, each empty or full.
     pub fn check(&self, columns: &Columns) -> Result<(), String> {
         let n = columns.len;
-        let flat: [(&str, &Vec<f64>); 16] = [
+        let flat: [(&str, &Vec<f64>); 17] = [
             ("structure_delta_mass_kg", &columns.structure_delta_mass_kg),
             ("structure_delta_cg_m", &columns.structure_delta_cg_m),
             ("part_mass_kg", &columns.part_mass_kg),
@@ -298,6 +301,7 @@ impl Batch {
             ("wind_scale", &columns.wind_scale),
             ("wind_rotation_deg", &columns.wind_rotation_deg),
             ("rail_length_m", &columns.rail_length_m),
+            ("air_brakes_target_m", &columns.air_brakes_target_m),
             ("rail_inclination_deg", &columns.rail_inclination_deg),
             ("rail_heading_deg", &columns.rail_heading_deg),
         ];
@@ -423,6 +427,9 @@ impl Batch {
             }
             if let Some(v) = get(&c.drag_scale) {
                 ch.drag_scale(v)?;
+            }
+            if let Some(v) = get(&c.air_brakes_target_m) {
+                ch.air_brakes_target(v)?;
             }
             if let Some(&seed) = c.sensor_seed.get(row) {
                 ch.sensor_seed(seed);

@@ -187,6 +187,23 @@ impl Changes<'_> {
         Ok(())
     }
 
+    /// See [`Simulation::with_air_brakes_target`].
+    pub fn air_brakes_target(&mut self, target_apogee_m: f64) -> Result<(), SimError> {
+        if self.sim.design.air_brakes.is_none() {
+            return Err(SimError::Setup(format!(
+                "design \"{}\" has no air brakes to aim",
+                self.sim.design.name
+            )));
+        }
+        if !(target_apogee_m.is_finite() && target_apogee_m > 0.0) {
+            return Err(SimError::Setup(format!(
+                "air brakes: the target apogee must be positive and finite (got {target_apogee_m})"
+            )));
+        }
+        self.sim.brake_target_m = Some(target_apogee_m);
+        Ok(())
+    }
+
     /// See [`Simulation::with_mass_adjustment`].
     pub fn mass_adjustment(&mut self, delta_mass_kg: f64, delta_cg_m: f64) -> Result<(), SimError> {
         // The shared tables hold `mass::dry` of this very design (no change touches it).

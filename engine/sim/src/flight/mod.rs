@@ -78,6 +78,9 @@ pub struct Simulation {
     tables: Arc<DesignTables>,
     /// The seed of the flight computers' sensor noise ([`Simulation::with_sensor_seed`]).
     sensor_seed: u64,
+    /// The air brakes' target apogee in place of the design's
+    /// ([`Simulation::with_air_brakes_target`]).
+    brake_target_m: Option<f64>,
     model: FlightModel,
 }
 
@@ -211,6 +214,7 @@ impl Simulation {
             part_masses: vec![],
             tables,
             sensor_seed: 0,
+            brake_target_m: None,
             model,
         })
     }
@@ -234,6 +238,9 @@ impl Simulation {
             air,
         )?;
         self.model.sensor_seed = self.sensor_seed;
+        if let (Some(target), Some(b)) = (self.brake_target_m, self.model.air_brakes.as_mut()) {
+            b.target_apogee_m = target;
+        }
         Ok(self)
     }
 
@@ -274,6 +281,12 @@ impl Simulation {
     /// Multiply the drag coefficient by `scale` (a dispersion).
     pub fn with_drag_scale(self, scale: f64) -> Result<Simulation, SimError> {
         self.with_changes(|c| c.drag_scale(scale))
+    }
+
+    /// Aim the design's air brakes at another apogee, m above the site (a sweep of the
+    /// controller's setting). Refused for a design without air brakes.
+    pub fn with_air_brakes_target(self, target_apogee_m: f64) -> Result<Simulation, SimError> {
+        self.with_changes(|c| c.air_brakes_target(target_apogee_m))
     }
 
     /// Change the structure's mass and center of mass (a dispersion, see [`MassAdjustment`]).

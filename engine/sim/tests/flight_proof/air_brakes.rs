@@ -179,3 +179,43 @@ fn braked_rockets_fly_in_the_batch_bit_for_bit_as_their_single_flights() {
         "every variant's brakes opened"
     );
 }
+
+#[test]
+fn a_flight_aims_its_brakes_at_another_target_and_one_without_brakes_is_refused() {
+    let braked = || {
+        Simulation::new(
+            example(
+                Some(json!({"cd": 1.2, "reference_area_m2": 0.003,
+                            "target_apogee_m": 1500.0, "sampling_rate_hz": 20.0})),
+                None,
+            ),
+            motor("Cesaroni_I175"),
+            Environment::default(),
+            Rail::default(),
+        )
+        .unwrap()
+    };
+    let aimed = braked().with_air_brakes_target(1300.0).unwrap();
+    assert_eq!(aimed.model().air_brakes.unwrap().target_apogee_m, 1300.0);
+    let apogee = aimed.run(&mut ()).unwrap().metrics.apogee_m.unwrap();
+    assert!((apogee - 1300.0).abs() < 1e-3, "{apogee}");
+    for bad in [0.0, -1.0, f64::NAN] {
+        let e = braked()
+            .with_air_brakes_target(bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("target apogee must be positive"), "{e}");
+    }
+    let plain = Simulation::new(
+        example(None, None),
+        motor("Cesaroni_I175"),
+        Environment::default(),
+        Rail::default(),
+    )
+    .unwrap();
+    let e = plain
+        .with_air_brakes_target(1300.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("has no air brakes"), "{e}");
+}
