@@ -3,8 +3,10 @@
 
 use super::*;
 
-#[test]
-fn a_campaign_of_a_braked_rocket_writes_its_brakes_columns_and_holds_its_apogee_to_the_target() {
+/// The reference design with air brakes aiming at 1500 m, written into a temporary
+/// directory (kept alive by the first value), its path the third; the second is the plain
+/// design's path, which [`windy`] scenarios name.
+fn braked_design() -> (tempfile::TempDir, PathBuf, PathBuf) {
     let source = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("validation/designs/synthetic-54mm-three-fin.json");
     let mut design: serde_json::Value =
@@ -15,6 +17,12 @@ fn a_campaign_of_a_braked_rocket_writes_its_brakes_columns_and_holds_its_apogee_
     let dir = tempfile::tempdir().unwrap();
     let braked = dir.path().join("braked.json");
     std::fs::write(&braked, design.to_string()).unwrap();
+    (dir, source, braked)
+}
+
+#[test]
+fn a_campaign_of_a_braked_rocket_writes_its_brakes_columns_and_holds_its_apogee_to_the_target() {
+    let (_dir, source, braked) = braked_design();
     // `inspect` lists them, with the area given.
     let (code, out, err) = hpr_mc(&["inspect", braked.to_str().unwrap(), "--json"]);
     assert_eq!(code, 0, "{err}");
@@ -47,16 +55,7 @@ fn a_campaign_of_a_braked_rocket_writes_its_brakes_columns_and_holds_its_apogee_
 
 #[test]
 fn a_sweep_of_the_brakes_target_moves_each_point_s_apogee_to_it() {
-    let source = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("validation/designs/synthetic-54mm-three-fin.json");
-    let mut design: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&source).unwrap()).unwrap();
-    design["air_brakes"] = serde_json::json!({
-        "cd": 1.2, "reference_area_m2": 0.003, "target_apogee_m": 1500.0, "sampling_rate_hz": 20.0
-    });
-    let dir = tempfile::tempdir().unwrap();
-    let braked = dir.path().join("braked.json");
-    std::fs::write(&braked, design.to_string()).unwrap();
+    let (_dir, source, braked) = braked_design();
     let text = windy(
         "wind_speed_m_s = 0.0",
         "air_brakes_target_apogee_m = [1300.0, 1600.0]",
