@@ -22,6 +22,15 @@ pub fn point_inertia(v: &Vector3<f64>) -> Matrix3<f64> {
     Matrix3::identity() * v.norm_squared() - v * v.transpose()
 }
 
+/// `Σ J(d_i)` over offsets `[y, z]` across the axis (station frame): what unit point masses
+/// there add to the inertia about the axis (a cluster's tubes, motors or nozzles).
+pub fn offsets_inertia(offsets_m: &[[f64; 2]]) -> Matrix3<f64> {
+    offsets_m
+        .iter()
+        .map(|o| point_inertia(&Vector3::new(0.0, o[0], o[1])))
+        .fold(Matrix3::zeros(), |s, j| s + j)
+}
+
 /// Mass, center of mass and inertia about that center.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MassProps {

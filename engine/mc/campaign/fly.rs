@@ -121,13 +121,8 @@ impl Prepared {
             .find(|i| i.param == Param::AirBrakesTargetM)
             .filter(|_| design.air_brakes.is_none())
         {
-            let section = if i.sweep.is_some() {
-                "sweep"
-            } else {
-                "dispersions"
-            };
             return Err(bad(
-                &format!("{section}.air_brakes_target_apogee_m"),
+                &i.key_path(),
                 "the design has no air brakes to aim (its \"air_brakes\")".into(),
             ));
         }
@@ -135,13 +130,8 @@ impl Prepared {
         let ballast = match &scenario.ballast {
             None => {
                 if let Some(i) = uses_ballast {
-                    let section = if i.sweep.is_some() {
-                        "sweep"
-                    } else {
-                        "dispersions"
-                    };
                     return Err(bad(
-                        &format!("{section}.ballast_kg"),
+                        &i.key_path(),
                         "needs design.ballast, the id of the design's ballast component".into(),
                     ));
                 }

@@ -12,7 +12,8 @@
 //! `hpr_mc.*`), so a file says how to make it again.
 
 use super::fly::{Prepared, Status, VariantResult};
-use super::stats::{PointStats, Table};
+use super::scenario::RequirementSpec;
+use super::stats::{Compliance, PointStats, Table};
 use super::variants::{Shard, Variant};
 use anyhow::{bail, Context};
 use arrow::array::{
@@ -627,26 +628,24 @@ pub fn requirements_batch(
     cols.push(Arc::new(StringArray::from_iter_values(
         rows.iter().map(|r| p.metrics[p.requirements[r.1].0].unit),
     )));
-    cols.push(Arc::new(Float64Array::from_iter(
-        rows.iter().map(|r| spec(r).min),
-    )));
-    cols.push(Arc::new(Float64Array::from_iter(
-        rows.iter().map(|r| spec(r).max),
-    )));
-    cols.push(Arc::new(UInt64Array::from_iter_values(
-        rows.iter().map(|r| got(r).variants),
-    )));
-    cols.push(Arc::new(UInt64Array::from_iter_values(
-        rows.iter().map(|r| got(r).met),
-    )));
-    cols.push(Arc::new(Float64Array::from_iter_values(
-        rows.iter().map(|r| got(r).fraction),
-    )));
-    cols.push(Arc::new(Float64Array::from_iter_values(
-        rows.iter().map(|r| got(r).low),
-    )));
-    cols.push(Arc::new(Float64Array::from_iter_values(
-        rows.iter().map(|r| got(r).high),
-    )));
+    for bound in [|s: &RequirementSpec| s.min, |s: &RequirementSpec| s.max] {
+        cols.push(Arc::new(Float64Array::from_iter(
+            rows.iter().map(|r| bound(spec(r))),
+        )));
+    }
+    for count in [|c: Compliance| c.variants, |c: Compliance| c.met] {
+        cols.push(Arc::new(UInt64Array::from_iter_values(
+            rows.iter().map(|r| count(got(r))),
+        )));
+    }
+    for share in [
+        |c: Compliance| c.fraction,
+        |c: Compliance| c.low,
+        |c: Compliance| c.high,
+    ] {
+        cols.push(Arc::new(Float64Array::from_iter_values(
+            rows.iter().map(|r| share(got(r))),
+        )));
+    }
     Ok(RecordBatch::try_new(schema, cols)?)
 }

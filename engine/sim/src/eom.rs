@@ -26,7 +26,7 @@
 
 use crate::frames;
 use crate::lanes::{pack_m3, pack_v3, F64x4, Real, M3, V3};
-use hpr_design::mass::point_inertia;
+use hpr_design::mass::{offsets_inertia, point_inertia};
 use nalgebra::{Matrix3, Vector3};
 
 /// Number of states of the 6-DOF phase: position of O (3, inertial, m), velocity of O
@@ -110,11 +110,7 @@ impl Nozzle {
         if offsets_m.is_empty() {
             return self;
         }
-        let mean = offsets_m
-            .iter()
-            .map(|o| point_inertia(&Vector3::new(0.0, o[0], o[1])))
-            .fold(Matrix3::zeros(), |s, j| s + j)
-            / offsets_m.len() as f64;
+        let mean = offsets_inertia(offsets_m) / offsets_m.len() as f64;
         self.s_noz += frames::tensor_station_to_body(&mean);
         self
     }

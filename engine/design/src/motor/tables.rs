@@ -27,7 +27,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::{Motor, MotorError};
-use crate::mass::{point_inertia, MassProps};
+use crate::mass::{offsets_inertia, MassProps};
 
 /// Overrides and dispersion applied when the tables are built. The default changes nothing.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -239,10 +239,7 @@ impl MotorTables {
     pub fn clustered(mut self, offsets_m: &[[f64; 2]]) -> MotorTables {
         let n = offsets_m.len().max(1);
         let k = n as f64;
-        let spread = offsets_m
-            .iter()
-            .map(|o| point_inertia(&Vector3::new(0.0, o[0], o[1])))
-            .fold(Matrix3::zeros(), |s, j| s + j);
+        let spread = offsets_inertia(offsets_m);
         for v in self
             .thrust_n
             .iter_mut()

@@ -157,6 +157,19 @@ pub struct InputSpec {
     pub dispersion: Option<Dispersion>,
 }
 
+impl InputSpec {
+    /// Where the file gives the input: `sweep.<key>` if it is swept, else
+    /// `dispersions.<key>` (the key an error about it names).
+    pub fn key_path(&self) -> String {
+        let section = if self.sweep.is_some() {
+            "sweep"
+        } else {
+            "dispersions"
+        };
+        format!("{section}.{}", self.key)
+    }
+}
+
 /// A validated scenario.
 #[derive(Debug, Clone)]
 pub struct Scenario {
@@ -712,13 +725,8 @@ impl Scenario {
                 .iter()
                 .find(|i| matches!(i.param, Param::WindSpeedMS | Param::WindFromDeg))
             {
-                let section = if i.sweep.is_some() {
-                    "sweep"
-                } else {
-                    "dispersions"
-                };
                 return Err(bad(
-                    &format!("{section}.{}", i.key),
+                    &i.key_path(),
                     "the wind is environment.wind_profile, whose rows give its speeds and directions: vary it with wind_scale (a factor on every speed) and wind_rotation_deg (a clockwise turn of every direction)".into(),
                 ));
             }

@@ -9,6 +9,7 @@ use crate::atmosphere::{Air, AirTable};
 use crate::cycloid::{self, CycloidState};
 use crate::eom::{self, MassLanes, MassState, Nozzle, NozzleLanes, N3, N6};
 use crate::frames;
+use crate::integrate::roots::brent_root_bracketed;
 use crate::lanes::{F64x4, Real, V3};
 use crate::massprops::{mass_state, MassModel, PropellantState};
 use crate::shifts::{MassShift, ShiftPlan};
@@ -102,6 +103,9 @@ pub struct BrakeModel {
     pub period_s: f64,
 }
 
+/// How closely the brakes' controller solves for their opening (a fraction of their travel).
+const OPENING_TOL: f64 = 1e-12;
+
 impl BrakeModel {
     /// The opening (0 closed, 1 fully open) the controller asks for, from the state it reads
     /// at a sample: the center of mass `height_m` above the site climbing at `climb_m_s`,
@@ -109,8 +113,9 @@ impl BrakeModel {
     /// drag coefficient `cd_rocket` (on `area_m2`). It predicts the apogee of a vertical coast
     /// against gravity and a drag `k v²` per unit mass, `k = ρ A (cd_rocket + u cd_open)/2m`,
     /// in air of the density it reads: `h + ln(1 + k v²/g)/(2k)`, and takes the opening `u`
-    /// that makes it the target (bisection to 2⁻⁴⁰), 0 when even closed the rocket falls
-    /// short of it or no longer climbs, 1 when even fully open it overshoots.
+    /// that makes it the target (Brent's method, the events' root finder, to 1e-12), 0 when
+    /// even closed the rocket falls short of it or no longer climbs, 1 when even fully open
+    /// it overshoots.
     #[allow(clippy::too_many_arguments)]
     pub fn opening(
         &self,
@@ -135,24 +140,17 @@ impl BrakeModel {
                 height_m + v2 / (2.0 * g_m_s2)
             }
         };
-        let target = self.target_apogee_m;
-        let overshoots = apogee(0.0) > target;
+        let miss = |u: f64| apogee(u) - self.target_apogee_m;
+        let (closed, open) = (miss(0.0), miss(1.0));
+        let overshoots = closed > 0.0;
         if !overshoots {
             return 0.0;
         }
-        if apogee(1.0) >= target {
+        if open >= 0.0 {
             return 1.0;
         }
-        let (mut lo, mut hi) = (0.0, 1.0);
-        for _ in 0..40 {
-            let mid = 0.5 * (lo + hi);
-            if apogee(mid) > target {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
+        // Bracketed (closed > 0 > open) and finite: Brent's method cannot fail here.
+        brent_root_bracketed(miss, 0.0, closed, 1.0, open, OPENING_TOL).unwrap_or(1.0)
     }
 }
 

@@ -5,7 +5,7 @@
 use crate::common::*;
 use hpr_design::Design;
 use hpr_sim::flight::model::BrakeModel;
-use hpr_sim::flight::{Environment, Metrics, Rail, Simulation};
+use hpr_sim::flight::Metrics;
 use serde_json::{json, Value};
 
 /// The closed form the controller predicts with: a vertical coast from `h` at `v` against
@@ -64,16 +64,10 @@ fn example(brakes: Option<Value>, drag: Option<Value>) -> Design {
 }
 
 fn fly(design: Design) -> Metrics {
-    Simulation::new(
-        design,
-        motor("Cesaroni_I175"),
-        Environment::default(),
-        Rail::default(),
-    )
-    .unwrap()
-    .run(&mut ())
-    .unwrap()
-    .metrics
+    still_air(design, motor("Cesaroni_I175"))
+        .run(&mut ())
+        .unwrap()
+        .metrics
 }
 
 #[test]
@@ -160,17 +154,14 @@ fn a_rocket_with_air_brakes_tops_out_at_its_target() {
 
 #[test]
 fn braked_rockets_fly_in_the_batch_bit_for_bit_as_their_single_flights() {
-    let sim = Simulation::new(
+    let sim = still_air(
         example(
             Some(json!({"cd": 1.2, "reference_area_m2": 0.003,
                         "target_apogee_m": 1000.0, "sampling_rate_hz": 20.0})),
             None,
         ),
         motor("Cesaroni_I175"),
-        Environment::default(),
-        Rail::default(),
-    )
-    .unwrap();
+    );
     let lanes = batch_flies_as_singles(sim);
     assert!(
         lanes
@@ -183,17 +174,14 @@ fn braked_rockets_fly_in_the_batch_bit_for_bit_as_their_single_flights() {
 #[test]
 fn a_flight_aims_its_brakes_at_another_target_and_one_without_brakes_is_refused() {
     let braked = || {
-        Simulation::new(
+        still_air(
             example(
                 Some(json!({"cd": 1.2, "reference_area_m2": 0.003,
                             "target_apogee_m": 1500.0, "sampling_rate_hz": 20.0})),
                 None,
             ),
             motor("Cesaroni_I175"),
-            Environment::default(),
-            Rail::default(),
         )
-        .unwrap()
     };
     let aimed = braked().with_air_brakes_target(1300.0).unwrap();
     assert_eq!(aimed.model().air_brakes.unwrap().target_apogee_m, 1300.0);
@@ -206,13 +194,7 @@ fn a_flight_aims_its_brakes_at_another_target_and_one_without_brakes_is_refused(
             .to_string();
         assert!(e.contains("target apogee must be positive"), "{e}");
     }
-    let plain = Simulation::new(
-        example(None, None),
-        motor("Cesaroni_I175"),
-        Environment::default(),
-        Rail::default(),
-    )
-    .unwrap();
+    let plain = still_air(example(None, None), motor("Cesaroni_I175"));
     let e = plain
         .with_air_brakes_target(1300.0)
         .unwrap_err()

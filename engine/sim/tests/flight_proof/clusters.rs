@@ -7,7 +7,6 @@ use crate::common::*;
 use hpr_design::mass::point_inertia;
 use hpr_design::motor::Motor;
 use hpr_design::Design;
-use hpr_sim::flight::{Environment, Rail, Simulation};
 use nalgebra::{Matrix3, Vector3};
 use serde_json::{json, Value};
 
@@ -55,26 +54,13 @@ fn doubled_i175() -> Motor {
     Motor::parse(out.as_bytes(), "Doubled_I175.eng").unwrap()
 }
 
-fn air() -> Environment {
-    Environment::default()
-}
-
 #[test]
 fn two_motors_in_one_place_fly_exactly_as_one_motor_of_twice_the_thrust_and_mass() {
-    let pair = Simulation::new(
+    let pair = still_air(
         example_with_cluster(Some(json!([[0.0, 0.0], [0.0, 0.0]]))),
         motor("Cesaroni_I175"),
-        air(),
-        Rail::default(),
-    )
-    .unwrap();
-    let one = Simulation::new(
-        example_with_cluster(None),
-        doubled_i175(),
-        air(),
-        Rail::default(),
-    )
-    .unwrap();
+    );
+    let one = still_air(example_with_cluster(None), doubled_i175());
     assert_eq!(pair.model().motor.motors(), 2);
     assert_eq!(
         pair.model().motor.total_impulse_ns(),
@@ -106,16 +92,10 @@ fn two_motors_in_one_place_fly_exactly_as_one_motor_of_twice_the_thrust_and_mass
         );
     }
     // And the pair really is twice one I175: higher and faster than the single motor.
-    let single = Simulation::new(
-        example_with_cluster(None),
-        motor("Cesaroni_I175"),
-        air(),
-        Rail::default(),
-    )
-    .unwrap()
-    .run(&mut ())
-    .unwrap()
-    .metrics;
+    let single = still_air(example_with_cluster(None), motor("Cesaroni_I175"))
+        .run(&mut ())
+        .unwrap()
+        .metrics;
     assert!(a.max_speed_m_s > 1.3 * single.max_speed_m_s);
 }
 
@@ -127,20 +107,14 @@ fn a_ring_of_motors_adds_each_motor_s_inertia_about_the_axis_and_spreads_the_noz
         let a = deg.to_radians();
         json!([d * a.cos(), d * a.sin()])
     };
-    let ring = Simulation::new(
+    let ring = still_air(
         example_with_cluster(Some(json!([at(90.0), at(210.0), at(330.0)]))),
         motor("Cesaroni_I175"),
-        air(),
-        Rail::default(),
-    )
-    .unwrap();
-    let stack = Simulation::new(
+    );
+    let stack = still_air(
         example_with_cluster(Some(json!([[0.0, 0.0], [0.0, 0.0], [0.0, 0.0]]))),
         motor("Cesaroni_I175"),
-        air(),
-        Rail::default(),
-    )
-    .unwrap();
+    );
     // The motors' mass at t: Σ m J(d_i) = m (3d² about the axis, 3d²/2 across it), body
     // axes (b3 the axis). The mount's three tubes moved too: they add their own share,
     // 40 g × the same mean.
@@ -186,12 +160,9 @@ fn a_ring_of_motors_flies_in_the_batch_bit_for_bit_as_its_single_flight() {
         let a = deg.to_radians();
         json!([d * a.cos(), d * a.sin()])
     };
-    let sim = Simulation::new(
+    let sim = still_air(
         example_with_cluster(Some(json!([at(90.0), at(210.0), at(330.0)]))),
         motor("Cesaroni_I175"),
-        air(),
-        Rail::default(),
-    )
-    .unwrap();
+    );
     batch_flies_as_singles(sim);
 }

@@ -34,6 +34,18 @@ pub fn motor(name: &str) -> Motor {
     hpr_design::motor::find(name).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
+/// `design` on `motor` in the standard atmosphere with no wind, off the default vertical
+/// 2 m rail.
+pub fn still_air(design: Design, motor: Motor) -> Simulation {
+    Simulation::new(
+        design,
+        motor,
+        Environment::default(),
+        hpr_sim::flight::Rail::default(),
+    )
+    .expect("set up")
+}
+
 /// No air, constant gravity `g`.
 pub fn vacuum(g: f64) -> Environment {
     Environment {
