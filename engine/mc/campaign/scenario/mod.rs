@@ -22,7 +22,7 @@ use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use raw::RawScenario;
 use rules::{
     canopy_shape, check_name, check_param, design_parachute, finite, inputs, integrator, noise,
-    one_line, sounding, ParachuteFromDesign,
+    one_line, requirements, sounding, ParachuteFromDesign,
 };
 use std::path::{Path, PathBuf};
 
@@ -665,28 +665,7 @@ impl Scenario {
             ));
         }
 
-        let mut requirements = vec![];
-        for (metric, r) in raw.requirements.take().unwrap_or_default() {
-            let key = format!("requirements.{metric}");
-            if r.min.is_none() && r.max.is_none() {
-                return Err(bad(&key, "needs min, max or both".into()));
-            }
-            for (field, v) in [("min", r.min), ("max", r.max)] {
-                if let Some(v) = v {
-                    finite(&bad, &format!("{key}.{field}"), v)?;
-                }
-            }
-            if let (Some(a), Some(b)) = (r.min, r.max) {
-                if a > b {
-                    return Err(bad(&key, format!("min ({a}) is above max ({b})")));
-                }
-            }
-            requirements.push(RequirementSpec {
-                metric,
-                min: r.min,
-                max: r.max,
-            });
-        }
+        let requirements = requirements(&bad, raw.requirements.take().unwrap_or_default())?;
 
         let mut scenario = Scenario {
             file: path.to_path_buf(),

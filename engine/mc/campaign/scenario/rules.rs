@@ -3,9 +3,9 @@
 
 use super::raw::{
     RawAirRow, RawDist, RawEnvironment, RawIntegrator, RawParachute, RawParachuteParams, RawParams,
-    RawShiftParams, RawWindRow,
+    RawRequirement, RawShiftParams, RawWindRow,
 };
-use super::{trigger_field, InputSpec, Scenario, ScenarioError};
+use super::{trigger_field, InputSpec, RequirementSpec, Scenario, ScenarioError};
 use crate::campaign::params::{Param, GLOBAL};
 use crate::campaign::sample::{Dispersion, Shape};
 use hpr_sim::sounding::Sounding;
@@ -182,6 +182,37 @@ pub(super) fn check_name(bad: &Bad, key: &str, name: &str) -> Result<(), Scenari
         ));
     }
     Ok(())
+}
+
+/// `[requirements]`: each metric's bounds (at least one, finite, `min ≤ max`). Whether the
+/// metric exists is judged with the design (`Prepared::new`).
+pub(super) fn requirements(
+    bad: &Bad,
+    raw: BTreeMap<String, RawRequirement>,
+) -> Result<Vec<RequirementSpec>, ScenarioError> {
+    let mut out = Vec::with_capacity(raw.len());
+    for (metric, r) in raw {
+        let key = format!("requirements.{metric}");
+        if r.min.is_none() && r.max.is_none() {
+            return Err(bad(&key, "needs min, max or both".into()));
+        }
+        for (field, v) in [("min", r.min), ("max", r.max)] {
+            if let Some(v) = v {
+                finite(bad, &format!("{key}.{field}"), v)?;
+            }
+        }
+        if let (Some(a), Some(b)) = (r.min, r.max) {
+            if a > b {
+                return Err(bad(&key, format!("min ({a}) is above max ({b})")));
+            }
+        }
+        out.push(RequirementSpec {
+            metric,
+            min: r.min,
+            max: r.max,
+        });
+    }
+    Ok(out)
 }
 
 pub(super) fn integrator(bad: &Bad, r: RawIntegrator) -> Result<(Integrator, f64), ScenarioError> {
