@@ -5,7 +5,7 @@ use crate::campaign::scenario::GravityModel;
 use crate::report;
 use anyhow::{anyhow, Context, Result};
 use hpr_design::motor::{self, Motor, MotorOptions};
-use hpr_design::Design;
+use hpr_design::{Design, MAX_SAMPLING_RATE_HZ};
 use hpr_sim::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
 use hpr_sim::trigger::Trigger;
 use std::path::PathBuf;
@@ -151,7 +151,7 @@ pub struct FlyArgs {
     /// The sampling rate of the flight computer that fires both parachutes, Hz: a trigger
     /// fires at its first sample at or after the moment its condition is met (default:
     /// watched continuously).
-    #[arg(long, value_parser = positive)]
+    #[arg(long, value_parser = sampling_rate)]
     pub sampling_rate_hz: Option<f64>,
     /// Fly an OpenRocket design (.ork) as its own saved simulation launched it (the one its
     /// import's note names: rod, wind, site, air) and print what OpenRocket found beside
@@ -170,6 +170,14 @@ fn positive(text: &str) -> std::result::Result<f64, String> {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         Ok(_) => Err("must be positive and finite".to_owned()),
         Err(_) => Err("not a number".to_owned()),
+    }
+}
+
+/// A flight computer's sampling rate, Hz: positive, at most [`MAX_SAMPLING_RATE_HZ`].
+fn sampling_rate(text: &str) -> std::result::Result<f64, String> {
+    match positive(text)? {
+        v if v <= MAX_SAMPLING_RATE_HZ => Ok(v),
+        _ => Err(format!("must be at most {MAX_SAMPLING_RATE_HZ} Hz")),
     }
 }
 

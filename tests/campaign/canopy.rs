@@ -63,14 +63,33 @@ fn a_scenario_s_sampling_rate_fires_its_parachute_as_the_simulator_set_up_by_han
 }
 
 #[test]
-fn a_sampling_rate_that_is_not_positive_is_refused_naming_its_parachute_s_key() {
-    let text = windy("wind_speed_m_s = 4.0", "drag_scale = [1.0]").replace(
-        "trigger = \"apogee\"\n",
-        "trigger = \"apogee\"\nsampling_rate_hz = 0.0\n",
+fn a_sampling_rate_not_positive_or_past_10_khz_is_refused_naming_its_parachute_s_key() {
+    // 1e300 Hz (a typo) would read a noisy barometer 1e300 times a second: refused, as a
+    // rate of 0 is.
+    for rate in ["0.0", "10000.5", "1e300"] {
+        let text = windy("wind_speed_m_s = 4.0", "drag_scale = [1.0]").replace(
+            "trigger = \"apogee\"\n",
+            &format!("trigger = \"apogee\"\nsampling_rate_hz = {rate}\n"),
+        );
+        let err = refusal(&text);
+        assert!(err.contains("parachutes[0].sampling_rate_hz"), "{err}");
+        assert!(err.contains("must be positive, at most 10000 Hz"), "{err}");
+    }
+}
+
+#[test]
+fn fly_refuses_a_sampling_rate_past_10_khz_naming_its_flag() {
+    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    let design = design.to_str().unwrap();
+    let (code, _, err) = hpr_mc(&["fly", design, "--sampling-rate-hz", "2e4"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--sampling-rate-hz") && err.contains("must be at most 10000 Hz"),
+        "{err}"
     );
-    let err = refusal(&text);
-    assert!(err.contains("parachutes[0].sampling_rate_hz"), "{err}");
-    assert!(err.contains("must be positive and finite"), "{err}");
+    let (code, _, err) = hpr_mc(&["fly", design, "--sampling-rate-hz", "10000"]);
+    assert_eq!(code, 0, "{err}");
 }
 
 /// [`windy`]'s main fired at 300 m on the way down by a 100 Hz altimeter, with `noise` (a

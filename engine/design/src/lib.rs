@@ -18,6 +18,8 @@ pub mod mass;
 pub mod motor;
 pub mod ork;
 
-pub use design::{AirBrakes, Component, ComponentKind, Deploy, DeployTrigger, Design};
+pub use design::{
+    AirBrakes, Component, ComponentKind, Deploy, DeployTrigger, Design, MAX_SAMPLING_RATE_HZ,
+};
 pub use error::DesignError;
 pub use mass::MassProps;

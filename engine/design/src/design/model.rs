@@ -40,6 +40,13 @@ pub struct Design {
     pub air_brakes: Option<AirBrakes>,
 }
 
+/// The fastest a flight computer may sample, Hz (a parachute trigger's barometer, an air
+/// brakes' controller): beyond any flight computer's barometer (1 kHz at most, RocketPy's
+/// examples 10 to 105 Hz). Each of a controller's samples ends an integrator step, and a
+/// noisy barometer is read at every sample, so a rate without a ceiling (1e300 Hz, a typo)
+/// would never finish a flight.
+pub const MAX_SAMPLING_RATE_HZ: f64 = 10_000.0;
+
 /// Air brakes and their controller (`air_brakes` in the design file). From burnout to
 /// apogee, at each of the controller's samples, the brakes open to the fraction of their
 /// travel that makes the predicted apogee the target, and hold it to the next sample; they

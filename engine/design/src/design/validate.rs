@@ -220,6 +220,24 @@ impl Builder<'_> {
         }
     }
 
+    /// A flight computer's sampling rate: `> 0` and at most [`MAX_SAMPLING_RATE_HZ`].
+    fn sampling_rate(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
+        let v = self.positive(at, field, v)?;
+        if v <= MAX_SAMPLING_RATE_HZ {
+            Ok(v)
+        } else {
+            Err(self.invalid(
+                at,
+                Some(field),
+                Rule::OutOfRange {
+                    got: v,
+                    min: 0.0,
+                    max: MAX_SAMPLING_RATE_HZ,
+                },
+            ))
+        }
+    }
+
     /// `>= 0` and finite.
     fn non_negative(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
         if v >= 0.0 && v.is_finite() {
@@ -514,7 +532,7 @@ impl Builder<'_> {
                         "air_brakes.target_apogee_m",
                         b.target_apogee_m,
                     )?,
-                    sampling_rate_hz: self.positive(
+                    sampling_rate_hz: self.sampling_rate(
                         &at,
                         "air_brakes.sampling_rate_hz",
                         b.sampling_rate_hz,

@@ -15,6 +15,7 @@ mod tests;
 
 use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
+use hpr_design::MAX_SAMPLING_RATE_HZ;
 use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
 use hpr_sim::wind::{Wind, WindError, WindRow};
@@ -615,10 +616,12 @@ impl Scenario {
                 trigger,
                 canopy: canopy_shape(&bad, &key, p)?,
                 sampling_rate_hz: match p.sampling_rate_hz {
-                    Some(r) if !(r.is_finite() && r > 0.0) => {
+                    Some(r) if !(r.is_finite() && r > 0.0 && r <= MAX_SAMPLING_RATE_HZ) => {
                         return Err(bad(
                             &key("sampling_rate_hz"),
-                            format!("must be positive and finite, in Hz (got {r})"),
+                            format!(
+                                "must be positive, at most {MAX_SAMPLING_RATE_HZ} Hz (got {r})"
+                            ),
                         ))
                     }
                     r => r,

@@ -526,6 +526,9 @@ pub(super) fn inputs(
     Ok(out)
 }
 
+/// How far from its center (in sigmas) a truncated normal's interval may begin.
+pub const TRUNCATION_REACH_SIGMA: f64 = 8.0;
+
 fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersion, ScenarioError> {
     let fields = [
         ("sigma", d.sigma),
@@ -623,8 +626,23 @@ fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersi
                 d.max.unwrap_or(f64::INFINITY),
             );
             ordered(min, max)?;
+            let bias = d.bias.unwrap_or(0.0);
+            // A truncation far in a tail keeps almost nothing of the normal (beyond 8 σ,
+            // less than 1e-15 of it): a mistake of units or of sign, and a draw no sampler
+            // can make in finite time once the bound is past 1e154 σ.
+            let (lo, hi) = ((min - bias) / s, (max - bias) / s);
+            for (f, z, side) in [("min", lo, "above"), ("max", -hi, "below")] {
+                if z > TRUNCATION_REACH_SIGMA {
+                    return Err(bad(
+                        &format!("{key}.{f}"),
+                        format!(
+                            "lies {z:.3e} sigma {side} the distribution's center (bias {bias}, sigma {s}): the interval must reach within {TRUNCATION_REACH_SIGMA} sigma of the center, or it holds almost none of the normal"
+                        ),
+                    ));
+                }
+            }
             Shape::TruncatedNormal {
-                bias: d.bias.unwrap_or(0.0),
+                bias,
                 sigma: s,
                 min,
                 max,

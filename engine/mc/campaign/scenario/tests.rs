@@ -155,6 +155,17 @@ fn bad_distribution_parameters_are_refused_with_the_rule() {
             "needs min, max or both",
         ),
         (
+            // A bound a typo's distance into the tail: no normal draw could reach it.
+            "wind_speed_m_s = { dist = \"truncated_normal\", sigma = 1.5, min = 1e300 }",
+            "dispersions.wind_speed_m_s.min",
+            "lies 6.667e299 sigma above the distribution's center",
+        ),
+        (
+            "wind_speed_m_s = { dist = \"truncated_normal\", sigma = 0.5, bias = 1.0, max = -3.01 }",
+            "dispersions.wind_speed_m_s.max",
+            "lies 8.020e0 sigma below the distribution's center",
+        ),
+        (
             "wind_speed_m_s = { dist = \"lognormal\", sigma = 0.1, relative = true }",
             "dispersions.wind_speed_m_s.relative",
             "always relative",
@@ -175,6 +186,30 @@ fn bad_distribution_parameters_are_refused_with_the_rule() {
         assert_eq!(k, key, "{line}");
         assert!(r.contains(rule), "{line}: {r}");
     }
+}
+
+#[test]
+fn a_truncation_reaching_exactly_eight_sigma_from_the_center_is_kept_and_drawn_inside_it() {
+    // min = bias + 8σ is the farthest a truncated normal may begin: accepted, and its
+    // draws (Robert's exponential proposal) all lie at least 7 m/s over the center, and
+    // their mean is the tail's exact one, φ(8)/Q(8) = 8.121368 σ over the bias.
+    let s = parse(
+        "[dispersions]\nwind_speed_m_s = { dist = \"truncated_normal\", sigma = 0.5, bias = 3.0, min = 7.0 }\n",
+    )
+    .unwrap();
+    let d = s.inputs[0].dispersion.unwrap();
+    let mut rng = <rand::rngs::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(7);
+    let n = 20_000;
+    let mut sum = 0.0;
+    for _ in 0..n {
+        let v = d.sample(4.0, &mut rng);
+        assert!(v >= 4.0 + 7.0, "{v}");
+        sum += v;
+    }
+    // Standard error of the mean: the tail's σ (0.1197 σ = 0.060 m/s) / √n = 4.2e-4 m/s.
+    let mean = sum / n as f64;
+    let want = 4.0 + 3.0 + 0.5 * 8.121_368;
+    assert!((mean - want).abs() < 2e-3, "{mean} against {want}");
 }
 
 #[test]

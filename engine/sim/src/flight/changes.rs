@@ -13,8 +13,8 @@ use crate::atmosphere::AirTable;
 use crate::flight::{model, Environment};
 use crate::shifts::{self, MassShift};
 use crate::trigger::Trigger;
-use hpr_design::mass;
 use hpr_design::motor::MotorOptions;
+use hpr_design::{mass, MAX_SAMPLING_RATE_HZ};
 use std::sync::Arc;
 
 /// A flight being changed: every setter checks its input as the matching `with_*` builder
@@ -60,9 +60,9 @@ impl Changes<'_> {
                 )));
             }
             if let Some(rate) = p.sampling_rate_hz {
-                if !(rate.is_finite() && rate > 0.0) {
+                if !(rate.is_finite() && rate > 0.0 && rate <= MAX_SAMPLING_RATE_HZ) {
                     return Err(SimError::Setup(format!(
-                        "{what}: field \"sampling_rate_hz\" must be positive and finite (got {rate})"
+                        "{what}: field \"sampling_rate_hz\" must be positive, at most {MAX_SAMPLING_RATE_HZ} Hz (got {rate})"
                     )));
                 }
             }

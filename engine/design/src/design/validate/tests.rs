@@ -962,6 +962,7 @@ fn air_brakes_take_their_area_from_the_rocket_unless_given_and_refuse_bad_number
         ("reference_area_m2", json!(0.0)),
         ("target_apogee_m", json!(-5.0)),
         ("sampling_rate_hz", json!(0.0)),
+        ("sampling_rate_hz", json!(1e300)),
     ] {
         let (_, loc, got) = invalid(with(|v| {
             v["air_brakes"] =
@@ -971,6 +972,31 @@ fn air_brakes_take_their_area_from_the_rocket_unless_given_and_refuse_bad_number
         assert_eq!(loc, Location::Design);
         assert_eq!(got.as_deref(), Some(format!("air_brakes.{field}").as_str()));
     }
+    // A controller sampling faster than any flight computer would end a step at every
+    // sample: 10 kHz is the most, and it is allowed.
+    let brakes_at = |rate: f64| {
+        with(|v| {
+            v["air_brakes"] =
+                json!({"cd": 1.1, "target_apogee_m": 1500.0, "sampling_rate_hz": rate});
+        })
+    };
+    assert_eq!(
+        brakes_at(10_000.0)
+            .unwrap()
+            .air_brakes
+            .unwrap()
+            .sampling_rate_hz,
+        10_000.0
+    );
+    let (rule, _, _) = invalid(brakes_at(10_001.0));
+    assert_eq!(
+        rule,
+        Rule::OutOfRange {
+            got: 10_001.0,
+            min: 0.0,
+            max: 10_000.0
+        }
+    );
     let e = with(|v| {
         v["air_brakes"] = json!({"cd": 1.1, "target_apogee_m": 1500.0, "sampling_rate": 20.0});
     })
