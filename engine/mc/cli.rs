@@ -42,7 +42,8 @@ pub struct InspectArgs {
 }
 
 /// The motor's masses in place of its file's (RocketPy's `SolidMotor` gives its own: the
-/// grains' mass and `dry_mass`), each motor's for a cluster.
+/// grains' mass and `dry_mass`), where they are and the casing's inertia, each motor's for a
+/// cluster.
 #[derive(clap::Args, Debug, Clone, Copy, Default)]
 pub struct MotorMasses {
     /// Propellant mass of the motor at ignition, kg (default: its file's).
@@ -51,6 +52,27 @@ pub struct MotorMasses {
     /// Casing (dry) mass of the motor, kg (default: its file's loaded less propellant mass).
     #[arg(long, value_parser = not_negative, allow_negative_numbers = true)]
     pub motor_dry_mass_kg: Option<f64>,
+    /// The casing's center of mass, m forward of the nozzle (RocketPy's
+    /// center_of_dry_mass_position; default: the motor's mid-length).
+    #[arg(long, value_parser = not_negative, allow_negative_numbers = true)]
+    pub motor_dry_center_from_nozzle_m: Option<f64>,
+    /// The propellant's center of mass, m forward of the nozzle (RocketPy's
+    /// grains_center_of_mass_position; default: the motor's mid-length).
+    #[arg(long, value_parser = not_negative, allow_negative_numbers = true)]
+    pub motor_propellant_center_from_nozzle_m: Option<f64>,
+    /// The casing's inertia about its center, AXIAL,TRANSVERSE kg·m² (RocketPy's dry_inertia
+    /// (I_11, I_22, I_33) is I_33,I_11; default: a thin shell's).
+    #[arg(long, value_name = "AXIAL,TRANSVERSE", value_parser = inertia_pair)]
+    pub motor_dry_inertia_kg_m2: Option<[f64; 2]>,
+}
+
+/// Two numbers, `a,b`, each finite and not negative.
+fn inertia_pair(text: &str) -> std::result::Result<[f64; 2], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    match parts.as_slice() {
+        [a, b] => Ok([not_negative(a)?, not_negative(b)?]),
+        _ => Err("give two numbers, AXIAL,TRANSVERSE".to_owned()),
+    }
 }
 
 impl MotorMasses {
@@ -58,6 +80,9 @@ impl MotorMasses {
         MotorOptions {
             propellant_mass_kg: self.propellant_mass_kg,
             dry_mass_kg: self.motor_dry_mass_kg,
+            dry_center_from_nozzle_m: self.motor_dry_center_from_nozzle_m,
+            propellant_center_from_nozzle_m: self.motor_propellant_center_from_nozzle_m,
+            dry_inertia_kg_m2: self.motor_dry_inertia_kg_m2,
             ..MotorOptions::default()
         }
     }
@@ -74,7 +99,8 @@ pub struct FlyArgs {
         "design", "motor", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
         "latitude_deg", "gravity", "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2",
         "main_height_m", "lag_s", "sampling_rate_hz", "temperature_k", "pressure_pa",
-        "sounding", "propellant_mass_kg", "motor_dry_mass_kg",
+        "sounding", "propellant_mass_kg", "motor_dry_mass_kg", "motor_dry_center_from_nozzle_m",
+        "motor_propellant_center_from_nozzle_m", "motor_dry_inertia_kg_m2",
     ])]
     pub scenario: Option<PathBuf>,
     /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary;

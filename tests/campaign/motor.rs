@@ -1,6 +1,6 @@
-//! A scenario's motor masses (`[motor] propellant_mass_kg`, `dry_mass_kg`) through a whole
-//! campaign, with the motor's impulse scattered too: each row is the flight `Simulation`
-//! flies with the same masses and impulse scale given by hand.
+//! A scenario's motor masses (`[motor] propellant_mass_kg`, `dry_mass_kg`, their centers and
+//! the casing's inertia) through a whole campaign, with the motor's impulse scattered too:
+//! each row is the flight `Simulation` flies with the same motor given by hand.
 
 use super::*;
 use hpr_design::motor::MotorOptions;
@@ -14,7 +14,9 @@ fn a_scenario_s_motor_masses_fly_as_the_simulator_given_them_by_hand() {
     );
     let massed = plain.replace(
         "name = \"Cesaroni_I175\"\n",
-        "name = \"Cesaroni_I175\"\npropellant_mass_kg = 0.25\ndry_mass_kg = 0.16\n",
+        "name = \"Cesaroni_I175\"\npropellant_mass_kg = 0.25\ndry_mass_kg = 0.16\n\
+         dry_center_from_nozzle_m = 0.09\npropellant_center_from_nozzle_m = 0.14\n\
+         dry_inertia_kg_m2 = [0.00007, 0.0012]\n",
     );
     assert_ne!(plain, massed);
     let names = ["drag_scale", "motor_impulse_ns", "apogee_m"];
@@ -27,10 +29,15 @@ fn a_scenario_s_motor_masses_fly_as_the_simulator_given_them_by_hand() {
     )
     .unwrap();
     for row in &rows {
-        let options = MotorOptions::default()
-            .with_propellant_mass_kg(0.25)
-            .with_dry_mass_kg(0.16)
-            .with_impulse_scale(row[1] / nominal_ns);
+        let options = MotorOptions {
+            dry_center_from_nozzle_m: Some(0.09),
+            propellant_center_from_nozzle_m: Some(0.14),
+            dry_inertia_kg_m2: Some([0.00007, 0.0012]),
+            ..MotorOptions::default()
+        }
+        .with_propellant_mass_kg(0.25)
+        .with_dry_mass_kg(0.16)
+        .with_impulse_scale(row[1] / nominal_ns);
         let by_hand = Simulation::with_motor_options(
             design.clone(),
             motor.clone(),
@@ -99,4 +106,35 @@ fn inspect_and_fly_take_the_motor_s_masses_and_refuse_a_negative_one() {
         err.contains("--propellant-mass-kg") && err.contains("must be 0 or more"),
         "{err}"
     );
+}
+
+#[test]
+fn inspect_moves_the_center_of_mass_by_the_casing_s_moment_when_the_casing_moves() {
+    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    let design = design.to_str().unwrap();
+    let liftoff = |extra: &[&str]| {
+        let (code, out, err) = hpr_mc(&[&["inspect", design, "--json"][..], extra].concat());
+        assert_eq!(code, 0, "{err}");
+        let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let l = &j["liftoff"];
+        (l["mass_kg"].as_f64().unwrap(), l["cg_m"].as_f64().unwrap())
+    };
+    let (mass, cg) = liftoff(&[]);
+    // The I175's 0.2086 kg casing from its middle (0.1225 m forward of the nozzle) to 0.05 m:
+    // 0.0725 m aft, the rocket's center of mass 0.2086 × 0.0725 / m aft with it.
+    let (moved_mass, moved_cg) = liftoff(&["--motor-dry-center-from-nozzle-m", "0.05"]);
+    assert_eq!(mass, moved_mass);
+    let want = 0.2086 * 0.0725 / mass;
+    assert!(
+        ((moved_cg - cg) - want).abs() < 1e-9,
+        "{} against {want}",
+        moved_cg - cg
+    );
+    let (code, _, err) = hpr_mc(&["inspect", design, "--motor-dry-inertia-kg-m2", "1,2,3"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("AXIAL,TRANSVERSE"), "{err}");
+    let (code, _, err) = hpr_mc(&["inspect", design, "--motor-dry-center-from-nozzle-m", "0.3"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("must lie within the motor"), "{err}");
 }

@@ -22,7 +22,7 @@ use super::scenario::{trigger_value, RequirementSpec, Scenario, ScenarioError};
 use super::variants::{Plan, PlanInput, Variant};
 use hpr_design::design::model::Design;
 use hpr_design::mass;
-use hpr_design::motor::{self, Motor};
+use hpr_design::motor::{self, Motor, MotorError, MotorTables};
 use hpr_sim::batch::{Batch, LaneResult};
 use hpr_sim::{SimError, SimOptions, Simulation, Trigger};
 use setup::{Fixed, Setup};
@@ -114,6 +114,16 @@ impl Prepared {
         let design =
             Design::load(&scenario.design_file).map_err(|e| bad("design.file", e.to_string()))?;
         let motor = motor::find(&scenario.motor).map_err(|e| bad("motor.name", e.to_string()))?;
+        // The motor's own numbers against the motor (a center within its length).
+        if let Err(e) = MotorTables::new(&motor, &scenario.motor_options) {
+            let key = match &e {
+                MotorError::InvalidOption { field, .. } => {
+                    format!("motor.{}", field.split(' ').next().unwrap_or(field))
+                }
+                _ => "motor.name".to_owned(),
+            };
+            return Err(bad(&key, e.to_string()));
+        }
 
         if let Some(i) = scenario
             .inputs

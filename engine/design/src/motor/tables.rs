@@ -10,10 +10,14 @@
 //!
 //! The mass model (simulators differ here; this is the one we use, see also the
 //! [module docs](super)): propellant `m_p(t) = m_p0 (1 − I(t)/I_total)`, so
-//! `ṁ = −m_p0 F(t)/I_total` and `m̈ = −m_p0 F′(t)/I_total` (piecewise constant). The casing is
-//! a thin cylindrical shell carrying the dry mass; the propellant a solid cylinder of the
-//! same length and diameter whose inertia is proportional to its mass; both centered at the
-//! motor's mid-length `x = motor_aft_m − length/2` in the station frame.
+//! `ṁ = −m_p0 F(t)/I_total` and `m̈ = −m_p0 F′(t)/I_total` (piecewise constant), as RocketPy's
+//! motors burn. The casing is a thin cylindrical shell carrying the dry mass; the propellant a
+//! solid cylinder of the same length and diameter whose inertia is proportional to its mass;
+//! both centered at the motor's mid-length `x = motor_aft_m − length/2` in the station frame,
+//! unless [`MotorOptions`] places them (RocketPy's `SolidMotor` `center_of_dry_mass_position`
+//! and `grains_center_of_mass_position`, measured forward of the nozzle) and gives the
+//! casing's own inertia (its `dry_inertia`). The motor's center of mass then moves as the
+//! propellant burns, which the flight's mass state follows as it follows the rocket's.
 //!
 //! Dispersion: with impulse scale `k_I` and time scale `k_t` the thrust is
 //! `F_s(t) = (k_I/k_t) F(t/k_t)`: the impulse scales by `k_I`, the burn time by `k_t`.
@@ -40,6 +44,15 @@ pub struct MotorOptions {
     pub impulse_scale: f64,
     /// Burn time multiplier `k_t` (> 0).
     pub time_scale: f64,
+    /// The casing's (dry mass's) center, m forward of the nozzle (the motor's aft end),
+    /// instead of its mid-length: RocketPy's `center_of_dry_mass_position`.
+    pub dry_center_from_nozzle_m: Option<f64>,
+    /// The propellant's center, m forward of the nozzle, instead of the mid-length:
+    /// RocketPy's `grains_center_of_mass_position`.
+    pub propellant_center_from_nozzle_m: Option<f64>,
+    /// The casing's inertia about its own center, `[axial, transverse]` kg·m², instead of a
+    /// thin shell's: RocketPy's `dry_inertia` `(I_11, I_22, I_33)` is `[I_33, I_11]`.
+    pub dry_inertia_kg_m2: Option<[f64; 2]>,
 }
 
 impl Default for MotorOptions {
@@ -49,6 +62,9 @@ impl Default for MotorOptions {
             dry_mass_kg: None,
             impulse_scale: 1.0,
             time_scale: 1.0,
+            dry_center_from_nozzle_m: None,
+            propellant_center_from_nozzle_m: None,
+            dry_inertia_kg_m2: None,
         }
     }
 }
@@ -95,15 +111,16 @@ pub struct MotorState {
     pub propellant_accel_kg_s2: f64,
 }
 
-/// How fast the motor's mass and inertia change. Its center of mass does not move (casing
-/// and propellant share the mid-length center), so there is no center rate.
+/// How fast the motor's mass and inertia change: the propellant's, about its own center,
+/// which does not move (the whole motor's center moves when the casing's is elsewhere; the
+/// flight's mass state composes the two).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MotorMassRates {
     /// dm/dt, kg/s.
     pub mass_rate_kg_s: f64,
     /// d²m/dt², kg/s².
     pub mass_accel_kg_s2: f64,
-    /// dI/dt of the inertia about the motor's center, station axes, kg·m²/s.
+    /// dI/dt of the propellant's inertia about its center, station axes, kg·m²/s.
     pub inertia_rate_kg_m2_s: Matrix3<f64>,
     /// d²I/dt², kg·m²/s².
     pub inertia_accel_kg_m2_s2: Matrix3<f64>,
@@ -124,10 +141,14 @@ pub struct MotorTables {
     dry_mass_kg: f64,
     length_m: f64,
     diameter_m: f64,
-    /// Casing inertia about the motor's center.
+    /// Casing inertia about its center.
     casing_inertia: Matrix3<f64>,
-    /// Propellant inertia about the motor's center per kilogram of propellant.
+    /// Propellant inertia about its center per kilogram of propellant.
     propellant_inertia_per_kg: Matrix3<f64>,
+    /// The casing's center, m forward of the motor's aft end.
+    casing_center_from_aft_m: f64,
+    /// The propellant's center, m forward of the motor's aft end.
+    propellant_center_from_aft_m: f64,
     /// Motors lit together (1, or a cluster's tubes).
     motors: usize,
 }
@@ -175,6 +196,41 @@ impl MotorTables {
         };
         let length_m = check("motor length_m", motor.length_m, true)?;
         let diameter_m = check("motor diameter_m", motor.diameter_m, true)?;
+        let within = |field: &'static str, value: Option<f64>| match value {
+            None => Ok(0.5 * length_m),
+            Some(x) if (0.0..=length_m).contains(&x) => Ok(x),
+            Some(x) => Err(MotorError::InvalidOption {
+                motor: motor.source.clone(),
+                field,
+                value: x,
+                rule: "must lie within the motor: from 0 (its nozzle) to its length forward",
+            }),
+        };
+        let casing_center_from_aft_m =
+            within("dry_center_from_nozzle_m", options.dry_center_from_nozzle_m)?;
+        let propellant_center_from_aft_m = within(
+            "propellant_center_from_nozzle_m",
+            options.propellant_center_from_nozzle_m,
+        )?;
+        let dry_inertia = match options.dry_inertia_kg_m2 {
+            None => None,
+            Some([axial, transverse]) => {
+                check("dry_inertia_kg_m2 (axial)", axial, false)?;
+                check("dry_inertia_kg_m2 (transverse)", transverse, false)?;
+                // A body round its axis has I_axial = ∫(y² + z²) dm ≤ 2 I_transverse.
+                if axial > 2.0 * transverse {
+                    return Err(MotorError::InvalidOption {
+                        motor: motor.source.clone(),
+                        field: "dry_inertia_kg_m2 (axial)",
+                        value: axial,
+                        rule: "must be at most twice the transverse inertia (no body round its axis has more)",
+                    });
+                }
+                Some(Matrix3::from_diagonal(&Vector3::new(
+                    axial, transverse, transverse,
+                )))
+            }
+        };
 
         let times_s: Vec<f64> = motor.times_s().iter().map(|t| t * k_t).collect();
         let thrust_n: Vec<f64> = motor.thrust_n().iter().map(|f| f * (k_i / k_t)).collect();
@@ -205,11 +261,13 @@ impl MotorTables {
         let r2 = 0.25 * diameter_m * diameter_m;
         let l2 = length_m * length_m;
         // Thin shell: axial m r², transverse m (r²/2 + L²/12).
-        let casing_inertia = Matrix3::from_diagonal(&Vector3::new(
-            r2,
-            0.5 * r2 + l2 / 12.0,
-            0.5 * r2 + l2 / 12.0,
-        )) * dry_mass_kg;
+        let casing_inertia = dry_inertia.unwrap_or_else(|| {
+            Matrix3::from_diagonal(&Vector3::new(
+                r2,
+                0.5 * r2 + l2 / 12.0,
+                0.5 * r2 + l2 / 12.0,
+            )) * dry_mass_kg
+        });
         // Solid cylinder: axial m r²/2, transverse m (3 r² + L²)/12.
         let transverse = (3.0 * r2 + l2) / 12.0;
         let propellant_inertia_per_kg =
@@ -227,6 +285,8 @@ impl MotorTables {
             diameter_m,
             casing_inertia,
             propellant_inertia_per_kg,
+            casing_center_from_aft_m,
+            propellant_center_from_aft_m,
             motors: 1,
         })
     }
@@ -335,10 +395,42 @@ impl MotorTables {
     /// Mass properties for a state already evaluated (saves the second look-up).
     #[inline]
     pub fn mass_props_of(&self, state: &MotorState, motor_aft_m: f64) -> MassProps {
+        if self.casing_center_from_aft_m == self.propellant_center_from_aft_m {
+            // One center: the sum needs no parallel axes.
+            return MassProps {
+                mass_kg: self.dry_mass_kg + state.propellant_kg,
+                cg_m: Vector3::new(motor_aft_m - self.casing_center_from_aft_m, 0.0, 0.0),
+                inertia_cg: self.casing_inertia
+                    + self.propellant_inertia_per_kg * state.propellant_kg,
+            };
+        }
+        if state.propellant_kg == 0.0 {
+            return self.casing_props(motor_aft_m);
+        }
+        let propellant = MassProps {
+            mass_kg: state.propellant_kg,
+            inertia_cg: self.propellant_inertia_per_kg * state.propellant_kg,
+            ..self.propellant_props(motor_aft_m)
+        };
+        self.casing_props(motor_aft_m).combine(&propellant)
+    }
+
+    /// The casing (the dry mass) where it is, station frame.
+    pub fn casing_props(&self, motor_aft_m: f64) -> MassProps {
         MassProps {
-            mass_kg: self.dry_mass_kg + state.propellant_kg,
-            cg_m: Vector3::new(self.center_m(motor_aft_m), 0.0, 0.0),
-            inertia_cg: self.casing_inertia + self.propellant_inertia_per_kg * state.propellant_kg,
+            mass_kg: self.dry_mass_kg,
+            cg_m: Vector3::new(motor_aft_m - self.casing_center_from_aft_m, 0.0, 0.0),
+            inertia_cg: self.casing_inertia,
+        }
+    }
+
+    /// The whole propellant load where it is, station frame (its inertia scales with the
+    /// propellant left).
+    pub fn propellant_props(&self, motor_aft_m: f64) -> MassProps {
+        MassProps {
+            mass_kg: self.propellant_mass_kg,
+            cg_m: Vector3::new(motor_aft_m - self.propellant_center_from_aft_m, 0.0, 0.0),
+            inertia_cg: self.propellant_inertia_per_kg * self.propellant_mass_kg,
         }
     }
 
@@ -352,12 +444,6 @@ impl MotorTables {
             inertia_rate_kg_m2_s: self.propellant_inertia_per_kg * state.propellant_rate_kg_s,
             inertia_accel_kg_m2_s2: self.propellant_inertia_per_kg * state.propellant_accel_kg_s2,
         }
-    }
-
-    /// Station of the motor's center (mid-length) for an aft end at `motor_aft_m`.
-    #[inline]
-    pub fn center_m(&self, motor_aft_m: f64) -> f64 {
-        motor_aft_m - 0.5 * self.length_m
     }
 
     /// Total impulse after scaling, N·s.

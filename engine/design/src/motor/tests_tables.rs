@@ -296,6 +296,85 @@ fn the_motor_at_burnout_is_its_casing_alone() {
 }
 
 #[test]
+fn a_casing_and_propellant_placed_as_rocketpy_s_solid_motor_places_them_sum_by_parallel_axes() {
+    // The triangle (400 mm, 50 mm) with its casing 0.3 m and its propellant 0.1 m forward of
+    // the nozzle, the casing's inertia (0.001 axial, 0.02 transverse), aft end at 1.0 m.
+    let t = MotorTables::new(
+        &triangle(),
+        &MotorOptions {
+            dry_center_from_nozzle_m: Some(0.3),
+            propellant_center_from_nozzle_m: Some(0.1),
+            dry_inertia_kg_m2: Some([0.001, 0.02]),
+            ..MotorOptions::default()
+        },
+    )
+    .unwrap();
+    // At 1 s half the impulse is out: 0.15 kg of propellant left (0.3 kg full, dry 0.2 kg).
+    let p = t.mass_props(1.0, 1.0);
+    let (dry, prop) = (0.2, 0.15);
+    let (x_dry, x_prop) = (0.7, 0.9);
+    let x = (dry * x_dry + prop * x_prop) / (dry + prop);
+    assert!(close(p.mass_kg, dry + prop, 1e-15));
+    assert!(close(p.cg_m.x, x, 1e-15), "{} against {x}", p.cg_m.x);
+    // Propellant: a solid cylinder of the motor's size, m (3r² + L²)/12 across, m r²/2 along.
+    let (r2, l2) = (0.025f64 * 0.025, 0.4f64 * 0.4);
+    let transverse = 0.02
+        + dry * (x_dry - x) * (x_dry - x)
+        + prop * (3.0 * r2 + l2) / 12.0
+        + prop * (x_prop - x) * (x_prop - x);
+    assert!(close(p.transverse_inertia(), transverse, 1e-14));
+    assert!(close(p.axial_inertia(), 0.001 + prop * r2 / 2.0, 1e-14));
+    // Burnt out: the casing alone, where it was put, with its own inertia.
+    let end = t.mass_props(2.0, 1.0);
+    assert_eq!((end.mass_kg, end.cg_m.x), (0.2, 0.7));
+    assert_eq!(
+        (end.axial_inertia(), end.transverse_inertia()),
+        (0.001, 0.02)
+    );
+    assert_eq!(t.casing_props(1.0).cg_m.x, 0.7);
+    assert_eq!(t.propellant_props(1.0).cg_m.x, 0.9);
+}
+
+#[test]
+fn a_center_outside_the_motor_or_an_impossible_casing_inertia_is_refused_naming_it() {
+    let refused = |o: MotorOptions| match MotorTables::new(&triangle(), &o) {
+        Err(MotorError::InvalidOption { field, rule, .. }) => (field, rule),
+        other => panic!("accepted: {other:?}"),
+    };
+    let (field, rule) = refused(MotorOptions {
+        dry_center_from_nozzle_m: Some(0.41),
+        ..MotorOptions::default()
+    });
+    assert_eq!(field, "dry_center_from_nozzle_m");
+    assert!(rule.contains("within the motor"), "{rule}");
+    let (field, _) = refused(MotorOptions {
+        propellant_center_from_nozzle_m: Some(-0.01),
+        ..MotorOptions::default()
+    });
+    assert_eq!(field, "propellant_center_from_nozzle_m");
+    // Axial more than twice the transverse: no body round its axis (a thin ring has twice).
+    let (field, rule) = refused(MotorOptions {
+        dry_inertia_kg_m2: Some([0.05, 0.02]),
+        ..MotorOptions::default()
+    });
+    assert_eq!(field, "dry_inertia_kg_m2 (axial)");
+    assert!(rule.contains("at most twice"), "{rule}");
+    let (field, _) = refused(MotorOptions {
+        dry_inertia_kg_m2: Some([0.001, f64::NAN]),
+        ..MotorOptions::default()
+    });
+    assert_eq!(field, "dry_inertia_kg_m2 (transverse)");
+    // The ends of the motor and a ring's inertia are allowed.
+    let ends = MotorOptions {
+        dry_center_from_nozzle_m: Some(0.0),
+        propellant_center_from_nozzle_m: Some(0.4),
+        dry_inertia_kg_m2: Some([0.04, 0.02]),
+        ..MotorOptions::default()
+    };
+    MotorTables::new(&triangle(), &ends).expect("allowed");
+}
+
+#[test]
 fn mass_overrides_replace_the_file_masses() {
     let m = triangle();
     let t = MotorTables::new(

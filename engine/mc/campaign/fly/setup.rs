@@ -242,13 +242,10 @@ impl Fixed<'_> {
     /// The motor's impulse and time scales: the setup's impulse and burn time over the
     /// nominal thrust curve's.
     pub(super) fn motor_scales(&self, s: &Setup) -> MotorOptions {
-        MotorOptions {
-            propellant_mass_kg: self.scenario.motor_propellant_mass_kg,
-            dry_mass_kg: self.scenario.motor_dry_mass_kg,
-            ..MotorOptions::default()
-        }
-        .with_impulse_scale(s.impulse_ns / self.nominal.impulse_ns)
-        .with_time_scale(s.burn_time_s / self.nominal.burn_time_s)
+        self.scenario
+            .motor_options
+            .with_impulse_scale(s.impulse_ns / self.nominal.impulse_ns)
+            .with_time_scale(s.burn_time_s / self.nominal.burn_time_s)
     }
 
     /// The batch engine's columns of `rows`: one column per swept or dispersed input (the

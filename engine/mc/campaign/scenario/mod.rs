@@ -15,6 +15,7 @@ mod tests;
 
 use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
+use hpr_design::motor::MotorOptions;
 use hpr_design::MAX_SAMPLING_RATE_HZ;
 use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
@@ -192,10 +193,11 @@ pub struct Scenario {
     pub ballast: Option<String>,
     /// A motor file (resolved against the scenario's directory) or a bundled motor's name.
     pub motor: String,
-    /// The motor's propellant and casing (dry) masses, kg, in place of its file's
-    /// (`motor.propellant_mass_kg`, `motor.dry_mass_kg`; a cluster's are each motor's).
-    pub motor_propellant_mass_kg: Option<f64>,
-    pub motor_dry_mass_kg: Option<f64>,
+    /// The motor's own masses, their centers and the casing's inertia in place of the
+    /// defaults (`motor.propellant_mass_kg`, `dry_mass_kg`, `dry_center_from_nozzle_m`,
+    /// `propellant_center_from_nozzle_m`, `dry_inertia_kg_m2`; a cluster's are each motor's);
+    /// its scales are 1 (the dispersions set them flight by flight).
+    pub motor_options: MotorOptions,
     pub environment: EnvironmentSpec,
     pub rail: RailSpec,
     pub parachutes: Vec<ParachuteSpec>,
@@ -385,9 +387,20 @@ impl Scenario {
         } else {
             raw.motor.name.clone()
         };
+        let inertia = raw.motor.dry_inertia_kg_m2.unwrap_or_default();
         for (key, v) in [
             ("motor.propellant_mass_kg", raw.motor.propellant_mass_kg),
             ("motor.dry_mass_kg", raw.motor.dry_mass_kg),
+            (
+                "motor.dry_center_from_nozzle_m",
+                raw.motor.dry_center_from_nozzle_m,
+            ),
+            (
+                "motor.propellant_center_from_nozzle_m",
+                raw.motor.propellant_center_from_nozzle_m,
+            ),
+            ("motor.dry_inertia_kg_m2", Some(inertia[0])),
+            ("motor.dry_inertia_kg_m2", Some(inertia[1])),
         ] {
             if let Some(v) = v {
                 if !(v.is_finite() && v >= 0.0) {
@@ -687,8 +700,14 @@ impl Scenario {
             design_file,
             ballast: raw.design.ballast.take(),
             motor,
-            motor_propellant_mass_kg: raw.motor.propellant_mass_kg,
-            motor_dry_mass_kg: raw.motor.dry_mass_kg,
+            motor_options: MotorOptions {
+                propellant_mass_kg: raw.motor.propellant_mass_kg,
+                dry_mass_kg: raw.motor.dry_mass_kg,
+                dry_center_from_nozzle_m: raw.motor.dry_center_from_nozzle_m,
+                propellant_center_from_nozzle_m: raw.motor.propellant_center_from_nozzle_m,
+                dry_inertia_kg_m2: raw.motor.dry_inertia_kg_m2,
+                ..MotorOptions::default()
+            },
             environment,
             rail,
             parachutes,

@@ -52,6 +52,9 @@ pub(super) struct RawMotor {
     pub(super) name: String,
     pub(super) propellant_mass_kg: Option<f64>,
     pub(super) dry_mass_kg: Option<f64>,
+    pub(super) dry_center_from_nozzle_m: Option<f64>,
+    pub(super) propellant_center_from_nozzle_m: Option<f64>,
+    pub(super) dry_inertia_kg_m2: Option<[f64; 2]>,
 }
 
 #[derive(Deserialize, Default)]

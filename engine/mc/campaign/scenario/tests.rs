@@ -794,13 +794,16 @@ fn a_motor_s_masses_are_read_and_a_negative_or_non_finite_one_refused_by_key() {
     )
     .unwrap();
     assert_eq!(
-        (s.motor_propellant_mass_kg, s.motor_dry_mass_kg),
+        (
+            s.motor_options.propellant_mass_kg,
+            s.motor_options.dry_mass_kg
+        ),
         (Some(2.95591), Some(1.815))
     );
     let plain = Scenario::parse(BASE, &path()).unwrap();
     assert_eq!(
-        (plain.motor_propellant_mass_kg, plain.motor_dry_mass_kg),
-        (None, None)
+        plain.motor_options,
+        hpr_design::motor::MotorOptions::default()
     );
     for (line, key) in [
         ("dry_mass_kg = -0.1", "motor.dry_mass_kg"),
@@ -812,5 +815,48 @@ fn a_motor_s_masses_are_read_and_a_negative_or_non_finite_one_refused_by_key() {
             e.to_string().contains("must be finite and not negative"),
             "{e}"
         );
+    }
+}
+
+#[test]
+fn a_motor_s_centers_and_casing_inertia_are_read_and_refused_by_key_against_the_motor() {
+    let with = |lines: &str| BASE.replace("[motor]\n", &format!("[motor]\n{lines}\n"));
+    let s = Scenario::parse(
+        &with(
+            "dry_center_from_nozzle_m = 0.1\npropellant_center_from_nozzle_m = 0.15\n\
+             dry_inertia_kg_m2 = [0.0001, 0.002]",
+        ),
+        &path(),
+    )
+    .unwrap();
+    let o = s.motor_options;
+    assert_eq!(
+        (
+            o.dry_center_from_nozzle_m,
+            o.propellant_center_from_nozzle_m,
+            o.dry_inertia_kg_m2
+        ),
+        (Some(0.1), Some(0.15), Some([0.0001, 0.002]))
+    );
+    Prepared::new(s).expect("within the I175's 245 mm");
+    let e = Scenario::parse(&with("dry_center_from_nozzle_m = -0.1"), &path()).unwrap_err();
+    assert_eq!(e.key(), "motor.dry_center_from_nozzle_m");
+    // Against the motor once it is known: a center past its 245 mm, an axial inertia more
+    // than twice the transverse.
+    for (line, key, rule) in [
+        (
+            "propellant_center_from_nozzle_m = 0.3",
+            "motor.propellant_center_from_nozzle_m",
+            "must lie within the motor",
+        ),
+        (
+            "dry_inertia_kg_m2 = [0.01, 0.002]",
+            "motor.dry_inertia_kg_m2",
+            "at most twice the transverse",
+        ),
+    ] {
+        let e = Prepared::new(Scenario::parse(&with(line), &path()).unwrap()).unwrap_err();
+        assert_eq!(e.key(), key, "{line}");
+        assert!(e.to_string().contains(rule), "{line}: {e}");
     }
 }

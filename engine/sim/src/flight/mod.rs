@@ -462,13 +462,8 @@ pub fn build_model(
         .map_err(|e| SimError::MotorDoesNotFit(e.to_string()))?;
     let motor_tables = MotorTables::new(motor, motor_options)?.clustered(design.motor_offsets_m());
     let burnout = motor_tables.burn_time_s();
-    let full = motor_tables.mass_props(0.0, mount.motor_aft_m);
-    let casing = motor_tables.mass_props(burnout, mount.motor_aft_m);
-    let propellant = MassProps {
-        mass_kg: full.mass_kg - casing.mass_kg,
-        cg_m: full.cg_m,
-        inertia_cg: full.inertia_cg - casing.inertia_cg,
-    };
+    let casing = motor_tables.casing_props(mount.motor_aft_m);
+    let propellant = motor_tables.propellant_props(mount.motor_aft_m);
     // A part whose mass changes (a dispersion of the ballast, say) keeps its shape, so its
     // mass properties scale; the structure gains the difference. Mass properties are linear
     // in the mass distribution, so adding the scaled difference (negative for a lighter part)

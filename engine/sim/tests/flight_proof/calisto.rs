@@ -3,8 +3,10 @@
 //!
 //! All five figures the issue names (apogee above ground, its time, the rail exit time, the
 //! maximum speed and Mach) must be within 1 % of RocketPy's. Measured (release build, default
-//! integrator): apogee 3306.99 m (+0.042 %), its time 25.8848 s (−0.000 %), rail exit 0.36324 s
-//! (−0.001 %), max speed 285.90 m/s (−0.020 %), max Mach 0.8589 (−0.148 %). (Before the
+//! integrator): apogee 3307.03 m (+0.043 %), its time 25.8859 s (+0.004 %), rail exit 0.36324 s
+//! (−0.001 %), max speed 285.89 m/s (−0.022 %), max Mach 0.8589 (−0.149 %). (With the casing
+//! and the propellant at the motor's mid-length, before the motor took RocketPy's centers:
+//! 3306.99 m, 25.8848 s, 285.90 m/s. Before the
 //! drag read the airframe's speed through the air rather than the center of mass's: 3306.90
 //! m, 25.8845 s, 285.89 m/s. Before the
 //! nozzle's gyration tensor was carried to the nose tip, see
@@ -23,13 +25,14 @@
 //!   with its free-air gradient (9.79133 m/s² at the pad, 9.78115 at apogee; hpr's
 //!   `Gravity::somigliana` is RocketPy's formula) and the Coriolis acceleration of the site's
 //!   latitude. A constant 9.79133 instead lowers the apogee by 1.33 m and its time by 15 ms.
-//! * **Motor mass model.** hpr centers the casing (a thin shell, 1.815 kg) and the propellant
-//!   (a solid cylinder, 2.956 kg) at the motor's mid-length, 2.1545 m; RocketPy has the dry
-//!   mass at 2.216 m with inertia (0.125, 0.125, 0.002) kg·m² and the grains at 2.136 m with
-//!   BATES-grain inertia. So hpr's loaded CG is 2.9 mm forward (1.4072 vs 1.4101 m), its
-//!   static margin at rail exit 2.159 vs 2.139 cal (+0.9 %), its transverse inertia −0.8 %
-//!   loaded and −2.9 % burnt out (8.003 vs 8.244 kg·m²). Putting the casing where RocketPy has
-//!   it, with its inertia (the variant), moves the apogee by +0.06 m.
+//! * **Motor mass model.** hpr is given the SolidMotor's centers, forward of the nozzle (the
+//!   casing at 0.317 m, 2.216 m aft of the tip, with its inertia (0.125, 0.125, 0.002) kg·m²;
+//!   the grains at 0.397 m, 2.136 m): the masses, centers of mass, burnt-out inertia and the
+//!   margin at t = 0 are RocketPy's (asserted below). hpr's propellant is a solid cylinder of
+//!   the motor's size, RocketPy's five BATES grains burning from the bore: loaded, hpr's
+//!   transverse inertia is 0.44 % over (10.227 vs 10.182 kg·m²). (With hpr's defaults, both
+//!   at the mid-length and the casing a thin shell, the loaded CG was 2.9 mm forward, the
+//!   margin at rail exit 2.159 against 2.139 cal and the apogee 0.04 m lower.)
 //! * **Which point the speeds are of.** hpr's speeds are the center of mass's, which drifts
 //!   forward through the airframe at r′ while the propellant burns: at the rail exit
 //!   25.834 m/s, the airframe's 25.797 m/s against RocketPy's 25.799 (its center of dry mass
@@ -129,11 +132,22 @@ fn calisto_sim_in(
         .expect("set up")
 }
 
-/// RocketPy's propellant (grain) mass and dry mass of the M1670.
+/// RocketPy's M1670: its propellant (grain) mass, its dry mass, their centers (forward of
+/// the nozzle) and the casing's inertia `dry_inertia` (I_11, I_22, I_33) = (0.125, 0.125,
+/// 0.002) kg·m².
 pub(crate) fn rocketpy_motor(r: &Value) -> MotorOptions {
-    MotorOptions::default()
-        .with_propellant_mass_kg(num(r, "/outputs/motor_propellant_initial_mass_kg"))
-        .with_dry_mass_kg(num(r, "/inputs/motor/dry_mass_kg"))
+    let dry_inertia = |i: usize| num(r, &format!("/inputs/motor/dry_inertia_kg_m2/{i}"));
+    MotorOptions {
+        dry_center_from_nozzle_m: Some(num(r, "/inputs/motor/center_of_dry_mass_position_m")),
+        propellant_center_from_nozzle_m: Some(num(
+            r,
+            "/inputs/motor/grains_center_of_mass_position_m",
+        )),
+        dry_inertia_kg_m2: Some([dry_inertia(2), dry_inertia(0)]),
+        ..MotorOptions::default()
+    }
+    .with_propellant_mass_kg(num(r, "/outputs/motor_propellant_initial_mass_kg"))
+    .with_dry_mass_kg(num(r, "/inputs/motor/dry_mass_kg"))
 }
 
 struct Figures {
@@ -200,6 +214,62 @@ fn calisto_flies_within_one_percent_of_rocketpy() {
         f.metrics.rail_exit_speed_m_s.unwrap(),
         num(&r, "/outputs/rail_exit_speed_m_s"),
     );
+
+    // With the M1670's casing and grains where RocketPy's SolidMotor puts them and its dry
+    // inertia, the rocket is RocketPy's: the masses and centers of mass to rounding (1e-9),
+    // the burnt-out inertia to 1e-9, the margin at t = 0 within 0.001 cal (the CPs agree to
+    // 1e-4 m, 6e-5 m seen). Loaded, the transverse inertia is 0.44 % over RocketPy's (its
+    // BATES grains against hpr's solid cylinder of propellant): within 0.5 %.
+    let rp = |p: &str| num(&r, p);
+    for (what, got, want, tol) in [
+        (
+            "mass at t = 0",
+            m0.mass_kg,
+            rp("/outputs/mass_t0/total_mass_kg"),
+            1e-9,
+        ),
+        (
+            "CG at t = 0",
+            m0.cg_m.x,
+            rp("/outputs/mass_t0/center_of_mass_aft_of_nose_m"),
+            1e-9,
+        ),
+        (
+            "burnt-out mass",
+            burnt.mass_kg,
+            rp("/outputs/dry_mass_kg"),
+            1e-6,
+        ),
+        (
+            "burnt-out CG",
+            x_dry,
+            rp("/outputs/center_of_dry_mass_aft_of_nose_m"),
+            1e-9,
+        ),
+        (
+            "burnt-out I",
+            burnt.transverse_inertia(),
+            rp("/outputs/dry_I_11_about_center_of_dry_mass_kg_m2"),
+            1e-9 * 8.24,
+        ),
+        (
+            "margin at t = 0",
+            f.metrics.static_margin_liftoff_cal.unwrap(),
+            rp("/outputs/static_margin_t0_cal"),
+            1e-3,
+        ),
+        (
+            "loaded I",
+            m0.transverse_inertia(),
+            rp("/outputs/mass_t0/I_11_about_center_of_mass_kg_m2"),
+            0.005 * 10.18,
+        ),
+    ] {
+        assert!(
+            (got - want).abs() <= tol,
+            "{what}: {got} against RocketPy's {want}"
+        );
+    }
 
     // The airframe's speed at the rail exit (RocketPy's state is a point of the airframe, the
     // center of dry mass; hpr's samples are the center of mass, which drifts forward through
@@ -282,48 +352,12 @@ fn calisto_flies_within_one_percent_of_rocketpy() {
         cg.apogee - got.apogee,
         cg.apogee_time - got.apogee_time
     );
-    let motor_cg = rocketpy_dry_motor_variant(&r, &design);
-    let mc = figures(&motor_cg.run(&mut ()).unwrap());
-    eprintln!(
-        "Calisto variant, motor casing at RocketPy's dry CG 2.216 m with its inertia (0.125, \
-         0.002): apogee {:+.2} m, apogee time {:+.4} s, rail exit {:+.5} s, max speed {:+.3} m/s",
-        mc.apogee - got.apogee,
-        mc.apogee_time - got.apogee_time,
-        mc.rail_exit_time - got.rail_exit_time,
-        mc.max_speed - got.max_speed
-    );
 
     assert!(
         worst <= 0.01,
         "a figure is {:.3} % from RocketPy's",
         100.0 * worst
     );
-}
-
-/// The Calisto with the motor's casing where RocketPy has it: the motor's dry mass set to 0
-/// and the casing added to the design as a mass component centered at 2.216 m with
-/// RocketPy's dry inertia (0.125, 0.125, 0.002) kg·m².
-fn rocketpy_dry_motor_variant(r: &Value, design: &Design) -> Simulation {
-    let path = repo("validation/designs/calisto.json");
-    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    let children = v
-        .pointer_mut("/stages/0/components/1/children")
-        .unwrap()
-        .as_array_mut()
-        .unwrap();
-    let x_dry = num(r, "/inputs/motor_aft_of_nose_m/center_of_dry_mass");
-    let length = 0.2;
-    children.push(serde_json::json!({
-        "id": "casing", "type": "mass_component",
-        "mass_kg": num(r, "/inputs/motor/dry_mass_kg"),
-        "length_m": length, "radius_m": 0.0375,
-        "inertia_kg_m2": [0.002, 0.125],
-        "position": { "from": "nose_tip", "offset_m": x_dry - length / 2.0 }
-    }));
-    let d = Design::from_json_str(&v.to_string(), Some(&path)).expect("valid");
-    assert_eq!(d.components.len(), design.components.len() + 1);
-    let options = rocketpy_motor(r).with_dry_mass_kg(0.0);
-    calisto_sim(d, options, site_gravity(r))
 }
 
 // ------------------------------------------------------------------------------------------
