@@ -22,6 +22,7 @@
 use crate::cycloid::CycloidState;
 use crate::eom::MassState;
 use hpr_design::mass::{point_inertia, MassProps};
+use hpr_design::motor::Grains;
 use nalgebra::{Matrix3, Vector3};
 
 use crate::frames;
@@ -43,8 +44,12 @@ pub struct MassModel {
     pub fixed_inertia_o_b: Matrix3<f64>,
     /// The propellant's center (fixed), body axes, m.
     pub propellant_cg_b: Vector3<f64>,
-    /// The propellant's inertia about O per kilogram of propellant, body axes, m².
+    /// The propellant's inertia about O per kilogram of propellant, body axes, m² (all of
+    /// it but grains' own shape).
     pub propellant_inertia_o_per_kg: Matrix3<f64>,
+    /// The propellant's grains and the motors that hold them, if the motor gives them: their
+    /// inertia about their center, not in proportion to the mass left, is added to the above.
+    pub grains: Option<(Grains, usize)>,
     /// The parts that shifts move.
     pub parts: Vec<MovingPart>,
 }
@@ -80,6 +85,7 @@ impl MassModel {
             fixed_inertia_o_b: frames::tensor_station_to_body(&fixed.inertia_about_tip()),
             propellant_cg_b: frames::station_to_body(&propellant_full.cg_m),
             propellant_inertia_o_per_kg: frames::tensor_station_to_body(&per_kg),
+            grains: None,
             parts: parts
                 .iter()
                 .map(|p| MovingPart {
@@ -106,6 +112,14 @@ pub fn mass_state(
     let prop_o_per_kg = model.propellant_inertia_o_per_kg;
     let mut i_o = model.fixed_inertia_o_b + prop_o_per_kg * prop.mass_kg;
     let mut i_rate = prop_o_per_kg * prop.rate_kg_s;
+    if let Some((grains, motors)) = &model.grains {
+        // Body axes: the axis is b3.
+        let g = grains.cluster_inertia(*motors, prop.mass_kg);
+        let [a, t] = g.inertia_kg_m2;
+        let [da, dt] = g.per_kg_m2;
+        i_o += Matrix3::from_diagonal(&Vector3::new(t, t, a));
+        i_rate += Matrix3::from_diagonal(&Vector3::new(dt, dt, da)) * prop.rate_kg_s;
+    }
     let mut h = Vector3::zeros();
     let mut h_rate = Vector3::zeros();
     for (part, motion) in model.parts.iter().zip(motions) {

@@ -28,6 +28,7 @@
 pub mod curve;
 pub mod eng;
 pub mod error;
+pub mod grains;
 pub mod library;
 pub mod rse;
 pub mod tables;
@@ -37,6 +38,8 @@ mod tests;
 #[cfg(test)]
 mod tests_fuzz;
 #[cfg(test)]
+mod tests_grains;
+#[cfg(test)]
 mod tests_tables;
 
 use std::path::Path;
@@ -44,6 +47,7 @@ use std::path::Path;
 pub use curve::impulse_class;
 pub use eng::parse_eng;
 pub use error::{MotorError, Rule};
+pub use grains::{GrainInertia, Grains};
 pub use library::{bundled, find, BundledFile, BUNDLED_FILES, BUNDLED_README};
 pub use rse::parse_rse;
 pub use tables::{MotorMassRates, MotorOptions, MotorState, MotorTables};

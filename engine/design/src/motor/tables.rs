@@ -17,7 +17,9 @@
 //! unless [`MotorOptions`] places them (RocketPy's `SolidMotor` `center_of_dry_mass_position`
 //! and `grains_center_of_mass_position`, measured forward of the nozzle) and gives the
 //! casing's own inertia (its `dry_inertia`). The motor's center of mass then moves as the
-//! propellant burns, which the flight's mass state follows as it follows the rocket's.
+//! propellant burns, which the flight's mass state follows as it follows the rocket's. Given
+//! as BATES [`Grains`], the propellant has their mass and their inertia as they burn
+//! ([`super::grains`]), which is not in proportion to the mass left.
 //!
 //! Dispersion: with impulse scale `k_I` and time scale `k_t` the thrust is
 //! `F_s(t) = (k_I/k_t) F(t/k_t)`: the impulse scales by `k_I`, the burn time by `k_t`.
@@ -30,7 +32,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::{Motor, MotorError};
+use super::{GrainInertia, Grains, Motor, MotorError};
 use crate::mass::{offsets_inertia, MassProps};
 
 /// Overrides and dispersion applied when the tables are built. The default changes nothing.
@@ -53,7 +55,18 @@ pub struct MotorOptions {
     /// The casing's inertia about its own center, `[axial, transverse]` kg·m², instead of a
     /// thin shell's: RocketPy's `dry_inertia` `(I_11, I_22, I_33)` is `[I_33, I_11]`.
     pub dry_inertia_kg_m2: Option<[f64; 2]>,
+    /// The propellant as BATES grains (RocketPy's `SolidMotor`): their mass is the propellant's
+    /// (so `propellant_mass_kg` is not given with them) and their shape its inertia as they
+    /// burn, instead of a solid cylinder's in proportion to the mass left.
+    pub grains: Option<Grains>,
+    /// The nozzle exit's radius, m (RocketPy's `nozzle_radius`), for the jet damping; default
+    /// [`NOZZLE_RADIUS_FRACTION`] of the motor's radius.
+    pub nozzle_radius_m: Option<f64>,
 }
+
+/// The nozzle exit's radius as a fraction of the motor's radius when not given (RocketPy's
+/// Calisto: a 33 mm nozzle on a 75 mm motor, 0.88).
+pub const NOZZLE_RADIUS_FRACTION: f64 = 0.88;
 
 impl Default for MotorOptions {
     fn default() -> Self {
@@ -65,6 +78,8 @@ impl Default for MotorOptions {
             dry_center_from_nozzle_m: None,
             propellant_center_from_nozzle_m: None,
             dry_inertia_kg_m2: None,
+            grains: None,
+            nozzle_radius_m: None,
         }
     }
 }
@@ -149,6 +164,10 @@ pub struct MotorTables {
     casing_center_from_aft_m: f64,
     /// The propellant's center, m forward of the motor's aft end.
     propellant_center_from_aft_m: f64,
+    /// The propellant's grains, whose shape adds an inertia not in proportion to the mass
+    /// (each motor's, for a cluster).
+    grains: Option<Grains>,
+    nozzle_radius_m: f64,
     /// Motors lit together (1, or a cluster's tubes).
     motors: usize,
 }
@@ -182,9 +201,30 @@ impl MotorTables {
         };
         let k_i = check("impulse_scale", options.impulse_scale, true)?;
         let k_t = check("time_scale", options.time_scale, true)?;
-        let propellant_mass_kg = match options.propellant_mass_kg {
-            Some(m) => check("propellant_mass_kg", m, false)?,
-            None => check("motor propellant_mass_kg", motor.propellant_mass_kg, false)?,
+        let invalid = |field: &'static str, value: f64, rule: &'static str| {
+            Err(MotorError::InvalidOption {
+                motor: motor.source.clone(),
+                field,
+                value,
+                rule,
+            })
+        };
+        if let Some(g) = &options.grains {
+            if let Some((field, rule)) = g.check() {
+                return invalid(field, f64::NAN, rule);
+            }
+            if let Some(m) = options.propellant_mass_kg {
+                return invalid(
+                    "propellant_mass_kg",
+                    m,
+                    "is the grains' (their count, size and density give it): give one or the other",
+                );
+            }
+        }
+        let propellant_mass_kg = match (options.propellant_mass_kg, &options.grains) {
+            (_, Some(g)) => g.mass_kg(),
+            (Some(m), None) => check("propellant_mass_kg", m, false)?,
+            (None, None) => check("motor propellant_mass_kg", motor.propellant_mass_kg, false)?,
         };
         let dry_mass_kg = match options.dry_mass_kg {
             Some(m) => check("dry_mass_kg", m, false)?,
@@ -205,6 +245,33 @@ impl MotorTables {
                 value: x,
                 rule: "must lie within the motor: from 0 (its nozzle) to its length forward",
             }),
+        };
+        if let Some(g) = &options.grains {
+            if 2.0 * g.outer_radius_m > diameter_m {
+                return invalid(
+                    "grains.outer_radius_m",
+                    g.outer_radius_m,
+                    "must fit in the motor: at most half its diameter",
+                );
+            }
+            if g.stack_length_m() > length_m {
+                return invalid(
+                    "grains.height_m",
+                    g.height_m,
+                    "the stack (count × height + the separations between) must fit in the motor's length",
+                );
+            }
+        }
+        let nozzle_radius_m = match options.nozzle_radius_m {
+            None => 0.5 * diameter_m * NOZZLE_RADIUS_FRACTION,
+            Some(r) if r.is_finite() && r > 0.0 && r <= 0.5 * diameter_m => r,
+            Some(r) => {
+                return invalid(
+                    "nozzle_radius_m",
+                    r,
+                    "must be positive and at most the motor's radius",
+                )
+            }
         };
         let casing_center_from_aft_m =
             within("dry_center_from_nozzle_m", options.dry_center_from_nozzle_m)?;
@@ -268,10 +335,13 @@ impl MotorTables {
                 0.5 * r2 + l2 / 12.0,
             )) * dry_mass_kg
         });
-        // Solid cylinder: axial m r²/2, transverse m (3 r² + L²)/12.
+        // Solid cylinder: axial m r²/2, transverse m (3 r² + L²)/12; grains have their own.
         let transverse = (3.0 * r2 + l2) / 12.0;
-        let propellant_inertia_per_kg =
-            Matrix3::from_diagonal(&Vector3::new(0.5 * r2, transverse, transverse));
+        let propellant_inertia_per_kg = if options.grains.is_some() {
+            Matrix3::zeros()
+        } else {
+            Matrix3::from_diagonal(&Vector3::new(0.5 * r2, transverse, transverse))
+        };
         Ok(MotorTables {
             times_s,
             thrust_n,
@@ -287,6 +357,8 @@ impl MotorTables {
             propellant_inertia_per_kg,
             casing_center_from_aft_m,
             propellant_center_from_aft_m,
+            grains: options.grains,
+            nozzle_radius_m,
             motors: 1,
         })
     }
@@ -395,13 +467,13 @@ impl MotorTables {
     /// Mass properties for a state already evaluated (saves the second look-up).
     #[inline]
     pub fn mass_props_of(&self, state: &MotorState, motor_aft_m: f64) -> MassProps {
+        let propellant_inertia = self.propellant_inertia(state.propellant_kg);
         if self.casing_center_from_aft_m == self.propellant_center_from_aft_m {
             // One center: the sum needs no parallel axes.
             return MassProps {
                 mass_kg: self.dry_mass_kg + state.propellant_kg,
                 cg_m: Vector3::new(motor_aft_m - self.casing_center_from_aft_m, 0.0, 0.0),
-                inertia_cg: self.casing_inertia
-                    + self.propellant_inertia_per_kg * state.propellant_kg,
+                inertia_cg: self.casing_inertia + propellant_inertia,
             };
         }
         if state.propellant_kg == 0.0 {
@@ -409,10 +481,35 @@ impl MotorTables {
         }
         let propellant = MassProps {
             mass_kg: state.propellant_kg,
-            inertia_cg: self.propellant_inertia_per_kg * state.propellant_kg,
+            inertia_cg: propellant_inertia,
             ..self.propellant_props(motor_aft_m)
         };
         self.casing_props(motor_aft_m).combine(&propellant)
+    }
+
+    /// The propellant's inertia about its center with `propellant_kg` left, station axes.
+    fn propellant_inertia(&self, propellant_kg: f64) -> Matrix3<f64> {
+        let scaling = self.propellant_inertia_per_kg * propellant_kg;
+        match self.grain_inertia(propellant_kg) {
+            None => scaling,
+            Some(g) => scaling + station_diagonal(g.inertia_kg_m2),
+        }
+    }
+
+    /// The grains' own inertia (the cluster's motors' together) with `propellant_kg` left.
+    pub fn grain_inertia(&self, propellant_kg: f64) -> Option<GrainInertia> {
+        self.grains
+            .map(|g| g.cluster_inertia(self.motors, propellant_kg))
+    }
+
+    /// Each motor's grains, if the propellant is given as grains.
+    pub fn grains(&self) -> Option<&Grains> {
+        self.grains.as_ref()
+    }
+
+    /// The nozzle exit's radius, m.
+    pub fn nozzle_radius_m(&self) -> f64 {
+        self.nozzle_radius_m
     }
 
     /// The casing (the dry mass) where it is, station frame.
@@ -424,9 +521,17 @@ impl MotorTables {
         }
     }
 
-    /// The whole propellant load where it is, station frame (its inertia scales with the
-    /// propellant left).
+    /// The whole propellant load where it is, station frame.
     pub fn propellant_props(&self, motor_aft_m: f64) -> MassProps {
+        MassProps {
+            inertia_cg: self.propellant_inertia(self.propellant_mass_kg),
+            ..self.propellant_props_scaling(motor_aft_m)
+        }
+    }
+
+    /// The part of the whole propellant load whose inertia scales with the propellant left:
+    /// all of it, but for grains' own inertia ([`MotorTables::grain_inertia`]).
+    pub fn propellant_props_scaling(&self, motor_aft_m: f64) -> MassProps {
         MassProps {
             mass_kg: self.propellant_mass_kg,
             cg_m: Vector3::new(motor_aft_m - self.propellant_center_from_aft_m, 0.0, 0.0),
@@ -438,11 +543,20 @@ impl MotorTables {
     /// proportional to its mass, so `dI/dt = ṁ/m · I_prop` (= `ṁ` times the inertia per kg).
     #[inline]
     pub fn mass_rates(&self, state: &MotorState) -> MotorMassRates {
+        let (rate, accel) = (state.propellant_rate_kg_s, state.propellant_accel_kg_s2);
+        let mut inertia_rate = self.propellant_inertia_per_kg * rate;
+        let mut inertia_accel = self.propellant_inertia_per_kg * accel;
+        if let Some(g) = self.grain_inertia(state.propellant_kg) {
+            // I(m(t)): I′ ṁ and I″ ṁ² + I′ m̈.
+            let d1 = station_diagonal(g.per_kg_m2);
+            inertia_rate += d1 * rate;
+            inertia_accel += station_diagonal(g.per_kg2_m2) * (rate * rate) + d1 * accel;
+        }
         MotorMassRates {
-            mass_rate_kg_s: state.propellant_rate_kg_s,
-            mass_accel_kg_s2: state.propellant_accel_kg_s2,
-            inertia_rate_kg_m2_s: self.propellant_inertia_per_kg * state.propellant_rate_kg_s,
-            inertia_accel_kg_m2_s2: self.propellant_inertia_per_kg * state.propellant_accel_kg_s2,
+            mass_rate_kg_s: rate,
+            mass_accel_kg_s2: accel,
+            inertia_rate_kg_m2_s: inertia_rate,
+            inertia_accel_kg_m2_s2: inertia_accel,
         }
     }
 
@@ -477,4 +591,9 @@ impl MotorTables {
     pub fn times_s(&self) -> &[f64] {
         &self.times_s
     }
+}
+
+/// `[axial, transverse]` as a station-frame diagonal tensor (x along the axis).
+fn station_diagonal([axial, transverse]: [f64; 2]) -> Matrix3<f64> {
+    Matrix3::from_diagonal(&Vector3::new(axial, transverse, transverse))
 }

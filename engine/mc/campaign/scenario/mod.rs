@@ -15,7 +15,7 @@ mod tests;
 
 use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
-use hpr_design::motor::MotorOptions;
+use hpr_design::motor::{Grains, MotorOptions};
 use hpr_design::MAX_SAMPLING_RATE_HZ;
 use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
@@ -193,9 +193,10 @@ pub struct Scenario {
     pub ballast: Option<String>,
     /// A motor file (resolved against the scenario's directory) or a bundled motor's name.
     pub motor: String,
-    /// The motor's own masses, their centers and the casing's inertia in place of the
-    /// defaults (`motor.propellant_mass_kg`, `dry_mass_kg`, `dry_center_from_nozzle_m`,
-    /// `propellant_center_from_nozzle_m`, `dry_inertia_kg_m2`; a cluster's are each motor's);
+    /// The motor's own masses, their centers, the casing's inertia, the grains and the nozzle
+    /// in place of the defaults (`motor.propellant_mass_kg`, `dry_mass_kg`,
+    /// `dry_center_from_nozzle_m`, `propellant_center_from_nozzle_m`, `dry_inertia_kg_m2`,
+    /// `grains`, `nozzle_radius_m`; a cluster's are each motor's);
     /// its scales are 1 (the dispersions set them flight by flight).
     pub motor_options: MotorOptions,
     pub environment: EnvironmentSpec,
@@ -706,6 +707,15 @@ impl Scenario {
                 dry_center_from_nozzle_m: raw.motor.dry_center_from_nozzle_m,
                 propellant_center_from_nozzle_m: raw.motor.propellant_center_from_nozzle_m,
                 dry_inertia_kg_m2: raw.motor.dry_inertia_kg_m2,
+                grains: raw.motor.grains.map(|g| Grains {
+                    count: g.count,
+                    outer_radius_m: g.outer_radius_m,
+                    inner_radius_m: g.inner_radius_m,
+                    height_m: g.height_m,
+                    separation_m: g.separation_m,
+                    density_kg_m3: g.density_kg_m3,
+                }),
+                nozzle_radius_m: raw.motor.nozzle_radius_m,
                 ..MotorOptions::default()
             },
             environment,

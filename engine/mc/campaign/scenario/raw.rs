@@ -55,6 +55,19 @@ pub(super) struct RawMotor {
     pub(super) dry_center_from_nozzle_m: Option<f64>,
     pub(super) propellant_center_from_nozzle_m: Option<f64>,
     pub(super) dry_inertia_kg_m2: Option<[f64; 2]>,
+    pub(super) grains: Option<RawGrains>,
+    pub(super) nozzle_radius_m: Option<f64>,
+}
+
+#[derive(Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawGrains {
+    pub(super) count: u32,
+    pub(super) outer_radius_m: f64,
+    pub(super) inner_radius_m: f64,
+    pub(super) height_m: f64,
+    pub(super) separation_m: f64,
+    pub(super) density_kg_m3: f64,
 }
 
 #[derive(Deserialize, Default)]

@@ -860,3 +860,58 @@ fn a_motor_s_centers_and_casing_inertia_are_read_and_refused_by_key_against_the_
         assert!(e.to_string().contains(rule), "{line}: {e}");
     }
 }
+
+#[test]
+fn a_motor_s_grains_and_nozzle_are_read_and_refused_by_key_against_the_motor() {
+    let with = |lines: &str| BASE.replace("[motor]\n", &format!("[motor]\n{lines}\n"));
+    const GRAINS: &str = "grains = { count = 2, outer_radius_m = 0.016, inner_radius_m = 0.006, \
+                          height_m = 0.1, separation_m = 0.003, density_kg_m3 = 1700.0 }";
+    let s = Scenario::parse(
+        &with(&format!("{GRAINS}\nnozzle_radius_m = 0.012")),
+        &path(),
+    )
+    .unwrap();
+    let g = s.motor_options.grains.expect("grains");
+    assert_eq!(
+        (g.count, g.outer_radius_m, g.inner_radius_m, g.height_m),
+        (2, 0.016, 0.006, 0.1)
+    );
+    assert_eq!(
+        (
+            g.separation_m,
+            g.density_kg_m3,
+            s.motor_options.nozzle_radius_m
+        ),
+        (0.003, 1700.0, Some(0.012))
+    );
+    // Two grains of 0.1 m and 3 mm between fit the I175's 245 × 38 mm.
+    Prepared::new(s).expect("the grains fit");
+    for (lines, key, rule) in [
+        (
+            GRAINS.replace("count = 2", "count = 0"),
+            "motor.grains.count",
+            "at least 1",
+        ),
+        (
+            GRAINS.replace("count = 2", "count = 3"),
+            "motor.grains.height_m",
+            "must fit in the motor's length",
+        ),
+        (
+            format!("{GRAINS}\npropellant_mass_kg = 0.2"),
+            "motor.propellant_mass_kg",
+            "give one or the other",
+        ),
+        (
+            "nozzle_radius_m = 0.02".to_owned(),
+            "motor.nozzle_radius_m",
+            "at most the motor's radius",
+        ),
+    ] {
+        let e = Prepared::new(Scenario::parse(&with(&lines), &path()).unwrap()).unwrap_err();
+        assert_eq!(e.key(), key, "{lines}");
+        assert!(e.to_string().contains(rule), "{lines}: {e}");
+    }
+    let e = Scenario::parse(&with("grains = { count = 2 }"), &path()).unwrap_err();
+    assert!(e.to_string().contains("outer_radius_m"), "{e}");
+}

@@ -463,7 +463,7 @@ pub fn build_model(
     let motor_tables = MotorTables::new(motor, motor_options)?.clustered(design.motor_offsets_m());
     let burnout = motor_tables.burn_time_s();
     let casing = motor_tables.casing_props(mount.motor_aft_m);
-    let propellant = motor_tables.propellant_props(mount.motor_aft_m);
+    let propellant = motor_tables.propellant_props_scaling(mount.motor_aft_m);
     // A part whose mass changes (a dispersion of the ballast, say) keeps its shape, so its
     // mass properties scale; the structure gains the difference. Mass properties are linear
     // in the mass distribution, so adding the scaled difference (negative for a lighter part)
@@ -488,11 +488,12 @@ pub fn build_model(
     let dry = adjustment
         .apply_holding(&dry, &parts)
         .map_err(SimError::Setup)?;
-    let mass_model = MassModel::new(&dry, &casing, &propellant, &parts);
+    let mut mass_model = MassModel::new(&dry, &casing, &propellant, &parts);
+    mass_model.grains = motor_tables.grains().map(|g| (*g, motor_tables.motors()));
     let fixed_cg_m = dry.combine(&casing).cg_m.x;
     let nozzle = Nozzle::at(
         mount.motor_aft_m,
-        0.5 * motor.diameter_m * NOZZLE_RADIUS_FRACTION,
+        motor_tables.nozzle_radius_m(),
         mount.motor_aft_m - fixed_cg_m,
     )
     .clustered(design.motor_offsets_m());
@@ -544,7 +545,3 @@ pub fn build_model(
     }
     .with_settled_states())
 }
-
-/// The nozzle exit's radius as a fraction of the motor's radius, for the jet-damping terms
-/// (RocketPy's Calisto: 33 mm nozzle on a 75 mm motor, 0.88).
-pub const NOZZLE_RADIUS_FRACTION: f64 = 0.88;

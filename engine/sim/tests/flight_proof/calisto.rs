@@ -3,10 +3,10 @@
 //!
 //! All five figures the issue names (apogee above ground, its time, the rail exit time, the
 //! maximum speed and Mach) must be within 1 % of RocketPy's. Measured (release build, default
-//! integrator): apogee 3307.03 m (+0.043 %), its time 25.8859 s (+0.004 %), rail exit 0.36324 s
+//! integrator): apogee 3307.02 m (+0.043 %), its time 25.8859 s (+0.004 %), rail exit 0.36324 s
 //! (−0.001 %), max speed 285.89 m/s (−0.022 %), max Mach 0.8589 (−0.149 %). (With the casing
-//! and the propellant at the motor's mid-length, before the motor took RocketPy's centers:
-//! 3306.99 m, 25.8848 s, 285.90 m/s. Before the
+//! and the propellant at the motor's mid-length, before the motor was RocketPy's
+//! SolidMotor: 3306.99 m, 25.8848 s, 285.90 m/s. Before the
 //! drag read the airframe's speed through the air rather than the center of mass's: 3306.90
 //! m, 25.8845 s, 285.89 m/s. Before the
 //! nozzle's gyration tensor was carried to the nose tip, see
@@ -25,14 +25,15 @@
 //!   with its free-air gradient (9.79133 m/s² at the pad, 9.78115 at apogee; hpr's
 //!   `Gravity::somigliana` is RocketPy's formula) and the Coriolis acceleration of the site's
 //!   latitude. A constant 9.79133 instead lowers the apogee by 1.33 m and its time by 15 ms.
-//! * **Motor mass model.** hpr is given the SolidMotor's centers, forward of the nozzle (the
-//!   casing at 0.317 m, 2.216 m aft of the tip, with its inertia (0.125, 0.125, 0.002) kg·m²;
-//!   the grains at 0.397 m, 2.136 m): the masses, centers of mass, burnt-out inertia and the
-//!   margin at t = 0 are RocketPy's (asserted below). hpr's propellant is a solid cylinder of
-//!   the motor's size, RocketPy's five BATES grains burning from the bore: loaded, hpr's
-//!   transverse inertia is 0.44 % over (10.227 vs 10.182 kg·m²). (With hpr's defaults, both
-//!   at the mid-length and the casing a thin shell, the loaded CG was 2.9 mm forward, the
-//!   margin at rail exit 2.159 against 2.139 cal and the apogee 0.04 m lower.)
+//! * **Motor mass model: the same.** hpr is given the SolidMotor as RocketPy has it: its five
+//!   BATES grains (which make the propellant's 2.95591 kg and its inertia as they burn), the
+//!   casing 0.317 m forward of the nozzle (2.216 m aft of the tip) with its inertia (0.125,
+//!   0.125, 0.002) kg·m², the grains at 0.397 m (2.136 m), the 33 mm nozzle: the masses,
+//!   centers of mass and inertias loaded and burnt out are RocketPy's to 1e-9 and the margin
+//!   at t = 0 to 0.001 cal (asserted below). (With hpr's defaults, both at the motor's
+//!   middle, the casing a thin shell and the propellant a solid cylinder, the loaded CG was
+//!   2.9 mm forward, the margin at rail exit 2.159 against 2.139 cal, the loaded inertia
+//!   0.8 % under and the apogee 0.04 m lower.)
 //! * **Which point the speeds are of.** hpr's speeds are the center of mass's, which drifts
 //!   forward through the airframe at r′ while the propellant burns: at the rail exit
 //!   25.834 m/s, the airframe's 25.797 m/s against RocketPy's 25.799 (its center of dry mass
@@ -63,7 +64,7 @@
 //! at rtol 1e-6 (about 0.1 m, see validation/rocketpy/NOTES.md).
 
 use crate::common::*;
-use hpr_design::motor::MotorOptions;
+use hpr_design::motor::{Grains, MotorOptions};
 use hpr_design::Design;
 use hpr_sim::flight::{Environment, Flight, Rail, SimOptions, Simulation};
 use hpr_sim::gravity::Gravity;
@@ -85,7 +86,7 @@ fn num(v: &Value, pointer: &str) -> f64 {
 
 /// RocketPy's gravity at the site: Somigliana's at its latitude with its free-air gradient,
 /// RocketPy's own formula (within 1e-8 m/s² of its table, `gravity.rs`'s tests).
-fn site_gravity(r: &Value) -> Gravity {
+pub(crate) fn site_gravity(r: &Value) -> Gravity {
     assert_eq!(num(r, "/inputs/site/latitude_deg"), LATITUDE_DEG);
     Gravity::somigliana(LATITUDE_DEG, num(r, "/inputs/site/elevation_m")).unwrap()
 }
@@ -94,7 +95,7 @@ fn site_gravity(r: &Value) -> Gravity {
 /// inputs): hpr's Calisto flies on the turning Earth, as RocketPy's does.
 const LATITUDE_DEG: f64 = 32.990254;
 
-fn calisto_sim(design: Design, options: MotorOptions, gravity: Gravity) -> Simulation {
+pub(crate) fn calisto_sim(design: Design, options: MotorOptions, gravity: Gravity) -> Simulation {
     calisto_sim_in(
         design,
         options,
@@ -132,22 +133,29 @@ fn calisto_sim_in(
         .expect("set up")
 }
 
-/// RocketPy's M1670: its propellant (grain) mass, its dry mass, their centers (forward of
-/// the nozzle) and the casing's inertia `dry_inertia` (I_11, I_22, I_33) = (0.125, 0.125,
-/// 0.002) kg·m².
+/// RocketPy's M1670 as its `SolidMotor` gives it: five BATES grains (which give the
+/// propellant's mass and its inertia as it burns), the dry mass, the centers of both forward
+/// of the nozzle, the casing's inertia `dry_inertia` (I_11, I_22, I_33) = (0.125, 0.125,
+/// 0.002) kg·m² and the nozzle's radius.
 pub(crate) fn rocketpy_motor(r: &Value) -> MotorOptions {
+    let input = |k: &str| num(r, &format!("/inputs/motor/{k}"));
     let dry_inertia = |i: usize| num(r, &format!("/inputs/motor/dry_inertia_kg_m2/{i}"));
     MotorOptions {
-        dry_center_from_nozzle_m: Some(num(r, "/inputs/motor/center_of_dry_mass_position_m")),
-        propellant_center_from_nozzle_m: Some(num(
-            r,
-            "/inputs/motor/grains_center_of_mass_position_m",
-        )),
+        dry_center_from_nozzle_m: Some(input("center_of_dry_mass_position_m")),
+        propellant_center_from_nozzle_m: Some(input("grains_center_of_mass_position_m")),
         dry_inertia_kg_m2: Some([dry_inertia(2), dry_inertia(0)]),
+        grains: Some(Grains {
+            count: input("grain_number") as u32,
+            outer_radius_m: input("grain_outer_radius_m"),
+            inner_radius_m: input("grain_initial_inner_radius_m"),
+            height_m: input("grain_initial_height_m"),
+            separation_m: input("grain_separation_m"),
+            density_kg_m3: input("grain_density_kg_m3"),
+        }),
+        nozzle_radius_m: Some(input("nozzle_radius_m")),
         ..MotorOptions::default()
     }
-    .with_propellant_mass_kg(num(r, "/outputs/motor_propellant_initial_mass_kg"))
-    .with_dry_mass_kg(num(r, "/inputs/motor/dry_mass_kg"))
+    .with_dry_mass_kg(input("dry_mass_kg"))
 }
 
 struct Figures {
@@ -215,11 +223,10 @@ fn calisto_flies_within_one_percent_of_rocketpy() {
         num(&r, "/outputs/rail_exit_speed_m_s"),
     );
 
-    // With the M1670's casing and grains where RocketPy's SolidMotor puts them and its dry
-    // inertia, the rocket is RocketPy's: the masses and centers of mass to rounding (1e-9),
-    // the burnt-out inertia to 1e-9, the margin at t = 0 within 0.001 cal (the CPs agree to
-    // 1e-4 m, 6e-5 m seen). Loaded, the transverse inertia is 0.44 % over RocketPy's (its
-    // BATES grains against hpr's solid cylinder of propellant): within 0.5 %.
+    // With the M1670 as RocketPy's SolidMotor gives it (its grains, the casing's and the
+    // grains' centers, the dry inertia), the rocket is RocketPy's: the masses, centers of
+    // mass and inertias loaded and burnt out to rounding (1e-9), the margin at t = 0 within
+    // 0.001 cal (the CPs agree to 1e-4 m, 6e-5 m seen).
     let rp = |p: &str| num(&r, p);
     for (what, got, want, tol) in [
         (
@@ -262,7 +269,13 @@ fn calisto_flies_within_one_percent_of_rocketpy() {
             "loaded I",
             m0.transverse_inertia(),
             rp("/outputs/mass_t0/I_11_about_center_of_mass_kg_m2"),
-            0.005 * 10.18,
+            1e-9 * 10.18,
+        ),
+        (
+            "loaded axial I",
+            m0.axial_inertia(),
+            rp("/outputs/mass_t0/I_33_kg_m2"),
+            1e-12,
         ),
     ] {
         assert!(
