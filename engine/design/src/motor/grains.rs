@@ -55,14 +55,18 @@ impl Grains {
         n * self.height_m + (n - 1.0) * self.separation_m
     }
 
-    /// The first rule the grains break, as (field, rule), if any.
-    pub fn check(&self) -> Option<(&'static str, &'static str)> {
+    /// The first rule the grains break, as (field, its value, rule), if any.
+    pub fn check(&self) -> Option<(&'static str, f64, &'static str)> {
         let positive = |v: f64| v.is_finite() && v > 0.0;
         if self.count == 0 {
-            return Some(("grains.count", "must be at least 1"));
+            return Some(("grains.count", 0.0, "must be at least 1"));
         }
         if !positive(self.outer_radius_m) {
-            return Some(("grains.outer_radius_m", "must be positive and finite"));
+            return Some((
+                "grains.outer_radius_m",
+                self.outer_radius_m,
+                "must be positive and finite",
+            ));
         }
         if !(self.inner_radius_m.is_finite()
             && self.inner_radius_m >= 0.0
@@ -70,17 +74,30 @@ impl Grains {
         {
             return Some((
                 "grains.inner_radius_m",
+                self.inner_radius_m,
                 "must be at least 0 and less than outer_radius_m",
             ));
         }
         if !positive(self.height_m) {
-            return Some(("grains.height_m", "must be positive and finite"));
+            return Some((
+                "grains.height_m",
+                self.height_m,
+                "must be positive and finite",
+            ));
         }
         if !(self.separation_m.is_finite() && self.separation_m >= 0.0) {
-            return Some(("grains.separation_m", "must be finite and not negative"));
+            return Some((
+                "grains.separation_m",
+                self.separation_m,
+                "must be finite and not negative",
+            ));
         }
         if !positive(self.density_kg_m3) {
-            return Some(("grains.density_kg_m3", "must be positive and finite"));
+            return Some((
+                "grains.density_kg_m3",
+                self.density_kg_m3,
+                "must be positive and finite",
+            ));
         }
         None
     }

@@ -201,24 +201,23 @@ impl MotorTables {
         };
         let k_i = check("impulse_scale", options.impulse_scale, true)?;
         let k_t = check("time_scale", options.time_scale, true)?;
-        let invalid = |field: &'static str, value: f64, rule: &'static str| {
-            Err(MotorError::InvalidOption {
+        let invalid =
+            |field: &'static str, value: f64, rule: &'static str| MotorError::InvalidOption {
                 motor: motor.source.clone(),
                 field,
                 value,
                 rule,
-            })
-        };
+            };
         if let Some(g) = &options.grains {
-            if let Some((field, rule)) = g.check() {
-                return invalid(field, f64::NAN, rule);
+            if let Some((field, value, rule)) = g.check() {
+                return Err(invalid(field, value, rule));
             }
             if let Some(m) = options.propellant_mass_kg {
-                return invalid(
+                return Err(invalid(
                     "propellant_mass_kg",
                     m,
                     "is the grains' (their count, size and density give it): give one or the other",
-                );
+                ));
             }
         }
         let propellant_mass_kg = match (options.propellant_mass_kg, &options.grains) {
@@ -239,38 +238,37 @@ impl MotorTables {
         let within = |field: &'static str, value: Option<f64>| match value {
             None => Ok(0.5 * length_m),
             Some(x) if (0.0..=length_m).contains(&x) => Ok(x),
-            Some(x) => Err(MotorError::InvalidOption {
-                motor: motor.source.clone(),
+            Some(x) => Err(invalid(
                 field,
-                value: x,
-                rule: "must lie within the motor: from 0 (its nozzle) to its length forward",
-            }),
+                x,
+                "must lie within the motor: from 0 (its nozzle) to its length forward",
+            )),
         };
         if let Some(g) = &options.grains {
             if 2.0 * g.outer_radius_m > diameter_m {
-                return invalid(
+                return Err(invalid(
                     "grains.outer_radius_m",
                     g.outer_radius_m,
                     "must fit in the motor: at most half its diameter",
-                );
+                ));
             }
             if g.stack_length_m() > length_m {
-                return invalid(
+                return Err(invalid(
                     "grains.height_m",
                     g.height_m,
                     "the stack (count × height + the separations between) must fit in the motor's length",
-                );
+                ));
             }
         }
         let nozzle_radius_m = match options.nozzle_radius_m {
             None => 0.5 * diameter_m * NOZZLE_RADIUS_FRACTION,
             Some(r) if r.is_finite() && r > 0.0 && r <= 0.5 * diameter_m => r,
             Some(r) => {
-                return invalid(
+                return Err(invalid(
                     "nozzle_radius_m",
                     r,
                     "must be positive and at most the motor's radius",
-                )
+                ))
             }
         };
         let casing_center_from_aft_m =
@@ -286,12 +284,11 @@ impl MotorTables {
                 check("dry_inertia_kg_m2 (transverse)", transverse, false)?;
                 // A body round its axis has I_axial = ∫(y² + z²) dm ≤ 2 I_transverse.
                 if axial > 2.0 * transverse {
-                    return Err(MotorError::InvalidOption {
-                        motor: motor.source.clone(),
-                        field: "dry_inertia_kg_m2 (axial)",
-                        value: axial,
-                        rule: "must be at most twice the transverse inertia (no body round its axis has more)",
-                    });
+                    return Err(invalid(
+                        "dry_inertia_kg_m2 (axial)",
+                        axial,
+                        "must be at most twice the transverse inertia (no body round its axis has more)",
+                    ));
                 }
                 Some(Matrix3::from_diagonal(&Vector3::new(
                     axial, transverse, transverse,
