@@ -48,8 +48,17 @@ impl Inspection {
     pub fn of(sim: &Simulation) -> Inspection {
         let d = sim.design();
         let m = sim.motor();
-        let motors = sim.model().motor.motors();
+        let tables = &sim.model().motor;
+        let motors = tables.motors();
         let burnout = sim.model().burnout_s;
+        // Where the casing and the propellant are (the simulation has a motor mount).
+        let aft_m = d.motor_mount.map_or(f64::NAN, |mount| mount.motor_aft_m);
+        let grains = tables.grains().map_or(Value::Null, |g| {
+            json!({
+                "count": g.count, "outer_radius_m": g.outer_radius_m, "inner_radius_m": g.inner_radius_m,
+                "height_m": g.height_m, "separation_m": g.separation_m, "density_kg_m3": g.density_kg_m3,
+            })
+        });
         let components = mass::mass_table(d)
             .iter()
             .map(|r| {
@@ -71,6 +80,8 @@ impl Inspection {
                 "total_impulse_ns": m.total_impulse_ns(), "burn_time_s": m.burn_time_s(), "average_thrust_n": m.average_thrust_n(),
                 "peak_thrust_n": m.peak_thrust_n(), "propellant_mass_kg": sim.model().motor.propellant_mass_kg() / motors as f64,
                 "loaded_mass_kg": sim.model().motor.ignition_mass_kg() / motors as f64, "diameter_m": m.diameter_m, "length_m": m.length_m,
+                "casing_cg_m": tables.casing_props(aft_m).cg_m.x, "propellant_cg_m": tables.propellant_props(aft_m).cg_m.x,
+                "nozzle_radius_m": tables.nozzle_radius_m(), "grains": grains,
             }),
             liftoff: mass_json(sim, 0.0),
             burnout: mass_json(sim, burnout),
@@ -149,6 +160,17 @@ impl Inspection {
             m["propellant_mass_kg"].as_f64().unwrap_or(f64::NAN),
             m["loaded_mass_kg"].as_f64().unwrap_or(f64::NAN),
             if motors > 1 { ", each" } else { "" },
+        );
+        let grains = match m["grains"]["count"].as_u64() {
+            Some(n) => format!(" ({n} BATES grains)"),
+            None => String::new(),
+        };
+        let _ = writeln!(
+            s,
+            "        casing at {:.4} m, propellant at {:.4} m{grains} aft of the nose tip; nozzle radius {:.4} m",
+            m["casing_cg_m"].as_f64().unwrap_or(f64::NAN),
+            m["propellant_cg_m"].as_f64().unwrap_or(f64::NAN),
+            m["nozzle_radius_m"].as_f64().unwrap_or(f64::NAN),
         );
         let _ = writeln!(
             s,

@@ -113,14 +113,33 @@ fn inspect_moves_the_center_of_mass_by_the_casing_s_moment_when_the_casing_moves
     let design = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("validation/designs/synthetic-54mm-three-fin.json");
     let design = design.to_str().unwrap();
-    let liftoff = |extra: &[&str]| {
+    let inspect = |extra: &[&str]| {
         let (code, out, err) = hpr_mc(&[&["inspect", design, "--json"][..], extra].concat());
         assert_eq!(code, 0, "{err}");
-        let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+        serde_json::from_str::<serde_json::Value>(&out).unwrap()
+    };
+    let liftoff = |extra: &[&str]| {
+        let j = inspect(extra);
         let l = &j["liftoff"];
         (l["mass_kg"].as_f64().unwrap(), l["cg_m"].as_f64().unwrap())
     };
     let (mass, cg) = liftoff(&[]);
+    // inspect says where the casing and the propellant are: the motor's middle, 0.1225 m
+    // forward of its aft end, unless placed; the nozzle 0.88 of the 19 mm radius unless given.
+    let plain = inspect(&[]);
+    let placed = inspect(&[
+        "--motor-dry-center-from-nozzle-m",
+        "0.05",
+        "--motor-propellant-center-from-nozzle-m",
+        "0.2",
+    ]);
+    let at = |j: &serde_json::Value, k: &str| j["motor"][k].as_f64().unwrap();
+    let aft = at(&plain, "casing_cg_m") + 0.1225;
+    assert!((at(&plain, "propellant_cg_m") - (aft - 0.1225)).abs() < 1e-12);
+    assert!((at(&placed, "casing_cg_m") - (aft - 0.05)).abs() < 1e-12);
+    assert!((at(&placed, "propellant_cg_m") - (aft - 0.2)).abs() < 1e-12);
+    assert!((at(&plain, "nozzle_radius_m") - 0.88 * 0.019).abs() < 1e-15);
+    assert!(plain["motor"]["grains"].is_null());
     // The I175's 0.2086 kg casing from its middle (0.1225 m forward of the nozzle) to 0.05 m:
     // 0.0725 m aft, the rocket's center of mass 0.2086 × 0.0725 / m aft with it.
     let (moved_mass, moved_cg) = liftoff(&["--motor-dry-center-from-nozzle-m", "0.05"]);
