@@ -153,7 +153,9 @@ fn simpson_step(
     let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
     let delta = left + right - whole;
     // Keep splitting at least 6 levels deep so that a lucky coarse estimate is not accepted.
-    if depth == 0 || (depth < 27 && delta.abs() <= 15.0 * tol) {
+    // An integrand that overflows (a profile 1e300 m wide) gives no finite estimate at any
+    // depth: return it as it is at once, where splitting on would take 2³² evaluations.
+    if depth == 0 || !delta.is_finite() || (depth < 27 && delta.abs() <= 15.0 * tol) {
         return left + right + delta / 15.0;
     }
     simpson_step(f, a, m, fa, flm, fm, left, tol / 2.0, depth - 1)
@@ -223,6 +225,24 @@ mod tests {
         let s = Section::nose(NoseShape::Conical, L, R);
         let exact = (R / L).atan().sin();
         assert!((s.sin_joint_angle() - exact).abs() < 1e-12);
+    }
+
+    #[test]
+    fn adaptive_simpson_gives_up_at_once_on_an_integrand_that_overflows() {
+        // r² of a 1e300 m profile: infinite everywhere. Splitting on could never converge
+        // (2³² evaluations, the fuzzed design that hung `inspect`): the first level says so.
+        let calls = std::cell::Cell::new(0u32);
+        let v = adaptive_simpson(
+            &|x: f64| {
+                calls.set(calls.get() + 1);
+                (1e300 * (1.0 + x)).powi(2)
+            },
+            0.0,
+            1.0,
+            1e-12,
+        );
+        assert!(!v.is_finite(), "{v}");
+        assert_eq!(calls.get(), 5);
     }
 
     #[test]
