@@ -117,9 +117,14 @@ impl Prepared {
         // The motor's own numbers against the motor (a center within its length).
         if let Err(e) = MotorTables::new(&motor, &scenario.motor_options) {
             let key = match &e {
-                MotorError::InvalidOption { field, .. } => {
-                    format!("motor.{}", field.split(' ').next().unwrap_or(field))
-                }
+                // The scenario's key of a motor option's field: `chamber_m (radius)` is
+                // `chamber.radius_m`, `dry_inertia_kg_m2 (axial)` the pair's key.
+                MotorError::InvalidOption { field, .. } => match *field {
+                    "chamber_m" => "motor.chamber".to_owned(),
+                    "chamber_m (radius)" => "motor.chamber.radius_m".to_owned(),
+                    "chamber_m (height)" => "motor.chamber.height_m".to_owned(),
+                    f => format!("motor.{}", f.split(' ').next().unwrap_or(f)),
+                },
                 _ => "motor.name".to_owned(),
             };
             return Err(bad(&key, e.to_string()));

@@ -59,6 +59,10 @@ pub struct MotorOptions {
     /// (so `propellant_mass_kg` is not given with them) and their shape its inertia as they
     /// burn, instead of a solid cylinder's in proportion to the mass left.
     pub grains: Option<Grains>,
+    /// The propellant as a solid cylinder of this `[radius, height]`, m, instead of the
+    /// motor's own size: RocketPy's `GenericMotor` `chamber_radius`, `chamber_height` (its
+    /// `chamber_position` is [`MotorOptions::propellant_center_from_nozzle_m`]).
+    pub chamber_m: Option<[f64; 2]>,
     /// The nozzle exit's radius, m (RocketPy's `nozzle_radius`), for the jet damping; default
     /// [`NOZZLE_RADIUS_FRACTION`] of the motor's radius.
     pub nozzle_radius_m: Option<f64>,
@@ -79,6 +83,7 @@ impl Default for MotorOptions {
             propellant_center_from_nozzle_m: None,
             dry_inertia_kg_m2: None,
             grains: None,
+            chamber_m: None,
             nozzle_radius_m: None,
         }
     }
@@ -244,6 +249,29 @@ impl MotorTables {
                 "must lie within the motor: from 0 (its nozzle) to its length forward",
             )),
         };
+        if let Some([radius, height]) = options.chamber_m {
+            if options.grains.is_some() {
+                return Err(invalid(
+                    "chamber_m",
+                    radius,
+                    "is the grains' when grains are given: give one or the other",
+                ));
+            }
+            if !(radius.is_finite() && radius > 0.0 && radius <= 0.5 * diameter_m) {
+                return Err(invalid(
+                    "chamber_m (radius)",
+                    radius,
+                    "must be positive and at most the motor's radius",
+                ));
+            }
+            if !(height.is_finite() && height > 0.0 && height <= length_m) {
+                return Err(invalid(
+                    "chamber_m (height)",
+                    height,
+                    "must be positive and at most the motor's length",
+                ));
+            }
+        }
         if let Some(g) = &options.grains {
             if 2.0 * g.outer_radius_m > diameter_m {
                 return Err(invalid(
@@ -332,7 +360,12 @@ impl MotorTables {
                 0.5 * r2 + l2 / 12.0,
             )) * dry_mass_kg
         });
-        // Solid cylinder: axial m r²/2, transverse m (3 r² + L²)/12; grains have their own.
+        // Solid cylinder (the motor's size or the chamber's): axial m r²/2, transverse
+        // m (3 r² + L²)/12; grains have their own.
+        let (r2, l2) = match options.chamber_m {
+            Some([radius, height]) => (radius * radius, height * height),
+            None => (r2, l2),
+        };
         let transverse = (3.0 * r2 + l2) / 12.0;
         let propellant_inertia_per_kg = if options.grains.is_some() {
             Matrix3::zeros()

@@ -422,3 +422,41 @@ fn the_mass_and_inertia_rates_are_the_derivatives_of_the_mass_properties() {
         );
     }
 }
+
+#[test]
+fn a_chamber_makes_the_propellant_a_solid_cylinder_of_its_size_as_rocketpy_s_generic_motor() {
+    // The triangle (400 × 50 mm, 0.3 kg of propellant) with a 20 × 300 mm chamber: RocketPy's
+    // GenericMotor propellant_I_11 = m (3 r² + h²)/12, propellant_I_33 = m r²/2.
+    let t = MotorTables::new(
+        &triangle(),
+        &MotorOptions {
+            chamber_m: Some([0.02, 0.3]),
+            ..MotorOptions::default()
+        },
+    )
+    .unwrap();
+    let p = t.propellant_props(1.0);
+    let (m, r, h) = (0.3, 0.02f64, 0.3f64);
+    assert!(close(
+        p.transverse_inertia(),
+        m * (3.0 * r * r + h * h) / 12.0,
+        1e-14
+    ));
+    assert!(close(p.axial_inertia(), m * r * r / 2.0, 1e-14));
+    // Half burnt, half the inertia: the shape stays, the mass halves.
+    let half = t.mass_props(1.0, 1.0).inertia_cg - t.casing_props(1.0).inertia_cg;
+    assert!(close(half[(1, 1)], 0.5 * p.transverse_inertia(), 1e-12));
+    let refused = |c: [f64; 2]| match MotorTables::new(
+        &triangle(),
+        &MotorOptions {
+            chamber_m: Some(c),
+            ..MotorOptions::default()
+        },
+    ) {
+        Err(MotorError::InvalidOption { field, .. }) => field,
+        other => panic!("accepted: {other:?}"),
+    };
+    assert_eq!(refused([0.03, 0.3]), "chamber_m (radius)");
+    assert_eq!(refused([0.02, 0.41]), "chamber_m (height)");
+    assert_eq!(refused([f64::NAN, 0.3]), "chamber_m (radius)");
+}

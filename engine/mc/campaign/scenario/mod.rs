@@ -196,7 +196,7 @@ pub struct Scenario {
     /// The motor's own masses, their centers, the casing's inertia, the grains and the nozzle
     /// in place of the defaults (`motor.propellant_mass_kg`, `dry_mass_kg`,
     /// `dry_center_from_nozzle_m`, `propellant_center_from_nozzle_m`, `dry_inertia_kg_m2`,
-    /// `grains`, `nozzle_radius_m`; a cluster's are each motor's);
+    /// `grains`, `chamber`, `nozzle_radius_m`; a cluster's are each motor's);
     /// its scales are 1 (the dispersions set them flight by flight).
     pub motor_options: MotorOptions,
     pub environment: EnvironmentSpec,
@@ -715,6 +715,7 @@ impl Scenario {
                     separation_m: g.separation_m,
                     density_kg_m3: g.density_kg_m3,
                 }),
+                chamber_m: raw.motor.chamber.map(|c| [c.radius_m, c.height_m]),
                 nozzle_radius_m: raw.motor.nozzle_radius_m,
                 ..MotorOptions::default()
             },

@@ -56,7 +56,15 @@ pub(super) struct RawMotor {
     pub(super) propellant_center_from_nozzle_m: Option<f64>,
     pub(super) dry_inertia_kg_m2: Option<[f64; 2]>,
     pub(super) grains: Option<RawGrains>,
+    pub(super) chamber: Option<RawChamber>,
     pub(super) nozzle_radius_m: Option<f64>,
+}
+
+#[derive(Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawChamber {
+    pub(super) radius_m: f64,
+    pub(super) height_m: f64,
 }
 
 #[derive(Deserialize, Clone, Copy)]

@@ -915,3 +915,35 @@ fn a_motor_s_grains_and_nozzle_are_read_and_refused_by_key_against_the_motor() {
     let e = Scenario::parse(&with("grains = { count = 2 }"), &path()).unwrap_err();
     assert!(e.to_string().contains("outer_radius_m"), "{e}");
 }
+
+#[test]
+fn a_motor_s_propellant_chamber_is_read_and_refused_by_key_against_the_motor() {
+    // RocketPy's GenericMotor: the propellant a solid cylinder of the chamber's size.
+    let with = |lines: &str| BASE.replace("[motor]\n", &format!("[motor]\n{lines}\n"));
+    let s = Scenario::parse(
+        &with("chamber = { radius_m = 0.015, height_m = 0.2 }"),
+        &path(),
+    )
+    .unwrap();
+    assert_eq!(s.motor_options.chamber_m, Some([0.015, 0.2]));
+    Prepared::new(s).expect("within the I175's 245 × 38 mm");
+    for (lines, key) in [
+        (
+            "chamber = { radius_m = 0.02, height_m = 0.2 }",
+            "motor.chamber.radius_m",
+        ),
+        (
+            "chamber = { radius_m = 0.015, height_m = 0.3 }",
+            "motor.chamber.height_m",
+        ),
+        (
+            "chamber = { radius_m = 0.015, height_m = 0.2 }\ngrains = { count = 1, \
+             outer_radius_m = 0.016, inner_radius_m = 0.006, height_m = 0.1, \
+             separation_m = 0.0, density_kg_m3 = 1700.0 }",
+            "motor.chamber",
+        ),
+    ] {
+        let e = Prepared::new(Scenario::parse(&with(lines), &path()).unwrap()).unwrap_err();
+        assert_eq!(e.key(), key, "{lines}");
+    }
+}
