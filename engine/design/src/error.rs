@@ -47,6 +47,11 @@ pub enum Rule {
     Negative {
         got: f64,
     },
+    /// A length or diameter larger than [`crate::MAX_PART_SIZE_M`]: likely millimetres.
+    TooLarge {
+        got: f64,
+        max: f64,
+    },
     /// A value that must be finite.
     NotFinite {
         got: f64,
@@ -192,6 +197,11 @@ impl fmt::Display for Rule {
             Rule::NotPositive { got } => write!(f, "must be positive and finite (got {got})"),
             Rule::Negative { got } => write!(f, "must be zero or positive and finite (got {got})"),
             Rule::NotFinite { got } => write!(f, "must be finite (got {got})"),
+            Rule::TooLarge { got, max } => write!(
+                f,
+                "must be at most {max} m, more than any part of a high-power rocket \
+                 (got {got} m; a length in millimetres? the design's lengths are in metres)"
+            ),
             Rule::OutOfRange { got, min, max } => {
                 write!(f, "must be between {min} and {max} (got {got})")
             }

@@ -19,7 +19,8 @@ pub mod motor;
 pub mod ork;
 
 pub use design::{
-    AirBrakes, Component, ComponentKind, Deploy, DeployTrigger, Design, MAX_SAMPLING_RATE_HZ,
+    AirBrakes, Component, ComponentKind, Deploy, DeployTrigger, Design, MAX_PART_SIZE_M,
+    MAX_SAMPLING_RATE_HZ,
 };
 pub use error::DesignError;
 pub use mass::MassProps;

@@ -47,6 +47,14 @@ pub struct Design {
 /// would never finish a flight.
 pub const MAX_SAMPLING_RATE_HZ: f64 = 10_000.0;
 
+/// The largest length or diameter a design may give a part, m (a body's length, a fin's span,
+/// a canopy's diameter, a free-form fin's corner from the root's leading edge): beyond any
+/// high-power or sounding rocket's part (a Saturn V stage is 42 m long, 10 m across; amateur
+/// rockets' parts are a few metres at most). It catches a length written in millimetres in a
+/// field in metres (a 54 mm tube as `54`), which would otherwise fly as a rocket the size of
+/// a building, and it keeps the aerodynamics' quadratures finite.
+pub const MAX_PART_SIZE_M: f64 = 30.0;
+
 /// Air brakes and their controller (`air_brakes` in the design file). From burnout to
 /// apogee, at each of the controller's samples, the brakes open to the fraction of their
 /// travel that makes the predicted apogee the target, and hold it to the next sample; they

@@ -220,6 +220,33 @@ impl Builder<'_> {
         }
     }
 
+    /// A length or diameter: `> 0`, finite and at most [`MAX_PART_SIZE_M`].
+    fn size(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
+        self.positive(at, field, v)?;
+        self.at_most_part_size(at, field, v)
+    }
+
+    /// A length or diameter that may be zero: `>= 0`, finite and at most [`MAX_PART_SIZE_M`].
+    fn size_or_zero(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
+        self.non_negative(at, field, v)?;
+        self.at_most_part_size(at, field, v)
+    }
+
+    fn at_most_part_size(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
+        if v <= MAX_PART_SIZE_M {
+            Ok(v)
+        } else {
+            Err(self.invalid(
+                at,
+                Some(field),
+                Rule::TooLarge {
+                    got: v,
+                    max: MAX_PART_SIZE_M,
+                },
+            ))
+        }
+    }
+
     /// A flight computer's sampling rate: `> 0` and at most [`MAX_SAMPLING_RATE_HZ`].
     fn sampling_rate(&self, at: &Location, field: &str, v: f64) -> Result<f64, DesignError> {
         let v = self.positive(at, field, v)?;
@@ -371,7 +398,7 @@ impl Builder<'_> {
                 },
             ));
         };
-        let cord_length_m = self.positive(at, "cord_length_m", cord_length)?;
+        let cord_length_m = self.size(at, "cord_length_m", cord_length)?;
         Ok(MassSpec::LinearDensity {
             kg_per_m,
             cord_length_m,

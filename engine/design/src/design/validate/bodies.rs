@@ -19,8 +19,8 @@ impl Builder<'_> {
         let at = self.claim_id(rc.id(), path, false)?;
         let (length, kind) = match rc {
             RawComponent::NoseCone(n) => {
-                let length = self.positive(&at, "length_m", n.length_m)?;
-                let base = self.positive(&at, "base_diameter_m", n.base_diameter_m)?;
+                let length = self.size(&at, "length_m", n.length_m)?;
+                let base = self.size(&at, "base_diameter_m", n.base_diameter_m)?;
                 let shape = self.nose_shape(&at, n.shape, n.shape_parameter)?;
                 let wall = self.shell_wall(&at, n.wall_thickness_m, n.filled, base / 2.0)?;
                 let shoulder = match &n.shoulder {
@@ -38,8 +38,8 @@ impl Builder<'_> {
                 (length, ComponentKind::NoseCone(nose))
             }
             RawComponent::BodyTube(b) => {
-                let length = self.positive(&at, "length_m", b.length_m)?;
-                let od = self.positive(&at, "outer_diameter_m", b.outer_diameter_m)?;
+                let length = self.size(&at, "length_m", b.length_m)?;
+                let od = self.size(&at, "outer_diameter_m", b.outer_diameter_m)?;
                 let wall = self.wall(&at, "wall_thickness_m", b.wall_thickness_m, od / 2.0)?;
                 let tube = BodyTube {
                     outer_diameter_m: od,
@@ -48,9 +48,9 @@ impl Builder<'_> {
                 (length, ComponentKind::BodyTube(tube))
             }
             RawComponent::Transition(t) => {
-                let length = self.positive(&at, "length_m", t.length_m)?;
-                let fore = self.non_negative(&at, "fore_diameter_m", t.fore_diameter_m)?;
-                let aft = self.non_negative(&at, "aft_diameter_m", t.aft_diameter_m)?;
+                let length = self.size(&at, "length_m", t.length_m)?;
+                let fore = self.size_or_zero(&at, "fore_diameter_m", t.fore_diameter_m)?;
+                let aft = self.size_or_zero(&at, "aft_diameter_m", t.aft_diameter_m)?;
                 if fore.max(aft) <= 0.0 {
                     return Err(self.invalid(
                         &at,
@@ -180,8 +180,8 @@ impl Builder<'_> {
         s: &RawShoulder,
         end_diameter: f64,
     ) -> Result<Shoulder, DesignError> {
-        let length = self.positive(at, &format!("{name}.length_m"), s.length_m)?;
-        let od = self.positive(at, &format!("{name}.outer_diameter_m"), s.outer_diameter_m)?;
+        let length = self.size(at, &format!("{name}.length_m"), s.length_m)?;
+        let od = self.size(at, &format!("{name}.outer_diameter_m"), s.outer_diameter_m)?;
         if od > end_diameter + super::FIT_TOLERANCE_M {
             return Err(self.invalid(
                 at,

@@ -25,6 +25,13 @@ fn fin_outline(points: &[[f64; 2]]) -> Result<(), (usize, &'static str)> {
         if p[1] < 0.0 {
             return Err((i, "must not be below the root (y >= 0)"));
         }
+        if p[0].abs() > MAX_PART_SIZE_M || p[1] > MAX_PART_SIZE_M {
+            return Err((
+                i,
+                "must be within 30 m (MAX_PART_SIZE_M) of the root's leading edge: \
+                 the outline is in metres",
+            ));
+        }
         if i > 0 && *p == points[i - 1] {
             return Err((i, "repeats the corner before it"));
         }
@@ -220,7 +227,7 @@ impl Builder<'_> {
                             FinPlanform::Elliptical
                         } else {
                             let tip = match f.tip_chord_m {
-                                Some(t) => self.non_negative(&at, "tip_chord_m", t)?,
+                                Some(t) => self.size_or_zero(&at, "tip_chord_m", t)?,
                                 None => {
                                     return Err(self.invalid(
                                         &at,
@@ -246,7 +253,11 @@ impl Builder<'_> {
                                     let deg = self.within(&at, "sweep_deg", deg, -89.0, 89.0)?;
                                     f.span_m.unwrap_or(0.0) * deg.to_radians().tan()
                                 }
-                                (m, None) => self.finite(&at, "sweep_m", m.unwrap_or(0.0))?,
+                                (m, None) => {
+                                    let sweep = self.finite(&at, "sweep_m", m.unwrap_or(0.0))?;
+                                    self.at_most_part_size(&at, "sweep_m", sweep.abs())?;
+                                    sweep
+                                }
                             };
                             FinPlanform::Trapezoidal {
                                 tip_chord_m: tip,
@@ -279,11 +290,12 @@ impl Builder<'_> {
                             };
                             return Err(self.invalid(&at, Some("root_chord_m"), rule));
                         }
-                        let span = self.positive(&at, "span_m", required("span_m", f.span_m)?)?;
+                        self.at_most_part_size(&at, "root_chord_m", root)?;
+                        let span = self.size(&at, "span_m", required("span_m", f.span_m)?)?;
                         (shape, root, span)
                     }
                 };
-                let thickness = self.positive(&at, "thickness_m", f.thickness_m)?;
+                let thickness = self.size(&at, "thickness_m", f.thickness_m)?;
                 let cant = self.within(&at, "cant_deg", f.cant_deg, -MAX_CANT_DEG, MAX_CANT_DEG)?;
                 let rotation = self.finite(&at, "rotation_deg", f.rotation_deg)?;
                 let fins = FinSet {
@@ -314,8 +326,8 @@ impl Builder<'_> {
                 )
             }
             RawComponent::LaunchLug(l) => {
-                let length = self.positive(&at, "length_m", l.length_m)?;
-                let od = self.positive(&at, "outer_diameter_m", l.outer_diameter_m)?;
+                let length = self.size(&at, "length_m", l.length_m)?;
+                let od = self.size(&at, "outer_diameter_m", l.outer_diameter_m)?;
                 let wall = self.wall(&at, "wall_thickness_m", l.wall_thickness_m, od / 2.0)?;
                 let angle = self.finite(&at, "angle_deg", l.angle_deg)?;
                 let lug = LaunchLug {
@@ -332,8 +344,8 @@ impl Builder<'_> {
                 )
             }
             RawComponent::RailButton(b) => {
-                let od = self.positive(&at, "outer_diameter_m", b.outer_diameter_m)?;
-                let height = self.positive(&at, "height_m", b.height_m)?;
+                let od = self.size(&at, "outer_diameter_m", b.outer_diameter_m)?;
+                let height = self.size(&at, "height_m", b.height_m)?;
                 let angle = self.finite(&at, "angle_deg", b.angle_deg)?;
                 let button = RailButton {
                     outer_diameter_m: od,
@@ -349,10 +361,10 @@ impl Builder<'_> {
                 )
             }
             RawComponent::InnerTube(t) => {
-                let length = self.positive(&at, "length_m", t.length_m)?;
-                let od = self.positive(&at, "outer_diameter_m", t.outer_diameter_m)?;
+                let length = self.size(&at, "length_m", t.length_m)?;
+                let od = self.size(&at, "outer_diameter_m", t.outer_diameter_m)?;
                 let wall = self.wall(&at, "wall_thickness_m", t.wall_thickness_m, od / 2.0)?;
-                let dist = self.non_negative(&at, "radial_offset_m", t.radial_offset_m)?;
+                let dist = self.size_or_zero(&at, "radial_offset_m", t.radial_offset_m)?;
                 let angle = self.finite(&at, "radial_angle_deg", t.radial_angle_deg)?;
                 let own = polar(dist, angle);
                 let cluster = match &t.cluster {
@@ -431,9 +443,9 @@ impl Builder<'_> {
                 )
             }
             RawComponent::CenteringRing(r) => {
-                let length = self.positive(&at, "length_m", r.length_m)?;
-                let od = self.positive(&at, "outer_diameter_m", r.outer_diameter_m)?;
-                let id = self.non_negative(&at, "inner_diameter_m", r.inner_diameter_m)?;
+                let length = self.size(&at, "length_m", r.length_m)?;
+                let od = self.size(&at, "outer_diameter_m", r.outer_diameter_m)?;
+                let id = self.size_or_zero(&at, "inner_diameter_m", r.inner_diameter_m)?;
                 if id >= od {
                     return Err(self.invalid(
                         &at,
@@ -458,8 +470,8 @@ impl Builder<'_> {
                 )
             }
             RawComponent::Bulkhead(b) => {
-                let length = self.positive(&at, "length_m", b.length_m)?;
-                let od = self.positive(&at, "outer_diameter_m", b.outer_diameter_m)?;
+                let length = self.size(&at, "length_m", b.length_m)?;
+                let od = self.size(&at, "outer_diameter_m", b.outer_diameter_m)?;
                 let ring = Ring {
                     outer_diameter_m: od,
                     inner_diameter_m: 0.0,
@@ -501,11 +513,7 @@ impl Builder<'_> {
                 )?;
                 let chute = Parachute {
                     packed,
-                    canopy_diameter_m: self.positive(
-                        &at,
-                        "canopy_diameter_m",
-                        c.canopy_diameter_m,
-                    )?,
+                    canopy_diameter_m: self.size(&at, "canopy_diameter_m", c.canopy_diameter_m)?,
                     cd: self.positive(&at, "cd", c.cd)?,
                     deploy: match &c.deploy {
                         Some(d) => Some(self.deploy(&at, d)?),
@@ -676,9 +684,9 @@ impl Builder<'_> {
         angle_deg: f64,
         inertia: Option<[f64; 2]>,
     ) -> Result<(PackedCylinder, f64, [f64; 2]), DesignError> {
-        let length = self.positive(at, "length_m", length_m)?;
-        let radius = self.positive(at, "radius_m", radius_m)?;
-        let dist = self.non_negative(at, "radial_offset_m", offset_m)?;
+        let length = self.size(at, "length_m", length_m)?;
+        let radius = self.size(at, "radius_m", radius_m)?;
+        let dist = self.size_or_zero(at, "radial_offset_m", offset_m)?;
         let angle = self.finite(at, "radial_angle_deg", angle_deg)?;
         let inertia_kg_m2 = match inertia {
             None => None,

@@ -219,6 +219,107 @@ fn zero_sizes_and_densities_are_refused() {
 }
 
 #[test]
+fn a_length_in_millimetres_is_refused_as_larger_than_any_rocket_part() {
+    // Every length or diameter above MAX_PART_SIZE_M (30 m) is refused by its field, the
+    // typo of a length in millimetres (a 54 mm tube written 54) the case it is there for.
+    assert_eq!(MAX_PART_SIZE_M, 30.0);
+    let cases: [(&str, f64, &str, &str); 11] = [
+        ("/stages/0/components/0/length_m", 300.0, "nose", "length_m"),
+        (
+            "/stages/0/components/0/shoulder/length_m",
+            1e150,
+            "nose",
+            "shoulder.length_m",
+        ),
+        (
+            "/stages/0/components/1/length_m",
+            1200.0,
+            "body",
+            "length_m",
+        ),
+        (
+            &format!("{FINS}/root_chord_m"),
+            120.0,
+            "fins",
+            "root_chord_m",
+        ),
+        (&format!("{FINS}/tip_chord_m"), 60.0, "fins", "tip_chord_m"),
+        (&format!("{FINS}/span_m"), 100.0, "fins", "span_m"),
+        (&format!("{FINS}/sweep_m"), -31.0, "fins", "sweep_m"),
+        (
+            &format!("{BODY}/children/2/inner_diameter_m"),
+            31.0,
+            "ring_fore",
+            "inner_diameter_m",
+        ),
+        (
+            &format!("{BODY}/children/4/canopy_diameter_m"),
+            900.0,
+            "chute",
+            "canopy_diameter_m",
+        ),
+        (
+            &format!("{BODY}/children/5/radius_m"),
+            30.5,
+            "ballast",
+            "radius_m",
+        ),
+        (
+            &format!("{BODY}/children/6/height_m"),
+            30.000001,
+            "button_fore",
+            "height_m",
+        ),
+    ];
+    for (pointer, value, id, field) in cases {
+        let (rule, loc, f) = invalid(with(|v| *at(v, pointer) = json!(value)));
+        let got = if field == "sweep_m" {
+            value.abs()
+        } else {
+            value
+        };
+        assert_eq!(rule, Rule::TooLarge { got, max: 30.0 }, "{pointer}");
+        assert_eq!((loc, f.as_deref()), (comp(id), Some(field)), "{pointer}");
+    }
+    // The error says what the number probably is.
+    let e = with(|v| *at(v, "/stages/0/components/1/outer_diameter_m") = json!(54.0)).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "design.json: component \"body\": field \"outer_diameter_m\": must be at most 30 m, \
+         more than any part of a high-power rocket (got 54 m; a length in millimetres? the \
+         design's lengths are in metres)"
+    );
+    // 30 m itself is a size, not a typo: a 30 m canopy loads.
+    let d = with(|v| *at(v, &format!("{BODY}/children/4/canopy_diameter_m")) = json!(30.0));
+    assert!(d.is_ok(), "{:?}", d.err());
+}
+
+#[test]
+fn a_free_form_fin_corner_beyond_30_m_is_refused() {
+    let r = with(|v| {
+        let fins = at(v, FINS).as_object_mut().unwrap();
+        for k in ["root_chord_m", "tip_chord_m", "span_m", "sweep_m"] {
+            fins.remove(k);
+        }
+        fins.insert("planform".into(), json!("free_form"));
+        fins.insert(
+            "points_m".into(),
+            json!([[0.0, 0.0], [40.0, 60.0], [80.0, 60.0], [100.0, 0.0]]),
+        );
+    });
+    let (rule, loc, field) = invalid(r);
+    assert_eq!(
+        rule,
+        Rule::FinOutline {
+            point: 1,
+            why: "must be within 30 m (MAX_PART_SIZE_M) of the root's leading edge: \
+                  the outline is in metres"
+        }
+    );
+    assert_eq!((loc, field.as_deref()), (comp("fins"), Some("points_m")));
+}
+
+#[test]
 fn an_explicit_mass_may_be_zero_but_not_negative() {
     // Zero: the part keeps its shape (for the aerodynamics) and weighs nothing.
     let d = with(|v| *at(v, &format!("{BODY}/children/5/mass_kg")) = json!(0.0))
