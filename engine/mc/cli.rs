@@ -4,7 +4,7 @@
 use crate::campaign::scenario::GravityModel;
 use crate::report;
 use anyhow::{anyhow, Context, Result};
-use hpr_design::motor::{self, Motor, MotorOptions};
+use hpr_design::motor::{self, Grains, Motor, MotorOptions};
 use hpr_design::{Design, MAX_SAMPLING_RATE_HZ};
 use hpr_sim::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
 use hpr_sim::trigger::Trigger;
@@ -64,6 +64,68 @@ pub struct MotorMasses {
     /// (I_11, I_22, I_33) is I_33,I_11; default: a thin shell's).
     #[arg(long, value_name = "AXIAL,TRANSVERSE", value_parser = inertia_pair)]
     pub motor_dry_inertia_kg_m2: Option<[f64; 2]>,
+    /// The propellant as BATES grains, in RocketPy's SolidMotor order: grain_number,
+    /// grain_density (kg/m³), grain_outer_radius, grain_initial_inner_radius,
+    /// grain_initial_height, grain_separation (m). Their mass is the propellant's (not with
+    /// --propellant-mass-kg) and their shape its inertia as they burn.
+    #[arg(
+        long,
+        value_name = "COUNT,DENSITY,OUTER_R,INNER_R,HEIGHT,SEPARATION",
+        value_parser = grains,
+        conflicts_with_all = ["propellant_mass_kg", "motor_chamber_m"],
+    )]
+    pub motor_grains: Option<Grains>,
+    /// The propellant as a solid cylinder RADIUS,HEIGHT m (RocketPy's GenericMotor
+    /// chamber_radius, chamber_height; its chamber_position is
+    /// --motor-propellant-center-from-nozzle-m). Default: the motor's own size.
+    #[arg(long, value_name = "RADIUS,HEIGHT", value_parser = chamber)]
+    pub motor_chamber_m: Option<[f64; 2]>,
+    /// The nozzle exit's radius, m (RocketPy's nozzle_radius), for the jet damping (default:
+    /// 0.88 of the motor's radius).
+    #[arg(long, value_parser = positive)]
+    pub motor_nozzle_radius_m: Option<f64>,
+}
+
+/// Comma-separated numbers, as many as `names`, each finite (the rules beyond that are the
+/// motor tables', which name the field).
+fn numbers<const N: usize>(text: &str, names: &str) -> std::result::Result<[f64; N], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != N {
+        return Err(format!("give {N} numbers, {names}"));
+    }
+    let mut out = [0.0; N];
+    for (o, p) in out.iter_mut().zip(&parts) {
+        *o = match p.parse::<f64>() {
+            Ok(v) if v.is_finite() => v,
+            Ok(_) => return Err(format!("{p}: must be finite ({names})")),
+            Err(_) => return Err(format!("{p}: not a number ({names})")),
+        };
+    }
+    Ok(out)
+}
+
+/// `--motor-grains`: six numbers, the first a whole count.
+fn grains(text: &str) -> std::result::Result<Grains, String> {
+    const NAMES: &str = "COUNT,DENSITY,OUTER_R,INNER_R,HEIGHT,SEPARATION";
+    let [count, density, outer, inner, height, separation] = numbers::<6>(text, NAMES)?;
+    if !(count >= 1.0 && count.fract() == 0.0 && count <= f64::from(u32::MAX)) {
+        return Err(format!(
+            "COUNT = {count}: must be a whole number, 1 or more"
+        ));
+    }
+    Ok(Grains {
+        count: count as u32,
+        outer_radius_m: outer,
+        inner_radius_m: inner,
+        height_m: height,
+        separation_m: separation,
+        density_kg_m3: density,
+    })
+}
+
+/// `--motor-chamber-m`: two numbers.
+fn chamber(text: &str) -> std::result::Result<[f64; 2], String> {
+    numbers::<2>(text, "RADIUS,HEIGHT")
 }
 
 /// Two numbers, `a,b`, each finite and not negative.
@@ -83,6 +145,9 @@ impl MotorMasses {
             dry_center_from_nozzle_m: self.motor_dry_center_from_nozzle_m,
             propellant_center_from_nozzle_m: self.motor_propellant_center_from_nozzle_m,
             dry_inertia_kg_m2: self.motor_dry_inertia_kg_m2,
+            grains: self.motor_grains,
+            chamber_m: self.motor_chamber_m,
+            nozzle_radius_m: self.motor_nozzle_radius_m,
             ..MotorOptions::default()
         }
     }
@@ -100,7 +165,8 @@ pub struct FlyArgs {
         "latitude_deg", "gravity", "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2",
         "main_height_m", "lag_s", "sampling_rate_hz", "temperature_k", "pressure_pa",
         "sounding", "propellant_mass_kg", "motor_dry_mass_kg", "motor_dry_center_from_nozzle_m",
-        "motor_propellant_center_from_nozzle_m", "motor_dry_inertia_kg_m2",
+        "motor_propellant_center_from_nozzle_m", "motor_dry_inertia_kg_m2", "motor_grains",
+        "motor_chamber_m", "motor_nozzle_radius_m",
     ])]
     pub scenario: Option<PathBuf>,
     /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary;

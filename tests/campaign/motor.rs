@@ -157,3 +157,101 @@ fn inspect_moves_the_center_of_mass_by_the_casing_s_moment_when_the_casing_moves
     assert_ne!(code, 0);
     assert!(err.contains("must lie within the motor"), "{err}");
 }
+
+#[test]
+fn the_grains_chamber_and_nozzle_flags_give_inspect_rocketpy_s_propellant_shapes() {
+    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    let design = design.to_str().unwrap();
+    let inspect = |extra: &[&str]| {
+        let (code, out, err) = hpr_mc(&[&["inspect", design, "--json"][..], extra].concat());
+        assert_eq!(code, 0, "{err}");
+        serde_json::from_str::<serde_json::Value>(&out).unwrap()
+    };
+    let axial = |j: &serde_json::Value| j["liftoff"]["inertia_axial_kg_m2"].as_f64().unwrap();
+    let mass = |j: &serde_json::Value| j["liftoff"]["mass_kg"].as_f64().unwrap();
+    let plain = inspect(&[]);
+    // The design's I175: 0.2289 kg of propellant, by default a solid cylinder of the motor's
+    // 19 mm radius (axial inertia ½ m r²).
+    let m_p = plain["motor"]["propellant_mass_kg"].as_f64().unwrap();
+    assert!((m_p - 0.2289).abs() < 1e-12, "{m_p}");
+    // Two BATES grains (RocketPy's SolidMotor order): their mass n ρ π (R² − r²) h replaces
+    // the file's propellant, and their axial inertia is ½ m (R² + r²).
+    let (n, rho, big_r, r, h) = (2.0, 1815.0, 0.0165, 0.008, 0.1);
+    let grains = inspect(&["--motor-grains", "2,1815,0.0165,0.008,0.1,0.005"]);
+    let m_g = n * rho * std::f64::consts::PI * (big_r * big_r - r * r) * h;
+    let got = grains["motor"]["propellant_mass_kg"].as_f64().unwrap();
+    assert!((got - m_g).abs() < 1e-12, "{got} against {m_g}");
+    assert!(((mass(&grains) - mass(&plain)) - (m_g - m_p)).abs() < 1e-9);
+    let want = 0.5 * m_g * (big_r * big_r + r * r) - 0.5 * m_p * 0.019_f64.powi(2);
+    assert!(
+        ((axial(&grains) - axial(&plain)) - want).abs() < 1e-12,
+        "{} against {want}",
+        axial(&grains) - axial(&plain)
+    );
+    assert_eq!(grains["motor"]["grains"]["count"].as_u64(), Some(2));
+    // A GenericMotor's chamber 10 mm across the radius: the same mass, ½ m (0.01² − 0.019²)
+    // less axial inertia; the nozzle radius as given.
+    let chamber = inspect(&[
+        "--motor-chamber-m",
+        "0.01,0.1",
+        "--motor-nozzle-radius-m",
+        "0.012",
+    ]);
+    assert_eq!(mass(&chamber), mass(&plain));
+    let want = 0.5 * m_p * (0.01_f64.powi(2) - 0.019_f64.powi(2));
+    assert!(((axial(&chamber) - axial(&plain)) - want).abs() < 1e-12);
+    assert_eq!(chamber["motor"]["nozzle_radius_m"].as_f64(), Some(0.012));
+    // Refusals name the flag (clap's) or the motor option (the motor tables').
+    let (code, _, err) = hpr_mc(&[
+        "inspect",
+        design,
+        "--motor-grains",
+        "2,1815,0.0165,0.008,0.1",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--motor-grains") && err.contains("give 6 numbers"),
+        "{err}"
+    );
+    let (code, _, err) = hpr_mc(&[
+        "inspect",
+        design,
+        "--motor-grains",
+        "2.5,1815,0.0165,0.008,0.1,0",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("must be a whole number"), "{err}");
+    let (code, _, err) = hpr_mc(&[
+        "inspect",
+        design,
+        "--motor-grains",
+        "2,1815,0.05,0.008,0.1,0",
+    ]);
+    assert_ne!(code, 0);
+    assert!(
+        err.contains("grains.outer_radius_m = 0.05: must fit in the motor"),
+        "{err}"
+    );
+    let (code, _, err) = hpr_mc(&[
+        "inspect",
+        design,
+        "--motor-grains",
+        "2,1815,0.0165,0.008,0.1,0",
+        "--propellant-mass-kg",
+        "0.2",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("cannot be used with"), "{err}");
+    // fly takes them too.
+    let (code, out, err) = hpr_mc(&[
+        "fly",
+        design,
+        "--json",
+        "--motor-grains",
+        "2,1815,0.0165,0.008,0.1,0.005",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let f: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(f["metrics"]["apogee_m"].as_f64().unwrap() > 100.0);
+}
