@@ -8,6 +8,7 @@ use hpr_design::motor::{self, Grains, Motor, MotorOptions};
 use hpr_design::{Design, MAX_SAMPLING_RATE_HZ};
 use hpr_sim::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
 use hpr_sim::trigger::Trigger;
+use hpr_sim::turbulence::MAX_TURBULENCE_INTENSITY;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -162,7 +163,8 @@ pub struct FlyArgs {
     /// parachutes, site and integrator): the flight its variants scatter around.
     #[arg(long, value_name = "SCENARIO", conflicts_with_all = [
         "design", "motor", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
-        "latitude_deg", "gravity", "wind_m_s", "wind_from_deg", "drogue_cds_m2", "main_cds_m2",
+        "latitude_deg", "gravity", "wind_m_s", "wind_from_deg", "wind_turbulence_intensity",
+        "drogue_cds_m2", "main_cds_m2",
         "main_height_m", "lag_s", "sampling_rate_hz", "temperature_k", "pressure_pa",
         "sounding", "propellant_mass_kg", "motor_dry_mass_kg", "motor_dry_center_from_nozzle_m",
         "motor_propellant_center_from_nozzle_m", "motor_dry_inertia_kg_m2", "motor_grains",
@@ -226,6 +228,14 @@ pub struct FlyArgs {
     /// Direction the wind blows from, degrees clockwise from north.
     #[arg(long, default_value_t = 0.0)]
     pub wind_from_deg: f64,
+    /// The wind's turbulence as OpenRocket gives it: its speed's standard deviation over its
+    /// mean, 0 to 1 (OpenRocket's default is 0.1); the gusts are pink noise drawn from --seed.
+    #[arg(long, default_value_t = 0.0, value_parser = turbulence_intensity)]
+    pub wind_turbulence_intensity: f64,
+    /// The flight's noise seed: the wind's gusts and a noisy barometer's readings (with
+    /// --scenario, its nominal flight's; a campaign writes each variant's as sensor_seed).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
     /// Drogue CdS, m², opened at apogee (default: the design's smaller parachute). Any of
     /// the four parachute flags flies a drogue and a main by them, in place of the
     /// design's own deployments (its parachutes' `deploy`).
@@ -251,7 +261,7 @@ pub struct FlyArgs {
     #[arg(long, conflicts_with_all = [
         "scenario", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
         "latitude_deg", "gravity", "temperature_k", "pressure_pa", "sounding", "wind_m_s",
-        "wind_from_deg",
+        "wind_from_deg", "wind_turbulence_intensity",
     ])]
     pub openrocket_conditions: bool,
 }
@@ -270,6 +280,16 @@ fn sampling_rate(text: &str) -> std::result::Result<f64, String> {
     match positive(text)? {
         v if v <= MAX_SAMPLING_RATE_HZ => Ok(v),
         _ => Err(format!("must be at most {MAX_SAMPLING_RATE_HZ} Hz")),
+    }
+}
+
+/// A turbulence intensity: 0 to [`MAX_TURBULENCE_INTENSITY`].
+fn turbulence_intensity(text: &str) -> std::result::Result<f64, String> {
+    match not_negative(text)? {
+        v if v <= MAX_TURBULENCE_INTENSITY => Ok(v),
+        _ => Err(format!(
+            "must be at most {MAX_TURBULENCE_INTENSITY}, the wind speed's standard deviation over its mean (OpenRocket's 10 % is 0.1)"
+        )),
     }
 }
 
@@ -489,6 +509,7 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
     if let Some(path) = &a.trajectory {
         report::trajectory_format(path)?;
     }
+    let sim = sim.with_sensor_seed(a.seed);
     let flight = sim.run(&mut ()).map_err(|e| anyhow!("{e}"))?;
     if let Some(path) = &a.trajectory {
         report::write_trajectory(path, &flight)
@@ -543,6 +564,7 @@ fn as_openrocket_flew(
     args.heading_deg = sim.heading_deg.unwrap_or(0.0);
     args.wind_m_s = sim.wind_m_s.unwrap_or(0.0);
     args.wind_from_deg = sim.wind_from_deg;
+    args.wind_turbulence_intensity = sim.wind_turbulence_intensity.unwrap_or(0.0);
     args.elevation_m = sim.elevation_m;
     if let Some(lat) = sim.latitude_deg {
         args.latitude_deg = Some(lat);
@@ -581,6 +603,9 @@ fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
         .gravity
         .at_site(a.latitude_deg, elevation_m, "--latitude-deg")
         .map_err(|e| anyhow!("--gravity: {e}"))?;
+    let wind = wind
+        .with_turbulence(a.wind_turbulence_intensity)
+        .map_err(|e| anyhow!("--wind-turbulence-intensity: {e}"))?;
     let env = Environment {
         elevation_m,
         wind,

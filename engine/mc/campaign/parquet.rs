@@ -121,10 +121,11 @@ fn sweep_fields(p: &Prepared) -> Vec<Field> {
         .collect()
 }
 
-/// Whether the scenario's parachutes read a noisy barometer, so that each variant's sensor
-/// seed is a column (the seed `Simulation::with_sensor_seed` needs to fly that variant alone).
+/// Whether the scenario's flights draw noise (a noisy barometer, the wind's turbulence), so
+/// that each variant's sensor seed is a column (the seed `Simulation::with_sensor_seed` needs
+/// to fly that variant alone).
 fn has_sensor_seed(p: &Prepared) -> bool {
-    p.scenario.parachutes.iter().any(|c| c.noise.is_some())
+    p.scenario.has_noise()
 }
 
 /// Schema of variants.parquet: ids (and the sensor seed where a barometer is noisy), the sweep

@@ -19,6 +19,7 @@ pub mod sensor;
 pub mod shifts;
 pub mod sounding;
 pub mod trigger;
+pub mod turbulence;
 pub mod wind;
 
 pub use events::EventKind;

@@ -48,6 +48,12 @@ pub enum WindError {
         /// The rejected value.
         value: f64,
     },
+    /// A turbulence intensity outside 0 to 1 ([`Wind::with_turbulence`]).
+    #[error("wind: turbulence intensity = {value}: must be between 0 and 1 (the speed's standard deviation over its mean)")]
+    Turbulence {
+        /// The rejected value.
+        value: f64,
+    },
     /// A negative or non-finite scale of the speeds ([`Wind::transformed`]).
     #[error("wind: scale = {value}: must be finite and >= 0")]
     Scale {
@@ -103,6 +109,9 @@ pub struct Wind {
     rotation_deg: f64,
     /// The wind blowing: `given` with its speeds scaled and its directions turned.
     profile: Profile,
+    /// The turbulence intensity (OpenRocket's: the speed's standard deviation over its mean;
+    /// 0: none). The flight draws the gusts ([`crate::turbulence`]).
+    turbulence: f64,
 }
 
 impl Default for Wind {
@@ -182,7 +191,24 @@ impl Wind {
             scale: 1.0,
             rotation_deg: 0.0,
             profile,
+            turbulence: 0.0,
         }
+    }
+
+    /// This wind with turbulence of intensity `intensity` (OpenRocket's turbulence intensity:
+    /// the speed's standard deviation over its mean, 0 to
+    /// [`crate::turbulence::MAX_TURBULENCE_INTENSITY`]); see [`crate::turbulence`].
+    pub fn with_turbulence(mut self, intensity: f64) -> Result<Self, WindError> {
+        if !(0.0..=crate::turbulence::MAX_TURBULENCE_INTENSITY).contains(&intensity) {
+            return Err(WindError::Turbulence { value: intensity });
+        }
+        self.turbulence = intensity;
+        Ok(self)
+    }
+
+    /// The turbulence intensity (0: none).
+    pub fn turbulence_intensity(&self) -> f64 {
+        self.turbulence
     }
 
     /// The transformation of the wind as given: (speed scale, clockwise turn in degrees);
@@ -206,7 +232,7 @@ impl Wind {
             });
         }
         if scale == 1.0 && rotation_deg == 0.0 {
-            return Ok(Self::of(self.given.clone()));
+            return Self::of(self.given.clone()).with_turbulence(self.turbulence);
         }
         // Clockwise by θ in (east, north): north (0, 1) turns toward east (sin θ, cos θ).
         let (sin, cos) = rotation_deg.to_radians().sin_cos();
@@ -226,6 +252,7 @@ impl Wind {
             scale,
             rotation_deg,
             profile,
+            turbulence: self.turbulence,
         })
     }
 

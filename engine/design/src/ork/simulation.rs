@@ -33,6 +33,9 @@ pub struct OrkSimulation {
     pub wind_m_s: Option<f64>,
     /// Where the wind blows from, clockwise from north.
     pub wind_from_deg: f64,
+    /// The wind's turbulence intensity (its speed's standard deviation over its mean), where
+    /// the wind has some and `fly` can fly it (at most 1).
+    pub wind_turbulence_intensity: Option<f64>,
     pub elevation_m: Option<f64>,
     /// The site's latitude, where OpenRocket turned the launch frame with the Earth
     /// (Coriolis; its geodetic method not `flat`) and took the WGS 84 gravity there.
@@ -148,8 +151,12 @@ pub(super) fn simulation(
     } else {
         rod
     };
-    if let Some(t) = turbulence.filter(|t| *t > 0.0) {
-        unsaid.push(format!("its wind's turbulence, {} %", round(100.0 * t)));
+    let turbulence = turbulence.filter(|t| *t > 0.0 && speed.is_some_and(|v| v > 0.0));
+    if let Some(t) = turbulence.filter(|t| *t > 1.0) {
+        unsaid.push(format!(
+            "its wind's turbulence, {} % (fly's is at most 100 %)",
+            round(100.0 * t)
+        ));
     }
     let latitude = num(&c, "launchlatitude");
     let flat = c.text("geodeticmethod").map(str::trim) == Some("flat");
@@ -190,6 +197,7 @@ pub(super) fn simulation(
             .filter(|h| angle != 0.0 && *h != 0.0),
         wind_m_s: speed,
         wind_from_deg: from,
+        wind_turbulence_intensity: turbulence.filter(|t| *t <= 1.0),
         elevation_m: num(&c, "launchaltitude"),
         latitude_deg: latitude.filter(|_| !flat),
         temperature_k,
@@ -214,6 +222,9 @@ impl OrkSimulation {
         if let Some(v) = self.wind_m_s {
             flags.push(format!("--wind-m-s {}", round(v)));
             flags.push(format!("--wind-from-deg {}", round(self.wind_from_deg)));
+        }
+        if let Some(t) = self.wind_turbulence_intensity {
+            flags.push(format!("--wind-turbulence-intensity {}", round(t)));
         }
         if let Some(h) = self.elevation_m {
             flags.push(format!("--elevation-m {}", round(h)));

@@ -761,8 +761,8 @@ fn openrocket_s_own_simulation_is_said_as_fly_s_flags_with_what_it_found() {
         note,
         "OpenRocket's simulation \"Field day\" flew it on the Cesaroni Technology I175 with \
          --rail-length-m 1.5 --inclination-deg 85 --heading-deg 270 --wind-m-s 4 \
-         --wind-from-deg 180 --elevation-m 1400 --temperature-k 300.15 --pressure-pa 86000; \
-         not in these flags: its wind's turbulence, 10 %; it found apogee 1234.5 m at 12.25 s, \
+         --wind-from-deg 180 --wind-turbulence-intensity 0.1 --elevation-m 1400 \
+         --temperature-k 300.15 --pressure-pa 86000; it found apogee 1234.5 m at 12.25 s, \
          max speed 250 m/s, off the rod at 20.5 m/s, landing at 6.1 m/s after 95 s."
     );
     // An older file's wind elements, OpenRocket's default direction (π/2, from the east), and

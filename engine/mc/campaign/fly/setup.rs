@@ -223,11 +223,13 @@ impl Fixed<'_> {
     /// The wind of a setup: the scenario's profile, or its constant wind at the setup's speed
     /// and direction, scaled and turned by the setup's `wind_scale` and `wind_rotation_deg`.
     pub(super) fn wind(&self, s: &Setup) -> Result<Wind, hpr_sim::wind::WindError> {
-        match &self.scenario.environment.wind_profile {
+        let env = &self.scenario.environment;
+        match &env.wind_profile {
             Some(profile) => profile.transformed(s.wind_scale, s.wind_rotation_deg),
             None => Wind::constant(s.wind_speed_m_s, s.wind_from_deg)?
                 .transformed(s.wind_scale, s.wind_rotation_deg),
-        }
+        }?
+        .with_turbulence(env.wind_turbulence_intensity)
     }
 
     /// The structure's change from its nominal (which is at the nominal ballast: a ballast
@@ -275,7 +277,7 @@ impl Fixed<'_> {
                 .collect::<Vec<_>>()
         };
         let (chutes, shifts) = (self.scenario.parachutes.len(), self.scenario.shifts.len());
-        let noisy = self.scenario.parachutes.iter().any(|p| p.noise.is_some());
+        let noisy = self.scenario.has_noise();
         Columns {
             sensor_seed: if noisy {
                 rows.iter().map(|s| s.sensor_seed).collect()

@@ -19,6 +19,7 @@ use hpr_design::motor::{Grains, MotorOptions};
 use hpr_design::MAX_SAMPLING_RATE_HZ;
 use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
+use hpr_sim::turbulence::MAX_TURBULENCE_INTENSITY;
 use hpr_sim::wind::{Wind, WindError, WindRow};
 use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use raw::RawScenario;
@@ -64,6 +65,10 @@ pub struct EnvironmentSpec {
     /// A wind that changes with height (`environment.wind_profile`, checked and built once),
     /// in place of the constant `wind_speed_m_s` from `wind_from_deg`.
     pub wind_profile: Option<Wind>,
+    /// OpenRocket's turbulence intensity (the wind speed's standard deviation over its mean,
+    /// 0 to 1; 0: a steady wind): each variant's gusts are drawn from its noise seed
+    /// ([`hpr_sim::turbulence`]).
+    pub wind_turbulence_intensity: f64,
     pub gravity: GravityModel,
     /// The site's latitude, degrees north: given, the flights feel the Earth's rotation
     /// (Coriolis), and `gravity = "somigliana"` needs it.
@@ -283,6 +288,14 @@ pub fn with_trigger_value(t: &Trigger, v: f64) -> Trigger {
 }
 
 impl Scenario {
+    /// Whether a flight draws noise from its seed (a parachute's noisy barometer, the wind's
+    /// turbulence): then each variant's seed is drawn, and written, so that it can be flown
+    /// again alone.
+    pub fn has_noise(&self) -> bool {
+        self.parachutes.iter().any(|p| p.noise.is_some())
+            || self.environment.wind_turbulence_intensity > 0.0
+    }
+
     /// Read and validate the scenario file at `path`.
     pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|cause| ScenarioError::Io {
@@ -447,6 +460,9 @@ impl Scenario {
                             format!("environment.wind_profile[{row}].height_m")
                         }
                         WindError::Scale { .. } => "environment.wind_profile".to_string(),
+                        WindError::Turbulence { .. } => {
+                            "environment.wind_turbulence_intensity".to_string()
+                        }
                     };
                     // The message in the scenario's words: height_m for the table's height.
                     bad(&key, e.to_string().replace("height_agl_m", "height_m"))
@@ -472,6 +488,18 @@ impl Scenario {
                 env.wind_from_deg.unwrap_or(0.0),
             )?,
             wind_profile,
+            wind_turbulence_intensity: match env.wind_turbulence_intensity {
+                None => 0.0,
+                Some(i) if (0.0..=MAX_TURBULENCE_INTENSITY).contains(&i) => i,
+                Some(i) => {
+                    return Err(bad(
+                        "environment.wind_turbulence_intensity",
+                        format!(
+                            "must be between 0 and {MAX_TURBULENCE_INTENSITY}, the wind speed's standard deviation over its mean (OpenRocket's 10 % is 0.1; got {i})"
+                        ),
+                    ))
+                }
+            },
             gravity: match env.gravity.as_deref() {
                 None => GravityModel::Standard,
                 Some(name) => <GravityModel as clap::ValueEnum>::from_str(name, false).map_err(

@@ -85,6 +85,7 @@ pub(super) struct RawEnvironment {
     pub(super) wind_speed_m_s: Option<f64>,
     pub(super) wind_from_deg: Option<f64>,
     pub(super) wind_profile: Option<Vec<RawWindRow>>,
+    pub(super) wind_turbulence_intensity: Option<f64>,
     pub(super) gravity: Option<String>,
     pub(super) latitude_deg: Option<f64>,
     pub(super) temperature_k: Option<f64>,

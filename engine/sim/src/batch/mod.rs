@@ -399,10 +399,12 @@ impl Batch {
                     let (speed, from) = env.wind.constant_parts().ok_or_else(|| {
                         setup("the base wind is a table, whose speed and direction the wind columns can't set (scale and turn it with wind_scale and wind_rotation_deg)".into())
                     })?;
+                    let turbulence = env.wind.turbulence_intensity();
                     env.wind = Wind::constant(
                         get(&c.wind_speed_m_s).unwrap_or(speed),
                         get(&c.wind_from_deg).unwrap_or(from),
                     )
+                    .and_then(|w| w.with_turbulence(turbulence))
                     .map_err(|e| setup(format!("wind: {e}")))?;
                 }
                 env.wind = env

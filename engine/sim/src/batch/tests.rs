@@ -13,6 +13,7 @@ use hpr_design::Design;
 mod air;
 mod kernels;
 mod noise;
+mod turbulence;
 
 const REFERENCE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),

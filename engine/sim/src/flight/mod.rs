@@ -183,7 +183,7 @@ impl Simulation {
         };
         let tables = Arc::new(DesignTables::new(&design)?);
         let air = air_table(&env, None)?;
-        let model = build_model(
+        let mut model = build_model(
             &design,
             &motor,
             &motor_options,
@@ -199,6 +199,7 @@ impl Simulation {
             &tables,
             air,
         )?;
+        model.set_noise_seed(0);
         Ok(Simulation {
             design,
             motor,
@@ -237,7 +238,7 @@ impl Simulation {
             &self.tables,
             air,
         )?;
-        self.model.sensor_seed = self.sensor_seed;
+        self.model.set_noise_seed(self.sensor_seed);
         if let (Some(target), Some(b)) = (self.brake_target_m, self.model.air_brakes.as_mut()) {
             b.target_apogee_m = target;
         }
@@ -257,12 +258,13 @@ impl Simulation {
     }
 
     /// The seed of the noise the parachutes' flight computers read (those given a
-    /// [`Parachute::noise`]; 0 unless set): flights that differ only by it see different
-    /// noise, and the same seed gives the same noise (see [`crate::sensor`]). A campaign gives
+    /// [`Parachute::noise`]; 0 unless set) and of the wind's gusts (a wind with turbulence,
+    /// [`crate::turbulence`]): flights that differ only by it see different noise, and the
+    /// same seed gives the same noise (see [`crate::sensor`]). A campaign gives
     /// each variant its own from the scenario's seed.
     pub fn with_sensor_seed(mut self, seed: u64) -> Simulation {
         self.sensor_seed = seed;
-        self.model.sensor_seed = seed;
+        self.model.set_noise_seed(seed);
         self
     }
 
@@ -537,6 +539,8 @@ pub fn build_model(
         motor: motor_tables,
         settled: Vec::new(),
         sensor_seed: 0,
+        // Drawn by `set_noise_seed`, once the flight's seed is known.
+        gusts: None,
         air_brakes: design.air_brakes.map(|b| model::BrakeModel {
             cd_open: b.cd * b.reference_area_m2 / tables.aero.ref_area_m2,
             target_apogee_m: b.target_apogee_m,

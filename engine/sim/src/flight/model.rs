@@ -14,6 +14,7 @@ use crate::lanes::{F64x4, Real, V3};
 use crate::massprops::{mass_state, MassModel, PropellantState};
 use crate::shifts::{MassShift, ShiftPlan};
 use crate::trigger::Trigger;
+use crate::turbulence::Gusts;
 use hpr_design::motor::{MotorState, MotorTables};
 use nalgebra::Vector3;
 
@@ -86,10 +87,36 @@ pub struct FlightModel {
     /// ended), for flights with at most [`SETTLED_MAX_SHIFTS`] shifts; built once by
     /// [`FlightModel::with_settled_states`]. Empty: always compute.
     pub settled: Vec<MassState>,
-    /// The seed of the parachutes' sensor noise ([`crate::sensor`]).
+    /// The seed of the flight's noise: its parachutes' sensor noise ([`crate::sensor`]) and
+    /// its wind's gusts. Set by [`FlightModel::set_noise_seed`], which draws the gusts.
     pub sensor_seed: u64,
     /// Air brakes and their controller, if the rocket has them.
     pub air_brakes: Option<BrakeModel>,
+    /// The wind's gusts ([`crate::turbulence`]), drawn once from the seed; `None` without
+    /// turbulence.
+    pub gusts: Option<Gusts>,
+}
+
+impl FlightModel {
+    /// Set the flight's noise seed and draw its gusts from it (a wind with turbulence).
+    pub fn set_noise_seed(&mut self, seed: u64) {
+        let intensity = self.env.wind.turbulence_intensity();
+        if self.sensor_seed == seed && (self.gusts.is_some() || intensity == 0.0) {
+            return;
+        }
+        self.sensor_seed = seed;
+        self.gusts = (intensity > 0.0)
+            .then(|| Gusts::new(intensity, seed, self.options.max_time_s));
+    }
+
+    /// The wind's factor at `t` (s): `1 + I x(t)` with turbulence, exactly 1 without.
+    #[inline(always)]
+    pub fn gust(&self, t: f64) -> f64 {
+        match &self.gusts {
+            Some(g) => g.factor(t),
+            None => 1.0,
+        }
+    }
 }
 
 /// Air brakes as the flight reads them ([`hpr_design::AirBrakes`]).
@@ -367,44 +394,47 @@ impl FlightModel {
     }
 
     #[inline]
-    fn wind_n(&self, h: f64) -> Vector3<f64> {
-        ModelLanes::<f64>::wind(self, h).to_na()
+    fn wind_n(&self, h: f64, t: f64) -> Vector3<f64> {
+        ModelLanes::<f64>::wind(self, h).scale(self.gust(t)).to_na()
     }
 
     /// The 6-DOF derivative (free flight) at `(t, y)`, air brakes closed.
     #[inline]
     pub fn derivative_6dof(&self, starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]) {
         let inst = self.instant(starts, t);
-        self.derivative_6dof_at(&inst.mass, inst.motor.thrust_n, 0.0, y, dy);
+        self.derivative_6dof_at(&inst.mass, inst.motor.thrust_n, 0.0, t, y, dy);
     }
 
     /// [`FlightModel::derivative_6dof`] given the mass state, the thrust and the air brakes'
-    /// drag coefficient on the reference area (0: closed).
+    /// drag coefficient on the reference area (0: closed) at `t`.
     #[inline]
     pub fn derivative_6dof_at(
         &self,
         ms: &MassState,
         thrust_n: f64,
         brake_cd: f64,
+        t: f64,
         y: &[f64; N6],
         dy: &mut [f64; N6],
     ) {
-        derivative_6dof_lanes(self, &MassLanes::of(ms), thrust_n, brake_cd, y, dy);
+        let gust = self.gust(t);
+        derivative_6dof_lanes(self, gust, &MassLanes::of(ms), thrust_n, brake_cd, y, dy);
     }
 
     /// The rail's derivative: O slides along the rail; attitude fixed, no rotation.
     #[inline]
     pub fn derivative_rail(&self, starts: &ShiftStarts, t: f64, y: &[f64; N6], dy: &mut [f64; N6]) {
         let inst = self.instant(starts, t);
-        self.derivative_rail_at(&inst.mass, inst.motor.thrust_n, y, dy);
+        self.derivative_rail_at(&inst.mass, inst.motor.thrust_n, t, y, dy);
     }
 
-    /// [`FlightModel::derivative_rail`] given the mass state and the thrust.
+    /// [`FlightModel::derivative_rail`] given the mass state and the thrust at `t`.
     #[inline]
     pub fn derivative_rail_at(
         &self,
         ms: &MassState,
         thrust_n: f64,
+        t: f64,
         y: &[f64; N6],
         dy: &mut [f64; N6],
     ) {
@@ -416,7 +446,7 @@ impl FlightModel {
             .z;
         let air = self.air.at_msl(h + self.env.elevation_m);
         let r = frames::body_to_inertial(&self.rail.attitude);
-        let wind_b = r.transpose() * self.wind_n(h);
+        let wind_b = r.transpose() * self.wind_n(h, t);
         let v_air_b = r.transpose() * v - wind_b;
         let air_at = self.air_at(&air);
         let powered = thrust_n > 0.0;
@@ -488,7 +518,7 @@ impl FlightModel {
         y: &[f64; N3],
         dy: &mut [f64; N3],
     ) -> (eom::Surroundings<f64>, f64) {
-        let (at, speed_of_sound_m_s) = kernels::descent_surroundings(self, y[2]);
+        let (at, speed_of_sound_m_s) = kernels::descent_surroundings(self, y[2], self.gust(t));
         eom::descent_derivative(y, self.descent_mass(t), canopies, &at, dy);
         (at, speed_of_sound_m_s)
     }
@@ -507,19 +537,20 @@ impl FlightModel {
     pub fn end_point(
         &self,
         ms: &MassState,
+        t: f64,
         y: &[f64; N6],
         dy: &[f64; N6],
         rail: bool,
     ) -> EndFigures {
         if !rail {
-            return end_point_lanes(self, &CenterLanes::of(ms), y, dy)
+            return end_point_lanes(self, self.gust(t), &CenterLanes::of(ms), y, dy)
                 .figures(ms.mass_kg, ms.r_cm.z);
         }
         let r = frames::body_to_inertial(&self.rail.attitude);
         let pos = eom::center_of_mass_position(y, ms, &r);
         let vel = eom::center_of_mass_velocity(y, ms, &r);
         let air = self.air_at(&self.air.at_msl(pos.z + self.env.elevation_m));
-        let v_air_n = vel - self.wind_n(pos.z);
+        let v_air_n = vel - self.wind_n(pos.z, t);
         let aux = FlightAux {
             mass_kg: ms.mass_kg,
             r_cm_z_m: ms.r_cm.z,

@@ -18,6 +18,7 @@ fn the_four_lane_kernel_is_bit_for_bit_four_single_lane_kernels() {
     let mut ms = pack_mass([&MassLanes::ZERO; 4]);
     let mut thrust = F64x4::splat(0.0);
     let mut brake = F64x4::splat(0.0);
+    let mut gust = F64x4::splat(1.0);
     let mut y = [F64x4::splat(0.0); N6];
     let mut singles = Vec::new();
     for (l, model) in models.iter().enumerate() {
@@ -50,18 +51,20 @@ fn the_four_lane_kernel_is_bit_for_bit_four_single_lane_kernels() {
         }
         // Lane 0's air brakes closed, the others open to a drag coefficient of their own.
         brake.0[l] = 0.35 * l as f64;
+        gust.0[l] = model.gust(t);
         let mut d = [0.0; N6];
         if l == 0 {
             model.derivative_6dof(&starts, t, &yi, &mut d);
         } else {
-            model.derivative_6dof_at(&inst.mass, inst.motor.thrust_n, brake.0[l], &yi, &mut d);
+            let (thrust_n, cd) = (inst.motor.thrust_n, brake.0[l]);
+            model.derivative_6dof_at(&inst.mass, thrust_n, cd, t, &yi, &mut d);
         }
         singles.push(d);
     }
     let mut dy = [F64x4::splat(0.0); N6];
-    eval_four(&four, &ms, thrust, brake, &y, &mut dy);
+    eval_four(&four, gust, &ms, thrust, brake, &y, &mut dy);
     let mut generic = [F64x4::splat(0.0); N6];
-    derivative_6dof_lanes(&four, &ms, thrust, brake, &y, &mut generic);
+    derivative_6dof_lanes(&four, gust, &ms, thrust, brake, &y, &mut generic);
     for (l, single) in singles.iter().enumerate() {
         for k in 0..N6 {
             assert!(single[k].is_finite());

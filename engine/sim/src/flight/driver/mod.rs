@@ -263,9 +263,13 @@ pub(crate) enum PhaseEnd {
 
 impl<'a, O: Observer> Run<'a, O> {
     /// The first stop time after `t` (or the time limit). Time only moves forward, so the
-    /// stops at or before `t` are dropped.
+    /// stops at or before `t` are dropped. With turbulence every sample of the gusts is a
+    /// stop too (a step then lies within one straight piece of them).
     fn next_stop(&mut self, t: f64) -> f64 {
-        let max = self.model.options.max_time_s;
+        let max = match &self.model.gusts {
+            Some(g) => self.model.options.max_time_s.min(g.next_sample_s(t)),
+            None => self.model.options.max_time_s,
+        };
         while let Some(&s) = self.stops.0.last() {
             if s > t {
                 return s.min(max);

@@ -77,9 +77,9 @@ pub(super) fn derivative(
 ) {
     let (ms, thrust_n) = memo.get(model, starts, changes, t);
     if rail {
-        model.derivative_rail_at(ms, thrust_n, y, dy)
+        model.derivative_rail_at(ms, thrust_n, t, y, dy)
     } else {
-        model.derivative_6dof_at(ms, thrust_n, brake_cd, y, dy)
+        model.derivative_6dof_at(ms, thrust_n, brake_cd, t, y, dy)
     }
 }
 
@@ -115,7 +115,7 @@ impl SixDof {
             .map_err(|e| integ_at(t0, y0, e, phase.name()))?;
         run.evaluations += evals;
         let ms = run.memo.get(model, &starts, changes, t0).0;
-        let (pos, vel, aux) = model.end_point(ms, y0, each!(stepper, s => s.dy()), rail);
+        let (pos, vel, aux) = model.end_point(ms, t0, y0, each!(stepper, s => s.dy()), rail);
         let ep = EndPoint { pos, vel, aux };
         run.record(
             phase,
@@ -172,7 +172,7 @@ impl SixDof {
             Some(ep) => ep,
             None => {
                 let ms1 = run.memo.get(model, &starts, run.starts_changed, t1).0;
-                model.end_point(ms1, &y1, each!(stepper, s => s.dy()), rail)
+                model.end_point(ms1, t1, &y1, each!(stepper, s => s.dy()), rail)
             }
         };
         let ep1 = EndPoint {
@@ -365,7 +365,7 @@ fn end_point_at<O: Observer>(
         &mut dy,
     );
     let ms = run.memo.get(model, &starts, changes, te).0;
-    let (pos, vel, aux) = model.end_point(ms, &ye, &dy, rail);
+    let (pos, vel, aux) = model.end_point(ms, te, &ye, &dy, rail);
     (ye, EndPoint { pos, vel, aux })
 }
 

@@ -175,12 +175,13 @@ impl ModelLanes<F64x4> for FourModels<'_> {
 #[inline(always)]
 pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
     lanes: &L,
+    gust: S,
     mass_kg: S,
     canopies: &eom::Canopies<S>,
     y: &[S; N3],
     dy: &mut [S; N3],
 ) {
-    let (at, _) = descent_surroundings(lanes, y[2]);
+    let (at, _) = descent_surroundings(lanes, y[2], gust);
     eom::descent_derivative(y, mass_kg, canopies, &at, dy);
 }
 
@@ -190,12 +191,13 @@ pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
 pub fn descent_surroundings<S: Real, L: ModelLanes<S>>(
     lanes: &L,
     h_agl_m: S,
+    gust: S,
 ) -> (eom::Surroundings<S>, S) {
     let (rho, speed_of_sound) = lanes.air(h_agl_m);
     let at = eom::Surroundings {
         rho,
         g: lanes.gravity(h_agl_m),
-        wind_n: lanes.wind(h_agl_m),
+        wind_n: lanes.wind(h_agl_m).scale(gust),
         earth_rate_n: lanes.earth_rate(),
     };
     (at, speed_of_sound)
@@ -287,6 +289,7 @@ impl EndLanes<F64x4> {
 #[inline(always)]
 pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
     lanes: &L,
+    gust: S,
     c: &CenterLanes<S>,
     y: &[S; N6],
     dy: &[S; N6],
@@ -299,7 +302,7 @@ pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
     let v_frame = V3::new(y[3], y[4], y[5]) + r.mul_v(&omega.cross(&c.r));
     let vel = v_frame + r.mul_v(&c.r_rate);
     let (density_kg_m3, speed_of_sound_m_s) = lanes.air(pos.z);
-    let v_air_n = v_frame - lanes.wind(pos.z);
+    let v_air_n = v_frame - lanes.wind(pos.z).scale(gust);
     let a_o_n = V3::new(dy[3], dy[4], dy[5]);
     let w_dot = V3::new(dy[10], dy[11], dy[12]);
     let rel = w_dot.cross(&c.r)
@@ -323,6 +326,7 @@ pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
 #[inline(always)]
 pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
     lanes: &L,
+    gust: S,
     ms: &MassLanes<S>,
     thrust_n: S,
     brake_cd: S,
@@ -333,16 +337,20 @@ pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
     // test inside the kernel cost the inertial flights 3 % of the batch's instructions (the
     // compiler computed the terms and dropped them).
     match lanes.earth_rate() {
-        Some(earth) => derivative_6dof_in(lanes, ms, thrust_n, brake_cd, y, Some(earth), dy),
-        None => derivative_6dof_in(lanes, ms, thrust_n, brake_cd, y, None, dy),
+        Some(earth) => {
+            derivative_6dof_in(lanes, gust, ms, thrust_n, brake_cd, y, Some(earth), dy)
+        }
+        None => derivative_6dof_in(lanes, gust, ms, thrust_n, brake_cd, y, None, dy),
     }
 }
 
 /// [`derivative_6dof_lanes`] on a turning Earth (`earth_n`, the Earth's rotation in the launch
 /// frame) or in an inertial launch frame (`None`).
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     lanes: &L,
+    gust: S,
     ms: &MassLanes<S>,
     thrust_n: S,
     brake_cd: S,
@@ -364,9 +372,9 @@ fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     let sheared = lanes.wind_sheared();
     let (wind_b, shear_b) = if sheared {
         let (w, shear) = lanes.wind_and_shear(h);
-        (r.tr_mul_v(&w), r.tr_mul_v(&shear))
+        (r.tr_mul_v(&w.scale(gust)), r.tr_mul_v(&shear.scale(gust)))
     } else {
-        (r.tr_mul_v(&lanes.wind(h)), V3::zero())
+        (r.tr_mul_v(&lanes.wind(h).scale(gust)), V3::zero())
     };
     // The air meets the airframe: at the center of mass, the velocity through the air of the
     // airframe's point there, not of the center itself, which drifts through the airframe at
