@@ -105,8 +105,8 @@ impl FlightModel {
             return;
         }
         self.sensor_seed = seed;
-        self.gusts = (intensity > 0.0)
-            .then(|| Gusts::new(intensity, seed, self.options.max_time_s));
+        self.gusts =
+            (intensity > 0.0).then(|| Gusts::new(intensity, seed, self.options.max_time_s));
     }
 
     /// The wind's factor at `t` (s): `1 + I x(t)` with turbulence, exactly 1 without.

@@ -60,7 +60,11 @@ fn lanes_in_a_turbulent_wind_equal_their_single_flights_whatever_the_chunks() {
                 .unwrap()
                 .with_sensor_seed(c.sensor_seed[lane.variant]);
             let g = scratch.run(&mut ()).unwrap();
-            assert_eq!(lane.metrics, g.metrics, "variant {} from scratch", lane.variant);
+            assert_eq!(
+                lane.metrics, g.metrics,
+                "variant {} from scratch",
+                lane.variant
+            );
         }
     }
     assert!(flown >= 40, "{flown} of {n} flown");
@@ -89,7 +93,9 @@ fn the_kernels_meet_the_steady_wind_times_the_gust_factor() {
         let mut env = sim.environment().clone();
         env.wind = env.wind.with_turbulence(0.3).unwrap();
         let rail = *sim.rail();
-        sim.with_changes(|c| c.site(env, rail)).unwrap().with_sensor_seed(5)
+        sim.with_changes(|c| c.site(env, rail))
+            .unwrap()
+            .with_sensor_seed(5)
     };
     let gusts = Gusts::new(0.3, 5, SimOptions::default().max_time_s);
     let starts = [f64::INFINITY; crate::flight::model::MAX_SHIFTS];
@@ -106,7 +112,10 @@ fn the_kernels_meet_the_steady_wind_times_the_gust_factor() {
         let close = |a: &[f64], b: &[f64], what: &str| {
             for (k, (x, y)) in a.iter().zip(b).enumerate() {
                 let tol = 1e-12 * (1.0 + x.abs().max(y.abs()));
-                assert!((x - y).abs() <= tol, "{what} at t = {t}, state {k}: {x} against {y}");
+                assert!(
+                    (x - y).abs() <= tol,
+                    "{what} at t = {t}, state {k}: {x} against {y}"
+                );
             }
         };
         let (mut d1, mut d2) = ([0.0; N6], [0.0; N6]);
@@ -126,7 +135,10 @@ fn the_kernels_meet_the_steady_wind_times_the_gust_factor() {
         close(&e1, &e2, "descent");
     }
     // The factors differ from 1 and from each other: the test met real gusts.
-    assert!(factors.iter().all(|f| (f - 1.0).abs() > 1e-3), "{factors:?}");
+    assert!(
+        factors.iter().all(|f| (f - 1.0).abs() > 1e-3),
+        "{factors:?}"
+    );
     // Between two samples the factor is the straight line through them.
     let k = 140;
     let (t0, t1) = (k as f64 * GUST_INTERVAL_S, (k + 1) as f64 * GUST_INTERVAL_S);

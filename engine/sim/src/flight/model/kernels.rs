@@ -337,9 +337,7 @@ pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
     // test inside the kernel cost the inertial flights 3 % of the batch's instructions (the
     // compiler computed the terms and dropped them).
     match lanes.earth_rate() {
-        Some(earth) => {
-            derivative_6dof_in(lanes, gust, ms, thrust_n, brake_cd, y, Some(earth), dy)
-        }
+        Some(earth) => derivative_6dof_in(lanes, gust, ms, thrust_n, brake_cd, y, Some(earth), dy),
         None => derivative_6dof_in(lanes, gust, ms, thrust_n, brake_cd, y, None, dy),
     }
 }
