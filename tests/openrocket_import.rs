@@ -189,7 +189,9 @@ fn fly_with_openrocket_conditions_flies_the_saved_simulation_s_launch_and_sets_i
         "--wind-from-deg",
         "180",
         "--wind-turbulence-intensity",
-        "0.1",
+        // OpenRocket's intensity: its standard deviation over its speed, 0.3 / 3 (one ulp
+        // under 0.1, which the note rounds away).
+        &(0.3f64 / 3.0).to_string(),
         "--elevation-m",
         "1000",
         "--latitude-deg",

@@ -2,6 +2,8 @@
 //! flown through whole campaigns against the same winds written out.
 
 use super::*;
+use hpr_sim::wind::Wind;
+use hpr_sim::{Environment, Parachute, Trigger};
 
 /// Every row's landing point, apogee and landing time.
 fn flights(text: &str) -> Vec<[f64; 4]> {
@@ -69,4 +71,110 @@ fn a_constant_wind_scaled_by_a_half_is_the_constant_wind_of_half_its_speed() {
         "drag_scale = [1.0]",
     ));
     assert_same_flights(&scaled, &half);
+}
+
+#[test]
+fn a_turbulent_wind_gusts_each_variant_by_its_own_seed_and_fly_repeats_a_row() {
+    // OpenRocket's default turbulence, 10 %, on a 6 m/s wind: each variant draws its gusts
+    // from its own seed (a sensor_seed column), the same scenario repeats its rows, and the
+    // row is `fly` of the same flight with that seed.
+    let env = "wind_speed_m_s = 6.0\nwind_from_deg = 250.0\nwind_turbulence_intensity = 0.1";
+    let text = windy(env, "drag_scale = [1.0]");
+    let steady = windy(
+        "wind_speed_m_s = 6.0\nwind_from_deg = 250.0",
+        "drag_scale = [1.0]",
+    );
+    let names = ["drag_scale", "apogee_m", "landing_x_m", "landing_y_m"];
+    let (gusty, again, calm) = (
+        landed_rows(&text, names),
+        landed_rows(&text, names),
+        landed_rows(&steady, names),
+    );
+    assert_eq!(gusty, again, "the same scenario and seed, the same rows");
+    let (dir, file) = setup(&text);
+    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+    let b = read(&report.outputs.variants);
+    let seeds = b
+        .column_by_name("sensor_seed")
+        .expect("a sensor_seed column with turbulence")
+        .as_any()
+        .downcast_ref::<arrow::array::UInt64Array>()
+        .unwrap()
+        .values()
+        .to_vec();
+    for (r, (g, c)) in gusty.iter().zip(&calm).enumerate() {
+        assert_eq!(g[0], c[0], "the same drag scales");
+        // The gusts move the landing point: 10 % of 6 m/s over a few minutes' drift does not
+        // average out to a centimetre.
+        let apart = (g[2] - c[2]).hypot(g[3] - c[3]);
+        assert!(apart > 0.01, "row {r}: {apart} m");
+        // Under the main the rocket drifts with the air: the gusty landing stays within a
+        // few tens of percent of the steady one's distance.
+        let (dg, dc) = (g[2].hypot(g[3]), c[2].hypot(c[3]));
+        assert!(
+            (dg / dc - 1.0).abs() < 0.3,
+            "row {r}: {dg} m against {dc} m"
+        );
+    }
+    // Row 0 flown alone: its design, motor, site, rail, drag scale, parachute and seed.
+    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    let wind = Wind::constant(6.0, 250.0)
+        .and_then(|w| w.with_turbulence(0.1))
+        .unwrap();
+    let f = hpr_sim::Simulation::new(
+        hpr_design::Design::load(&design).unwrap(),
+        hpr_design::motor::find("Cesaroni_I175").unwrap(),
+        Environment {
+            wind,
+            ..Environment::default()
+        },
+        hpr_sim::Rail {
+            inclination_deg: 85.0,
+            ..hpr_sim::Rail::default()
+        },
+    )
+    .and_then(|s| s.with_parachutes(vec![Parachute::new("main", 0.9, Trigger::Apogee, 1.0)]))
+    .and_then(|s| s.with_drag_scale(gusty[0][0]))
+    .and_then(|s| {
+        s.with_options(hpr_sim::SimOptions {
+            max_time_s: 900.0,
+            ..hpr_sim::SimOptions::default()
+        })
+    })
+    .unwrap()
+    .with_sensor_seed(seeds[0])
+    .run(&mut ())
+    .unwrap();
+    assert_eq!(
+        Some([gusty[0][2], gusty[0][3]]),
+        f.metrics.landing_position_m
+    );
+    assert_eq!(f.metrics.apogee_m, Some(gusty[0][1]));
+}
+
+#[test]
+fn a_turbulence_intensity_outside_0_to_1_is_refused_by_key() {
+    for bad in ["-0.1", "1.5", "nan"] {
+        let text = windy(
+            &format!("wind_speed_m_s = 6.0\nwind_turbulence_intensity = {bad}"),
+            "drag_scale = [1.0]",
+        );
+        let err = refusal(&text);
+        assert!(
+            err.contains("environment.wind_turbulence_intensity")
+                && err.contains("must be between 0 and 1"),
+            "{err}"
+        );
+    }
+    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    let (code, _, err) = hpr_mc(&[
+        "fly",
+        design.to_str().unwrap(),
+        "--wind-turbulence-intensity",
+        "2",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--wind-turbulence-intensity"), "{err}");
 }

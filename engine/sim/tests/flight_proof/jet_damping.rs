@@ -44,7 +44,8 @@ fn the_jet_damping_is_rocketpy_s_about_the_nose_tip_as_about_the_center_of_dry_m
             [w, 0.0, 0.0],
         );
         let mut dy = [0.0; hpr_sim::eom::N6];
-        sim.model().derivative_6dof_at(&ms, 0.0, 0.0, &y, &mut dy);
+        sim.model()
+            .derivative_6dof_at(&ms, 0.0, 0.0, t, &y, &mut dy);
         let got = dy[10] / w * i_cm;
         eprintln!("t {t} s: mass-flow moment {got:.5} N m s per rad/s, expected {expected:.5}");
         assert!(
