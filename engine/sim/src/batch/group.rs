@@ -373,8 +373,11 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
     let mut thrust = F64x4::splat(0.0);
     // Each slot's air brakes, as they stand for the whole step.
     let mut brake = F64x4::splat(0.0);
-    // Each slot's gust factor at its stage time (1 without turbulence).
+    // Each slot's gust factor at its stage time (1 without turbulence, then never set).
     let mut gust = F64x4::splat(1.0);
+    let gusty = group
+        .iter_mut()
+        .any(|l| Paused::of(l).model().gusts.is_some());
     // Serial of the mass state each slot holds (refreshed only when it changes).
     let mut serial = [u64::MAX; 4];
     let outcomes = step_on_lanes::<N6, Paused<'_, ()>>(
@@ -391,7 +394,9 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                 }
                 let p = Paused::of(&mut group[slots.lane[l]]);
                 brake.0[l] = p.brake_cd();
-                gust.0[l] = p.model().gust(slots.t[l]);
+                if gusty {
+                    gust.0[l] = p.model().gust(slots.t[l]);
+                }
                 let (m, th, sn) = p.mass_at(slots.t[l]);
                 if sn != serial[l] {
                     ms.set_lane(l, m);
@@ -400,7 +405,7 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                 thrust.0[l] = th;
             }
             match four {
-                Some(four) => eval_four(four, gust, &ms, thrust, brake, ys, dy),
+                Some(four) => eval_four(four, gusty.then_some(gust), &ms, thrust, brake, ys, dy),
                 None => {
                     // Lanes that do not share their aerodynamic tables: one at a time.
                     for (l, lane) in group.iter_mut().enumerate() {
@@ -410,7 +415,7 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                         let p = Paused::of(lane);
                         let model = p.model();
                         let brake_cd = p.brake_cd();
-                        let g = model.gust(slots.t[l]);
+                        let g = model.gust_at(slots.t[l]);
                         let (m, th, _) = p.mass_at(slots.t[l]);
                         let mut d = [0.0; N6];
                         derivative_6dof_lanes(model, g, m, th, brake_cd, &lane_of(ys, l), &mut d);
@@ -432,16 +437,26 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
             };
             let mut mass_kg = [0.0; 4];
             let mut gust_end = F64x4::splat(1.0);
+            let mut any_gust = false;
             for (l, lane) in group.iter_mut().enumerate() {
                 if outcomes[l].is_some() {
                     let (cl, m, g) = Paused::of(lane).end_center();
                     c.set_lane(l, &cl);
                     mass_kg[l] = m;
-                    gust_end.0[l] = g;
+                    if let Some(g) = g {
+                        gust_end.0[l] = g;
+                        any_gust = true;
+                    }
                 }
             }
             Some((
-                end_point_lanes(four, gust_end, &c, &st.end_y, &st.end_dy),
+                end_point_lanes(
+                    four,
+                    any_gust.then_some(gust_end),
+                    &c,
+                    &st.end_y,
+                    &st.end_dy,
+                ),
                 mass_kg,
                 c.r.z,
             ))
@@ -461,6 +476,9 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
     let mut models_four: Option<([&FlightModel; 4], Option<FourModels<'_>>)> = None;
     let mut mass = F64x4::splat(1.0);
     let mut gust = F64x4::splat(1.0);
+    let gusty = group
+        .iter_mut()
+        .any(|l| Descending::of(l).model().gusts.is_some());
     let mut canopies = Canopies {
         cds_m2: F64x4::splat(0.0),
         added_air_m3: F64x4::splat(0.0),
@@ -481,14 +499,18 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
                 }
                 let d = Descending::of(&mut group[slots.lane[l]]);
                 mass.0[l] = models[l].descent_mass(slots.t[l]);
-                gust.0[l] = models[l].gust(slots.t[l]);
+                if gusty {
+                    gust.0[l] = models[l].gust(slots.t[l]);
+                }
                 let c = d.canopies();
                 canopies.cds_m2.0[l] = c.cds_m2;
                 canopies.added_air_m3.0[l] = c.added_air_m3;
                 filled[l] = true;
             }
             match four {
-                Some(four) => descent_rates_lanes(four, gust, mass, &canopies, ys, dy),
+                Some(four) => {
+                    descent_rates_lanes(four, gusty.then_some(gust), mass, &canopies, ys, dy)
+                }
                 None => {
                     for (l, model) in models.iter().enumerate().take(group.len()) {
                         if !slots.active[l] {
@@ -499,7 +521,7 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
                             cds_m2: canopies.cds_m2.0[l],
                             added_air_m3: canopies.added_air_m3.0[l],
                         };
-                        let (g, m) = (gust.0[l], mass.0[l]);
+                        let (g, m) = (gusty.then_some(gust.0[l]), mass.0[l]);
                         descent_rates_lanes(*model, g, m, &one, &lane_of(ys, l), &mut d);
                         for k in 0..N3 {
                             dy[k].0[l] = d[k];
@@ -539,7 +561,7 @@ fn avx2(f: impl FnOnce()) {
 #[inline]
 pub fn eval_four(
     four: &FourModels<'_>,
-    gust: F64x4,
+    gust: Option<F64x4>,
     ms: &MassLanes<F64x4>,
     thrust: F64x4,
     brake_cd: F64x4,

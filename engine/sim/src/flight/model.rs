@@ -112,10 +112,13 @@ impl FlightModel {
     /// The wind's factor at `t` (s): `1 + I x(t)` with turbulence, exactly 1 without.
     #[inline(always)]
     pub fn gust(&self, t: f64) -> f64 {
-        match &self.gusts {
-            Some(g) => g.factor(t),
-            None => 1.0,
-        }
+        self.gust_at(t).unwrap_or(1.0)
+    }
+
+    /// The wind's factor at `t` with turbulence, `None` without (as the kernels take it).
+    #[inline(always)]
+    pub fn gust_at(&self, t: f64) -> Option<f64> {
+        self.gusts.as_ref().map(|g| g.factor(t))
     }
 }
 
@@ -395,7 +398,7 @@ impl FlightModel {
 
     #[inline]
     fn wind_n(&self, h: f64, t: f64) -> Vector3<f64> {
-        ModelLanes::<f64>::wind(self, h).scale(self.gust(t)).to_na()
+        kernels::gusted(ModelLanes::<f64>::wind(self, h), self.gust_at(t)).to_na()
     }
 
     /// The 6-DOF derivative (free flight) at `(t, y)`, air brakes closed.
@@ -417,7 +420,7 @@ impl FlightModel {
         y: &[f64; N6],
         dy: &mut [f64; N6],
     ) {
-        let gust = self.gust(t);
+        let gust = self.gust_at(t);
         derivative_6dof_lanes(self, gust, &MassLanes::of(ms), thrust_n, brake_cd, y, dy);
     }
 
@@ -518,7 +521,7 @@ impl FlightModel {
         y: &[f64; N3],
         dy: &mut [f64; N3],
     ) -> (eom::Surroundings<f64>, f64) {
-        let (at, speed_of_sound_m_s) = kernels::descent_surroundings(self, y[2], self.gust(t));
+        let (at, speed_of_sound_m_s) = kernels::descent_surroundings(self, y[2], self.gust_at(t));
         eom::descent_derivative(y, self.descent_mass(t), canopies, &at, dy);
         (at, speed_of_sound_m_s)
     }
@@ -543,7 +546,7 @@ impl FlightModel {
         rail: bool,
     ) -> EndFigures {
         if !rail {
-            return end_point_lanes(self, self.gust(t), &CenterLanes::of(ms), y, dy)
+            return end_point_lanes(self, self.gust_at(t), &CenterLanes::of(ms), y, dy)
                 .figures(ms.mass_kg, ms.r_cm.z);
         }
         let r = frames::body_to_inertial(&self.rail.attitude);

@@ -62,9 +62,9 @@ fn the_four_lane_kernel_is_bit_for_bit_four_single_lane_kernels() {
         singles.push(d);
     }
     let mut dy = [F64x4::splat(0.0); N6];
-    eval_four(&four, gust, &ms, thrust, brake, &y, &mut dy);
+    eval_four(&four, Some(gust), &ms, thrust, brake, &y, &mut dy);
     let mut generic = [F64x4::splat(0.0); N6];
-    derivative_6dof_lanes(&four, gust, &ms, thrust, brake, &y, &mut generic);
+    derivative_6dof_lanes(&four, Some(gust), &ms, thrust, brake, &y, &mut generic);
     for (l, single) in singles.iter().enumerate() {
         for k in 0..N6 {
             assert!(single[k].is_finite());

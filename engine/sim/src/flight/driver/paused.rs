@@ -431,7 +431,7 @@ impl<'a, O: Observer> Paused<'a, O> {
     /// The center of mass and its rates, and the mass, at the end of the step just taken on
     /// lanes, for its figures computed on lanes ([`crate::flight::model::end_point_lanes`]).
     #[inline(always)]
-    pub(crate) fn end_center(&mut self) -> (CenterLanes<f64>, f64, f64) {
+    pub(crate) fn end_center(&mut self) -> (CenterLanes<f64>, f64, Option<f64>) {
         let model = self.run.model;
         let t1 = self.s6.dopri().t();
         let ms = self
@@ -439,7 +439,7 @@ impl<'a, O: Observer> Paused<'a, O> {
             .memo
             .get(model, &self.run.starts, self.run.starts_changed, t1)
             .0;
-        (CenterLanes::of(ms), ms.mass_kg, model.gust(t1))
+        (CenterLanes::of(ms), ms.mass_kg, model.gust_at(t1))
     }
 
     /// [`PausedPhase::end_step`] with the step end's figures computed on lanes (for the

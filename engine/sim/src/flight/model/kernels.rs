@@ -170,12 +170,23 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     }
 }
 
+/// The wind (or its shear) times the lanes' gust factor, `gust` (each lane's
+/// [`FlightModel::gust`] at its time); `None` when no lane's wind has turbulence: the wind as
+/// it is, without the multiplications (a factor of exactly 1 changes no bit either way).
+#[inline(always)]
+pub(crate) fn gusted<S: Real>(w: V3<S>, gust: Option<S>) -> V3<S> {
+    match gust {
+        Some(g) => w.scale(g),
+        None => w,
+    }
+}
+
 /// The descent's derivative on lanes, given each lane's mass ([`FlightModel::descent_mass`])
 /// and canopies: what [`FlightModel::descent_rates`] computes, four lanes at once.
 #[inline(always)]
 pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
     lanes: &L,
-    gust: S,
+    gust: Option<S>,
     mass_kg: S,
     canopies: &eom::Canopies<S>,
     y: &[S; N3],
@@ -191,13 +202,13 @@ pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
 pub fn descent_surroundings<S: Real, L: ModelLanes<S>>(
     lanes: &L,
     h_agl_m: S,
-    gust: S,
+    gust: Option<S>,
 ) -> (eom::Surroundings<S>, S) {
     let (rho, speed_of_sound) = lanes.air(h_agl_m);
     let at = eom::Surroundings {
         rho,
         g: lanes.gravity(h_agl_m),
-        wind_n: lanes.wind(h_agl_m).scale(gust),
+        wind_n: gusted(lanes.wind(h_agl_m), gust),
         earth_rate_n: lanes.earth_rate(),
     };
     (at, speed_of_sound)
@@ -289,7 +300,7 @@ impl EndLanes<F64x4> {
 #[inline(always)]
 pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
     lanes: &L,
-    gust: S,
+    gust: Option<S>,
     c: &CenterLanes<S>,
     y: &[S; N6],
     dy: &[S; N6],
@@ -302,7 +313,7 @@ pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
     let v_frame = V3::new(y[3], y[4], y[5]) + r.mul_v(&omega.cross(&c.r));
     let vel = v_frame + r.mul_v(&c.r_rate);
     let (density_kg_m3, speed_of_sound_m_s) = lanes.air(pos.z);
-    let v_air_n = v_frame - lanes.wind(pos.z).scale(gust);
+    let v_air_n = v_frame - gusted(lanes.wind(pos.z), gust);
     let a_o_n = V3::new(dy[3], dy[4], dy[5]);
     let w_dot = V3::new(dy[10], dy[11], dy[12]);
     let rel = w_dot.cross(&c.r)
@@ -326,7 +337,7 @@ pub fn end_point_lanes<S: Real, L: ModelLanes<S>>(
 #[inline(always)]
 pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
     lanes: &L,
-    gust: S,
+    gust: Option<S>,
     ms: &MassLanes<S>,
     thrust_n: S,
     brake_cd: S,
@@ -348,7 +359,7 @@ pub fn derivative_6dof_lanes<S: Real, L: ModelLanes<S>>(
 #[allow(clippy::too_many_arguments)]
 fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     lanes: &L,
-    gust: S,
+    gust: Option<S>,
     ms: &MassLanes<S>,
     thrust_n: S,
     brake_cd: S,
@@ -370,9 +381,12 @@ fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     let sheared = lanes.wind_sheared();
     let (wind_b, shear_b) = if sheared {
         let (w, shear) = lanes.wind_and_shear(h);
-        (r.tr_mul_v(&w.scale(gust)), r.tr_mul_v(&shear.scale(gust)))
+        (
+            r.tr_mul_v(&gusted(w, gust)),
+            r.tr_mul_v(&gusted(shear, gust)),
+        )
     } else {
-        (r.tr_mul_v(&lanes.wind(h).scale(gust)), V3::zero())
+        (r.tr_mul_v(&gusted(lanes.wind(h), gust)), V3::zero())
     };
     // The air meets the airframe: at the center of mass, the velocity through the air of the
     // airframe's point there, not of the center itself, which drifts through the airframe at
