@@ -167,6 +167,18 @@ fn a_turbulence_intensity_outside_0_to_1_is_refused_by_key() {
             "{err}"
         );
     }
+    // The gusts are drawn to the time limit before a flight starts: at most two hours of them.
+    let long = windy(
+        "wind_speed_m_s = 6.0\nwind_turbulence_intensity = 0.1",
+        "drag_scale = [1.0]",
+    )
+    .replace("max_time_s = 900.0", "max_time_s = 7200.5");
+    let err = refusal(&long);
+    assert!(
+        err.contains("integrator.max_time_s") && err.contains("at most 7200 s in a turbulent wind"),
+        "{err}"
+    );
+    assert!(refusal_free(&long.replace("7200.5", "7200.0")));
     let design = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("validation/designs/synthetic-54mm-three-fin.json");
     let (code, _, err) = hpr_mc(&[
@@ -177,4 +189,10 @@ fn a_turbulence_intensity_outside_0_to_1_is_refused_by_key() {
     ]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--wind-turbulence-intensity"), "{err}");
+}
+
+/// Whether the scenario `text` loads (its flights not flown).
+fn refusal_free(text: &str) -> bool {
+    let (_dir, file) = setup(text);
+    hpr_mc::campaign::scenario::Scenario::load(&file).is_ok()
 }

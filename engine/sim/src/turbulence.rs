@@ -36,6 +36,11 @@ pub const PINK_PHI: [f64; 2] = [5.0 / 6.0, 5.0 / 72.0];
 /// The largest turbulence intensity accepted: a standard deviation as large as the mean.
 pub const MAX_TURBULENCE_INTENSITY: f64 = 1.0;
 
+/// The longest time limit of a flight in a turbulent wind, s (two hours): its gusts are drawn
+/// to the time limit when the flight is set up (1.15 MB at this limit), so a limit without a
+/// ceiling would draw without end.
+pub const MAX_TURBULENT_FLIGHT_S: f64 = 7200.0;
+
 /// The stream of the flight's seed the gusts draw from (the barometers take 0, 1, … by
 /// their parachute's place in its list).
 const GUST_STREAM: u64 = u64::MAX;

@@ -19,7 +19,7 @@ use hpr_design::motor::{Grains, MotorOptions};
 use hpr_design::MAX_SAMPLING_RATE_HZ;
 use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
-use hpr_sim::turbulence::MAX_TURBULENCE_INTENSITY;
+use hpr_sim::turbulence::{MAX_TURBULENCE_INTENSITY, MAX_TURBULENT_FLIGHT_S};
 use hpr_sim::wind::{Wind, WindError, WindRow};
 use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use raw::RawScenario;
@@ -694,6 +694,12 @@ impl Scenario {
         }
 
         let (integrator, max_time_s) = integrator(&bad, raw.integrator.take().unwrap_or_default())?;
+        if environment.wind_turbulence_intensity > 0.0 && max_time_s > MAX_TURBULENT_FLIGHT_S {
+            return Err(bad(
+                "integrator.max_time_s",
+                format!("must be at most {MAX_TURBULENT_FLIGHT_S} s in a turbulent wind (environment.wind_turbulence_intensity), whose gusts each flight draws to its time limit (got {max_time_s})"),
+            ));
+        }
         let run = raw.run.take().unwrap_or_default();
         let chunk_size = run.chunk_size.unwrap_or(32);
         if !(1..=1_000_000).contains(&chunk_size) {

@@ -453,6 +453,13 @@ pub fn build_model(
     tables: &DesignTables,
     air: Arc<AirTable>,
 ) -> Result<FlightModel, SimError> {
+    use crate::turbulence::MAX_TURBULENT_FLIGHT_S;
+    if env.wind.turbulence_intensity() > 0.0 && options.max_time_s > MAX_TURBULENT_FLIGHT_S {
+        return Err(SimError::Setup(format!(
+            "a flight in a turbulent wind needs a time limit (max_time_s) of at most {MAX_TURBULENT_FLIGHT_S} s, its gusts drawn to it before it starts (got {} s)",
+            options.max_time_s
+        )));
+    }
     let mount = design.motor_mount.ok_or_else(|| {
         SimError::Setup(format!(
             "design \"{}\": it has no motor mount (an inner tube with \"motor_mount\")",

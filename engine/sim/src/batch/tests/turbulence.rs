@@ -146,3 +146,25 @@ fn the_kernels_meet_the_steady_wind_times_the_gust_factor() {
     let want = 0.5 * (gusts.factors()[k] + gusts.factors()[k + 1]);
     assert!((mid - want).abs() < 1e-14, "{mid} against {want}");
 }
+
+#[test]
+fn a_turbulent_flight_with_a_time_limit_past_two_hours_is_refused() {
+    let sim = turbulent_base();
+    let err = sim
+        .clone()
+        .with_options(SimOptions {
+            max_time_s: 7200.5,
+            ..SimOptions::default()
+        })
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("at most 7200 s"), "{err}");
+    // Two hours is allowed: 144,002 samples.
+    let ok = sim
+        .with_options(SimOptions {
+            max_time_s: 7200.0,
+            ..SimOptions::default()
+        })
+        .unwrap();
+    assert_eq!(ok.model().gusts.as_ref().unwrap().factors().len(), 144_002);
+}
