@@ -375,9 +375,10 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
     let mut brake = F64x4::splat(0.0);
     // Each slot's gust factor at its stage time (1 without turbulence, then never set).
     let mut gust = F64x4::splat(1.0);
-    let gusty = group
-        .iter_mut()
-        .any(|l| Paused::of(l).model().gusts.is_some());
+    let gusty = group.iter().any(|l| match &l.flying {
+        Flying::Free(p) => p.model().gusts.is_some(),
+        _ => false,
+    });
     // Serial of the mass state each slot holds (refreshed only when it changes).
     let mut serial = [u64::MAX; 4];
     let outcomes = step_on_lanes::<N6, Paused<'_, ()>>(
@@ -476,9 +477,10 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
     let mut models_four: Option<([&FlightModel; 4], Option<FourModels<'_>>)> = None;
     let mut mass = F64x4::splat(1.0);
     let mut gust = F64x4::splat(1.0);
-    let gusty = group
-        .iter_mut()
-        .any(|l| Descending::of(l).model().gusts.is_some());
+    let gusty = group.iter().any(|l| match &l.flying {
+        Flying::Descent(d) => d.model().gusts.is_some(),
+        _ => false,
+    });
     let mut canopies = Canopies {
         cds_m2: F64x4::splat(0.0),
         added_air_m3: F64x4::splat(0.0),
