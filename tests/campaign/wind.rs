@@ -117,35 +117,7 @@ fn a_turbulent_wind_gusts_each_variant_by_its_own_seed_and_fly_repeats_a_row() {
         );
     }
     // Row 0 flown alone: its design, motor, site, rail, drag scale, parachute and seed.
-    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("validation/designs/synthetic-54mm-three-fin.json");
-    let wind = Wind::constant(6.0, 250.0)
-        .and_then(|w| w.with_turbulence(0.1))
-        .unwrap();
-    let f = hpr_sim::Simulation::new(
-        hpr_design::Design::load(&design).unwrap(),
-        hpr_design::motor::find("Cesaroni_I175").unwrap(),
-        Environment {
-            wind,
-            ..Environment::default()
-        },
-        hpr_sim::Rail {
-            inclination_deg: 85.0,
-            ..hpr_sim::Rail::default()
-        },
-    )
-    .and_then(|s| s.with_parachutes(vec![Parachute::new("main", 0.9, Trigger::Apogee, 1.0)]))
-    .and_then(|s| s.with_drag_scale(gusty[0][0]))
-    .and_then(|s| {
-        s.with_options(hpr_sim::SimOptions {
-            max_time_s: 900.0,
-            ..hpr_sim::SimOptions::default()
-        })
-    })
-    .unwrap()
-    .with_sensor_seed(seeds[0])
-    .run(&mut ())
-    .unwrap();
+    let f = turbulent_by_hand(gusty[0][0], 0.1, seeds[0]);
     assert_eq!(
         Some([gusty[0][2], gusty[0][3]]),
         f.metrics.landing_position_m
@@ -179,6 +151,18 @@ fn a_turbulence_intensity_outside_0_to_1_is_refused_by_key() {
         "{err}"
     );
     assert!(refusal_free(&long.replace("7200.5", "7200.0")));
+    // A swept intensity counts too, though the scenario's own wind is steady.
+    let swept = windy(
+        "wind_speed_m_s = 6.0",
+        "wind_turbulence_intensity = [0.0, 0.1]",
+    )
+    .replace("max_time_s = 900.0", "max_time_s = 7200.5");
+    assert!(refusal(&swept).contains("integrator.max_time_s"));
+    let err = refusal(&windy(
+        "wind_speed_m_s = 6.0",
+        "wind_turbulence_intensity = [0.0, 1.2]",
+    ));
+    assert!(err.contains("sweep.wind_turbulence_intensity"), "{err}");
     let design = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("validation/designs/synthetic-54mm-three-fin.json");
     let (code, _, err) = hpr_mc(&[
@@ -195,4 +179,72 @@ fn a_turbulence_intensity_outside_0_to_1_is_refused_by_key() {
 fn refusal_free(text: &str) -> bool {
     let (_dir, file) = setup(text);
     hpr_mc::campaign::scenario::Scenario::load(&file).is_ok()
+}
+
+/// [`windy`]'s flight in a 6 m/s wind from 250° of turbulence `intensity`, set up by hand with
+/// drag scale `drag` and noise seed `seed`.
+fn turbulent_by_hand(drag: f64, intensity: f64, seed: u64) -> hpr_sim::Flight {
+    let design = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validation/designs/synthetic-54mm-three-fin.json");
+    let wind = Wind::constant(6.0, 250.0)
+        .and_then(|w| w.with_turbulence(intensity))
+        .unwrap();
+    hpr_sim::Simulation::new(
+        hpr_design::Design::load(&design).unwrap(),
+        hpr_design::motor::find("Cesaroni_I175").unwrap(),
+        Environment {
+            wind,
+            ..Environment::default()
+        },
+        hpr_sim::Rail {
+            inclination_deg: 85.0,
+            ..hpr_sim::Rail::default()
+        },
+    )
+    .and_then(|s| s.with_parachutes(vec![Parachute::new("main", 0.9, Trigger::Apogee, 1.0)]))
+    .and_then(|s| s.with_drag_scale(drag))
+    .and_then(|s| {
+        s.with_options(hpr_sim::SimOptions {
+            max_time_s: 900.0,
+            ..hpr_sim::SimOptions::default()
+        })
+    })
+    .unwrap()
+    .with_sensor_seed(seed)
+    .run(&mut ())
+    .unwrap()
+}
+
+#[test]
+fn a_swept_turbulence_intensity_is_a_column_and_each_row_its_flight_by_hand() {
+    // Swept from a steady wind: 0 (no gusts) and 0.2; each row is the flight set up by hand
+    // with its intensity, drag scale and seed.
+    let text = windy(
+        "wind_speed_m_s = 6.0\nwind_from_deg = 250.0",
+        "wind_turbulence_intensity = [0.0, 0.2]",
+    );
+    let (dir, file) = setup(&text);
+    let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
+    assert_eq!(report.landed, report.variants);
+    let b = read(&report.outputs.variants);
+    let seeds = b
+        .column_by_name("sensor_seed")
+        .expect("a sensor_seed column when the turbulence is swept")
+        .as_any()
+        .downcast_ref::<arrow::array::UInt64Array>()
+        .unwrap()
+        .values()
+        .to_vec();
+    let intensity = f64s(&b, "wind_turbulence_intensity").values().to_vec();
+    let (drag, x, y) = (
+        f64s(&b, "drag_scale").values().to_vec(),
+        f64s(&b, "landing_x_m").values().to_vec(),
+        f64s(&b, "landing_y_m").values().to_vec(),
+    );
+    assert_eq!(intensity.iter().filter(|&&i| i == 0.0).count(), 4);
+    assert_eq!(intensity.iter().filter(|&&i| i == 0.2).count(), 4);
+    for r in 0..intensity.len() {
+        let f = turbulent_by_hand(drag[r], intensity[r], seeds[r]);
+        assert_eq!(f.metrics.landing_position_m, Some([x[r], y[r]]), "row {r}");
+    }
 }

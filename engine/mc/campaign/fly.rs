@@ -230,6 +230,7 @@ impl Prepared {
             wind_from_deg: scenario.environment.wind_from_deg,
             wind_scale: 1.0,
             wind_rotation_deg: 0.0,
+            wind_turbulence_intensity: scenario.environment.wind_turbulence_intensity,
             rail: [
                 scenario.rail.length_m,
                 scenario.rail.inclination_deg,

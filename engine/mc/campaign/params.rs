@@ -34,6 +34,8 @@ pub enum Param {
     WindScale,
     /// Clockwise turn of every direction of the wind, degrees (nominal 0).
     WindRotationDeg,
+    /// The wind's turbulence intensity (nominal: `environment.wind_turbulence_intensity`).
+    WindTurbulenceIntensity,
     RailLengthM,
     RailInclinationDeg,
     RailHeadingDeg,
@@ -51,7 +53,7 @@ pub enum Param {
 
 /// The global inputs, in their canonical order (the order of the output's columns and of the
 /// sweep's axes), with their key and unit.
-pub const GLOBAL: [(Param, &str, &str); 17] = [
+pub const GLOBAL: [(Param, &str, &str); 18] = [
     (Param::StructureMassKg, "structure_mass_kg", "kg"),
     (Param::StructureCgM, "structure_cg_m", "m"),
     (Param::BallastKg, "ballast_kg", "kg"),
@@ -65,6 +67,11 @@ pub const GLOBAL: [(Param, &str, &str); 17] = [
     (Param::WindFromDeg, "wind_from_deg", "deg"),
     (Param::WindScale, "wind_scale", "1"),
     (Param::WindRotationDeg, "wind_rotation_deg", "deg"),
+    (
+        Param::WindTurbulenceIntensity,
+        "wind_turbulence_intensity",
+        "1",
+    ),
     (Param::RailLengthM, "rail_length_m", "m"),
     (Param::RailInclinationDeg, "rail_inclination_deg", "deg"),
     (Param::RailHeadingDeg, "rail_heading_deg", "deg"),
@@ -144,6 +151,9 @@ impl Param {
             | Param::RailHeadingDeg
             | Param::ShiftTravelM(_) => Domain::Finite,
             Param::RailInclinationDeg => Domain::Within(0.0, 90.0),
+            Param::WindTurbulenceIntensity => {
+                Domain::Between(0.0, hpr_sim::turbulence::MAX_TURBULENCE_INTENSITY)
+            }
             // The site's air, as `environment.temperature_k` and `pressure_pa` take it.
             Param::TemperatureK => {
                 Domain::Between(SITE_TEMPERATURE_RANGE_K.0, SITE_TEMPERATURE_RANGE_K.1)

@@ -27,6 +27,7 @@ pub(super) struct Setup {
     pub(super) wind_from_deg: f64,
     pub(super) wind_scale: f64,
     pub(super) wind_rotation_deg: f64,
+    pub(super) wind_turbulence_intensity: f64,
     pub(super) rail: [f64; 3],
     /// The air brakes' target apogee, m (NaN without brakes).
     pub(super) brake_target_m: f64,
@@ -54,6 +55,7 @@ impl Setup {
             Param::WindFromDeg => self.wind_from_deg,
             Param::WindScale => self.wind_scale,
             Param::WindRotationDeg => self.wind_rotation_deg,
+            Param::WindTurbulenceIntensity => self.wind_turbulence_intensity,
             Param::RailLengthM => self.rail[0],
             Param::RailInclinationDeg => self.rail[1],
             Param::RailHeadingDeg => self.rail[2],
@@ -82,6 +84,7 @@ impl Setup {
             Param::WindFromDeg => &mut self.wind_from_deg,
             Param::WindScale => &mut self.wind_scale,
             Param::WindRotationDeg => &mut self.wind_rotation_deg,
+            Param::WindTurbulenceIntensity => &mut self.wind_turbulence_intensity,
             Param::RailLengthM => &mut self.rail[0],
             Param::RailInclinationDeg => &mut self.rail[1],
             Param::RailHeadingDeg => &mut self.rail[2],
@@ -229,7 +232,7 @@ impl Fixed<'_> {
             None => Wind::constant(s.wind_speed_m_s, s.wind_from_deg)?
                 .transformed(s.wind_scale, s.wind_rotation_deg),
         }?
-        .with_turbulence(env.wind_turbulence_intensity)
+        .with_turbulence(s.wind_turbulence_intensity)
     }
 
     /// The structure's change from its nominal (which is at the nominal ballast: a ballast
@@ -298,6 +301,9 @@ impl Fixed<'_> {
             wind_from_deg: col(constant_wind, &|s| s.wind_from_deg),
             wind_scale: col(wind, &|s| s.wind_scale),
             wind_rotation_deg: col(wind, &|s| s.wind_rotation_deg),
+            wind_turbulence_intensity: col(has(WindTurbulenceIntensity), &|s| {
+                s.wind_turbulence_intensity
+            }),
             rail_length_m: col(rail, &|s| s.rail[0]),
             rail_inclination_deg: col(rail, &|s| s.rail[1]),
             rail_heading_deg: col(rail, &|s| s.rail[2]),

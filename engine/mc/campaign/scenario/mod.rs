@@ -292,8 +292,17 @@ impl Scenario {
     /// turbulence): then each variant's seed is drawn, and written, so that it can be flown
     /// again alone.
     pub fn has_noise(&self) -> bool {
-        self.parachutes.iter().any(|p| p.noise.is_some())
-            || self.environment.wind_turbulence_intensity > 0.0
+        self.parachutes.iter().any(|p| p.noise.is_some()) || self.turbulent()
+    }
+
+    /// Whether any flight's wind has turbulence (the scenario's, or a swept or dispersed
+    /// intensity).
+    pub fn turbulent(&self) -> bool {
+        self.environment.wind_turbulence_intensity > 0.0
+            || self
+                .inputs
+                .iter()
+                .any(|i| i.param == Param::WindTurbulenceIntensity)
     }
 
     /// Read and validate the scenario file at `path`.
@@ -694,12 +703,6 @@ impl Scenario {
         }
 
         let (integrator, max_time_s) = integrator(&bad, raw.integrator.take().unwrap_or_default())?;
-        if environment.wind_turbulence_intensity > 0.0 && max_time_s > MAX_TURBULENT_FLIGHT_S {
-            return Err(bad(
-                "integrator.max_time_s",
-                format!("must be at most {MAX_TURBULENT_FLIGHT_S} s in a turbulent wind (environment.wind_turbulence_intensity), whose gusts each flight draws to its time limit (got {max_time_s})"),
-            ));
-        }
         let run = raw.run.take().unwrap_or_default();
         let chunk_size = run.chunk_size.unwrap_or(32);
         if !(1..=1_000_000).contains(&chunk_size) {
@@ -765,6 +768,12 @@ impl Scenario {
             requirements,
         };
         scenario.inputs = inputs(&scenario, &bad, raw.sweep.take(), raw.dispersions.take())?;
+        if scenario.turbulent() && scenario.max_time_s > MAX_TURBULENT_FLIGHT_S {
+            return Err(bad(
+                "integrator.max_time_s",
+                format!("must be at most {MAX_TURBULENT_FLIGHT_S} s in a turbulent wind (environment.wind_turbulence_intensity), whose gusts each flight draws to its time limit (got {})", scenario.max_time_s),
+            ));
+        }
         if scenario.environment.wind_profile.is_some() {
             if let Some(i) = scenario
                 .inputs

@@ -225,6 +225,7 @@ pub(super) struct RawParams<T> {
     pub(super) wind_from_deg: Option<T>,
     pub(super) wind_scale: Option<T>,
     pub(super) wind_rotation_deg: Option<T>,
+    pub(super) wind_turbulence_intensity: Option<T>,
     pub(super) rail_length_m: Option<T>,
     pub(super) rail_inclination_deg: Option<T>,
     pub(super) rail_heading_deg: Option<T>,
@@ -237,7 +238,7 @@ pub(super) struct RawParams<T> {
 
 impl<T> RawParams<T> {
     /// The global entries in [`GLOBAL`] order.
-    pub(super) fn globals(&mut self) -> [Option<T>; 17] {
+    pub(super) fn globals(&mut self) -> [Option<T>; 18] {
         [
             self.structure_mass_kg.take(),
             self.structure_cg_m.take(),
@@ -252,6 +253,7 @@ impl<T> RawParams<T> {
             self.wind_from_deg.take(),
             self.wind_scale.take(),
             self.wind_rotation_deg.take(),
+            self.wind_turbulence_intensity.take(),
             self.rail_length_m.take(),
             self.rail_inclination_deg.take(),
             self.rail_heading_deg.take(),

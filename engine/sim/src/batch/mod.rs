@@ -107,6 +107,9 @@ pub struct Columns {
     /// the wind as given (a table, or the constant wind above): [`Wind::transformed`].
     pub wind_scale: Vec<f64>,
     pub wind_rotation_deg: Vec<f64>,
+    /// The wind's turbulence intensity ([`Wind::with_turbulence`]), in place of the base
+    /// wind's.
+    pub wind_turbulence_intensity: Vec<f64>,
     pub rail_length_m: Vec<f64>,
     pub rail_inclination_deg: Vec<f64>,
     pub rail_heading_deg: Vec<f64>,
@@ -211,6 +214,7 @@ impl Columns {
             wind_from_deg: flat(&self.wind_from_deg),
             wind_scale: flat(&self.wind_scale),
             wind_rotation_deg: flat(&self.wind_rotation_deg),
+            wind_turbulence_intensity: flat(&self.wind_turbulence_intensity),
             rail_length_m: flat(&self.rail_length_m),
             rail_inclination_deg: flat(&self.rail_inclination_deg),
             rail_heading_deg: flat(&self.rail_heading_deg),
@@ -286,7 +290,7 @@ impl Batch {
     /// nested one empty or one column per parachute (shift) of the base, each empty or full.
     pub fn check(&self, columns: &Columns) -> Result<(), String> {
         let n = columns.len;
-        let flat: [(&str, &Vec<f64>); 17] = [
+        let flat: [(&str, &Vec<f64>); 18] = [
             ("structure_delta_mass_kg", &columns.structure_delta_mass_kg),
             ("structure_delta_cg_m", &columns.structure_delta_cg_m),
             ("part_mass_kg", &columns.part_mass_kg),
@@ -300,6 +304,10 @@ impl Batch {
             ("wind_from_deg", &columns.wind_from_deg),
             ("wind_scale", &columns.wind_scale),
             ("wind_rotation_deg", &columns.wind_rotation_deg),
+            (
+                "wind_turbulence_intensity",
+                &columns.wind_turbulence_intensity,
+            ),
             ("rail_length_m", &columns.rail_length_m),
             ("air_brakes_target_m", &columns.air_brakes_target_m),
             ("rail_inclination_deg", &columns.rail_inclination_deg),
@@ -373,6 +381,7 @@ impl Batch {
                 || get(&c.wind_from_deg).is_some()
                 || get(&c.wind_scale).is_some()
                 || get(&c.wind_rotation_deg).is_some()
+                || get(&c.wind_turbulence_intensity).is_some()
                 || get(&c.rail_length_m).is_some()
                 || get(&c.rail_inclination_deg).is_some()
                 || get(&c.rail_heading_deg).is_some()
@@ -414,6 +423,12 @@ impl Batch {
                         get(&c.wind_rotation_deg).unwrap_or(rotation),
                     )
                     .map_err(|e| setup(format!("{e}")))?;
+                if let Some(i) = get(&c.wind_turbulence_intensity) {
+                    env.wind = env
+                        .wind
+                        .with_turbulence(i)
+                        .map_err(|e| setup(format!("{e}")))?;
+                }
                 let mut rail = *base.rail();
                 rail.length_m = get(&c.rail_length_m).unwrap_or(rail.length_m);
                 rail.inclination_deg = get(&c.rail_inclination_deg).unwrap_or(rail.inclination_deg);
