@@ -131,10 +131,10 @@ fn chamber(text: &str) -> std::result::Result<[f64; 2], String> {
 
 /// Two numbers, `a,b`, each finite and not negative.
 fn inertia_pair(text: &str) -> std::result::Result<[f64; 2], String> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    match parts.as_slice() {
-        [a, b] => Ok([not_negative(a)?, not_negative(b)?]),
-        _ => Err("give two numbers, AXIAL,TRANSVERSE".to_owned()),
+    let pair = numbers::<2>(text, "AXIAL,TRANSVERSE")?;
+    match pair.iter().find(|v| **v < 0.0) {
+        Some(v) => Err(format!("{v}: must be 0 or more (AXIAL,TRANSVERSE)")),
+        None => Ok(pair),
     }
 }
 

@@ -129,14 +129,7 @@ fn a_scenario_s_noisy_barometer_fires_each_variant_s_main_through_its_own_seed()
         let (dir, file) = setup(&noisy_text);
         let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
         let b = read(&report.outputs.variants);
-        let col = b
-            .column_by_name("sensor_seed")
-            .expect("a sensor_seed column");
-        let col = col
-            .as_any()
-            .downcast_ref::<arrow::array::UInt64Array>()
-            .unwrap();
-        col.values().to_vec()
+        u64s(&b, "sensor_seed").values().to_vec()
     };
     // Without noise, no such column.
     {

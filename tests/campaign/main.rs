@@ -109,6 +109,14 @@ fn f64s<'a>(b: &'a RecordBatch, name: &str) -> &'a Float64Array {
         .unwrap()
 }
 
+fn u64s<'a>(b: &'a RecordBatch, name: &str) -> &'a UInt64Array {
+    b.column_by_name(name)
+        .unwrap_or_else(|| panic!("no column {name}"))
+        .as_any()
+        .downcast_ref::<UInt64Array>()
+        .unwrap()
+}
+
 fn strings<'a>(b: &'a RecordBatch, name: &str) -> &'a StringArray {
     b.column_by_name(name)
         .unwrap()
@@ -198,12 +206,7 @@ fn the_variants_file_reads_back_with_its_schema_units_nulls_metadata_and_values(
     );
 
     let b = read(&report.outputs.variants);
-    let ids = b
-        .column_by_name("variant_id")
-        .unwrap()
-        .as_any()
-        .downcast_ref::<UInt64Array>()
-        .unwrap();
+    let ids = u64s(&b, "variant_id");
     assert_eq!(ids.values().to_vec(), (0..10).collect::<Vec<u64>>());
     let status = strings(&b, "status");
     let error = strings(&b, "error");
@@ -712,16 +715,8 @@ fn each_requirement_s_count_is_the_rows_that_meet_it_whatever_their_status() {
             .unwrap()
             .clone()
     };
-    let u64s = |name: &str| {
-        r.column_by_name(name)
-            .unwrap()
-            .as_any()
-            .downcast_ref::<arrow::array::UInt64Array>()
-            .unwrap()
-            .clone()
-    };
     let (vp, rp) = (point(&v), point(&r));
-    let (met, variants) = (u64s("met"), u64s("variants"));
+    let (met, variants) = (u64s(&r, "met").clone(), u64s(&r, "variants").clone());
     let (metric, fraction) = (strings(&r, "metric"), f64s(&r, "fraction"));
     let (min, max) = (f64s(&r, "min"), f64s(&r, "max"));
     let mut refused_seen = false;

@@ -94,14 +94,8 @@ fn a_turbulent_wind_gusts_each_variant_by_its_own_seed_and_fly_repeats_a_row() {
     let (dir, file) = setup(&text);
     let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
     let b = read(&report.outputs.variants);
-    let seeds = b
-        .column_by_name("sensor_seed")
-        .expect("a sensor_seed column with turbulence")
-        .as_any()
-        .downcast_ref::<arrow::array::UInt64Array>()
-        .unwrap()
-        .values()
-        .to_vec();
+    // A sensor_seed column with turbulence.
+    let seeds = u64s(&b, "sensor_seed").values().to_vec();
     for (r, (g, c)) in gusty.iter().zip(&calm).enumerate() {
         assert_eq!(g[0], c[0], "the same drag scales");
         // The gusts move the landing point: 10 % of 6 m/s over a few minutes' drift does not
@@ -227,14 +221,8 @@ fn a_swept_turbulence_intensity_is_a_column_and_each_row_its_flight_by_hand() {
     let report = run_campaign(&file, &config(&dir.path().join("out"))).unwrap();
     assert_eq!(report.landed, report.variants);
     let b = read(&report.outputs.variants);
-    let seeds = b
-        .column_by_name("sensor_seed")
-        .expect("a sensor_seed column when the turbulence is swept")
-        .as_any()
-        .downcast_ref::<arrow::array::UInt64Array>()
-        .unwrap()
-        .values()
-        .to_vec();
+    // A sensor_seed column when the turbulence is swept.
+    let seeds = u64s(&b, "sensor_seed").values().to_vec();
     let intensity = f64s(&b, "wind_turbulence_intensity").values().to_vec();
     let (drag, x, y) = (
         f64s(&b, "drag_scale").values().to_vec(),

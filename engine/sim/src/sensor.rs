@@ -99,14 +99,21 @@ pub struct NoiseProcess {
     drift_pa: f64,
 }
 
+/// The generator of a flight's noise: ChaCha8 keyed by the flight's seed, on `stream` (a
+/// parachute's place in its list; the wind's gusts take their own).
+pub(crate) fn noise_rng(seed: u64, stream: u64) -> ChaCha8Rng {
+    let mut key = [0u8; 32];
+    key[..8].copy_from_slice(&seed.to_le_bytes());
+    let mut rng = ChaCha8Rng::from_seed(key);
+    rng.set_stream(stream);
+    rng
+}
+
 impl NoiseProcess {
     /// The noise of the flight with sensor seed `seed`, for the parachute at `index` in its
     /// list (see the module docs).
     pub fn new(noise: SensorNoise, seed: u64, index: u64) -> NoiseProcess {
-        let mut key = [0u8; 32];
-        key[..8].copy_from_slice(&seed.to_le_bytes());
-        let mut rng = ChaCha8Rng::from_seed(key);
-        rng.set_stream(index);
+        let mut rng = noise_rng(seed, index);
         let z: f64 = StandardNormal.sample(&mut rng);
         let a = noise.correlation.abs();
         let drift_pa = if a < 1.0 {

@@ -6,7 +6,7 @@
 //! (Kolmogorov's spectrum), sampled every [`GUST_INTERVAL_S`] (0.05 s) and interpolated
 //! linearly between the samples. Two poles make it the AR(2) process
 //! `x_k = φ₁ x_{k−1} + φ₂ x_{k−2} + w_k`, `w_k` standard normal, `φ₁ = α/2 = 5/6`,
-//! `φ₂ = (α/2)(1 − α/2)/2 = 5/72`, whose standard deviation [`PINK_STD`] (2.25255; OpenRocket
+//! `φ₂ = (α/2)(1 − α/2)/2 = 5/72`, whose standard deviation [`pink_std`] (2.25255; OpenRocket
 //! rounds it to 2.252) divides it to unit variance. hpr-mc starts the process from its
 //! stationary distribution (OpenRocket runs ten values from zero, which leaves the first
 //! seconds' variance about 15 % short).
@@ -23,8 +23,6 @@
 //! the integrator, so a step lies within one straight piece of the gusts and the
 //! Dormand–Prince error control sees a smooth wind.
 
-use rand::rngs::ChaCha8Rng;
-use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
 
 /// Time between the noise's samples, s (OpenRocket's `DELTA_T`).
@@ -57,9 +55,6 @@ pub fn pink_std() -> f64 {
     pink_variance_and_correlation().0.sqrt()
 }
 
-/// Also as a constant, for the documentation: [`pink_std`] to six figures.
-pub const PINK_STD: f64 = 2.25255;
-
 /// One flight's gusts: the wind's factor `1 + I x_k` at every sample `t_k = k ·`
 /// [`GUST_INTERVAL_S`] from liftoff to past the time limit.
 #[derive(Debug, Clone, PartialEq)]
@@ -71,10 +66,7 @@ impl Gusts {
     /// The gusts of intensity `intensity` (`0 <` it `<=` [`MAX_TURBULENCE_INTENSITY`], checked
     /// by the wind) of the flight with noise seed `seed`, drawn to `duration_s`.
     pub fn new(intensity: f64, seed: u64, duration_s: f64) -> Gusts {
-        let mut key = [0u8; 32];
-        key[..8].copy_from_slice(&seed.to_le_bytes());
-        let mut rng = ChaCha8Rng::from_seed(key);
-        rng.set_stream(GUST_STREAM);
+        let mut rng = crate::sensor::noise_rng(seed, GUST_STREAM);
         let mut normal = || -> f64 { StandardNormal.sample(&mut rng) };
         let (var, rho) = pink_variance_and_correlation();
         let std = var.sqrt();
@@ -135,7 +127,7 @@ mod tests {
         // exactly: γ₀ = (1 − φ₂) / ((1 + φ₂)((1 − φ₂)² − φ₁²)).
         let s = pink_std();
         assert!((s - 2.252).abs() < 1e-3, "{s}");
-        assert!((s - PINK_STD).abs() < 5e-6, "{s}");
+        assert!((s - 2.25255).abs() < 5e-6, "{s}");
         // Kasdin's coefficients a_k = (k − 1 − α/2) a_{k−1} / k, a_0 = 1, negated.
         let alpha = 5.0 / 3.0;
         let a1 = -alpha / 2.0;

@@ -404,16 +404,16 @@ impl Batch {
                         .map_err(|e| setup(format!("environment: {e}")))?;
                 }
                 let (scale, rotation) = env.wind.transformation();
+                let turbulence = get(&c.wind_turbulence_intensity)
+                    .unwrap_or(env.wind.turbulence_intensity());
                 if get(&c.wind_speed_m_s).is_some() || get(&c.wind_from_deg).is_some() {
                     let (speed, from) = env.wind.constant_parts().ok_or_else(|| {
                         setup("the base wind is a table, whose speed and direction the wind columns can't set (scale and turn it with wind_scale and wind_rotation_deg)".into())
                     })?;
-                    let turbulence = env.wind.turbulence_intensity();
                     env.wind = Wind::constant(
                         get(&c.wind_speed_m_s).unwrap_or(speed),
                         get(&c.wind_from_deg).unwrap_or(from),
                     )
-                    .and_then(|w| w.with_turbulence(turbulence))
                     .map_err(|e| setup(format!("wind: {e}")))?;
                 }
                 env.wind = env
@@ -422,13 +422,8 @@ impl Batch {
                         get(&c.wind_scale).unwrap_or(scale),
                         get(&c.wind_rotation_deg).unwrap_or(rotation),
                     )
+                    .and_then(|w| w.with_turbulence(turbulence))
                     .map_err(|e| setup(format!("{e}")))?;
-                if let Some(i) = get(&c.wind_turbulence_intensity) {
-                    env.wind = env
-                        .wind
-                        .with_turbulence(i)
-                        .map_err(|e| setup(format!("{e}")))?;
-                }
                 let mut rail = *base.rail();
                 rail.length_m = get(&c.rail_length_m).unwrap_or(rail.length_m);
                 rail.inclination_deg = get(&c.rail_inclination_deg).unwrap_or(rail.inclination_deg);

@@ -138,6 +138,25 @@ fn columns_of(rows: std::ops::Range<usize>, seed: u64) -> Columns {
     c
 }
 
+/// Every lane of `batch.run(n, chunk, window, cols)` on a pool of `threads`, in variant order.
+fn run_on(
+    batch: &Batch,
+    n: usize,
+    threads: usize,
+    chunk: usize,
+    window: usize,
+    cols: impl Fn(std::ops::Range<usize>) -> Columns + Sync + Send,
+) -> Vec<LaneResult> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    let mut out = Vec::new();
+    pool.install(|| batch.run(n, chunk, window, cols, |r| out.push(r)))
+        .unwrap();
+    out
+}
+
 fn columns(n: usize, seed: u64) -> Columns {
     columns_of(0..n, seed)
 }
@@ -309,22 +328,9 @@ fn results_do_not_depend_on_threads_chunks_or_window() {
     let n = 96;
     let batch = Batch::new(base(), Some("ballast")).unwrap();
     let run_with = |threads: usize, chunk: usize, window: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        let mut out = Vec::new();
-        pool.install(|| {
-            batch.run(
-                n,
-                chunk,
-                window,
-                |rows| columns_of(rows, 7),
-                |r| out.push(r),
-            )
+        run_on(&batch, n, threads, chunk, window, |rows| {
+            columns_of(rows, 7)
         })
-        .unwrap();
-        out
     };
     let a = run_with(1, 8, 2);
     let b = run_with(2, 8, 4);

@@ -20,16 +20,7 @@ fn lanes_with_noisy_barometers_equal_their_single_flights_whatever_the_chunks() 
         sensor_seed: rows.clone().map(|i| 1000 + i as u64).collect(),
         ..columns_of(rows, 5)
     };
-    let run = |threads: usize, chunk: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        let mut out = Vec::new();
-        pool.install(|| batch.run(n, chunk, 3, cols, |r| out.push(r)))
-            .unwrap();
-        out
-    };
+    let run = |threads: usize, chunk: usize| run_on(&batch, n, threads, chunk, 3, cols);
     let (a, b) = (run(1, 40), run(2, 7));
     assert!(a == b, "the noise depends on the threads or chunks");
     let c = cols(0..n);

@@ -24,16 +24,7 @@ fn lanes_in_a_turbulent_wind_equal_their_single_flights_whatever_the_chunks() {
         sensor_seed: rows.clone().map(|i| 7000 + i as u64).collect(),
         ..columns_of(rows, 11)
     };
-    let run = |threads: usize, chunk: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        let mut out = Vec::new();
-        pool.install(|| batch.run(n, chunk, 3, cols, |r| out.push(r)))
-            .unwrap();
-        out
-    };
+    let run = |threads: usize, chunk: usize| run_on(&batch, n, threads, chunk, 3, cols);
     let (a, b) = (run(1, 16), run(2, 5));
     assert!(a == b, "the gusts depend on the threads or chunks");
     let c = cols(0..n);
