@@ -156,6 +156,44 @@ impl MassLanes<f64> {
     }
 }
 
+impl<S: Real> MassLanes<S> {
+    /// Lane-wise `if m { a } else { b }`.
+    #[inline(always)]
+    pub fn select(m: S::Mask, a: &MassLanes<S>, b: &MassLanes<S>) -> MassLanes<S> {
+        MassLanes {
+            m: S::select(m, a.m, b.m),
+            m_rate: S::select(m, a.m_rate, b.m_rate),
+            m_accel: S::select(m, a.m_accel, b.m_accel),
+            r: V3::select(m, &a.r, &b.r),
+            r_rate: V3::select(m, &a.r_rate, &b.r_rate),
+            r_accel: V3::select(m, &a.r_accel, &b.r_accel),
+            i_o: M3::select(m, &a.i_o, &b.i_o),
+            i_o_rate: M3::select(m, &a.i_o_rate, &b.i_o_rate),
+            h: V3::select(m, &a.h, &b.h),
+            h_rate: V3::select(m, &a.h_rate, &b.h_rate),
+        }
+    }
+}
+
+impl MassLanes<f64> {
+    /// The same numbers as a [`MassState`].
+    #[inline(always)]
+    pub fn to_state(&self) -> MassState {
+        MassState {
+            mass_kg: self.m,
+            mass_rate: self.m_rate,
+            mass_accel: self.m_accel,
+            r_cm: self.r.to_na(),
+            r_cm_rate: self.r_rate.to_na(),
+            r_cm_accel: self.r_accel.to_na(),
+            inertia_o: self.i_o.to_na(),
+            inertia_o_rate: self.i_o_rate.to_na(),
+            h_rel: self.h.to_na(),
+            h_rel_rate: self.h_rate.to_na(),
+        }
+    }
+}
+
 impl MassLanes<f64> {
     /// All zeros (a place to pack lanes into).
     pub const ZERO: MassLanes<f64> = MassLanes {

@@ -42,6 +42,8 @@ pub trait Real:
     fn gt(self, other: Self) -> Self::Mask;
     /// Lane-wise `self == other`.
     fn eq(self, other: Self) -> Self::Mask;
+    /// Lane-wise `self != other` (true for a NaN lane).
+    fn ne(self, other: Self) -> Self::Mask;
     fn or(a: Self::Mask, b: Self::Mask) -> Self::Mask;
     /// Lane-wise `if m { a } else { b }`.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
@@ -85,6 +87,10 @@ impl Real for f64 {
     #[inline(always)]
     fn eq(self, other: f64) -> bool {
         self == other
+    }
+    #[inline(always)]
+    fn ne(self, other: f64) -> bool {
+        self != other
     }
     #[inline(always)]
     fn or(a: bool, b: bool) -> bool {
@@ -208,6 +214,11 @@ impl Real for F64x4 {
         std::array::from_fn(|i| a[i] == b[i])
     }
     #[inline(always)]
+    fn ne(self, o: F64x4) -> [bool; 4] {
+        let (a, b) = (self.0, o.0);
+        std::array::from_fn(|i| a[i] != b[i])
+    }
+    #[inline(always)]
     fn or(a: [bool; 4], b: [bool; 4]) -> [bool; 4] {
         std::array::from_fn(|i| a[i] || b[i])
     }
@@ -308,6 +319,26 @@ impl<S: Real> V3<S> {
     pub fn norm_squared(&self) -> S {
         self.dot(self)
     }
+    /// Each component over `s`.
+    #[inline(always)]
+    pub fn div(&self, s: S) -> V3<S> {
+        V3::new(self.x / s, self.y / s, self.z / s)
+    }
+    /// Lane-wise `if m { a } else { b }`.
+    #[inline(always)]
+    pub fn select(m: S::Mask, a: &V3<S>, b: &V3<S>) -> V3<S> {
+        V3::new(
+            S::select(m, a.x, b.x),
+            S::select(m, a.y, b.y),
+            S::select(m, a.z, b.z),
+        )
+    }
+}
+
+/// Whether any lane of `m` is true.
+#[inline(always)]
+pub fn any<S: Real>(m: S::Mask) -> bool {
+    (0..S::LANES).any(|i| S::mask_lane(m, i))
 }
 
 impl V3<f64> {
@@ -362,6 +393,69 @@ pub struct M3<S> {
 }
 
 impl<S: Real> M3<S> {
+    /// The diagonal matrix `diag(a, b, c)`.
+    #[inline(always)]
+    pub fn diag(a: S, b: S, c: S) -> M3<S> {
+        let z = S::splat(0.0);
+        M3 {
+            m: [[a, z, z], [z, b, z], [z, z, c]],
+        }
+    }
+    /// `a bᵀ`.
+    #[inline(always)]
+    pub fn outer(a: &V3<S>, b: &V3<S>) -> M3<S> {
+        let (a, b) = ([a.x, a.y, a.z], [b.x, b.y, b.z]);
+        let mut m = [[a[0]; 3]; 3];
+        for (r, row) in m.iter_mut().enumerate() {
+            for (c, e) in row.iter_mut().enumerate() {
+                *e = a[r] * b[c];
+            }
+        }
+        M3 { m }
+    }
+    /// `J(v) = |v|² E − v vᵀ`: what a unit point mass at `v` adds to the inertia about the
+    /// origin.
+    #[inline(always)]
+    pub fn point_inertia(v: &V3<S>) -> M3<S> {
+        let n = v.norm_squared();
+        M3::diag(n, n, n).sub(&M3::outer(v, v))
+    }
+    /// Element-wise `f(self, other)`.
+    #[inline(always)]
+    fn zip(&self, o: &M3<S>, f: impl Fn(S, S) -> S) -> M3<S> {
+        // Plain loops (`array::from_fn` and `map` are sometimes left as calls).
+        let mut m = self.m;
+        for (row, o_row) in m.iter_mut().zip(&o.m) {
+            for (e, &b) in row.iter_mut().zip(o_row) {
+                *e = f(*e, b);
+            }
+        }
+        M3 { m }
+    }
+    #[inline(always)]
+    #[allow(clippy::should_implement_trait)]
+    pub fn add(&self, o: &M3<S>) -> M3<S> {
+        self.zip(o, |a, b| a + b)
+    }
+    #[inline(always)]
+    #[allow(clippy::should_implement_trait)]
+    pub fn sub(&self, o: &M3<S>) -> M3<S> {
+        self.zip(o, |a, b| a - b)
+    }
+    /// Every element times `s`.
+    #[inline(always)]
+    pub fn scale(&self, s: S) -> M3<S> {
+        let mut m = self.m;
+        for e in m.iter_mut().flatten() {
+            *e = *e * s;
+        }
+        M3 { m }
+    }
+    /// Lane-wise `if m { a } else { b }`.
+    #[inline(always)]
+    pub fn select(m: S::Mask, a: &M3<S>, b: &M3<S>) -> M3<S> {
+        a.zip(b, |x, y| S::select(m, x, y))
+    }
     #[inline(always)]
     pub fn mul_v(&self, v: &V3<S>) -> V3<S> {
         let m = &self.m;

@@ -20,8 +20,10 @@
 //! flight and every lane of the batch engine call [`mass_state`].
 
 use crate::cycloid::CycloidState;
-use crate::eom::MassState;
-use hpr_design::mass::{point_inertia, MassProps};
+use crate::eom::{MassLanes, MassState};
+use crate::flight::model::MAX_MOVING_PARTS;
+use crate::lanes::{any, pack_m3, pack_v3, F64x4, Real, M3, V3};
+use hpr_design::mass::MassProps;
 use hpr_design::motor::Grains;
 use nalgebra::{Matrix3, Vector3};
 
@@ -97,6 +99,136 @@ impl MassModel {
     }
 }
 
+/// A mass model's numbers as [`mass_state_lanes`] reads them, on lanes (the single flight's
+/// one lane, or four variants' models packed side by side by the batch engine).
+#[derive(Debug, Clone, Copy)]
+pub struct MassModelLanes<S> {
+    pub fixed_mass_kg: S,
+    pub fixed_first_moment_b: V3<S>,
+    pub fixed_inertia_o_b: M3<S>,
+    pub propellant_cg_b: V3<S>,
+    pub propellant_inertia_o_per_kg: M3<S>,
+    /// The moving parts' masses and centers where the design puts them (a part that one lane
+    /// lacks has no mass there and never moves).
+    pub part_mass_kg: [S; MAX_MOVING_PARTS],
+    pub part_c0_b: [V3<S>; MAX_MOVING_PARTS],
+    /// How many of the parts any lane has.
+    pub parts: usize,
+}
+
+impl MassModelLanes<f64> {
+    /// One model's numbers (at most [`MAX_MOVING_PARTS`] parts: the flight model's rule).
+    #[inline]
+    pub fn of(model: &MassModel) -> MassModelLanes<f64> {
+        let mut part_mass_kg = [0.0; MAX_MOVING_PARTS];
+        let mut part_c0_b = [V3::zero(); MAX_MOVING_PARTS];
+        for (k, p) in model.parts.iter().take(MAX_MOVING_PARTS).enumerate() {
+            part_mass_kg[k] = p.mass_kg;
+            part_c0_b[k] = V3::from_na(&p.c0_b);
+        }
+        MassModelLanes {
+            fixed_mass_kg: model.fixed_mass_kg,
+            fixed_first_moment_b: V3::from_na(&model.fixed_first_moment_b),
+            fixed_inertia_o_b: M3::from_na(&model.fixed_inertia_o_b),
+            propellant_cg_b: V3::from_na(&model.propellant_cg_b),
+            propellant_inertia_o_per_kg: M3::from_na(&model.propellant_inertia_o_per_kg),
+            part_mass_kg,
+            part_c0_b,
+            parts: model.parts.len().min(MAX_MOVING_PARTS),
+        }
+    }
+}
+
+impl MassModelLanes<F64x4> {
+    /// Four models' numbers side by side.
+    #[inline]
+    pub fn pack(m: [&MassModelLanes<f64>; 4]) -> MassModelLanes<F64x4> {
+        MassModelLanes {
+            fixed_mass_kg: F64x4::from_fn(|i| m[i].fixed_mass_kg),
+            fixed_first_moment_b: pack_v3(m.map(|m| &m.fixed_first_moment_b)),
+            fixed_inertia_o_b: pack_m3(m.map(|m| &m.fixed_inertia_o_b)),
+            propellant_cg_b: pack_v3(m.map(|m| &m.propellant_cg_b)),
+            propellant_inertia_o_per_kg: pack_m3(m.map(|m| &m.propellant_inertia_o_per_kg)),
+            part_mass_kg: std::array::from_fn(|k| F64x4::from_fn(|i| m[i].part_mass_kg[k])),
+            part_c0_b: std::array::from_fn(|k| pack_v3(m.map(|m| &m.part_c0_b[k]))),
+            parts: m.iter().map(|m| m.parts).max().unwrap_or(0),
+        }
+    }
+}
+
+/// What changes the mass at one instant, on lanes: the propellant, its grains' own inertia
+/// and the moving parts' motions (summed over each part's shifts).
+#[derive(Debug, Clone, Copy)]
+pub struct MassInputs<S: Real> {
+    pub prop_mass_kg: S,
+    pub prop_rate_kg_s: S,
+    pub prop_accel_kg_s2: S,
+    /// The grains' inertia about their own centers, `[axial, transverse]`, and its rate per
+    /// kilogram of propellant, on the lanes whose motor gives grains (the mask); `None` when no
+    /// lane's does.
+    pub grains: Option<(S::Mask, [S; 2], [S; 2])>,
+    /// Each part's motion along the axis (positive aft): distance, rate, acceleration.
+    pub motion_m: [S; MAX_MOVING_PARTS],
+    pub motion_rate_m_s: [S; MAX_MOVING_PARTS],
+    pub motion_accel_m_s2: [S; MAX_MOVING_PARTS],
+}
+
+impl MassInputs<f64> {
+    /// One flight's inputs: `model`'s grains at the propellant's mass, and the motions.
+    #[inline(always)]
+    pub fn of(model: &MassModel, prop: &PropellantState, motions: &[CycloidState]) -> Self {
+        let mut x = MassInputs {
+            prop_mass_kg: prop.mass_kg,
+            prop_rate_kg_s: prop.rate_kg_s,
+            prop_accel_kg_s2: prop.accel_kg_s2,
+            grains: model.grains.as_ref().map(|(grains, motors)| {
+                let g = grains.cluster_inertia(*motors, prop.mass_kg);
+                (true, g.inertia_kg_m2, g.per_kg_m2)
+            }),
+            motion_m: [0.0; MAX_MOVING_PARTS],
+            motion_rate_m_s: [0.0; MAX_MOVING_PARTS],
+            motion_accel_m_s2: [0.0; MAX_MOVING_PARTS],
+        };
+        for (k, c) in motions.iter().take(MAX_MOVING_PARTS).enumerate() {
+            x.motion_m[k] = c.delta_m;
+            x.motion_rate_m_s[k] = c.rate_m_s;
+            x.motion_accel_m_s2[k] = c.accel_m_s2;
+        }
+        x
+    }
+}
+
+impl MassInputs<F64x4> {
+    /// Four lanes' inputs side by side, the first `parts` parts' motions.
+    #[inline(always)]
+    pub fn pack(x: [&MassInputs<f64>; 4], parts: usize) -> MassInputs<F64x4> {
+        let zero = F64x4::splat(0.0);
+        let mut out = MassInputs {
+            prop_mass_kg: F64x4::from_fn(|i| x[i].prop_mass_kg),
+            prop_rate_kg_s: F64x4::from_fn(|i| x[i].prop_rate_kg_s),
+            prop_accel_kg_s2: F64x4::from_fn(|i| x[i].prop_accel_kg_s2),
+            grains: None,
+            motion_m: [zero; MAX_MOVING_PARTS],
+            motion_rate_m_s: [zero; MAX_MOVING_PARTS],
+            motion_accel_m_s2: [zero; MAX_MOVING_PARTS],
+        };
+        if x.iter().any(|x| x.grains.is_some()) {
+            let g = x.map(|x| x.grains.map_or(([0.0; 2], [0.0; 2]), |(_, i, d)| (i, d)));
+            out.grains = Some((
+                x.map(|x| x.grains.is_some()),
+                [0, 1].map(|k| F64x4::from_fn(|i| g[i].0[k])),
+                [0, 1].map(|k| F64x4::from_fn(|i| g[i].1[k])),
+            ));
+        }
+        for k in 0..parts.min(MAX_MOVING_PARTS) {
+            out.motion_m[k] = F64x4::from_fn(|i| x[i].motion_m[k]);
+            out.motion_rate_m_s[k] = F64x4::from_fn(|i| x[i].motion_rate_m_s[k]);
+            out.motion_accel_m_s2[k] = F64x4::from_fn(|i| x[i].motion_accel_m_s2[k]);
+        }
+        out
+    }
+}
+
 /// Mass state at one instant. `motions[k]` is the total motion of `model.parts[k]` along the
 /// axis (positive aft), summed over its shifts; missing entries mean "not moved".
 #[inline]
@@ -105,59 +237,73 @@ pub fn mass_state(
     prop: &PropellantState,
     motions: &[CycloidState],
 ) -> MassState {
-    let m = model.fixed_mass_kg + prop.mass_kg;
-    let mut s = model.fixed_first_moment_b + model.propellant_cg_b * prop.mass_kg;
-    let mut s_rate = model.propellant_cg_b * prop.rate_kg_s;
-    let mut s_accel = model.propellant_cg_b * prop.accel_kg_s2;
-    let prop_o_per_kg = model.propellant_inertia_o_per_kg;
-    let mut i_o = model.fixed_inertia_o_b + prop_o_per_kg * prop.mass_kg;
-    let mut i_rate = prop_o_per_kg * prop.rate_kg_s;
-    if let Some((grains, motors)) = &model.grains {
+    let lanes = MassModelLanes::of(model);
+    mass_state_lanes(&lanes, &MassInputs::of(model, prop, motions)).to_state()
+}
+
+/// The mass-property kernel on lanes (the one copy of these equations: [`mass_state`] is its
+/// one lane). A part whose motion and its rate are both zero on a lane adds nothing there.
+#[inline(always)]
+pub fn mass_state_lanes<S: Real>(model: &MassModelLanes<S>, x: &MassInputs<S>) -> MassLanes<S> {
+    let zero = S::splat(0.0);
+    let m = model.fixed_mass_kg + x.prop_mass_kg;
+    let cg = &model.propellant_cg_b;
+    let mut s = model.fixed_first_moment_b + cg.scale(x.prop_mass_kg);
+    let mut s_rate = cg.scale(x.prop_rate_kg_s);
+    let mut s_accel = cg.scale(x.prop_accel_kg_s2);
+    let per_kg = &model.propellant_inertia_o_per_kg;
+    let mut i_o = model.fixed_inertia_o_b.add(&per_kg.scale(x.prop_mass_kg));
+    let mut i_rate = per_kg.scale(x.prop_rate_kg_s);
+    if let Some((has, [a, t], [da, dt])) = x.grains {
         // Body axes: the axis is b3.
-        let g = grains.cluster_inertia(*motors, prop.mass_kg);
-        let [a, t] = g.inertia_kg_m2;
-        let [da, dt] = g.per_kg_m2;
-        i_o += Matrix3::from_diagonal(&Vector3::new(t, t, a));
-        i_rate += Matrix3::from_diagonal(&Vector3::new(dt, dt, da)) * prop.rate_kg_s;
+        let with = i_o.add(&M3::diag(t, t, a));
+        i_o = M3::select(has, &with, &i_o);
+        let with = i_rate.add(&M3::diag(dt, dt, da).scale(x.prop_rate_kg_s));
+        i_rate = M3::select(has, &with, &i_rate);
     }
-    let mut h = Vector3::zeros();
-    let mut h_rate = Vector3::zeros();
-    for (part, motion) in model.parts.iter().zip(motions) {
-        if motion.delta_m == 0.0 && motion.rate_m_s == 0.0 {
+    let mut h = V3::zero();
+    let mut h_rate = V3::zero();
+    for k in 0..model.parts {
+        let moving = S::or(x.motion_m[k].ne(zero), x.motion_rate_m_s[k].ne(zero));
+        if !any::<S>(moving) {
             continue;
         }
-        let pm = part.mass_kg;
+        let pm = model.part_mass_kg[k];
+        let c0 = &model.part_c0_b[k];
         // Aft is −b3.
-        let d = Vector3::new(0.0, 0.0, -motion.delta_m);
-        let dv = Vector3::new(0.0, 0.0, -motion.rate_m_s);
-        let da = Vector3::new(0.0, 0.0, -motion.accel_m_s2);
-        let c = part.c0_b + d;
-        s += d * pm;
-        s_rate += dv * pm;
-        s_accel += da * pm;
-        i_o += (point_inertia(&c) - point_inertia(&part.c0_b)) * pm;
-        i_rate +=
-            (Matrix3::identity() * (2.0 * c.dot(&dv)) - dv * c.transpose() - c * dv.transpose())
-                * pm;
-        h += c.cross(&dv) * pm;
-        h_rate += c.cross(&da) * pm;
+        let d = V3::new(zero, zero, -x.motion_m[k]);
+        let dv = V3::new(zero, zero, -x.motion_rate_m_s[k]);
+        let da = V3::new(zero, zero, -x.motion_accel_m_s2[k]);
+        let c = *c0 + d;
+        let two_c_dv = S::splat(2.0) * c.dot(&dv);
+        let di_rate = M3::diag(two_c_dv, two_c_dv, two_c_dv)
+            .sub(&M3::outer(&dv, &c))
+            .sub(&M3::outer(&c, &dv));
+        s = V3::select(moving, &(s + d.scale(pm)), &s);
+        s_rate = V3::select(moving, &(s_rate + dv.scale(pm)), &s_rate);
+        s_accel = V3::select(moving, &(s_accel + da.scale(pm)), &s_accel);
+        let with = i_o.add(&M3::point_inertia(&c).sub(&M3::point_inertia(c0)).scale(pm));
+        i_o = M3::select(moving, &with, &i_o);
+        i_rate = M3::select(moving, &i_rate.add(&di_rate.scale(pm)), &i_rate);
+        h = V3::select(moving, &(h + c.cross(&dv).scale(pm)), &h);
+        h_rate = V3::select(moving, &(h_rate + c.cross(&da).scale(pm)), &h_rate);
     }
-    let r = s / m;
-    let m_rate = prop.rate_kg_s;
-    let m_accel = prop.accel_kg_s2;
-    let r_rate = (s_rate - r * m_rate) / m;
-    let r_accel = (s_accel - r_rate * (2.0 * m_rate) - r * m_accel) / m;
-    MassState {
-        mass_kg: m,
-        mass_rate: m_rate,
-        mass_accel: m_accel,
-        r_cm: r,
-        r_cm_rate: r_rate,
-        r_cm_accel: r_accel,
-        inertia_o: i_o,
-        inertia_o_rate: i_rate,
-        h_rel: h,
-        h_rel_rate: h_rate,
+    let r = s.div(m);
+    let m_rate = x.prop_rate_kg_s;
+    let m_accel = x.prop_accel_kg_s2;
+    let r_rate = (s_rate - r.scale(m_rate)).div(m);
+    let r_accel = (s_accel - r_rate.scale(S::splat(2.0) * m_rate) - r.scale(m_accel)).div(m);
+    MassLanes {
+        m,
+        m_rate,
+        m_accel,
+        r,
+        r_rate,
+        r_accel,
+        i_o,
+        i_o_rate: i_rate,
+        h,
+        h_rate,
     }
 }
 

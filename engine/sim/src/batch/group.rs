@@ -16,7 +16,8 @@ use crate::flight::model::{
 use crate::flight::{SimError, Simulation};
 use crate::integrate::dopri54::arithmetic;
 use crate::integrate::{DenseStepper, StepOutcome};
-use crate::lanes::{F64x4, Real, V3};
+use crate::lanes::{F64x4, Real};
+use crate::massprops::{mass_state_lanes, MassInputs, MassModelLanes};
 
 /// Most lanes of one chunk in flight at once (four groups of four).
 pub const LANES_IN_FLIGHT: usize = 16;
@@ -364,8 +365,18 @@ fn slot_models<'a, const N: usize, P: OnLanes<'a, N>>(
     slots.lane.map(|i| P::of(&mut group[i]).model())
 }
 
+/// What a slot's lane of the four-lane mass state holds.
+#[derive(Clone, Copy, PartialEq)]
+enum Held {
+    Nothing,
+    /// A settled state, by its serial number ([`Paused::settled_mass`]).
+    Settled(u64),
+    /// A computed one, for the time (bits) and count of shift-start changes.
+    Computed(u64, u64),
+}
+
 /// One free-flight attempt of the lanes of `group`: the 6-DOF kernel on four lanes, each slot's
-/// mass state refreshed only when it changes.
+/// mass state refreshed only when it changes, the changing ones computed on four lanes.
 #[inline(always)]
 fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
     let mut four: Option<Option<FourModels<'_>>> = None;
@@ -379,8 +390,9 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
         Flying::Free(p) => p.model().gusts.is_some(),
         _ => false,
     });
-    // Serial of the mass state each slot holds (refreshed only when it changes).
-    let mut serial = [u64::MAX; 4];
+    let mut held = [Held::Nothing; 4];
+    // The slots' mass models side by side, packed when a slot's mass first changes.
+    let mut mass_models: Option<MassModelLanes<F64x4>> = None;
     let outcomes = step_on_lanes::<N6, Paused<'_, ()>>(
         group,
         st,
@@ -389,24 +401,51 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
             let four = four.get_or_insert_with(|| {
                 FourModels::new(slot_models::<N6, Paused<'_, ()>>(group, slots))
             });
-            for l in 0..4 {
-                if !slots.wants(l, serial[l] != u64::MAX) {
-                    continue;
-                }
-                let p = Paused::of(&mut group[slots.lane[l]]);
-                brake.0[l] = p.brake_cd();
-                if gusty {
-                    gust.0[l] = p.model().gust(slots.t[l]);
-                }
-                let (m, th, sn) = p.mass_at(slots.t[l]);
-                if sn != serial[l] {
-                    ms.set_lane(l, m);
-                    serial[l] = sn;
-                }
-                thrust.0[l] = th;
-            }
             match four {
-                Some(four) => eval_four(four, gusty.then_some(gust), &ms, thrust, brake, ys, dy),
+                Some(four) => {
+                    let mut compute = [false; 4];
+                    let mut inputs: [Option<MassInputs<f64>>; 4] = [None; 4];
+                    for l in 0..4 {
+                        if !slots.wants(l, held[l] != Held::Nothing) {
+                            continue;
+                        }
+                        let t = slots.t[l];
+                        let p = Paused::of(&mut group[slots.lane[l]]);
+                        brake.0[l] = p.brake_cd();
+                        if gusty {
+                            gust.0[l] = p.model().gust(t);
+                        }
+                        if let Some((m, sn)) = p.settled_mass(t) {
+                            if held[l] != Held::Settled(sn) {
+                                ms.set_lane(l, m);
+                                held[l] = Held::Settled(sn);
+                            }
+                            thrust.0[l] = 0.0;
+                        } else {
+                            let (starts, changes) = p.mass_key();
+                            let key = Held::Computed(t.to_bits(), changes);
+                            // The step's last two stages share a time: the second keeps the
+                            // first's state (and thrust).
+                            if held[l] != key {
+                                let (motor, x) = p.model().mass_inputs(starts, t);
+                                thrust.0[l] = motor.thrust_n;
+                                inputs[l] = Some(x);
+                                compute[l] = true;
+                                held[l] = key;
+                            }
+                        }
+                    }
+                    if let Some(fill) = inputs.iter().flatten().next().copied() {
+                        let models = mass_models.get_or_insert_with(|| {
+                            let m = four.models.map(|m| MassModelLanes::of(&m.mass));
+                            MassModelLanes::pack([&m[0], &m[1], &m[2], &m[3]])
+                        });
+                        let x = inputs.map(|x| x.unwrap_or(fill));
+                        let x = MassInputs::pack([&x[0], &x[1], &x[2], &x[3]], models.parts);
+                        ms = MassLanes::select(compute, &mass_state_lanes(models, &x), &ms);
+                    }
+                    eval_four(four, gusty.then_some(gust), &ms, thrust, brake, ys, dy)
+                }
                 None => {
                     // Lanes that do not share their aerodynamic tables: one at a time.
                     for (l, lane) in group.iter_mut().enumerate() {
@@ -428,44 +467,37 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
             }
         },
     );
-    // The accepted steps' end figures on four lanes where the lanes share their tables.
+    // The accepted steps' end figures on four lanes where the lanes share their tables: each
+    // such slot's mass state is the last stage's, at the step's end.
     let ends = match &four {
         Some(Some(four)) if outcomes.iter().any(Option::is_some) => {
-            let mut c = CenterLanes {
-                r: V3::zero(),
-                r_rate: V3::zero(),
-                r_accel: V3::zero(),
+            let c = CenterLanes {
+                r: ms.r,
+                r_rate: ms.r_rate,
+                r_accel: ms.r_accel,
             };
-            let mut mass_kg = [0.0; 4];
             let mut gust_end = F64x4::splat(1.0);
             let mut any_gust = false;
             for (l, lane) in group.iter_mut().enumerate() {
                 if outcomes[l].is_some() {
-                    let (cl, m, g) = Paused::of(lane).end_center();
-                    c.set_lane(l, &cl);
-                    mass_kg[l] = m;
-                    if let Some(g) = g {
+                    if let Some(g) = Paused::of(lane).end_gust() {
                         gust_end.0[l] = g;
                         any_gust = true;
                     }
                 }
             }
-            Some((
-                end_point_lanes(
-                    four,
-                    any_gust.then_some(gust_end),
-                    &c,
-                    &st.end_y,
-                    &st.end_dy,
-                ),
-                mass_kg,
-                c.r.z,
+            Some(end_point_lanes(
+                four,
+                any_gust.then_some(gust_end),
+                &c,
+                &st.end_y,
+                &st.end_dy,
             ))
         }
         _ => None,
     };
     end_steps::<N6, Paused<'_, ()>>(group, &outcomes, |p, o, l| match &ends {
-        Some((e, mass_kg, c_z)) => p.end_step_with(o, e.lane(l).figures(mass_kg[l], c_z.0[l])),
+        Some(e) => p.end_step_with(o, e.lane(l).figures(ms.m.0[l], ms.r.z.0[l])),
         None => p.end_step(o),
     });
 }

@@ -11,7 +11,7 @@ use crate::eom::{self, MassLanes, MassState, Nozzle, NozzleLanes, N3, N6};
 use crate::frames;
 use crate::integrate::roots::brent_root_bracketed;
 use crate::lanes::{F64x4, Real, V3};
-use crate::massprops::{mass_state, MassModel, PropellantState};
+use crate::massprops::{mass_state_lanes, MassInputs, MassModel, MassModelLanes, PropellantState};
 use crate::shifts::{MassShift, ShiftPlan};
 use crate::trigger::Trigger;
 use crate::turbulence::Gusts;
@@ -325,16 +325,25 @@ impl FlightModel {
     /// without copying the instant through the stack).
     #[inline(never)]
     pub fn instant_computed_into(&self, starts: &ShiftStarts, t: f64, out: &mut Instant) {
-        out.motor = self.motor.eval(t);
+        let (motor, inputs) = self.mass_inputs(starts, t);
+        out.motor = motor;
+        out.mass = mass_state_lanes(&MassModelLanes::of(&self.mass), &inputs).to_state();
+    }
+
+    /// The motor's state at `t` and what the mass-property kernel
+    /// ([`crate::massprops::mass_state_lanes`]) reads of it and of the shifts' motions then.
+    #[inline(always)]
+    pub fn mass_inputs(&self, starts: &ShiftStarts, t: f64) -> (MotorState, MassInputs<f64>) {
+        let motor = self.motor.eval(t);
         let prop = PropellantState {
-            mass_kg: out.motor.propellant_kg,
-            rate_kg_s: out.motor.propellant_rate_kg_s,
-            accel_kg_s2: out.motor.propellant_accel_kg_s2,
+            mass_kg: motor.propellant_kg,
+            rate_kg_s: motor.propellant_rate_kg_s,
+            accel_kg_s2: motor.propellant_accel_kg_s2,
         };
         let mut motions = [CycloidState::default(); MAX_MOVING_PARTS];
         self.motions_into(starts, t, &mut motions);
         let n = self.mass.parts.len();
-        out.mass = mass_state(&self.mass, &prop, &motions[..n]);
+        (motor, MassInputs::of(&self.mass, &prop, &motions[..n]))
     }
 
     /// Tabulate [`FlightModel::settled`]: for every set of started shifts, the mass state
@@ -369,7 +378,7 @@ impl FlightModel {
     /// Whether nothing changes the mass at `t`: the motor is out and every shift that has
     /// started has ended, judged exactly as [`FlightModel::instant`] evaluates them (so the
     /// mass state is the same at every such instant, given the same starts).
-    #[inline]
+    #[inline(always)]
     pub fn mass_settled(&self, starts: &ShiftStarts, t: f64) -> bool {
         t >= self.motor.burn_time_s()
             && self.shifts.iter().enumerate().all(|(k, s)| {

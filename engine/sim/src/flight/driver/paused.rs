@@ -428,18 +428,10 @@ impl<'a, O: Observer> Paused<'a, O> {
         descend(self.run, self.rtol, self.atol3, end)
     }
 
-    /// The center of mass and its rates, and the mass, at the end of the step just taken on
-    /// lanes, for its figures computed on lanes ([`crate::flight::model::end_point_lanes`]).
+    /// The gust factor at the end of the step just taken on lanes (`None`: steady wind).
     #[inline(always)]
-    pub(crate) fn end_center(&mut self) -> (CenterLanes<f64>, f64, Option<f64>) {
-        let model = self.run.model;
-        let t1 = self.s6.dopri().t();
-        let ms = self
-            .run
-            .memo
-            .get(model, &self.run.starts, self.run.starts_changed, t1)
-            .0;
-        (CenterLanes::of(ms), ms.mass_kg, model.gust_at(t1))
+    pub(crate) fn end_gust(&self) -> Option<f64> {
+        self.run.model.gust_at(self.s6.dopri().t())
     }
 
     /// [`PausedPhase::end_step`] with the step end's figures computed on lanes (for the
@@ -460,25 +452,54 @@ impl<'a, O: Observer> Paused<'a, O> {
         self.run.brake_cd
     }
 
+    /// The mass state at `t` and its serial number (see [`Paused::mass_at`]) if nothing
+    /// changes the mass then (the thrust is then 0), else `None`: the batch engine then
+    /// computes it on lanes from [`FlightModel::mass_inputs`] at [`Paused::mass_key`].
+    #[inline(always)]
+    pub(crate) fn settled_mass(&mut self, t: f64) -> Option<(&MassLanes<f64>, u64)> {
+        if !self.settle(t) {
+            return None;
+        }
+        self.settled.as_ref().map(|(_, ms, serial)| (ms, *serial))
+    }
+
+    /// Whether nothing changes the mass at `t`; if so, `self.settled` holds its state.
+    #[inline(always)]
+    fn settle(&mut self, t: f64) -> bool {
+        let model = self.run.model;
+        let starts = &self.run.starts;
+        if !model.mass_settled(starts, t) {
+            return false;
+        }
+        let changes = self.run.starts_changed;
+        if !matches!(&self.settled, Some((c, _, _)) if *c == changes) {
+            let ms = MassLanes::of(&model.instant(starts, t).mass);
+            self.serial += 1;
+            self.settled = Some((changes, ms, self.serial));
+        }
+        true
+    }
+
+    /// The shifts' start times and the count of their changes (the mass state at a time is
+    /// the same for the same count).
+    #[inline(always)]
+    pub(crate) fn mass_key(&self) -> (&ShiftStarts, u64) {
+        (&self.run.starts, self.run.starts_changed)
+    }
+
     /// The mass state (as the equations read it) and the thrust at `t`, and a serial number
     /// that changes whenever the mass state handed out does (so that a caller holding a
     /// copy knows when to refresh it). While the motor is out and no part moves it is
     /// computed once and kept (the same numbers `instant` gives).
     #[inline(always)]
     pub(crate) fn mass_at(&mut self, t: f64) -> (&MassLanes<f64>, f64, u64) {
-        let model = self.run.model;
-        let starts = &self.run.starts;
-        if model.mass_settled(starts, t) {
-            let changes = self.run.starts_changed;
-            if !matches!(&self.settled, Some((c, _, _)) if *c == changes) {
-                let ms = MassLanes::of(&model.instant(starts, t).mass);
-                self.serial += 1;
-                self.settled = Some((changes, ms, self.serial));
-            }
+        if self.settle(t) {
             if let Some((_, ms, serial)) = &self.settled {
                 return (ms, 0.0, *serial);
             }
         }
+        let model = self.run.model;
+        let starts = &self.run.starts;
         // The step's last two stages share a time: the second reads the first's mass state.
         let key = (t.to_bits(), self.run.starts_changed);
         if self.moving_key != Some(key) {

@@ -394,17 +394,19 @@ fn derivative_6dof_in<S: Real, L: ModelLanes<S>>(
     // mass, a point of the airframe; with the drift, every apogee cross-checked against it
     // came out 0.1 to 0.25 m low).
     let v_frame_air_b = v_o_b - wind_b + omega.cross(&ms.r);
-    let wind_b_at = |x_cp: S| {
-        if sheared {
-            wind_b + shear_b.scale(y[2] - rise * x_cp - h)
-        } else {
-            wind_b
-        }
-    };
     let (mut force, moment) = aero_loads::loads(
         lanes.aero(),
         &v_o_b,
-        wind_b_at,
+        // In line (a call here, out of the batch's AVX2 code, spilled every vector register
+        // around it at each surface).
+        #[inline(always)]
+        |x_cp: S| {
+            if sheared {
+                wind_b + shear_b.scale(y[2] - rise * x_cp - h)
+            } else {
+                wind_b
+            }
+        },
         &v_frame_air_b,
         &omega,
         rho,
