@@ -49,6 +49,10 @@ pub trait Real:
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
     /// Lane `i` of a mask.
     fn mask_lane(m: Self::Mask, i: usize) -> bool;
+    /// Set lane `i` of a mask.
+    fn set_mask_lane(m: &mut Self::Mask, i: usize, v: bool);
+    /// Lane `i`, to write.
+    fn lane_mut(&mut self, i: usize) -> &mut f64;
     /// `table` at Mach `mach`, lane by lane exactly [`MachTable::at`].
     fn mach_table(table: &MachTable, mach: Self) -> Self;
 }
@@ -107,6 +111,14 @@ impl Real for f64 {
     #[inline(always)]
     fn mask_lane(m: bool, _: usize) -> bool {
         m
+    }
+    #[inline(always)]
+    fn set_mask_lane(m: &mut bool, _: usize, v: bool) {
+        *m = v;
+    }
+    #[inline(always)]
+    fn lane_mut(&mut self, _: usize) -> &mut f64 {
+        self
     }
     #[inline(always)]
     fn mach_table(table: &MachTable, mach: f64) -> f64 {
@@ -230,6 +242,14 @@ impl Real for F64x4 {
     #[inline(always)]
     fn mask_lane(m: [bool; 4], i: usize) -> bool {
         m[i]
+    }
+    #[inline(always)]
+    fn set_mask_lane(m: &mut [bool; 4], i: usize, v: bool) {
+        m[i] = v;
+    }
+    #[inline(always)]
+    fn lane_mut(&mut self, i: usize) -> &mut f64 {
+        &mut self.0[i]
     }
     /// The four lanes' look-ups without a branch, so that they run in vector registers but
     /// for the eight loads: the same division, truncation, subtraction and interpolation as
@@ -446,8 +466,10 @@ impl<S: Real> M3<S> {
     #[inline(always)]
     pub fn scale(&self, s: S) -> M3<S> {
         let mut m = self.m;
-        for e in m.iter_mut().flatten() {
-            *e = *e * s;
+        for row in m.iter_mut() {
+            for e in row.iter_mut() {
+                *e = *e * s;
+            }
         }
         M3 { m }
     }

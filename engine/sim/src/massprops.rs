@@ -156,8 +156,16 @@ impl MassModelLanes<F64x4> {
     }
 }
 
+/// A moving part's motion along the axis (positive aft), summed over its shifts, on lanes.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Motion<S> {
+    pub delta_m: S,
+    pub rate_m_s: S,
+    pub accel_m_s2: S,
+}
+
 /// What changes the mass at one instant, on lanes: the propellant, its grains' own inertia
-/// and the moving parts' motions (summed over each part's shifts).
+/// and the moving parts' motions.
 #[derive(Debug, Clone, Copy)]
 pub struct MassInputs<S: Real> {
     pub prop_mass_kg: S,
@@ -167,65 +175,59 @@ pub struct MassInputs<S: Real> {
     /// kilogram of propellant, on the lanes whose motor gives grains (the mask); `None` when no
     /// lane's does.
     pub grains: Option<(S::Mask, [S; 2], [S; 2])>,
-    /// Each part's motion along the axis (positive aft): distance, rate, acceleration.
-    pub motion_m: [S; MAX_MOVING_PARTS],
-    pub motion_rate_m_s: [S; MAX_MOVING_PARTS],
-    pub motion_accel_m_s2: [S; MAX_MOVING_PARTS],
+    pub motions: [Motion<S>; MAX_MOVING_PARTS],
 }
 
-impl MassInputs<f64> {
-    /// One flight's inputs: `model`'s grains at the propellant's mass, and the motions.
+impl<S: Real> MassInputs<S> {
+    /// No propellant, no grains, nothing moved.
     #[inline(always)]
-    pub fn of(model: &MassModel, prop: &PropellantState, motions: &[CycloidState]) -> Self {
-        let mut x = MassInputs {
-            prop_mass_kg: prop.mass_kg,
-            prop_rate_kg_s: prop.rate_kg_s,
-            prop_accel_kg_s2: prop.accel_kg_s2,
-            grains: model.grains.as_ref().map(|(grains, motors)| {
-                let g = grains.cluster_inertia(*motors, prop.mass_kg);
-                (true, g.inertia_kg_m2, g.per_kg_m2)
-            }),
-            motion_m: [0.0; MAX_MOVING_PARTS],
-            motion_rate_m_s: [0.0; MAX_MOVING_PARTS],
-            motion_accel_m_s2: [0.0; MAX_MOVING_PARTS],
+    pub fn zero() -> MassInputs<S> {
+        let zero = S::splat(0.0);
+        let still = Motion {
+            delta_m: zero,
+            rate_m_s: zero,
+            accel_m_s2: zero,
         };
-        for (k, c) in motions.iter().take(MAX_MOVING_PARTS).enumerate() {
-            x.motion_m[k] = c.delta_m;
-            x.motion_rate_m_s[k] = c.rate_m_s;
-            x.motion_accel_m_s2[k] = c.accel_m_s2;
-        }
-        x
-    }
-}
-
-impl MassInputs<F64x4> {
-    /// Four lanes' inputs side by side, the first `parts` parts' motions.
-    #[inline(always)]
-    pub fn pack(x: [&MassInputs<f64>; 4], parts: usize) -> MassInputs<F64x4> {
-        let zero = F64x4::splat(0.0);
-        let mut out = MassInputs {
-            prop_mass_kg: F64x4::from_fn(|i| x[i].prop_mass_kg),
-            prop_rate_kg_s: F64x4::from_fn(|i| x[i].prop_rate_kg_s),
-            prop_accel_kg_s2: F64x4::from_fn(|i| x[i].prop_accel_kg_s2),
+        MassInputs {
+            prop_mass_kg: zero,
+            prop_rate_kg_s: zero,
+            prop_accel_kg_s2: zero,
             grains: None,
-            motion_m: [zero; MAX_MOVING_PARTS],
-            motion_rate_m_s: [zero; MAX_MOVING_PARTS],
-            motion_accel_m_s2: [zero; MAX_MOVING_PARTS],
-        };
-        if x.iter().any(|x| x.grains.is_some()) {
-            let g = x.map(|x| x.grains.map_or(([0.0; 2], [0.0; 2]), |(_, i, d)| (i, d)));
-            out.grains = Some((
-                x.map(|x| x.grains.is_some()),
-                [0, 1].map(|k| F64x4::from_fn(|i| g[i].0[k])),
-                [0, 1].map(|k| F64x4::from_fn(|i| g[i].1[k])),
-            ));
+            motions: [still; MAX_MOVING_PARTS],
         }
-        for k in 0..parts.min(MAX_MOVING_PARTS) {
-            out.motion_m[k] = F64x4::from_fn(|i| x[i].motion_m[k]);
-            out.motion_rate_m_s[k] = F64x4::from_fn(|i| x[i].motion_rate_m_s[k]);
-            out.motion_accel_m_s2[k] = F64x4::from_fn(|i| x[i].motion_accel_m_s2[k]);
+    }
+
+    /// Set lane `l`'s propellant from `prop`, and its grains' inertia (`grains`, the
+    /// grains and how many motors hold them; `None`: the lane's motor gives none).
+    #[inline(always)]
+    pub fn set_propellant(
+        &mut self,
+        l: usize,
+        prop: &PropellantState,
+        grains: Option<&(Grains, usize)>,
+    ) {
+        *self.prop_mass_kg.lane_mut(l) = prop.mass_kg;
+        *self.prop_rate_kg_s.lane_mut(l) = prop.rate_kg_s;
+        *self.prop_accel_kg_s2.lane_mut(l) = prop.accel_kg_s2;
+        match grains {
+            Some((grains, motors)) => {
+                let g = grains.cluster_inertia(*motors, prop.mass_kg);
+                let zero = S::splat(0.0);
+                let (has, i, d) = self
+                    .grains
+                    .get_or_insert((zero.gt(zero), [zero; 2], [zero; 2]));
+                S::set_mask_lane(has, l, true);
+                for k in 0..2 {
+                    *i[k].lane_mut(l) = g.inertia_kg_m2[k];
+                    *d[k].lane_mut(l) = g.per_kg_m2[k];
+                }
+            }
+            None => {
+                if let Some((has, _, _)) = &mut self.grains {
+                    S::set_mask_lane(has, l, false);
+                }
+            }
         }
-        out
     }
 }
 
@@ -237,8 +239,16 @@ pub fn mass_state(
     prop: &PropellantState,
     motions: &[CycloidState],
 ) -> MassState {
-    let lanes = MassModelLanes::of(model);
-    mass_state_lanes(&lanes, &MassInputs::of(model, prop, motions)).to_state()
+    let mut x = MassInputs::zero();
+    x.set_propellant(0, prop, model.grains.as_ref());
+    for (m, c) in x.motions.iter_mut().zip(motions) {
+        *m = Motion {
+            delta_m: c.delta_m,
+            rate_m_s: c.rate_m_s,
+            accel_m_s2: c.accel_m_s2,
+        };
+    }
+    mass_state_lanes(&MassModelLanes::of(model), &x).to_state()
 }
 
 /// The mass-property kernel on lanes (the one copy of these equations: [`mass_state`] is its
@@ -264,16 +274,17 @@ pub fn mass_state_lanes<S: Real>(model: &MassModelLanes<S>, x: &MassInputs<S>) -
     let mut h = V3::zero();
     let mut h_rate = V3::zero();
     for k in 0..model.parts {
-        let moving = S::or(x.motion_m[k].ne(zero), x.motion_rate_m_s[k].ne(zero));
+        let mo = &x.motions[k];
+        let moving = S::or(mo.delta_m.ne(zero), mo.rate_m_s.ne(zero));
         if !any::<S>(moving) {
             continue;
         }
         let pm = model.part_mass_kg[k];
         let c0 = &model.part_c0_b[k];
         // Aft is −b3.
-        let d = V3::new(zero, zero, -x.motion_m[k]);
-        let dv = V3::new(zero, zero, -x.motion_rate_m_s[k]);
-        let da = V3::new(zero, zero, -x.motion_accel_m_s2[k]);
+        let d = V3::new(zero, zero, -mo.delta_m);
+        let dv = V3::new(zero, zero, -mo.rate_m_s);
+        let da = V3::new(zero, zero, -mo.accel_m_s2);
         let c = *c0 + d;
         let two_c_dv = S::splat(2.0) * c.dot(&dv);
         let di_rate = M3::diag(two_c_dv, two_c_dv, two_c_dv)

@@ -391,8 +391,11 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
         _ => false,
     });
     let mut held = [Held::Nothing; 4];
-    // The slots' mass models side by side, packed when a slot's mass first changes.
+    // The slots' mass models side by side, and the inputs of their mass states, made when a
+    // slot's mass first changes (lanes not computed at a stage keep stale inputs there, their
+    // results never taken).
     let mut mass_models: Option<MassModelLanes<F64x4>> = None;
+    let mut inputs: Option<MassInputs<F64x4>> = None;
     let outcomes = step_on_lanes::<N6, Paused<'_, ()>>(
         group,
         st,
@@ -404,7 +407,6 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
             match four {
                 Some(four) => {
                     let mut compute = [false; 4];
-                    let mut inputs: [Option<MassInputs<f64>>; 4] = [None; 4];
                     for l in 0..4 {
                         if !slots.wants(l, held[l] != Held::Nothing) {
                             continue;
@@ -427,22 +429,19 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                             // The step's last two stages share a time: the second keeps the
                             // first's state (and thrust).
                             if held[l] != key {
-                                let (motor, x) = p.model().mass_inputs(starts, t);
-                                thrust.0[l] = motor.thrust_n;
-                                inputs[l] = Some(x);
+                                let x = inputs.get_or_insert_with(MassInputs::zero);
+                                thrust.0[l] = p.model().mass_inputs_into(starts, t, x, l).thrust_n;
                                 compute[l] = true;
                                 held[l] = key;
                             }
                         }
                     }
-                    if let Some(fill) = inputs.iter().flatten().next().copied() {
+                    if let (true, Some(x)) = (compute.contains(&true), &inputs) {
                         let models = mass_models.get_or_insert_with(|| {
-                            let m = four.models.map(|m| MassModelLanes::of(&m.mass));
-                            MassModelLanes::pack([&m[0], &m[1], &m[2], &m[3]])
+                            let m = four.models.map(|m| &m.mass_lanes);
+                            MassModelLanes::pack(m)
                         });
-                        let x = inputs.map(|x| x.unwrap_or(fill));
-                        let x = MassInputs::pack([&x[0], &x[1], &x[2], &x[3]], models.parts);
-                        ms = MassLanes::select(compute, &mass_state_lanes(models, &x), &ms);
+                        ms = MassLanes::select(compute, &mass_state_lanes(models, x), &ms);
                     }
                     eval_four(four, gusty.then_some(gust), &ms, thrust, brake, ys, dy)
                 }

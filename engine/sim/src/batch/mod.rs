@@ -642,8 +642,13 @@ impl Batch {
             if lanes.is_empty() {
                 break;
             }
-            // Free flights first, then descents: each group holds lanes of one phase.
-            lanes.sort_unstable_by_key(|l| matches!(l.flying, Flying::Descent(_)));
+            // Free flights whose mass changes first (their groups compute mass states four at
+            // a time), then the other free flights, then descents: each group holds lanes of
+            // one phase. (A lane's results do not depend on its group.)
+            lanes.sort_by_key(|l| match &l.flying {
+                Flying::Free(p) => u8::from(!p.mass_changing()),
+                _ => 2,
+            });
             let n_free = lanes
                 .iter()
                 .take_while(|l| matches!(l.flying, Flying::Free(_)))

@@ -520,6 +520,7 @@ pub fn build_model(
         .filter(|&t| t > 0.0 && t < burnout)
         .collect();
     Ok(FlightModel {
+        mass_lanes: crate::massprops::MassModelLanes::of(&mass_model),
         mass: mass_model,
         nozzle,
         aero: tables.aero.clone(),

@@ -54,6 +54,8 @@ pub struct RailGeometry {
 #[derive(Debug, Clone)]
 pub struct FlightModel {
     pub mass: MassModel,
+    /// `mass` as the mass-property kernel reads it (built with the model from `mass`).
+    pub mass_lanes: MassModelLanes<f64>,
     pub motor: MotorTables,
     pub nozzle: Nozzle,
     pub aero: std::sync::Arc<AeroTables>,
@@ -325,25 +327,44 @@ impl FlightModel {
     /// without copying the instant through the stack).
     #[inline(never)]
     pub fn instant_computed_into(&self, starts: &ShiftStarts, t: f64, out: &mut Instant) {
-        let (motor, inputs) = self.mass_inputs(starts, t);
-        out.motor = motor;
-        out.mass = mass_state_lanes(&MassModelLanes::of(&self.mass), &inputs).to_state();
+        let mut x = MassInputs::zero();
+        out.motor = self.mass_inputs_into(starts, t, &mut x, 0);
+        out.mass = mass_state_lanes(&self.mass_lanes, &x).to_state();
     }
 
-    /// The motor's state at `t` and what the mass-property kernel
+    /// The motor's state at `t`, and lane `l` of `x` set to what the mass-property kernel
     /// ([`crate::massprops::mass_state_lanes`]) reads of it and of the shifts' motions then.
     #[inline(always)]
-    pub fn mass_inputs(&self, starts: &ShiftStarts, t: f64) -> (MotorState, MassInputs<f64>) {
+    pub fn mass_inputs_into<S: Real>(
+        &self,
+        starts: &ShiftStarts,
+        t: f64,
+        x: &mut MassInputs<S>,
+        l: usize,
+    ) -> MotorState {
         let motor = self.motor.eval(t);
         let prop = PropellantState {
             mass_kg: motor.propellant_kg,
             rate_kg_s: motor.propellant_rate_kg_s,
             accel_kg_s2: motor.propellant_accel_kg_s2,
         };
-        let mut motions = [CycloidState::default(); MAX_MOVING_PARTS];
-        self.motions_into(starts, t, &mut motions);
-        let n = self.mass.parts.len();
-        (motor, MassInputs::of(&self.mass, &prop, &motions[..n]))
+        x.set_propellant(l, &prop, self.mass.grains.as_ref());
+        for m in x.motions.iter_mut().take(self.mass_lanes.parts) {
+            *m.delta_m.lane_mut(l) = 0.0;
+            *m.rate_m_s.lane_mut(l) = 0.0;
+            *m.accel_m_s2.lane_mut(l) = 0.0;
+        }
+        for (k, s) in self.shifts.iter().enumerate() {
+            let start = starts[k];
+            if t > start {
+                let c = cycloid::evaluate(t, start, s.duration_s, s.travel_m);
+                let acc = &mut x.motions[s.part];
+                *acc.delta_m.lane_mut(l) += c.delta_m;
+                *acc.rate_m_s.lane_mut(l) += c.rate_m_s;
+                *acc.accel_m_s2.lane_mut(l) += c.accel_m_s2;
+            }
+        }
+        motor
     }
 
     /// Tabulate [`FlightModel::settled`]: for every set of started shifts, the mass state

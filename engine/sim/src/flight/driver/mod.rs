@@ -5,8 +5,7 @@
 
 use super::config::Integrator;
 use super::model::{
-    CenterLanes, EndFigures, FlightAux, FlightModel, InstantMemo, ModelLanes, ShiftStarts,
-    MAX_SHIFTS,
+    EndFigures, FlightAux, FlightModel, InstantMemo, ModelLanes, ShiftStarts, MAX_SHIFTS,
 };
 use super::output::{Flight, Metrics, Observer, Phase, Sample};
 use super::SimError;

@@ -428,6 +428,15 @@ impl<'a, O: Observer> Paused<'a, O> {
         descend(self.run, self.rtol, self.atol3, end)
     }
 
+    /// Whether the mass is changing where the flight stands (the motor burns or a part
+    /// moves): the batch engine groups such lanes together, whose mass states it computes
+    /// four at a time.
+    #[inline]
+    pub(crate) fn mass_changing(&self) -> bool {
+        let t = self.s6.dopri().t();
+        !self.run.model.mass_settled(&self.run.starts, t)
+    }
+
     /// The gust factor at the end of the step just taken on lanes (`None`: steady wind).
     #[inline(always)]
     pub(crate) fn end_gust(&self) -> Option<f64> {
