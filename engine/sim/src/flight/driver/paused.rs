@@ -433,7 +433,7 @@ impl<'a, O: Observer> Paused<'a, O> {
     /// four at a time.
     #[inline]
     pub(crate) fn mass_changing(&self) -> bool {
-        let t = self.s6.dopri().t();
+        let t = each!(&self.s6.stepper, s => s.t());
         !self.run.model.mass_settled(&self.run.starts, t)
     }
 
