@@ -16,8 +16,10 @@
 //! h   = Σ m c × d′,   h′ = Σ m c × d″
 //! ```
 //!
-//! which are the spec's `r′`, `r″` and `I′` expanded. Pure, allocation-free: the single
-//! flight and every lane of the batch engine call [`mass_state`].
+//! which are the spec's `r′`, `r″` and `I′` expanded. Pure, allocation-free, and written once
+//! over [`Real`] ([`mass_state_lanes`]): the single flight evaluates it on one lane
+//! ([`mass_state`]), the batch engine on four lanes at once for the lanes whose mass is
+//! changing (the motor burning or a part moving), lane by lane the same IEEE operations.
 
 use crate::cycloid::CycloidState;
 use crate::eom::{MassLanes, MassState};

@@ -54,8 +54,10 @@ pub struct RailGeometry {
 #[derive(Debug, Clone)]
 pub struct FlightModel {
     pub mass: MassModel,
-    /// `mass` as the mass-property kernel reads it (built with the model from `mass`).
-    pub mass_lanes: MassModelLanes<f64>,
+    /// `mass` as the mass-property kernel reads it, built with the model (crate-private, so
+    /// that it cannot be set apart from `mass`: nothing changes `mass` once the model is
+    /// built).
+    pub(crate) mass_lanes: MassModelLanes<f64>,
     pub motor: MotorTables,
     pub nozzle: Nozzle,
     pub aero: std::sync::Arc<AeroTables>,

@@ -147,3 +147,81 @@ fn the_kept_mass_state_is_the_one_instant_gives_wherever_the_mass_is_settled() {
         assert_eq!(at(&starts, t), moved, "t = {t}");
     }
 }
+
+#[test]
+fn four_lanes_mass_states_are_bit_for_bit_four_single_instants() {
+    // Four variants (their own masses and ballast), each at its own instant: burning with the
+    // ballast at rest, burning with it moving, coasting with it moving, and burning just
+    // before its shift starts.
+    let c = columns(8, 11);
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let sims: Vec<Simulation> = (0..8)
+        .filter_map(|r| batch.variant(&c, r).ok())
+        .take(4)
+        .collect();
+    assert_eq!(sims.len(), 4);
+    let models: [&FlightModel; 4] = std::array::from_fn(|l| sims[l].model());
+    let times = [0.7, 1.3, 5.4, 0.99];
+    let shift_starts = [10.0, 1.0, 5.0, 1.0];
+    let mut x = crate::massprops::MassInputs::<F64x4>::zero();
+    let mut thrust = [0.0; 4];
+    let mut singles = Vec::new();
+    for (l, model) in models.iter().enumerate() {
+        let mut starts = [f64::INFINITY; crate::flight::model::MAX_SHIFTS];
+        starts[0] = shift_starts[l];
+        thrust[l] = model
+            .mass_inputs_into(&starts, times[l], &mut x, l)
+            .thrust_n;
+        singles.push(model.instant_computed(&starts, times[l]));
+    }
+    let m = models.map(|m| &m.mass_lanes);
+    let four = crate::massprops::mass_state_lanes(&crate::massprops::MassModelLanes::pack(m), &x);
+    for (l, single) in singles.iter().enumerate() {
+        assert_eq!(
+            thrust[l].to_bits(),
+            single.motor.thrust_n.to_bits(),
+            "lane {l}"
+        );
+        assert!(single.motor.thrust_n > 0.0 || l == 2, "lane {l} burns");
+        let lane = MassLanes::of(&single.mass);
+        let bits = |m: &MassLanes<f64>| {
+            let mut v = vec![m.m, m.m_rate, m.m_accel];
+            for w in [&m.r, &m.r_rate, &m.r_accel, &m.h, &m.h_rate] {
+                v.extend([w.x, w.y, w.z]);
+            }
+            for a in [&m.i_o, &m.i_o_rate] {
+                v.extend(a.m.iter().flatten().copied());
+            }
+            v.into_iter().map(f64::to_bits).collect::<Vec<_>>()
+        };
+        let mut mine = MassLanes::<f64>::ZERO;
+        mine.m = four.m.0[l];
+        mine.m_rate = four.m_rate.0[l];
+        mine.m_accel = four.m_accel.0[l];
+        for (d, s) in [
+            (&mut mine.r, &four.r),
+            (&mut mine.r_rate, &four.r_rate),
+            (&mut mine.r_accel, &four.r_accel),
+            (&mut mine.h, &four.h),
+            (&mut mine.h_rate, &four.h_rate),
+        ] {
+            *d = crate::lanes::V3::new(s.x.0[l], s.y.0[l], s.z.0[l]);
+        }
+        for (d, s) in [
+            (&mut mine.i_o, &four.i_o),
+            (&mut mine.i_o_rate, &four.i_o_rate),
+        ] {
+            for r in 0..3 {
+                for k in 0..3 {
+                    d.m[r][k] = s.m[r][k].0[l];
+                }
+            }
+        }
+        assert_eq!(bits(&mine), bits(&lane), "lane {l}");
+    }
+    // Lanes 1 and 2 had the ballast on its way, lanes 0 and 3 at rest (3 just before its
+    // shift starts), so the four lanes took both ways through the moving parts' terms.
+    let rate = x.motions[0].rate_m_s.0;
+    assert!(rate[1] != 0.0 && rate[2] != 0.0, "{rate:?}");
+    assert!(rate[0] == 0.0 && rate[3] == 0.0, "{rate:?}");
+}
