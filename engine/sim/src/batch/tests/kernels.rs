@@ -225,3 +225,50 @@ fn four_lanes_mass_states_are_bit_for_bit_four_single_instants() {
     assert!(rate[1] != 0.0 && rate[2] != 0.0, "{rate:?}");
     assert!(rate[0] == 0.0 && rate[3] == 0.0, "{rate:?}");
 }
+
+#[test]
+fn lanes_whose_ballast_moves_while_the_motor_burns_equal_their_single_flights_bit_for_bit() {
+    // Shifts that start from 0.2 s to 3 s: lanes burning with the ballast moving, burning with
+    // it at rest, and coasting with it moving share groups, whose mass states are computed on
+    // four lanes at once.
+    let n = 48;
+    let early = |rows: std::ops::Range<usize>| {
+        let mut c = columns_of(rows.clone(), 17);
+        for (k, i) in rows.enumerate() {
+            c.shift_trigger[0][k] = 0.2 + 2.8 * (i % 8) as f64 / 7.0;
+        }
+        c
+    };
+    let c = early(0..n);
+    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let mut results = Vec::new();
+    batch.run(n, 24, 2, early, |r| results.push(r)).unwrap();
+    let mut flown = 0;
+    for (i, lane) in results.iter().enumerate() {
+        let Ok(sim) = single(&c, i) else {
+            assert_eq!(lane.status, Status::Refused, "variant {i}");
+            continue;
+        };
+        let f = sim.run(&mut ()).unwrap();
+        let bits = |m: &Metrics| -> Vec<Option<u64>> {
+            metric_list(m).iter().map(|v| v.map(f64::to_bits)).collect()
+        };
+        assert_eq!(bits(&lane.metrics), bits(&f.metrics), "variant {i}");
+        assert_eq!(
+            lane.derivative_evaluations, f.derivative_evaluations,
+            "variant {i}"
+        );
+        assert_eq!(lane.shifts[0].start_s, f.shift_starts_s[0], "variant {i}");
+        flown += 1;
+    }
+    assert!(flown >= 40, "{flown}");
+    // Some shifts started while the motor burned.
+    let burning = results
+        .iter()
+        .filter(|l| match (l.shifts[0].start_s, l.metrics.burnout_time_s) {
+            (Some(s), Some(b)) => s < b,
+            _ => false,
+        })
+        .count();
+    assert!(burning >= 10, "{burning}");
+}
