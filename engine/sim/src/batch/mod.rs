@@ -20,7 +20,10 @@
 //! registers where the processor has them, [`eval_four`]). Each group step is one attempt
 //! per lane: a lane whose attempt is rejected tries again, smaller, at the next group step,
 //! beside the other lanes' new steps. A slot without a lane repeats another lane's input
-//! and is ignored. The kernels and the step
+//! and is ignored. Each round the chunk orders its lanes before grouping them: free flights
+//! whose mass is changing (motor burning, a part moving) first, whose mass states a group then
+//! computes on four lanes too ([`crate::massprops::mass_state_lanes`]), then the other free
+//! flights, then descents. The kernels and the step
 //! arithmetic do lane by lane exactly the IEEE operations the single flight does, so a lane's
 //! metrics are bit for bit the single-flight simulator's ([`Batch::variant`] gives that
 //! simulation; the tests compare them).
@@ -35,8 +38,8 @@
 //! recorded with its reason and the run goes on.
 //!
 //! What it does not do yet: each lane's step ends (event functions and their location,
-//! metrics, triggers), its mass states while the motor burns or a part moves, the step-size
-//! controller and the pad and rail run one lane at a time (see `ARCHITECTURE.md`).
+//! metrics, triggers), the step-size controller and the pad and rail run one lane at a time
+//! (see `ARCHITECTURE.md`).
 
 mod group;
 mod stream;
