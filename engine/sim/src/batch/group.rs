@@ -92,7 +92,8 @@ impl<'a> OnLanes<'a, N3> for Descending<'a, ()> {
 /// stages evaluated together; each lane's accepted step then ends as a single flight's does,
 /// and a rejected one is tried again, smaller, at the next. Lanes whose integrator steps
 /// whole (RK4) take their step alone.
-pub(super) fn step_group(group: &mut [Lane<'_>], scratch: &mut Scratch) {
+/// `index` is the group's place among its phase's groups this round (its memo's).
+pub(super) fn step_group<'a>(group: &mut [Lane<'a>], scratch: &mut Scratch<'a>, index: usize) {
     let descent = matches!(group.first().map(|l| &l.flying), Some(Flying::Descent(_)));
     let stepped = guarded(|| {
         if descent {
@@ -103,7 +104,7 @@ pub(super) fn step_group(group: &mut [Lane<'_>], scratch: &mut Scratch) {
         } else {
             with_avx2(
                 #[inline(always)]
-                || step_free(group, &mut scratch.free),
+                || step_free(group, &mut scratch.free, &mut scratch.free_memo[index]),
             )
         }
     });
@@ -153,19 +154,38 @@ impl<const N: usize> Steps<N> {
     }
 }
 
-/// The chunk's scratch for both phases' groups.
-pub(super) struct Scratch {
+/// The chunk's scratch for both phases' groups, and what each free-flight group's step
+/// leaves for the next.
+pub(super) struct Scratch<'a> {
     free: Steps<N6>,
     descent: Steps<N3>,
+    free_memo: [Option<FreeMemo<'a>>; LANES_IN_FLIGHT / 4],
 }
 
-impl Scratch {
-    pub(super) fn new() -> Box<Scratch> {
+impl<'a> Scratch<'a> {
+    pub(super) fn new() -> Box<Scratch<'a>> {
         Box::new(Scratch {
             free: Steps::new(),
             descent: Steps::new(),
+            free_memo: std::array::from_fn(|_| None),
         })
     }
+}
+
+/// What a free-flight group step leaves for the next step of the group at the same place
+/// when its slots hold the same lanes (the chunk's rows `rows`): their four-lane model, their
+/// mass states and thrusts as the slots hold them, and their packed mass models. Everything
+/// here is a function of the rows and of what `held` records, so a group of the same lanes
+/// takes it up where it was left (lanes keep their groups from round to round but for the
+/// few that change phase, start, land or change whether their mass changes).
+pub(super) struct FreeMemo<'a> {
+    rows: [usize; 4],
+    four: Option<FourModels<'a>>,
+    ms: MassLanes<F64x4>,
+    thrust: F64x4,
+    held: [Held; 4],
+    mass_models: Option<MassModelLanes<F64x4>>,
+    inputs: Option<MassInputs<F64x4>>,
 }
 
 /// Lane `l` of a structure-of-arrays state.
@@ -379,12 +399,10 @@ enum Held {
 }
 
 /// One free-flight attempt of the lanes of `group`: the 6-DOF kernel on four lanes, each slot's
-/// mass state refreshed only when it changes, the changing ones computed on four lanes.
+/// mass state refreshed only when it changes (kept from the group's last step in `memo` when
+/// its slots hold the same lanes), the changing ones computed on four lanes.
 #[inline(always)]
-fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
-    let mut four: Option<Option<FourModels<'_>>> = None;
-    let mut ms = pack_mass([&MassLanes::ZERO; 4]);
-    let mut thrust = F64x4::splat(0.0);
+fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<FreeMemo<'a>>) {
     // Each slot's air brakes, as they stand for the whole step.
     let mut brake = F64x4::splat(0.0);
     // Each slot's gust factor at its stage time (1 without turbulence, then never set).
@@ -393,25 +411,36 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
         Flying::Free(p) => p.model().gusts.is_some(),
         _ => false,
     });
-    let mut held = [Held::Nothing; 4];
-    // The slots' mass models side by side, and the inputs of their mass states, made when a
-    // slot's mass first changes (lanes not computed at a stage keep stale inputs there, their
-    // results never taken).
-    let mut mass_models: Option<MassModelLanes<F64x4>> = None;
-    let mut inputs: Option<MassInputs<F64x4>> = None;
+    // Whether `memo` is this step's (its slots checked against this step's lanes).
+    let mut checked = false;
     let outcomes = step_on_lanes::<N6, Paused<'_, ()>>(
         group,
         st,
         #[inline(always)]
         |group, slots, ys, dy| {
-            let four = four.get_or_insert_with(|| {
-                FourModels::new(slot_models::<N6, Paused<'_, ()>>(group, slots))
-            });
-            match four {
+            if !checked {
+                let rows = slots.lane.map(|i| group[i].row);
+                if !matches!(memo, Some(m) if m.rows == rows) {
+                    *memo = Some(FreeMemo {
+                        rows,
+                        four: FourModels::new(slot_models::<N6, Paused<'_, ()>>(group, slots)),
+                        ms: pack_mass([&MassLanes::ZERO; 4]),
+                        thrust: F64x4::splat(0.0),
+                        held: [Held::Nothing; 4],
+                        mass_models: None,
+                        inputs: None,
+                    });
+                }
+                checked = true;
+            }
+            let Some(m) = memo.as_mut() else {
+                return;
+            };
+            match &m.four {
                 Some(four) => {
                     let mut compute = [false; 4];
                     for l in 0..4 {
-                        if !slots.wants(l, held[l] != Held::Nothing) {
+                        if !slots.wants(l, m.held[l] != Held::Nothing) {
                             continue;
                         }
                         let t = slots.t[l];
@@ -420,33 +449,33 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                         if gusty {
                             gust.0[l] = p.model().gust(t);
                         }
-                        if let Some((m, sn)) = p.settled_mass(t) {
-                            if held[l] != Held::Settled(sn) {
-                                ms.set_lane(l, m);
-                                held[l] = Held::Settled(sn);
+                        if let Some((ms, sn)) = p.settled_mass(t) {
+                            if m.held[l] != Held::Settled(sn) {
+                                m.ms.set_lane(l, ms);
+                                m.held[l] = Held::Settled(sn);
                             }
-                            thrust.0[l] = 0.0;
+                            m.thrust.0[l] = 0.0;
                         } else {
                             let (starts, changes) = p.mass_key();
                             let key = Held::Computed(t.to_bits(), changes);
                             // The step's last two stages share a time: the second keeps the
                             // first's state (and thrust).
-                            if held[l] != key {
-                                let x = inputs.get_or_insert_with(MassInputs::zero);
-                                thrust.0[l] = p.model().mass_inputs_into(starts, t, x, l).thrust_n;
+                            if m.held[l] != key {
+                                let x = m.inputs.get_or_insert_with(MassInputs::zero);
+                                m.thrust.0[l] =
+                                    p.model().mass_inputs_into(starts, t, x, l).thrust_n;
                                 compute[l] = true;
-                                held[l] = key;
+                                m.held[l] = key;
                             }
                         }
                     }
-                    if let (true, Some(x)) = (compute.contains(&true), &inputs) {
-                        let models = mass_models.get_or_insert_with(|| {
-                            let m = four.models.map(|m| &m.mass_lanes);
-                            MassModelLanes::pack(m)
+                    if let (true, Some(x)) = (compute.contains(&true), &m.inputs) {
+                        let models = m.mass_models.get_or_insert_with(|| {
+                            MassModelLanes::pack(four.models.map(|m| &m.mass_lanes))
                         });
-                        ms = MassLanes::select(compute, &mass_state_lanes(models, x), &ms);
+                        m.ms = MassLanes::select(compute, &mass_state_lanes(models, x), &m.ms);
                     }
-                    eval_four(four, gusty.then_some(gust), &ms, thrust, brake, ys, dy)
+                    eval_four(four, gusty.then_some(gust), &m.ms, m.thrust, brake, ys, dy)
                 }
                 None => {
                     // Lanes that do not share their aerodynamic tables: one at a time.
@@ -458,9 +487,9 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                         let model = p.model();
                         let brake_cd = p.brake_cd();
                         let g = model.gust_at(slots.t[l]);
-                        let (m, th, _) = p.mass_at(slots.t[l]);
+                        let (ms, th, _) = p.mass_at(slots.t[l]);
                         let mut d = [0.0; N6];
-                        derivative_6dof_lanes(model, g, m, th, brake_cd, &lane_of(ys, l), &mut d);
+                        derivative_6dof_lanes(model, g, ms, th, brake_cd, &lane_of(ys, l), &mut d);
                         for k in 0..N6 {
                             dy[k].0[l] = d[k];
                         }
@@ -471,8 +500,12 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
     );
     // The accepted steps' end figures on four lanes where the lanes share their tables: each
     // such slot's mass state is the last stage's, at the step's end.
-    let ends = match &four {
-        Some(Some(four)) if outcomes.iter().any(Option::is_some) => {
+    let ends = match memo.as_ref() {
+        Some(FreeMemo {
+            four: Some(four),
+            ms,
+            ..
+        }) if checked && outcomes.iter().any(Option::is_some) => {
             let c = CenterLanes {
                 r: ms.r,
                 r_rate: ms.r_rate,
@@ -488,18 +521,22 @@ fn step_free(group: &mut [Lane<'_>], st: &mut Steps<N6>) {
                     }
                 }
             }
-            Some(end_point_lanes(
-                four,
-                any_gust.then_some(gust_end),
-                &c,
-                &st.end_y,
-                &st.end_dy,
+            Some((
+                end_point_lanes(
+                    four,
+                    any_gust.then_some(gust_end),
+                    &c,
+                    &st.end_y,
+                    &st.end_dy,
+                ),
+                ms.m,
+                ms.r.z,
             ))
         }
         _ => None,
     };
     end_steps::<N6, Paused<'_, ()>>(group, &outcomes, |p, o, l| match &ends {
-        Some(e) => p.end_step_with(o, e.lane(l).figures(ms.m.0[l], ms.r.z.0[l])),
+        Some((e, m, r_z)) => p.end_step_with(o, e.lane(l).figures(m.0[l], r_z.0[l])),
         None => p.end_step(o),
     });
 }

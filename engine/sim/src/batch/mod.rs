@@ -660,8 +660,11 @@ impl Batch {
                 .take_while(|l| matches!(l.flying, Flying::Free(_)))
                 .count();
             let (free, descents) = lanes.split_at_mut(n_free);
-            for group in free.chunks_mut(4).chain(descents.chunks_mut(4)) {
-                step_group(group, &mut scratch);
+            for (index, group) in free.chunks_mut(4).enumerate() {
+                step_group(group, &mut scratch, index);
+            }
+            for group in descents.chunks_mut(4) {
+                step_group(group, &mut scratch, 0);
             }
             // Lanes whose phase ended: on to their descent, or to their result.
             let mut k = 0;
