@@ -23,7 +23,8 @@
 //! and is ignored. Each round the chunk orders its lanes before grouping them: free flights
 //! whose mass is changing (motor burning, a part moving) first, whose mass states a group then
 //! computes on four lanes too ([`crate::massprops::mass_state_lanes`]), then the other free
-//! flights, then descents. The kernels and the step
+//! flights, then descents; a free-flight group whose slots hold the same lanes as at its last
+//! step takes up what it packed then (model, mass states, thrusts). The kernels and the step
 //! arithmetic do lane by lane exactly the IEEE operations the single flight does, so a lane's
 //! metrics are bit for bit the single-flight simulator's ([`Batch::variant`] gives that
 //! simulation; the tests compare them).
