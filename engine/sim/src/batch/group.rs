@@ -473,7 +473,12 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
                         let models = m.mass_models.get_or_insert_with(|| {
                             MassModelLanes::pack(four.models.map(|m| &m.mass_lanes))
                         });
-                        m.ms = MassLanes::select(compute, &mass_state_lanes(models, x), &m.ms);
+                        let fresh = mass_state_lanes(models, x);
+                        if compute == [true; 4] {
+                            m.ms = fresh;
+                        } else {
+                            m.ms = MassLanes::select(compute, &fresh, &m.ms);
+                        }
                     }
                     eval_four(four, gusty.then_some(gust), &m.ms, m.thrust, brake, ys, dy)
                 }
