@@ -126,14 +126,11 @@ pub(super) struct Steps<const N: usize> {
     k1: [F64x4; N],
     /// Stages k2..k7.
     k: [[F64x4; N]; 6],
-    /// The state of the stage being evaluated.
+    /// The state of the stage being evaluated; after the last stage, each slot's end state
+    /// (with its derivative in `k[5]`, FSAL): an accepted step's, read by the step's end.
     ys: [F64x4; N],
     /// Dense-output coefficients of the steps just accepted.
     cont: [[F64x4; N]; 4],
-    /// The end state and its derivative of each slot whose step was accepted (the others'
-    /// lanes hold old values, never read).
-    end_y: [F64x4; N],
-    end_dy: [F64x4; N],
 }
 
 impl<const N: usize> Steps<N> {
@@ -148,8 +145,6 @@ impl<const N: usize> Steps<N> {
             k: [[zero; N]; 6],
             ys: [zero; N],
             cont: [[zero; N]; 4],
-            end_y: [zero; N],
-            end_dy: [zero; N],
         }
     }
 }
@@ -236,7 +231,8 @@ impl Slots {
 /// side: a new step, or the smaller retry of a step its last attempt had rejected.
 /// `eval(group, slots, ys, dy)` evaluates the phase's derivative of the four slots at their
 /// stage states `ys` (the slots' times in `slots.t`). Returns how each slot's step ended, if
-/// it was accepted (its end state in `st.end_y`, `st.end_dy`); the caller ends those steps
+/// it was accepted (its end state in `st.ys`, its derivative there in `st.k[5]`; the other
+/// slots' lanes there are not read); the caller ends those steps
 /// ([`end_steps`]).
 #[inline(always)]
 fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
@@ -340,10 +336,6 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
                 match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
                     Ok(()) => {
                         outcomes[l] = Some(outcome);
-                        for k in 0..N {
-                            st.end_y[k].0[l] = st.ys[k].0[l];
-                            st.end_dy[k].0[l] = st.k[5][k].0[l];
-                        }
                         (false, None)
                     }
                     Err(e) => (false, Some(e)),
@@ -527,13 +519,7 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
                 }
             }
             Some((
-                end_point_lanes(
-                    four,
-                    any_gust.then_some(gust_end),
-                    &c,
-                    &st.end_y,
-                    &st.end_dy,
-                ),
+                end_point_lanes(four, any_gust.then_some(gust_end), &c, &st.ys, &st.k[5]),
                 ms.m,
                 ms.r.z,
             ))
