@@ -327,13 +327,7 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
                     );
                     cont_done = true;
                 }
-                let c_l = [
-                    lane_of(&st.cont[0], l),
-                    lane_of(&st.cont[1], l),
-                    lane_of(&st.cont[2], l),
-                    lane_of(&st.cont[3], l),
-                ];
-                match p.commit(&lane_of(&st.ys, l), &lane_of(&st.k[5], l), &c_l) {
+                match p.commit(l, &st.ys, &st.k[5], &st.cont) {
                     Ok(()) => {
                         outcomes[l] = Some(outcome);
                         (false, None)

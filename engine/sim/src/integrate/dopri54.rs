@@ -23,6 +23,7 @@
 //! logarithm and one exponential a step where two powers cost 4 % of the batch's instructions.
 
 use super::{check_finite, clip_to_stop, DenseStepper, IntegratorError, StepOutcome, Tolerances};
+use crate::lanes::F64x4;
 
 pub mod arithmetic;
 
@@ -521,6 +522,32 @@ impl<const N: usize> Dopri54<N> {
         self.y_prev = self.y;
         self.t = self.cur.t_end;
         self.y = *y_new;
+    }
+
+    /// [`Dopri54::commit`] from lane `l` of four attempts held side by side (the batch
+    /// engine's), copied straight into place.
+    #[inline(always)]
+    pub fn commit_lane(
+        &mut self,
+        l: usize,
+        y_new: &[F64x4; N],
+        k7: &[F64x4; N],
+        cont: &[[F64x4; N]; 4],
+    ) {
+        for (c, lanes) in self.cont.iter_mut().zip(cont) {
+            for (c, x) in c.iter_mut().zip(lanes) {
+                *c = x.0[l];
+            }
+        }
+        for (d, x) in self.dy.iter_mut().zip(k7) {
+            *d = x.0[l];
+        }
+        self.t_prev = self.t;
+        self.y_prev = self.y;
+        self.t = self.cur.t_end;
+        for (y, x) in self.y.iter_mut().zip(y_new) {
+            *y = x.0[l];
+        }
     }
 }
 

@@ -4,6 +4,7 @@
 //! flight's record once it is over.
 
 use super::*;
+use crate::lanes::F64x4;
 
 /// A flight paused in its free flight, between two steps. The single flight steps it with
 /// [`Paused::step`]; the batch engine steps four lanes' free flights together: it begins
@@ -108,19 +109,20 @@ impl<const N: usize> LaneStepper<N> {
             .map_err(|e| self.watch.error(e, d.y(), self.phase.name()))
     }
 
-    /// The end of the step [`LaneStepper::judge`] accepted ([`Dopri54::commit`]); it must be
-    /// finite.
+    /// The end of the step [`LaneStepper::judge`] accepted, lane `l` of the four attempts
+    /// held side by side ([`Dopri54::commit_lane`]); it must be finite.
     #[inline(always)]
     pub(crate) fn commit(
         &mut self,
-        y_new: &[f64; N],
-        k7: &[f64; N],
-        cont: &[[f64; N]; 4],
+        l: usize,
+        y_new: &[F64x4; N],
+        k7: &[F64x4; N],
+        cont: &[[F64x4; N]; 4],
     ) -> Result<(), SimError> {
         let Stepper::Adaptive(d) = &mut self.stepper else {
             return Err(not_on_lanes());
         };
-        d.commit(y_new, k7, cont);
+        d.commit_lane(l, y_new, k7, cont);
         self.watch.check_end(d.t(), d.y())
     }
 }
@@ -168,11 +170,12 @@ pub(crate) trait PausedPhase<'a, const N: usize> {
     #[inline(always)]
     fn commit(
         &mut self,
-        y_new: &[f64; N],
-        k7: &[f64; N],
-        cont: &[[f64; N]; 4],
+        l: usize,
+        y_new: &[F64x4; N],
+        k7: &[F64x4; N],
+        cont: &[[F64x4; N]; 4],
     ) -> Result<(), SimError> {
-        self.lanes_mut().0.commit(y_new, k7, cont)
+        self.lanes_mut().0.commit(l, y_new, k7, cont)
     }
 }
 
