@@ -99,7 +99,13 @@ pub(super) fn step_group<'a>(group: &mut [Lane<'a>], scratch: &mut Scratch<'a>, 
         if descent {
             with_avx2(
                 #[inline(always)]
-                || step_descents(group, &mut scratch.descent),
+                || {
+                    step_descents(
+                        group,
+                        &mut scratch.descent,
+                        &mut scratch.descent_memo[index],
+                    )
+                },
             )
         } else {
             with_avx2(
@@ -155,6 +161,7 @@ pub(super) struct Scratch<'a> {
     free: Steps<N6>,
     descent: Steps<N3>,
     free_memo: [Option<FreeMemo<'a>>; LANES_IN_FLIGHT / 4],
+    descent_memo: [Option<DescentMemo<'a>>; LANES_IN_FLIGHT / 4],
 }
 
 impl<'a> Scratch<'a> {
@@ -163,8 +170,17 @@ impl<'a> Scratch<'a> {
             free: Steps::new(),
             descent: Steps::new(),
             free_memo: std::array::from_fn(|_| None),
+            descent_memo: std::array::from_fn(|_| None),
         })
     }
+}
+
+/// A descent group's slots' models and their four-lane view, for its next step while its
+/// slots hold the same lanes (the chunk's rows `rows`).
+pub(super) struct DescentMemo<'a> {
+    rows: [usize; 4],
+    models: [&'a FlightModel; 4],
+    four: Option<FourModels<'a>>,
 }
 
 /// What a free-flight group step leaves for the next step of the group at the same place
@@ -528,9 +544,11 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
 
 /// One descent attempt of the lanes of `group`: the point-mass descent on four lanes.
 #[inline(always)]
-fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
-    // The slots' models and, if they share their tables, the four-lane view of them.
-    let mut models_four: Option<([&FlightModel; 4], Option<FourModels<'_>>)> = None;
+fn step_descents<'a>(
+    group: &mut [Lane<'a>],
+    st: &mut Steps<N3>,
+    memo: &mut Option<DescentMemo<'a>>,
+) {
     let mut mass = F64x4::splat(1.0);
     let mut gust = F64x4::splat(1.0);
     let gusty = group.iter().any(|l| match &l.flying {
@@ -547,10 +565,20 @@ fn step_descents(group: &mut [Lane<'_>], st: &mut Steps<N3>) {
         st,
         #[inline(always)]
         |group, slots, ys, dy| {
-            let (models, four) = models_four.get_or_insert_with(|| {
+            // The slots' models and, if they share their tables, the four-lane view of them:
+            // kept from the group's last step while its slots hold the same lanes.
+            let rows = slots.lane.map(|i| group[i].row);
+            if !matches!(memo, Some(m) if m.rows == rows) {
                 let models = slot_models::<N3, Descending<'_, ()>>(group, slots);
-                (models, FourModels::new(models))
-            });
+                *memo = Some(DescentMemo {
+                    rows,
+                    models,
+                    four: FourModels::new(models),
+                });
+            }
+            let Some(DescentMemo { models, four, .. }) = memo.as_ref() else {
+                return;
+            };
             for l in 0..4 {
                 if !slots.wants(l, filled[l]) {
                     continue;

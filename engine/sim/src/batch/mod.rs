@@ -664,8 +664,8 @@ impl Batch {
             for (index, group) in free.chunks_mut(4).enumerate() {
                 step_group(group, &mut scratch, index);
             }
-            for group in descents.chunks_mut(4) {
-                step_group(group, &mut scratch, 0);
+            for (index, group) in descents.chunks_mut(4).enumerate() {
+                step_group(group, &mut scratch, index);
             }
             // Lanes whose phase ended: on to their descent, or to their result.
             let mut k = 0;
