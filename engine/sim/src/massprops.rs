@@ -18,10 +18,9 @@
 //!
 //! which are the spec's `r′`, `r″` and `I′` expanded. Pure, allocation-free, and written once
 //! over [`Real`] ([`mass_state_lanes`]): the single flight evaluates it on one lane
-//! ([`mass_state`]), the batch engine on four lanes at once for the lanes whose mass is
+//! (`FlightModel::instant_computed_into`), the batch engine on four lanes at once for the lanes whose mass is
 //! changing (the motor burning or a part moving), lane by lane the same IEEE operations.
 
-use crate::cycloid::CycloidState;
 use crate::eom::{MassLanes, MassState};
 use crate::flight::model::MAX_MOVING_PARTS;
 use crate::lanes::{any, pack_m3, pack_v3, F64x4, Real, M3, V3};
@@ -233,28 +232,9 @@ impl<S: Real> MassInputs<S> {
     }
 }
 
-/// Mass state at one instant. `motions[k]` is the total motion of `model.parts[k]` along the
-/// axis (positive aft), summed over its shifts; missing entries mean "not moved".
-#[inline]
-pub fn mass_state(
-    model: &MassModel,
-    prop: &PropellantState,
-    motions: &[CycloidState],
-) -> MassState {
-    let mut x = MassInputs::zero();
-    x.set_propellant(0, prop, model.grains.as_ref());
-    for (m, c) in x.motions.iter_mut().zip(motions) {
-        *m = Motion {
-            delta_m: c.delta_m,
-            rate_m_s: c.rate_m_s,
-            accel_m_s2: c.accel_m_s2,
-        };
-    }
-    mass_state_lanes(&MassModelLanes::of(model), &x).to_state()
-}
-
-/// The mass-property kernel on lanes (the one copy of these equations: [`mass_state`] is its
-/// one lane). A part whose motion and its rate are both zero on a lane adds nothing there.
+/// The mass-property kernel on lanes (the one copy of these equations; the single flight's
+/// [`crate::flight::model::FlightModel::instant_computed_into`] is its one lane). A part whose
+/// motion and its rate are both zero on a lane adds nothing there.
 #[inline(always)]
 pub fn mass_state_lanes<S: Real>(model: &MassModelLanes<S>, x: &MassInputs<S>) -> MassLanes<S> {
     let zero = S::splat(0.0);

@@ -155,8 +155,8 @@ impl<const N: usize> Steps<N> {
     }
 }
 
-/// The chunk's scratch for both phases' groups, and what each free-flight group's step
-/// leaves for the next.
+/// The chunk's scratch for both phases' groups, and what each group's step leaves for the
+/// next step of the group at the same place.
 pub(super) struct Scratch<'a> {
     free: Steps<N6>,
     descent: Steps<N3>,
@@ -175,23 +175,44 @@ impl<'a> Scratch<'a> {
     }
 }
 
-/// A descent group's slots' models and their four-lane view, for its next step while its
-/// slots hold the same lanes (the chunk's rows `rows`).
-pub(super) struct DescentMemo<'a> {
+/// The lanes a group's slots hold (the chunk's rows), their models and, if they share their
+/// tables, the four-lane view of them: kept while the slots hold the same lanes. A descent
+/// group keeps only this.
+pub(super) struct SlotModels<'a> {
     rows: [usize; 4],
     models: [&'a FlightModel; 4],
     four: Option<FourModels<'a>>,
 }
 
+type DescentMemo<'a> = SlotModels<'a>;
+
+impl<'a> SlotModels<'a> {
+    /// The chunk's rows in the slots of `group` this stage.
+    #[inline(always)]
+    fn rows(group: &[Lane<'a>], slots: &Slots) -> [usize; 4] {
+        slots.lane.map(|i| group[i].row)
+    }
+
+    /// Those of the lanes the slots hold.
+    #[inline(always)]
+    fn of<const N: usize, P: OnLanes<'a, N>>(group: &mut [Lane<'a>], slots: &Slots) -> Self {
+        let models = slot_models::<N, P>(group, slots);
+        SlotModels {
+            rows: Self::rows(group, slots),
+            models,
+            four: FourModels::new(models),
+        }
+    }
+}
+
 /// What a free-flight group step leaves for the next step of the group at the same place
-/// when its slots hold the same lanes (the chunk's rows `rows`): their four-lane model, their
+/// when its slots hold the same lanes (`slots`): their models and four-lane view, their
 /// mass states and thrusts as the slots hold them, and their packed mass models. Everything
 /// here is a function of the rows and of what `held` records, so a group of the same lanes
 /// takes it up where it was left (lanes keep their groups from round to round but for the
 /// few that change phase, start, land or change whether their mass changes).
 pub(super) struct FreeMemo<'a> {
-    rows: [usize; 4],
-    four: Option<FourModels<'a>>,
+    slots: SlotModels<'a>,
     ms: MassLanes<F64x4>,
     thrust: F64x4,
     held: [Held; 4],
@@ -421,11 +442,10 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
         #[inline(always)]
         |group, slots, ys, dy| {
             if !checked {
-                let rows = slots.lane.map(|i| group[i].row);
-                if !matches!(memo, Some(m) if m.rows == rows) {
+                let rows = SlotModels::rows(group, slots);
+                if !matches!(memo, Some(m) if m.slots.rows == rows) {
                     *memo = Some(FreeMemo {
-                        rows,
-                        four: FourModels::new(slot_models::<N6, Paused<'_, ()>>(group, slots)),
+                        slots: SlotModels::of::<N6, Paused<'_, ()>>(group, slots),
                         ms: pack_mass([&MassLanes::ZERO; 4]),
                         thrust: F64x4::splat(0.0),
                         held: [Held::Nothing; 4],
@@ -438,7 +458,7 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
             let Some(m) = memo.as_mut() else {
                 return;
             };
-            match &m.four {
+            match &m.slots.four {
                 Some(four) => {
                     let mut compute = [false; 4];
                     for l in 0..4 {
@@ -509,7 +529,9 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
     // such slot's mass state is the last stage's, at the step's end.
     let ends = match memo.as_ref() {
         Some(FreeMemo {
-            four: Some(four),
+            slots: SlotModels {
+                four: Some(four), ..
+            },
             ms,
             ..
         }) if checked && outcomes.iter().any(Option::is_some) => {
@@ -567,14 +589,9 @@ fn step_descents<'a>(
         |group, slots, ys, dy| {
             // The slots' models and, if they share their tables, the four-lane view of them:
             // kept from the group's last step while its slots hold the same lanes.
-            let rows = slots.lane.map(|i| group[i].row);
+            let rows = SlotModels::rows(group, slots);
             if !matches!(memo, Some(m) if m.rows == rows) {
-                let models = slot_models::<N3, Descending<'_, ()>>(group, slots);
-                *memo = Some(DescentMemo {
-                    rows,
-                    models,
-                    four: FourModels::new(models),
-                });
+                *memo = Some(SlotModels::of::<N3, Descending<'_, ()>>(group, slots));
             }
             let Some(DescentMemo { models, four, .. }) = memo.as_ref() else {
                 return;

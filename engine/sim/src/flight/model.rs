@@ -6,7 +6,7 @@ use super::config::{Environment, Parachute, Rail, SimOptions};
 use super::SimError;
 use crate::aero_loads::{self, aero_loads, AeroTables, AirAt};
 use crate::atmosphere::{Air, AirTable};
-use crate::cycloid::{self, CycloidState};
+use crate::cycloid;
 use crate::eom::{self, MassLanes, MassState, Nozzle, NozzleLanes, N3, N6};
 use crate::frames;
 use crate::integrate::roots::brent_root_bracketed;
@@ -262,29 +262,6 @@ impl FlightModel {
                 air.density_kg_m3
             },
             speed_of_sound_m_s: air.speed_of_sound_m_s,
-        }
-    }
-
-    /// Motions of the moving parts at `t` given the shifts' start times.
-    #[inline]
-    pub fn motions(&self, starts: &ShiftStarts, t: f64) -> [CycloidState; MAX_MOVING_PARTS] {
-        let mut m = [CycloidState::default(); MAX_MOVING_PARTS];
-        self.motions_into(starts, t, &mut m);
-        m
-    }
-
-    /// [`FlightModel::motions`] added into `m` (all zeros on entry).
-    #[inline(always)]
-    fn motions_into(&self, starts: &ShiftStarts, t: f64, m: &mut [CycloidState; MAX_MOVING_PARTS]) {
-        for (k, s) in self.shifts.iter().enumerate() {
-            let start = starts[k];
-            if t > start {
-                let c = cycloid::evaluate(t, start, s.duration_s, s.travel_m);
-                let acc = &mut m[s.part];
-                acc.delta_m += c.delta_m;
-                acc.rate_m_s += c.rate_m_s;
-                acc.accel_m_s2 += c.accel_m_s2;
-            }
         }
     }
 

@@ -516,12 +516,7 @@ impl<const N: usize> Dopri54<N> {
     /// derivative there `k7` (FSAL) and the step's dense-output coefficients.
     #[inline(always)]
     pub fn commit(&mut self, y_new: &[f64; N], k7: &[f64; N], cont: &[[f64; N]; 4]) {
-        self.cont = *cont;
-        self.dy = *k7;
-        self.t_prev = self.t;
-        self.y_prev = self.y;
-        self.t = self.cur.t_end;
-        self.y = *y_new;
+        self.commit_from(|i| y_new[i], |i| k7[i], |j, i| cont[j][i]);
     }
 
     /// [`Dopri54::commit`] from lane `l` of four attempts held side by side (the batch
@@ -534,19 +529,30 @@ impl<const N: usize> Dopri54<N> {
         k7: &[F64x4; N],
         cont: &[[F64x4; N]; 4],
     ) {
-        for (c, lanes) in self.cont.iter_mut().zip(cont) {
-            for (c, x) in c.iter_mut().zip(lanes) {
-                *c = x.0[l];
+        self.commit_from(|i| y_new[i].0[l], |i| k7[i].0[l], |j, i| cont[j][i].0[l]);
+    }
+
+    /// The commit itself, each number read where it stands.
+    #[inline(always)]
+    fn commit_from(
+        &mut self,
+        y_new: impl Fn(usize) -> f64,
+        k7: impl Fn(usize) -> f64,
+        cont: impl Fn(usize, usize) -> f64,
+    ) {
+        for (j, c) in self.cont.iter_mut().enumerate() {
+            for (i, c) in c.iter_mut().enumerate() {
+                *c = cont(j, i);
             }
         }
-        for (d, x) in self.dy.iter_mut().zip(k7) {
-            *d = x.0[l];
+        for (i, d) in self.dy.iter_mut().enumerate() {
+            *d = k7(i);
         }
         self.t_prev = self.t;
         self.y_prev = self.y;
         self.t = self.cur.t_end;
-        for (y, x) in self.y.iter_mut().zip(y_new) {
-            *y = x.0[l];
+        for (i, y) in self.y.iter_mut().enumerate() {
+            *y = y_new(i);
         }
     }
 }

@@ -2,16 +2,23 @@
 
 use super::*;
 
-#[test]
-fn the_four_lane_kernel_is_bit_for_bit_four_single_lane_kernels() {
-    // Four different variants' models, states and instants, evaluated together and alone.
-    let c = columns(8, 7);
+/// The first four flyable variants of the random stream `seed` (their own masses, ballast,
+/// motor, wind and site).
+fn four_variants(seed: u64) -> Vec<Simulation> {
+    let c = columns(8, seed);
     let batch = Batch::new(base(), Some("ballast")).unwrap();
     let sims: Vec<Simulation> = (0..8)
         .filter_map(|r| batch.variant(&c, r).ok())
         .take(4)
         .collect();
     assert_eq!(sims.len(), 4);
+    sims
+}
+
+#[test]
+fn the_four_lane_kernel_is_bit_for_bit_four_single_lane_kernels() {
+    // Four different variants' models, states and instants, evaluated together and alone.
+    let sims = four_variants(7);
     let models: [&FlightModel; 4] = std::array::from_fn(|l| sims[l].model());
     let four = FourModels::new(models).expect("variants share the design's aerodynamic tables");
     let mut rng = Rng(99);
@@ -153,13 +160,7 @@ fn four_lanes_mass_states_are_bit_for_bit_four_single_instants() {
     // Four variants (their own masses and ballast), each at its own instant: burning with the
     // ballast at rest, burning with it moving, coasting with it moving, and burning just
     // before its shift starts.
-    let c = columns(8, 11);
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
-    let sims: Vec<Simulation> = (0..8)
-        .filter_map(|r| batch.variant(&c, r).ok())
-        .take(4)
-        .collect();
-    assert_eq!(sims.len(), 4);
+    let sims = four_variants(11);
     let models: [&FlightModel; 4] = std::array::from_fn(|l| sims[l].model());
     let times = [0.7, 1.3, 5.4, 0.99];
     let shift_starts = [10.0, 1.0, 5.0, 1.0];

@@ -466,7 +466,7 @@ impl<'a, O: Observer> Paused<'a, O> {
 
     /// The mass state at `t` and its serial number (see [`Paused::mass_at`]) if nothing
     /// changes the mass then (the thrust is then 0), else `None`: the batch engine then
-    /// computes it on lanes from [`FlightModel::mass_inputs`] at [`Paused::mass_key`].
+    /// computes it on lanes from [`FlightModel::mass_inputs_into`] at [`Paused::mass_key`].
     #[inline(always)]
     pub(crate) fn settled_mass(&mut self, t: f64) -> Option<(&MassLanes<f64>, u64)> {
         if !self.settle(t) {
