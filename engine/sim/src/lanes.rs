@@ -262,16 +262,12 @@ impl Real for F64x4 {
         let (i, t) = grid_cells(u, LAST);
         let a: [f64; 4] = std::array::from_fn(|l| v[i[l]]);
         let b: [f64; 4] = std::array::from_fn(|l| v[i[l] + 1]);
-        F64x4(std::array::from_fn(|l| {
-            let x = a[l] + (b[l] - a[l]) * t[l];
-            let x = if u[l] <= 0.0 { v[0] } else { x };
-            let x = if u[l] >= LAST as f64 { v[LAST] } else { x };
-            if mach.0[l].is_nan() {
-                f64::NAN
-            } else {
-                x
-            }
-        }))
+        let x = F64x4(std::array::from_fn(|l| a[l] + (b[l] - a[l]) * t[l]));
+        let below: [bool; 4] = std::array::from_fn(|l| u[l] <= 0.0);
+        let above: [bool; 4] = std::array::from_fn(|l| u[l] >= LAST as f64);
+        let x = F64x4::select(below, F64x4::splat(v[0]), x);
+        let x = F64x4::select(above, F64x4::splat(v[LAST]), x);
+        F64x4::select(mach.ne(mach), F64x4::splat(f64::NAN), x)
     }
 }
 
@@ -284,8 +280,11 @@ impl Real for F64x4 {
 pub fn grid_cells(u: [f64; 4], cells: usize) -> ([usize; 4], [f64; 4]) {
     let top = cells - 1;
     // f64::max returns 0 for NaN; the integer clamp lets the compiler drop bounds checks.
-    let i: [usize; 4] = four!(l => (u[l].max(0.0).min(top as f64) as i32 as usize).min(top));
-    (i, four!(l => u[l] - i[l] as f64))
+    let held: [f64; 4] = std::array::from_fn(|l| u[l].max(0.0).min(top as f64));
+    // SAFETY: every `held` lane is finite and in [0, top], so truncating it fits an `i32`.
+    let k: [i32; 4] = std::array::from_fn(|l| unsafe { held[l].to_int_unchecked::<i32>() });
+    let i: [usize; 4] = four!(l => (k[l] as usize).min(top));
+    (i, std::array::from_fn(|l| u[l] - f64::from(k[l])))
 }
 
 impl F64x4 {
