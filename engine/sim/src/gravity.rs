@@ -198,6 +198,13 @@ impl Gravity {
         }
     }
 
+    /// The magnitude of a gravity that is the same at every height, m/s²; `None` when it
+    /// changes with height.
+    #[inline]
+    pub fn constant_m_s2(&self) -> Option<f64> {
+        matches!(self.model, Model::Constant).then_some(self.g0_m_s2)
+    }
+
     /// Magnitude of gravity at `height_agl_m` above the launch site, m/s² (pointing down).
     #[inline]
     pub fn at(&self, height_agl_m: f64) -> f64 {

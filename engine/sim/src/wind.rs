@@ -141,7 +141,17 @@ impl Wind {
     /// Whether the wind changes with height (a table), or is one constant everywhere.
     #[inline]
     pub fn varies_with_height(&self) -> bool {
-        matches!(self.profile, Profile::Table { .. })
+        self.constant_en().is_none()
+    }
+
+    /// The east and north components of a wind that is the same at every height (as it
+    /// blows: scaled and turned), m/s; `None` for a table.
+    #[inline]
+    pub fn constant_en(&self) -> Option<[f64; 2]> {
+        match self.profile {
+            Profile::Constant(v) => Some(v),
+            Profile::Table { .. } => None,
+        }
     }
 
     /// No wind.

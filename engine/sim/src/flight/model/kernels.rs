@@ -83,6 +83,12 @@ pub struct FourModels<'a> {
     /// Whether the four read one air table (else each its own: a site's air swept or
     /// dispersed).
     one_air: bool,
+    /// The lanes in a vacuum (no air).
+    vacuum: [bool; 4],
+    /// The four gravities where none changes with height (the usual case), packed once.
+    gravity: Option<F64x4>,
+    /// The four winds where none changes with height, packed once (inertial, m/s).
+    wind: Option<V3<F64x4>>,
 }
 
 impl<'a> FourModels<'a> {
@@ -101,7 +107,22 @@ impl<'a> FourModels<'a> {
             one_air: models
                 .iter()
                 .all(|m| std::sync::Arc::ptr_eq(&m.air, &models[0].air)),
+            vacuum: models.map(|m| m.env.vacuum),
+            gravity: constant_lanes(models.map(|m| m.env.gravity.constant_m_s2()))
+                .map(F64x4),
+            wind: constant_lanes(models.map(|m| m.env.wind.constant_en())).map(|w| {
+                let (e, n) = (F64x4(w.map(|w| w[0])), F64x4(w.map(|w| w[1])));
+                V3::new(e, n, F64x4::splat(0.0))
+            }),
         })
+    }
+}
+
+/// The four lanes' values if every lane has one.
+fn constant_lanes<T: Copy>(v: [Option<T>; 4]) -> Option<[T; 4]> {
+    match v {
+        [Some(a), Some(b), Some(c), Some(d)] => Some([a, b, c, d]),
+        _ => None,
     }
 }
 
@@ -121,11 +142,14 @@ impl ModelLanes<F64x4> for FourModels<'_> {
             let a: [_; 4] = std::array::from_fn(|i| m[i].air.at_msl(z[i]));
             (a.map(|a| a.density_kg_m3), a.map(|a| a.speed_of_sound_m_s))
         };
-        let rho = F64x4::from_fn(|i| if m[i].env.vacuum { 0.0 } else { rho[i] });
+        let rho = F64x4::select(self.vacuum, F64x4::splat(0.0), F64x4(rho));
         (rho, F64x4(sound))
     }
     #[inline(always)]
     fn wind(&self, h: F64x4) -> V3<F64x4> {
+        if let Some(w) = self.wind {
+            return w;
+        }
         // A plain loop, which the compiler inlines (`array::from_fn` left a call per lane).
         let mut w = [V3::<f64>::zero(); 4];
         for (i, w) in w.iter_mut().enumerate() {
@@ -150,6 +174,9 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     }
     #[inline(always)]
     fn gravity(&self, h: F64x4) -> F64x4 {
+        if let Some(g) = self.gravity {
+            return g;
+        }
         F64x4::from_fn(|i| self.models[i].gravity(h.0[i]))
     }
     #[inline(always)]
