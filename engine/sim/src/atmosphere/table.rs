@@ -136,7 +136,9 @@ impl AirTable {
         let cells = self.nodes.len() - 1;
         let z = altitude_msl_m;
         let x = four!(l => (z[l] - MIN_ALTITUDE_MSL_M) / AIR_TABLE_STEP_M);
-        if x.iter().all(|&x| x >= 0.0 && x < cells as f64) {
+        // Compared side by side, without short cuts, so the four tests run as one.
+        let inside: [bool; 4] = std::array::from_fn(|l| (x[l] >= 0.0) & (x[l] < cells as f64));
+        if inside == [true; 4] {
             let (i, f) = crate::lanes::grid_cells(x, cells);
             let a: [(f64, f64); 4] = four!(l => self.nodes[i[l]]);
             let b: [(f64, f64); 4] = four!(l => self.nodes[i[l] + 1]);

@@ -333,9 +333,15 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
         let dy4 = &mut st.k[stage];
         eval(group, &slots, &st.ys, dy4);
         let finite = finite_lanes(dy4);
-        for l in 0..n {
-            if slots.active[l] && !finite[l] {
-                P::of(&mut group[l]).observe(slots.t[l], &lane_of(&st.ys, l), &lane_of(dy4, l));
+        if finite != [true; 4] {
+            for l in 0..n {
+                if slots.active[l] && !finite[l] {
+                    P::of(&mut group[l]).observe(
+                        slots.t[l],
+                        &lane_of(&st.ys, l),
+                        &lane_of(dy4, l),
+                    );
+                }
             }
         }
     }
@@ -495,10 +501,10 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
                         let models = m.mass_models.get_or_insert_with(|| {
                             MassModelLanes::pack(four.models.map(|m| &m.mass_lanes))
                         });
-                        let fresh = mass_state_lanes(models, x);
                         if compute == [true; 4] {
-                            m.ms = fresh;
+                            m.ms = mass_state_lanes(models, x);
                         } else {
+                            let fresh = mass_state_lanes(models, x);
                             m.ms = MassLanes::select(compute, &fresh, &m.ms);
                         }
                     }
