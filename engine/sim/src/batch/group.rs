@@ -349,6 +349,7 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
     // at the group's next step, beside the other lanes' next steps (its stepper holds the
     // smaller attempt), so no slot waits on another lane's retry.
     let sums = arithmetic::error_sum(st.h, &st.y, &st.ys, &st.k1, &st.k, &st.atol, st.rtol);
+    let errs = (sums / F64x4::splat(N as f64)).sqrt();
     let mut cont_done = false;
     for l in 0..n {
         if !slots.active[l] {
@@ -356,8 +357,7 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
         }
         let lane = &mut group[l];
         let p = P::of(lane);
-        let err = (sums.0[l] / N as f64).sqrt();
-        let (retrying, error) = match p.judge(err) {
+        let (retrying, error) = match p.judge(errs.0[l]) {
             Ok(Some(outcome)) => {
                 if !cont_done {
                     arithmetic::dense_coefficients(

@@ -539,7 +539,14 @@ impl FlightModel {
     /// the mass state's mass).
     #[inline]
     pub fn descent_mass(&self, t: f64) -> f64 {
-        self.mass.fixed_mass_kg + self.motor.eval(t).propellant_kg
+        // After burnout (nearly every descent) the motor's state is known without a call:
+        // empty, exactly as `eval` gives it.
+        let propellant_kg = if t >= self.motor.burn_time_s() {
+            0.0
+        } else {
+            self.motor.eval(t).propellant_kg
+        };
+        self.mass.fixed_mass_kg + propellant_kg
     }
 
     /// The center of mass's position and velocity (inertial) and a sample's figures at the end
