@@ -14,7 +14,7 @@ use crate::flight::model::{
     FourModels,
 };
 use crate::flight::{SimError, Simulation};
-use crate::integrate::dopri54::arithmetic;
+use crate::integrate::dopri54::{self, arithmetic};
 use crate::integrate::{DenseStepper, StepOutcome};
 use crate::lanes::{F64x4, Real};
 use crate::massprops::{mass_state_lanes, MassInputs, MassModelLanes};
@@ -125,6 +125,9 @@ pub(super) fn step_group<'a>(group: &mut [Lane<'a>], scratch: &mut Scratch<'a>, 
 /// number is slot `l`'s. The arithmetic is [`arithmetic`]'s, the single flight's. Kept by
 /// the chunk from step to step (every field is written before it is read within a step).
 pub(super) struct Steps<const N: usize> {
+    /// Each attempt's start and end times, s.
+    t: F64x4,
+    t_end: F64x4,
     h: F64x4,
     atol: [F64x4; N],
     rtol: F64x4,
@@ -143,6 +146,8 @@ impl<const N: usize> Steps<N> {
     fn new() -> Steps<N> {
         let zero = F64x4::splat(0.0);
         Steps {
+            t: zero,
+            t_end: zero,
             h: zero,
             atol: [zero; N],
             rtol: zero,
@@ -288,6 +293,8 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
                 active[l] = true;
                 let d = p.dopri();
                 st.h.0[l] = d.attempt_step();
+                st.t.0[l] = d.t();
+                st.t_end.0[l] = d.attempt_end();
                 let tol = d.tolerances();
                 st.rtol.0[l] = tol.rtol();
                 for k in 0..N {
@@ -316,6 +323,8 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
         let i = slots.lane[l];
         if l != i {
             st.h.0[l] = st.h.0[i];
+            st.t.0[l] = st.t.0[i];
+            st.t_end.0[l] = st.t_end.0[i];
             st.rtol.0[l] = st.rtol.0[i];
             for k in 0..N {
                 st.atol[k].0[l] = st.atol[k].0[i];
@@ -326,10 +335,7 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
     }
     for stage in 0..6 {
         arithmetic::stage_state(stage, st.h, &st.y, &st.k1, &st.k, &mut st.ys);
-        for l in 0..4 {
-            let i = slots.lane[l];
-            slots.t[l] = P::of(&mut group[i]).dopri().stage_time(stage);
-        }
+        slots.t = dopri54::stage_time(stage, st.t, st.h, st.t_end).0;
         let dy4 = &mut st.k[stage];
         eval(group, &slots, &st.ys, dy4);
         let finite = finite_lanes(dy4);

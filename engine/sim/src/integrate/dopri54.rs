@@ -23,7 +23,7 @@
 //! logarithm and one exponential a step where two powers cost 4 % of the batch's instructions.
 
 use super::{check_finite, clip_to_stop, DenseStepper, IntegratorError, StepOutcome, Tolerances};
-use crate::lanes::F64x4;
+use crate::lanes::{F64x4, Real};
 
 pub mod arithmetic;
 
@@ -403,17 +403,16 @@ impl<const N: usize> Dopri54<N> {
         self.cur.h
     }
 
+    /// Where the attempt in progress ends, s.
+    #[inline(always)]
+    pub fn attempt_end(&self) -> f64 {
+        self.cur.t_end
+    }
+
     /// Time of stage `stage` (0..6 for k2..k7) of the attempt in progress.
     #[inline(always)]
     pub fn stage_time(&self, stage: usize) -> f64 {
-        let (t, h) = (self.t, self.cur.h);
-        match stage {
-            0 => t + C2 * h,
-            1 => t + C3 * h,
-            2 => t + C4 * h,
-            3 => t + C5 * h,
-            _ => self.cur.t_end,
-        }
+        stage_time(stage, self.t, self.cur.h, self.cur.t_end)
     }
 
     /// The time and state of the stage `cur.stage` from the stages before it.
@@ -555,6 +554,21 @@ impl<const N: usize> Dopri54<N> {
             *y = y_new(i);
         }
     }
+}
+
+/// Time of stage `stage` (0..6 for k2..k7) of attempts from `t` of step `h` ending at
+/// `t_end`, on lanes: the single flight's stepper and the batch's four attempts side by side
+/// compute it here.
+#[inline(always)]
+pub fn stage_time<S: Real>(stage: usize, t: S, h: S, t_end: S) -> S {
+    let c = match stage {
+        0 => C2,
+        1 => C3,
+        2 => C4,
+        3 => C5,
+        _ => return t_end,
+    };
+    t + S::splat(c) * h
 }
 
 impl<const N: usize> DenseStepper<N> for Dopri54<N> {
