@@ -8,7 +8,7 @@
 
 use super::guarded;
 use crate::eom::{pack_mass, Canopies, MassLanes, N3, N6};
-use crate::flight::driver::{Descending, Paused, PausedPhase, PhaseEnd, StepEnd};
+use crate::flight::driver::{Descending, Paused, PausedPhase, PhaseEnd, StepEnd, Verdict};
 use crate::flight::model::{
     derivative_6dof_lanes, descent_rates_lanes, end_point_lanes, CenterLanes, FlightModel,
     FourModels,
@@ -16,7 +16,7 @@ use crate::flight::model::{
 use crate::flight::{SimError, Simulation};
 use crate::integrate::dopri54::{self, arithmetic};
 use crate::integrate::{DenseStepper, StepOutcome};
-use crate::lanes::{F64x4, Real};
+use crate::lanes::{ln, F64x4, Real};
 use crate::massprops::{mass_state_lanes, MassInputs, MassModelLanes};
 
 /// Most lanes of one chunk in flight at once (four groups of four).
@@ -129,6 +129,9 @@ pub(super) struct Steps<const N: usize> {
     t: F64x4,
     t_end: F64x4,
     h: F64x4,
+    /// Each stepper's controller: its β and the logarithm of its last accepted error.
+    beta: F64x4,
+    ln_err_prev: F64x4,
     atol: [F64x4; N],
     rtol: F64x4,
     y: [F64x4; N],
@@ -149,6 +152,8 @@ impl<const N: usize> Steps<N> {
             t: zero,
             t_end: zero,
             h: zero,
+            beta: zero,
+            ln_err_prev: zero,
             atol: [zero; N],
             rtol: zero,
             y: [zero; N],
@@ -295,6 +300,8 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
                 st.h.0[l] = d.attempt_step();
                 st.t.0[l] = d.t();
                 st.t_end.0[l] = d.attempt_end();
+                st.beta.0[l] = d.control().beta;
+                st.ln_err_prev.0[l] = d.ln_err_prev();
                 let tol = d.tolerances();
                 st.rtol.0[l] = tol.rtol();
                 for k in 0..N {
@@ -325,6 +332,8 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
             st.h.0[l] = st.h.0[i];
             st.t.0[l] = st.t.0[i];
             st.t_end.0[l] = st.t_end.0[i];
+            st.beta.0[l] = st.beta.0[i];
+            st.ln_err_prev.0[l] = st.ln_err_prev.0[i];
             st.rtol.0[l] = st.rtol.0[i];
             for k in 0..N {
                 st.atol[k].0[l] = st.atol[k].0[i];
@@ -356,6 +365,11 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
     // smaller attempt), so no slot waits on another lane's retry.
     let sums = arithmetic::error_sum(st.h, &st.y, &st.ys, &st.k1, &st.k, &st.atol, st.rtol);
     let errs = (sums / F64x4::splat(N as f64)).sqrt();
+    // The controller's logarithm and factors, four attempts at once (each lane then reads
+    // the one its verdict needs).
+    let ln_errs = ln(errs);
+    let growths = dopri54::growth(st.beta, st.ln_err_prev, ln_errs);
+    let shrinkages = dopri54::shrinkage(st.beta, ln_errs);
     let mut cont_done = false;
     for l in 0..n {
         if !slots.active[l] {
@@ -363,7 +377,13 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
         }
         let lane = &mut group[l];
         let p = P::of(lane);
-        let (retrying, error) = match p.judge(errs.0[l]) {
+        let verdict = Verdict {
+            err: errs.0[l],
+            ln_err: ln_errs.0[l],
+            growth: growths.0[l],
+            shrinkage: shrinkages.0[l],
+        };
+        let (retrying, error) = match p.judge(verdict) {
             Ok(Some(outcome)) => {
                 if !cont_done {
                     arithmetic::dense_coefficients(

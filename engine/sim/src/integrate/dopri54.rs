@@ -23,7 +23,7 @@
 //! logarithm and one exponential a step where two powers cost 4 % of the batch's instructions.
 
 use super::{check_finite, clip_to_stop, DenseStepper, IntegratorError, StepOutcome, Tolerances};
-use crate::lanes::{F64x4, Real};
+use crate::lanes::{exp, ln, F64x4, Real};
 
 pub mod arithmetic;
 
@@ -403,6 +403,13 @@ impl<const N: usize> Dopri54<N> {
         self.cur.h
     }
 
+    /// The logarithm of the last accepted attempt's error norm (floored), which the
+    /// controller's [`growth`] reads.
+    #[inline(always)]
+    pub fn ln_err_prev(&self) -> f64 {
+        self.ln_err_prev
+    }
+
     /// Where the attempt in progress ends, s.
     #[inline(always)]
     pub fn attempt_end(&self) -> f64 {
@@ -477,15 +484,35 @@ impl<const N: usize> Dopri54<N> {
     /// is set up (smaller step, clipped) and `None` returned.
     #[inline(always)]
     pub fn judge(&mut self, err: f64, stages: u64) -> Result<Option<StepOutcome>, IntegratorError> {
+        let ln_err = ln(err);
+        let (beta, ln_err_prev) = (self.control.beta, self.ln_err_prev);
+        self.judge_given(
+            err,
+            ln_err,
+            || growth(beta, ln_err_prev, ln_err),
+            || shrinkage(beta, ln_err),
+            stages,
+        )
+    }
+
+    /// [`Dopri54::judge`] given the error norm's logarithm and the controller's factors
+    /// ([`growth`], called if the attempt is accepted, and [`shrinkage`], if not): the batch
+    /// engine computes them for four attempts at once, by the same functions.
+    #[inline(always)]
+    pub fn judge_given(
+        &mut self,
+        err: f64,
+        ln_err: f64,
+        growth: impl FnOnce() -> f64,
+        shrinkage: impl FnOnce() -> f64,
+        stages: u64,
+    ) -> Result<Option<StepOutcome>, IntegratorError> {
         self.n_eval += stages;
         let c = self.control;
-        let alpha = 0.2 - 0.75 * c.beta;
         let a = &self.cur;
         let (h, h_proposal, last) = (a.h, a.h_proposal, a.last);
-        let ln_err = err.ln();
         if err <= 1.0 {
-            let fac = (c.safety * (c.beta * self.ln_err_prev - alpha * ln_err).exp())
-                .clamp(c.min_factor, c.max_factor);
+            let fac = (c.safety * growth()).clamp(c.min_factor, c.max_factor);
             let mut h_new = h * fac;
             if a.rejected {
                 h_new = h_new.min(h);
@@ -505,7 +532,7 @@ impl<const N: usize> Dopri54<N> {
         // Rejected (a NaN error lands here too, and `min` then picks 1/min_factor).
         self.n_rejected += 1;
         self.cur.rejected = true;
-        let fac_err = (alpha * ln_err).exp();
+        let fac_err = shrinkage();
         self.cur.h = h / (1.0 / c.min_factor).min(fac_err / c.safety);
         self.begin_attempt()?;
         Ok(None)
@@ -554,6 +581,26 @@ impl<const N: usize> Dopri54<N> {
             *y = y_new(i);
         }
     }
+}
+
+/// The step-size controller's growth after an accepted attempt, before its safety factor
+/// and clamps: `err_prev^β / err^α` (α = 0.2 − 0.75 β), from the two error norms' logarithms;
+/// on lanes, so that the batch computes four attempts' at once, by the same operations.
+#[inline(always)]
+pub fn growth<S: Real>(beta: S, ln_err_prev: S, ln_err: S) -> S {
+    exp(beta * ln_err_prev - alpha(beta) * ln_err)
+}
+
+/// The controller's shrinkage after a rejected attempt, before its safety factor: `err^α`.
+#[inline(always)]
+pub fn shrinkage<S: Real>(beta: S, ln_err: S) -> S {
+    exp(alpha(beta) * ln_err)
+}
+
+/// The controller's exponent of the error, `α = 0.2 − 0.75 β` (β: of the previous error).
+#[inline(always)]
+fn alpha<S: Real>(beta: S) -> S {
+    S::splat(0.2) - S::splat(0.75) * beta
 }
 
 /// Time of stage `stage` (0..6 for k2..k7) of attempts from `t` of step `h` ending at

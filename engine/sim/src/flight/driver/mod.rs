@@ -46,7 +46,7 @@ mod six_dof;
 
 use descent::Descent;
 pub(crate) use paused::{
-    fly_to_free, AfterFree, Descending, Paused, PausedPhase, Progress, StepEnd,
+    fly_to_free, AfterFree, Descending, Paused, PausedPhase, Progress, StepEnd, Verdict,
 };
 use six_dof::{six_dof_phase, SixDof};
 

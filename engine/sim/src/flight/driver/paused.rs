@@ -92,20 +92,27 @@ impl<const N: usize> LaneStepper<N> {
     }
 
     /// The verdict on the attempt whose six stages were evaluated outside, from its error
-    /// norm `err` ([`Dopri54::judge`]; the six evaluations are counted in `evals`): the
+    /// norm `err`, the norm's logarithm and the controller's factors computed outside too
+    /// ([`Dopri54::judge_given`]; the six evaluations are counted in `evals`): the
     /// outcome when accepted (then hand the new state to [`LaneStepper::commit`]), `None`
     /// when the step is tried again, smaller.
     #[inline(always)]
     pub(crate) fn judge(
         &mut self,
-        err: f64,
+        verdict: Verdict,
         evals: &mut u64,
     ) -> Result<Option<StepOutcome>, SimError> {
         let Stepper::Adaptive(d) = &mut self.stepper else {
             return Err(not_on_lanes());
         };
         *evals += 6;
-        d.judge(err, 6)
+        let Verdict {
+            err,
+            ln_err,
+            growth,
+            shrinkage,
+        } = verdict;
+        d.judge_given(err, ln_err, || growth, || shrinkage, 6)
             .map_err(|e| self.watch.error(e, d.y(), self.phase.name()))
     }
 
@@ -125,6 +132,17 @@ impl<const N: usize> LaneStepper<N> {
         d.commit_lane(l, y_new, k7, cont);
         self.watch.check_end(d.t(), d.y())
     }
+}
+
+/// An attempt's error norm, its logarithm and the step-size controller's factors from it
+/// ([`crate::integrate::dopri54::growth`], [`crate::integrate::dopri54::shrinkage`]), as
+/// the batch computes them for four attempts at once.
+#[derive(Clone, Copy)]
+pub(crate) struct Verdict {
+    pub(crate) err: f64,
+    pub(crate) ln_err: f64,
+    pub(crate) growth: f64,
+    pub(crate) shrinkage: f64,
 }
 
 fn not_on_lanes() -> SimError {
@@ -163,9 +181,9 @@ pub(crate) trait PausedPhase<'a, const N: usize> {
         self.lanes_mut().0.observe(t, y, dy);
     }
     #[inline(always)]
-    fn judge(&mut self, err: f64) -> Result<Option<StepOutcome>, SimError> {
+    fn judge(&mut self, verdict: Verdict) -> Result<Option<StepOutcome>, SimError> {
         let (lanes, evals) = self.lanes_mut();
-        lanes.judge(err, evals)
+        lanes.judge(verdict, evals)
     }
     #[inline(always)]
     fn commit(

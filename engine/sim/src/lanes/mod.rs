@@ -15,6 +15,9 @@
 use hpr_design::aero::table::{MachTable, MACH_NODES, MACH_STEP};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
+mod elementary;
+pub use elementary::{atan2_upper, exp, ln};
+
 /// A number, or a bundle of numbers (lanes) operated on together.
 pub trait Real:
     Copy
@@ -565,73 +568,9 @@ pub fn pack_m3(a: [&M3<f64>; 4]) -> M3<F64x4> {
     }
 }
 
-/// `atan2(y, x)` for `y ≥ 0` (an angle in [0, π]) on lanes, branch-free so that four lanes
-/// run in vector registers: Cephes' `atan` (three-interval reduction, degree 4/5 rational
-/// core, Moshier 1984–2000) on `y/|x|`, reflected for `x < 0`. Within 1 ulp of the
-/// correctly rounded value (the test measures it against the system's `atan2`). Both drivers
-/// call it, so the batch's lanes stay bit for bit the single flight.
-// The coefficients are Cephes' as published (more digits than a double holds, rounded once).
-#[allow(clippy::excessive_precision)]
-#[inline(always)]
-pub fn atan2_upper<S: Real>(y: S, x: S) -> S {
-    const P: [f64; 5] = [
-        -8.750608600031904122785e-1,
-        -1.615753718733365076637e1,
-        -7.500855792314704667340e1,
-        -1.228866684490136173410e2,
-        -6.485021904942025371773e1,
-    ];
-    const Q: [f64; 5] = [
-        2.485846490142306297962e1,
-        1.650270098316988542046e2,
-        4.328810604912902668951e2,
-        4.853903996359136964868e2,
-        1.945506571482613964425e2,
-    ];
-    // π/2 = FRAC_PI_2 + MOREBITS (the double's shortfall), tan(3π/8), and π's shortfall.
-    const MOREBITS: f64 = 6.123233995736765886130e-17;
-    const T3P8: f64 = 2.414_213_562_373_095;
-    const PI_LO: f64 = 1.224_646_799_147_353_2e-16;
-    let zero = S::splat(0.0);
-    let one = S::splat(1.0);
-    let r = y / x.abs();
-    // Reduce r ≥ 0 to |t| ≤ 0.66.
-    let big = r.gt(S::splat(T3P8));
-    let mid = S::or(big, r.gt(S::splat(0.66)));
-    let t_big = -(one / r);
-    let t_mid = (r - one) / (r + one);
-    let t = S::select(big, t_big, S::select(mid, t_mid, r));
-    let base = S::select(
-        big,
-        S::splat(std::f64::consts::FRAC_PI_2),
-        S::select(mid, S::splat(std::f64::consts::FRAC_PI_4), zero),
-    );
-    let extra = S::select(
-        big,
-        S::splat(MOREBITS),
-        S::select(mid, S::splat(0.5 * MOREBITS), zero),
-    );
-    let z = t * t;
-    let p = (((S::splat(P[0]) * z + S::splat(P[1])) * z + S::splat(P[2])) * z + S::splat(P[3])) * z
-        + S::splat(P[4]);
-    let q = ((((z + S::splat(Q[0])) * z + S::splat(Q[1])) * z + S::splat(Q[2])) * z
-        + S::splat(Q[3]))
-        * z
-        + S::splat(Q[4]);
-    let a = base + ((t * (z * p / q) + extra) + t);
-    // y/|x| is +∞ when x = 0 (a = π/2); x < 0 reflects: π − a.
-    let reflected = (S::splat(std::f64::consts::PI) - a) + S::splat(PI_LO);
-    S::select(zero.gt(x), reflected, a)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Distance in units in the last place between two positive doubles.
-    fn ulps(a: f64, b: f64) -> u64 {
-        (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs()
-    }
 
     #[test]
     fn the_four_lane_mach_table_look_up_is_the_one_lane_look_up_bit_for_bit() {
@@ -676,34 +615,6 @@ mod tests {
                 );
             }
         }
-    }
-
-    #[test]
-    fn the_lane_atan2_is_within_one_ulp_of_the_system_s() {
-        // Angles of attack from 1e-12 rad to π, both signs of x, ratios across 30 decades.
-        let mut worst = 0;
-        let mut state = 0x1234_5678_9abc_def0u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        for i in 0..400_000 {
-            let y = 10f64.powf(-8.0 + 12.0 * next());
-            let mag = 10f64.powf(-10.0 + 18.0 * next());
-            let x = if i % 2 == 0 { mag } else { -mag };
-            let (ours, sys) = (atan2_upper(y, x), y.atan2(x));
-            worst = worst.max(ulps(ours, sys));
-            let four = atan2_upper(F64x4([y, y, y, y]), F64x4([x, -x, mag, 0.0]));
-            assert_eq!(four.0[0].to_bits(), ours.to_bits());
-            assert_eq!(four.0[1].to_bits(), atan2_upper(y, -x).to_bits());
-        }
-        assert_eq!(atan2_upper(1.0, 0.0), std::f64::consts::FRAC_PI_2);
-        assert_eq!(atan2_upper(0.0, 1.0), 0.0);
-        assert_eq!(atan2_upper(0.0, -1.0), std::f64::consts::PI);
-        eprintln!("worst difference from the system's atan2: {worst} ulp");
-        assert!(worst <= 1, "{worst} ulp (bound 1)");
     }
 
     #[test]
