@@ -351,11 +351,7 @@ fn step_on_lanes<'a, const N: usize, P: OnLanes<'a, N>>(
         if finite != [true; 4] {
             for l in 0..n {
                 if slots.active[l] && !finite[l] {
-                    P::of(&mut group[l]).observe(
-                        slots.t[l],
-                        &lane_of(&st.ys, l),
-                        &lane_of(dy4, l),
-                    );
+                    P::of(&mut group[l]).observe(slots.t[l], &lane_of(&st.ys, l), &lane_of(dy4, l));
                 }
             }
         }

@@ -68,7 +68,9 @@ pub fn atan2_upper<S: Real>(y: S, x: S) -> S {
 
 /// `ln 2` split in two: a high part with trailing zero bits (so `k · LN2_HI` is exact for the
 /// exponents a double has) and the rest.
+#[allow(clippy::excessive_precision)]
 const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-1;
+#[allow(clippy::excessive_precision)]
 const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
 /// `1.5 · 2⁵²`: adding it rounds a double of magnitude below 2⁵¹ to an integer, and the sum's
 /// low bits are that integer (two's complement), which is how integers cross between the
@@ -117,8 +119,8 @@ pub fn ln<S: Real>(x: S) -> S {
     let z = s * s;
     let w = z * z;
     let t1 = w * (S::splat(LG[1]) + w * (S::splat(LG[3]) + w * S::splat(LG[5])));
-    let t2 = z
-        * (S::splat(LG[0]) + w * (S::splat(LG[2]) + w * (S::splat(LG[4]) + w * S::splat(LG[6]))));
+    let t2 =
+        z * (S::splat(LG[0]) + w * (S::splat(LG[2]) + w * (S::splat(LG[4]) + w * S::splat(LG[6]))));
     let r = t2 + t1;
     let y = s * (hfsq + r) + k * S::splat(LN2_LO) - hfsq + f + k * S::splat(LN2_HI);
     let y = S::select(x.eq(S::splat(f64::INFINITY)), x, y);
@@ -134,7 +136,8 @@ pub fn ln<S: Real>(x: S) -> S {
 #[allow(clippy::excessive_precision)]
 #[inline(always)]
 pub fn exp<S: Real>(x: S) -> S {
-    const INVLN2: f64 = 1.442_695_040_888_963_387_00;
+    // fdlibm's `invln2`, 1/ln 2 = log₂ e (the same double as the standard library's).
+    const INVLN2: f64 = std::f64::consts::LOG2_E;
     const P: [f64; 5] = [
         1.666_666_666_666_660_190_37e-1,
         -2.777_777_777_701_559_338_42e-3,
@@ -152,8 +155,8 @@ pub fn exp<S: Real>(x: S) -> S {
     let lo = k * S::splat(LN2_LO);
     let r = hi - lo;
     let rr = r * r;
-    let c = r
-        - rr * (S::splat(P[0])
+    let c = r - rr
+        * (S::splat(P[0])
             + rr * (S::splat(P[1])
                 + rr * (S::splat(P[2]) + rr * (S::splat(P[3]) + rr * S::splat(P[4])))));
     let y = one - ((lo - (r * c) / (S::splat(2.0) - c)) - hi);
@@ -179,7 +182,6 @@ mod tests {
     fn ulps(a: f64, b: f64) -> u64 {
         (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs()
     }
-
 
     /// A xorshift source of uniform numbers in [0, 1).
     fn uniform(seed: u64) -> impl FnMut() -> f64 {
@@ -231,7 +233,15 @@ mod tests {
         // error norms (1e-6 to 1e3).
         xs.extend((0..100_000).map(|_| 1.0 + (next() - 0.5) * 1e-3));
         xs.extend((0..100_000).map(|_| 10f64.powf(-6.0 + 9.0 * next())));
-        xs.extend([1.0, 2.0, 0.5, f64::MIN_POSITIVE, 5e-324, f64::MAX, std::f64::consts::E]);
+        xs.extend([
+            1.0,
+            2.0,
+            0.5,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            std::f64::consts::E,
+        ]);
         for w in xs.chunks(4) {
             let mut four = [1.0; 4];
             four[..w.len()].copy_from_slice(w);

@@ -108,8 +108,7 @@ impl<'a> FourModels<'a> {
                 .iter()
                 .all(|m| std::sync::Arc::ptr_eq(&m.air, &models[0].air)),
             vacuum: models.map(|m| m.env.vacuum),
-            gravity: constant_lanes(models.map(|m| m.env.gravity.constant_m_s2()))
-                .map(F64x4),
+            gravity: constant_lanes(models.map(|m| m.env.gravity.constant_m_s2())).map(F64x4),
             wind: constant_lanes(models.map(|m| m.env.wind.constant_en())).map(|w| {
                 let (e, n) = (F64x4(w.map(|w| w[0])), F64x4(w.map(|w| w[1])));
                 V3::new(e, n, F64x4::splat(0.0))
