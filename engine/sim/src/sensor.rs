@@ -159,7 +159,7 @@ impl NoiseProcess {
     }
 
     /// A ceiling of the noise at every sample after the last drawn, Pa: the largest mean it
-    /// can reach from there plus [`CEILING_DEVIATIONS`] deviations.
+    /// can reach from there plus `CEILING_DEVIATIONS` (12) deviations.
     pub fn ceiling_pa(&self) -> f64 {
         self.n_pa.abs() + self.drift_pa + CEILING_DEVIATIONS * self.noise.std_pa
     }

@@ -24,7 +24,11 @@
 //! whose mass is changing (motor burning, a part moving) first, whose mass states a group then
 //! computes on four lanes too ([`crate::massprops::mass_state_lanes`]), then the other free
 //! flights, then descents; a free-flight group whose slots hold the same lanes as at its last
-//! step takes up what it packed then (model, mass states, thrusts). The kernels and the step
+//! step takes up what it packed then (model, mass states, thrusts). The four attempts' stage
+//! times and their step-size controllers' logarithm and factors are computed side by side too,
+//! by the stepper's own functions written over lanes ([`crate::integrate::dopri54::stage_time`],
+//! [`crate::integrate::dopri54::growth`], [`crate::lanes::ln`]), and handed to each lane's
+//! stepper to judge. The kernels and the step
 //! arithmetic do lane by lane exactly the IEEE operations the single flight does, so a lane's
 //! metrics are bit for bit the single-flight simulator's ([`Batch::variant`] gives that
 //! simulation; the tests compare them).

@@ -3,11 +3,13 @@
 //! variants side by side in one register's worth of data).
 //!
 //! Every operation of [`Real`] is element-wise and exactly the IEEE operation of `f64` on each
-//! lane (add, subtract, multiply, divide, square root, comparisons, select; functions the
-//! hardware has no vector form of, such as `atan2` or a table look-up, are called lane by lane
-//! through [`Real::map`]). Rust never fuses a multiply and an add on its own, so lane `i` of a
-//! kernel evaluated on `F64x4` is bit for bit the kernel evaluated on that lane's `f64`
-//! inputs: the batch engine's lanes equal single flights by construction, not by tolerance.
+//! lane (add, subtract, multiply, divide, square root, comparisons, select). Functions the
+//! hardware has no vector form of are written once over [`Real`] from those operations
+//! (`atan2`, `ln`, `exp`: [`elementary`]), or read lane by lane (a table's cells), so the
+//! four lanes run in vector registers and each is the one-lane result. Rust never fuses a
+//! multiply and an add on its own, so lane `i` of a kernel evaluated on `F64x4` is bit for
+//! bit the kernel evaluated on that lane's `f64` inputs: the batch engine's lanes equal single
+//! flights by construction, not by tolerance.
 //!
 //! [`V3`] and [`M3`] are the small vector and matrix types of the generic kernels (nalgebra's
 //! types need a full `RealField`, which a lane bundle is not).
@@ -15,7 +17,7 @@
 use hpr_design::aero::table::{MachTable, MACH_NODES, MACH_STEP};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-mod elementary;
+pub mod elementary;
 pub use elementary::{atan2_upper, exp, ln};
 
 /// A number, or a bundle of numbers (lanes) operated on together.
