@@ -7,6 +7,7 @@
 //! bit single flights.
 
 use super::guarded;
+use super::memo::{DescentMemo, FreeMemo, Held, SlotModels};
 use crate::eom::{pack_mass, Canopies, MassLanes, N3, N6};
 use crate::flight::driver::{Descending, Paused, PausedPhase, PhaseEnd, StepEnd, Verdict};
 use crate::flight::model::{
@@ -185,51 +186,6 @@ impl<'a> Scratch<'a> {
     }
 }
 
-/// The lanes a group's slots hold (the chunk's rows), their models and, if they share their
-/// tables, the four-lane view of them: kept while the slots hold the same lanes. A descent
-/// group keeps only this.
-pub(super) struct SlotModels<'a> {
-    rows: [usize; 4],
-    models: [&'a FlightModel; 4],
-    four: Option<FourModels<'a>>,
-}
-
-type DescentMemo<'a> = SlotModels<'a>;
-
-impl<'a> SlotModels<'a> {
-    /// The chunk's rows in the slots of `group` this stage.
-    #[inline(always)]
-    fn rows(group: &[Lane<'a>], slots: &Slots) -> [usize; 4] {
-        slots.lane.map(|i| group[i].row)
-    }
-
-    /// Those of the lanes the slots hold.
-    #[inline(always)]
-    fn of<const N: usize, P: OnLanes<'a, N>>(group: &mut [Lane<'a>], slots: &Slots) -> Self {
-        let models = slot_models::<N, P>(group, slots);
-        SlotModels {
-            rows: Self::rows(group, slots),
-            models,
-            four: FourModels::new(models),
-        }
-    }
-}
-
-/// What a free-flight group step leaves for the next step of the group at the same place
-/// when its slots hold the same lanes (`slots`): their models and four-lane view, their
-/// mass states and thrusts as the slots hold them, and their packed mass models. Everything
-/// here is a function of the rows and of what `held` records, so a group of the same lanes
-/// takes it up where it was left (lanes keep their groups from round to round but for the
-/// few that change phase, start, land or change whether their mass changes).
-pub(super) struct FreeMemo<'a> {
-    slots: SlotModels<'a>,
-    ms: MassLanes<F64x4>,
-    thrust: F64x4,
-    held: [Held; 4],
-    mass_models: Option<MassModelLanes<F64x4>>,
-    inputs: Option<MassInputs<F64x4>>,
-}
-
 /// Lane `l` of a structure-of-arrays state.
 #[inline(always)]
 fn lane_of<const N: usize>(v: &[F64x4; N], l: usize) -> [f64; N] {
@@ -255,8 +211,8 @@ fn finite_lanes<const N: usize>(dy: &[F64x4; N]) -> [bool; 4] {
 /// Where a group's four slots stand in a stage: which lane each slot holds (a slot without a
 /// lane in step repeats the first one's, its results ignored), which slots are in step, and
 /// each slot's stage time.
-struct Slots {
-    lane: [usize; 4],
+pub(super) struct Slots {
+    pub(super) lane: [usize; 4],
     active: [bool; 4],
     t: [f64; 4],
 }
@@ -432,21 +388,11 @@ fn end_steps<'a, const N: usize, P: OnLanes<'a, N>>(
 
 /// The four slots' models (a slot repeats its lane's).
 #[inline(always)]
-fn slot_models<'a, const N: usize, P: OnLanes<'a, N>>(
+pub(super) fn slot_models<'a, const N: usize, P: OnLanes<'a, N>>(
     group: &mut [Lane<'a>],
     slots: &Slots,
 ) -> [&'a FlightModel; 4] {
     slots.lane.map(|i| P::of(&mut group[i]).model())
-}
-
-/// What a slot's lane of the four-lane mass state holds.
-#[derive(Clone, Copy, PartialEq)]
-enum Held {
-    Nothing,
-    /// A settled state, by its serial number ([`Paused::settled_mass`]).
-    Settled(u64),
-    /// A computed one, for the time (bits) and count of shift-start changes.
-    Computed(u64, u64),
 }
 
 /// One free-flight attempt of the lanes of `group`: the 6-DOF kernel on four lanes, each slot's

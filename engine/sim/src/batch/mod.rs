@@ -47,6 +47,7 @@
 //! (see `ARCHITECTURE.md`).
 
 mod group;
+mod memo;
 mod stream;
 
 pub use group::{eval_four, LANES_IN_FLIGHT};

@@ -20,12 +20,15 @@
 //! counts as a rejection with `min_factor`). A step clipped to land on a stop time does not
 //! shrink the proposal for the next one. The factor is computed as
 //! `safety · exp(β ln err_prev − α ln err)`, with `ln err_prev` kept from the last step: one
-//! logarithm and one exponential a step where two powers cost 4 % of the batch's instructions.
+//! logarithm and one exponential a step where two powers cost 4 % of the batch's instructions
+//! (`lanes::ln` and `lanes::exp`, written over lanes, so that the batch computes four
+//! attempts' factors at once: [`growth`], [`shrinkage`]).
 
 use super::{check_finite, clip_to_stop, DenseStepper, IntegratorError, StepOutcome, Tolerances};
-use crate::lanes::{exp, ln, F64x4, Real};
+use crate::lanes::{ln, F64x4};
 
 pub mod arithmetic;
+pub use arithmetic::{growth, shrinkage, stage_time};
 
 // Butcher tableau (c_i, a_ij), 5th-order weights b = a7j (FSAL), error weights e = b − b̂.
 const C2: f64 = 1.0 / 5.0;
@@ -581,41 +584,6 @@ impl<const N: usize> Dopri54<N> {
             *y = y_new(i);
         }
     }
-}
-
-/// The step-size controller's growth after an accepted attempt, before its safety factor
-/// and clamps: `err_prev^β / err^α` (α = 0.2 − 0.75 β), from the two error norms' logarithms;
-/// on lanes, so that the batch computes four attempts' at once, by the same operations.
-#[inline(always)]
-pub fn growth<S: Real>(beta: S, ln_err_prev: S, ln_err: S) -> S {
-    exp(beta * ln_err_prev - alpha(beta) * ln_err)
-}
-
-/// The controller's shrinkage after a rejected attempt, before its safety factor: `err^α`.
-#[inline(always)]
-pub fn shrinkage<S: Real>(beta: S, ln_err: S) -> S {
-    exp(alpha(beta) * ln_err)
-}
-
-/// The controller's exponent of the error, `α = 0.2 − 0.75 β` (β: of the previous error).
-#[inline(always)]
-fn alpha<S: Real>(beta: S) -> S {
-    S::splat(0.2) - S::splat(0.75) * beta
-}
-
-/// Time of stage `stage` (0..6 for k2..k7) of attempts from `t` of step `h` ending at
-/// `t_end`, on lanes: the single flight's stepper and the batch's four attempts side by side
-/// compute it here.
-#[inline(always)]
-pub fn stage_time<S: Real>(stage: usize, t: S, h: S, t_end: S) -> S {
-    let c = match stage {
-        0 => C2,
-        1 => C3,
-        2 => C4,
-        3 => C5,
-        _ => return t_end,
-    };
-    t + S::splat(c) * h
 }
 
 impl<const N: usize> DenseStepper<N> for Dopri54<N> {

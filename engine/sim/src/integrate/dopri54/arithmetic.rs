@@ -2,14 +2,50 @@
 //! (`f64`, as [`Dopri54`](super::Dopri54) steps) or four lanes side by side
 //! ([`F64x4`](crate::lanes::F64x4), as the batch engine steps), lane by lane the same IEEE
 //! operations in the same order.
+//! The stage times and the step-size controller's factors are here too, for the same reason.
 //! `k1` is the derivative at the step's start and `k` the stages k2..k7 (k7 at the 5th-order
 //! solution, FSAL).
 
 use super::{
     A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65, A71, A73, A74, A75,
-    A76, D1, D3, D4, D5, D6, D7, E1, E3, E4, E5, E6, E7,
+    A76, C2, C3, C4, C5, D1, D3, D4, D5, D6, D7, E1, E3, E4, E5, E6, E7,
 };
-use crate::lanes::Real;
+use crate::lanes::{exp, Real};
+
+/// The step-size controller's growth after an accepted attempt, before its safety factor
+/// and clamps: `err_prev^β / err^α` (α = 0.2 − 0.75 β), from the two error norms' logarithms;
+/// on lanes, so that the batch computes four attempts' at once, by the same operations.
+#[inline(always)]
+pub fn growth<S: Real>(beta: S, ln_err_prev: S, ln_err: S) -> S {
+    exp(beta * ln_err_prev - alpha(beta) * ln_err)
+}
+
+/// The controller's shrinkage after a rejected attempt, before its safety factor: `err^α`.
+#[inline(always)]
+pub fn shrinkage<S: Real>(beta: S, ln_err: S) -> S {
+    exp(alpha(beta) * ln_err)
+}
+
+/// The controller's exponent of the error, `α = 0.2 − 0.75 β` (β: of the previous error).
+#[inline(always)]
+fn alpha<S: Real>(beta: S) -> S {
+    S::splat(0.2) - S::splat(0.75) * beta
+}
+
+/// Time of stage `stage` (0..6 for k2..k7) of attempts from `t` of step `h` ending at
+/// `t_end`, on lanes: the single flight's stepper and the batch's four attempts side by side
+/// compute it here.
+#[inline(always)]
+pub fn stage_time<S: Real>(stage: usize, t: S, h: S, t_end: S) -> S {
+    let c = match stage {
+        0 => C2,
+        1 => C3,
+        2 => C4,
+        3 => C5,
+        _ => return t_end,
+    };
+    t + S::splat(c) * h
+}
 
 /// The state of stage `stage` (0..6 for k2..k7) from the stages before it.
 #[inline(always)]
