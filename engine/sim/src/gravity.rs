@@ -209,8 +209,8 @@ impl Gravity {
     #[inline]
     pub fn at(&self, height_agl_m: f64) -> f64 {
         // The constant model first and alone: the flights' usual case stays one test.
-        if let Model::Constant = self.model {
-            return self.g0_m_s2;
+        if let Some(g) = self.constant_m_s2() {
+            return g;
         }
         match self.model {
             Model::Constant => self.g0_m_s2,

@@ -18,8 +18,9 @@
 //!
 //! which are the spec's `r′`, `r″` and `I′` expanded. Pure, allocation-free, and written once
 //! over [`Real`] ([`mass_state_lanes`]): the single flight evaluates it on one lane
-//! (`FlightModel::instant_computed_into`), the batch engine on four lanes at once for the lanes whose mass is
-//! changing (the motor burning or a part moving), lane by lane the same IEEE operations.
+//! (`FlightModel::instant_computed_into`), the batch engine on four lanes at once for the
+//! lanes whose mass is changing (the motor burning or a part moving), lane by lane the same
+//! IEEE operations.
 
 use crate::eom::{MassLanes, MassState};
 use crate::flight::model::MAX_MOVING_PARTS;

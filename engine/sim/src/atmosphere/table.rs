@@ -29,7 +29,8 @@ pub struct AirTable {
     nodes: Vec<(f64, f64)>,
 }
 
-/// Density and speed of sound, the part of [`AirState`](crate::atmosphere::AirState) a flight reads every step.
+/// Density and speed of sound, the part of [`AirState`](crate::atmosphere::AirState) a flight
+/// reads every step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Air {
     pub density_kg_m3: f64,

@@ -43,8 +43,8 @@
 //! recorded with its reason and the run goes on.
 //!
 //! What it does not do yet: each lane's step ends (event functions and their location,
-//! metrics, triggers), the step-size controller and the pad and rail run one lane at a time
-//! (see `ARCHITECTURE.md`).
+//! metrics, triggers), each lane's verdict on its attempt (from the factors computed on four
+//! lanes) and the pad and rail run one lane at a time (see `ARCHITECTURE.md`).
 
 mod group;
 mod memo;

@@ -574,18 +574,23 @@ pub fn pack_m3(a: [&M3<f64>; 4]) -> M3<F64x4> {
 mod tests {
     use super::*;
 
+    /// A xorshift source of uniform numbers in [0, 1) (the lane tests' inputs).
+    pub(super) fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     #[test]
     fn the_four_lane_mach_table_look_up_is_the_one_lane_look_up_bit_for_bit() {
         use hpr_design::aero::table::MACH_MAX;
         // A table whose neighbouring values differ (so a wrong cell or weight shows).
         let table = MachTable::from_fn(|m| 0.3 + 0.1 * (7.0 * m).sin() + 0.02 * m * m);
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15);
         let node = |i: usize| i as f64 * MACH_STEP;
         let mut machs = vec![
             0.0,

@@ -79,7 +79,6 @@ pub struct FourModels<'a> {
     nozzle: NozzleLanes<F64x4>,
     drag_scale: F64x4,
     turning: bool,
-    sheared: bool,
     /// Whether the four read one air table (else each its own: a site's air swept or
     /// dispersed).
     one_air: bool,
@@ -87,7 +86,8 @@ pub struct FourModels<'a> {
     vacuum: [bool; 4],
     /// The four gravities where none changes with height (the usual case), packed once.
     gravity: Option<F64x4>,
-    /// The four winds where none changes with height, packed once (inertial, m/s).
+    /// The four winds where none changes with height, packed once (inertial, m/s); `None`
+    /// when any lane's does (a profile: then the surfaces meet winds of their own).
     wind: Option<V3<F64x4>>,
 }
 
@@ -103,7 +103,6 @@ impl<'a> FourModels<'a> {
             nozzle: crate::eom::pack_nozzle([&n[0], &n[1], &n[2], &n[3]]),
             drag_scale: F64x4::from_fn(|i| models[i].drag_scale),
             turning: models.iter().any(|m| m.earth_rate_n.is_some()),
-            sheared: models.iter().any(|m| m.wind_sheared()),
             one_air: models
                 .iter()
                 .all(|m| std::sync::Arc::ptr_eq(&m.air, &models[0].air)),
@@ -169,7 +168,7 @@ impl ModelLanes<F64x4> for FourModels<'_> {
     }
     #[inline(always)]
     fn wind_sheared(&self) -> bool {
-        self.sheared
+        self.wind.is_none()
     }
     #[inline(always)]
     fn gravity(&self, h: F64x4) -> F64x4 {
