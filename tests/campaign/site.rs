@@ -199,6 +199,7 @@ fn a_swept_site_temperature_moves_an_air_profile_whole_and_each_row_flies_in_its
             let row = |height_m: f64, t: f64| hpr_sim::atmosphere::AirRow {
                 height_m,
                 temperature_k: t + shift,
+                pressure_pa: None,
             };
             Environment {
                 elevation_m: 1200.0,

@@ -20,6 +20,7 @@ pub mod shifts;
 pub mod sounding;
 pub mod trigger;
 pub mod turbulence;
+pub mod weather;
 pub mod wind;
 
 pub use events::EventKind;

@@ -87,12 +87,14 @@ pub enum SoundingError {
         value: f64,
         rule: &'static str,
     },
-    #[error("the site at {elevation_m} m is outside the sounding's {what} ({low_m:.1} to {high_m:.1} m above sea level; a site may be up to {BELOW_LOWEST_LEVEL_M} m below the lowest)")]
+    #[error("the site at {elevation_m} m is outside the sounding's {what} ({low_m:.1} to {high_m:.1} m above sea level; a site may be up to {below_m} m below the lowest)")]
     Site {
         elevation_m: f64,
         what: &'static str,
         low_m: f64,
         high_m: f64,
+        /// How far below the lowest level a site may be, m.
+        below_m: f64,
     },
     #[error("the sounding has fewer than two levels with a {what}")]
     TooFew { what: &'static str },
@@ -274,10 +276,21 @@ impl Sounding {
             Some(e) => e,
             None => self.surface_m().ok_or(SoundingError::NoGround)?,
         };
+        self.over_site_within(elevation_m, BELOW_LOWEST_LEVEL_M)
+    }
+
+    /// The air and the wind over a site `elevation_m` above sea level that may be up to
+    /// `below_m` below the lowest level ([`Sounding::over_site`] allows
+    /// [`BELOW_LOWEST_LEVEL_M`]; a weather model's levels, `crate::weather`, allow more).
+    pub fn over_site_within(
+        &self,
+        elevation_m: f64,
+        below_m: f64,
+    ) -> Result<SiteAir, SoundingError> {
         Ok(SiteAir {
             elevation_m,
-            air: self.air_profile(elevation_m)?,
-            wind: self.wind_rows(elevation_m)?,
+            air: self.air_profile_within(elevation_m, below_m)?,
+            wind: self.wind_rows_within(elevation_m, below_m)?,
         })
     }
 
@@ -295,17 +308,19 @@ impl Sounding {
         series: &[(f64, T)],
         elevation_m: f64,
         what: &'static str,
+        below_m: f64,
     ) -> Result<(usize, f64), SoundingError> {
         if series.len() < 2 {
             return Err(SoundingError::TooFew { what });
         }
         let (low, high) = (series[0].0, series[series.len() - 1].0);
-        if !(elevation_m >= low - BELOW_LOWEST_LEVEL_M && elevation_m < high) {
+        if !(elevation_m >= low - below_m && elevation_m < high) {
             return Err(SoundingError::Site {
                 elevation_m,
                 what,
                 low_m: low,
                 high_m: high,
+                below_m,
             });
         }
         // Below the lowest level: from the lowest two, extrapolated (f < 0).
@@ -318,12 +333,22 @@ impl Sounding {
 
     /// The air over a site `elevation_m` above sea level (see the module docs).
     pub fn air_profile(&self, elevation_m: f64) -> Result<AirProfile, SoundingError> {
+        self.air_profile_within(elevation_m, BELOW_LOWEST_LEVEL_M)
+    }
+
+    /// [`Sounding::air_profile`] for a site that may be up to `below_m` below the lowest level.
+    pub fn air_profile_within(
+        &self,
+        elevation_m: f64,
+        below_m: f64,
+    ) -> Result<AirProfile, SoundingError> {
         let temps = self.series(|l| l.temperature_k);
-        let (i, f) = Sounding::around(&temps, elevation_m, "temperatures")?;
+        let (i, f) = Sounding::around(&temps, elevation_m, "temperatures", below_m)?;
         let site_t = temps[i].1 + f * (temps[i + 1].1 - temps[i].1);
         let mut rows = vec![AirRow {
             height_m: 0.0,
             temperature_k: site_t,
+            pressure_pa: None,
         }];
         rows.extend(
             temps[i..]
@@ -332,12 +357,13 @@ impl Sounding {
                 .map(|&(h, t)| AirRow {
                     height_m: h - elevation_m,
                     temperature_k: t,
+                    pressure_pa: None,
                 }),
         );
         // The measured levels' pressures (a level below the ground listed with a pressure and
         // a height only is the surface air extrapolated down, not a measurement).
         let pressures = self.series(|l| l.temperature_k.and(l.pressure_pa));
-        let (j, g) = Sounding::around(&pressures, elevation_m, "pressures")?;
+        let (j, g) = Sounding::around(&pressures, elevation_m, "pressures", below_m)?;
         let (p0, p1) = (pressures[j].1, pressures[j + 1].1);
         Ok(AirProfile {
             elevation_m,
@@ -349,8 +375,17 @@ impl Sounding {
     /// The wind over a site `elevation_m` above sea level, rows by height above it (see the
     /// module docs).
     pub fn wind_rows(&self, elevation_m: f64) -> Result<Vec<WindRow>, SoundingError> {
+        self.wind_rows_within(elevation_m, BELOW_LOWEST_LEVEL_M)
+    }
+
+    /// [`Sounding::wind_rows`] for a site that may be up to `below_m` below the lowest level.
+    pub fn wind_rows_within(
+        &self,
+        elevation_m: f64,
+        below_m: f64,
+    ) -> Result<Vec<WindRow>, SoundingError> {
         let winds = self.series(|l| l.wind);
-        let (i, f) = Sounding::around(&winds, elevation_m, "winds")?;
+        let (i, f) = Sounding::around(&winds, elevation_m, "winds", below_m)?;
         let f = f.max(0.0); // below the lowest level: its wind
                             // At the site: the components interpolated, as the table interpolates them.
         let en = |(s, d): (f64, f64)| components_en(s, d);

@@ -567,6 +567,7 @@ impl Scenario {
                         .map(|r| AirRow {
                             height_m: r.height_m,
                             temperature_k: r.temperature_k,
+                            pressure_pa: None,
                         })
                         .collect(),
                 };

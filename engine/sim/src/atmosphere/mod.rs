@@ -94,7 +94,7 @@ pub const MIN_ALTITUDE_MSL_M: f64 = -5_000.0;
 pub const MAX_ALTITUDE_MSL_M: f64 = 86_000.0;
 
 /// Layer bases in geopotential metres; the last entry is the top of the table (86 km geometric).
-const LAYER_BASE_M: [f64; 8] = [
+pub(crate) const LAYER_BASE_M: [f64; 8] = [
     0.0, 11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0, 84_852.0,
 ];
 /// Lapse rates dT/dH of the layers starting at `LAYER_BASE_M[i]`, K/m. The last one (above
@@ -141,6 +141,14 @@ pub enum AirModel {
 /// density and the speed of sound are consistent with the temperatures at every height.
 /// Above the last row the air is isothermal at its temperature; below the site the first
 /// layer's lapse continues.
+///
+/// A row may carry the pressure its source measured there (a weather model's pressure
+/// levels, [`AirRow::pressure_pa`]): the layer below it then meets it exactly, its pressure
+/// following the same power law of its temperature with the exponent that joins its two
+/// rows' pressures. That is the hydrostatic law with the layer's own gas constant, the
+/// humid air's (`R T_v / T`) a weather model's heights were integrated with; the rule
+/// refuses a layer whose gas constant is more than [`ROW_GAS_CONSTANT_RANGE`] off dry
+/// air's (heights, temperatures and pressures that disagree).
 #[derive(Debug, Clone, PartialEq)]
 pub struct AirProfile {
     /// The site's elevation above mean sea level, m (the rows' heights are above it).
@@ -158,7 +166,14 @@ pub struct AirRow {
     pub height_m: f64,
     /// Temperature there, K.
     pub temperature_k: f64,
+    /// The pressure measured there, Pa, if the source gives one (never for the first row:
+    /// the site's is the profile's `pressure_pa`); `None`: carried up from the row below.
+    pub pressure_pa: Option<f64>,
 }
+
+/// The range of a layer's gas constant over dry air's between rows with pressures: humid
+/// air's is up to 1.5 % above dry air's.
+pub const ROW_GAS_CONSTANT_RANGE: (f64, f64) = (0.95, 1.10);
 
 /// Most rows of an [`AirProfile`].
 pub const MAX_PROFILE_ROWS: usize = 1000;
@@ -228,17 +243,23 @@ impl AirModel {
         if let AirModel::Profile(profile) = self {
             // A warmer or colder day shifts the whole profile by the site's change; a new
             // site pressure carries up through the same temperatures.
+            // Measured pressures aloft scale with the site's.
             let t0 = profile.rows.first().map_or(f64::NAN, |r| r.temperature_k);
             let shift = temperature_k.map_or(0.0, |t| t - t0);
+            let site_pa = pressure_pa.unwrap_or(profile.pressure_pa);
+            let ratio = site_pa / profile.pressure_pa;
             let changed = AirModel::Profile(Arc::new(AirProfile {
                 elevation_m: profile.elevation_m,
-                pressure_pa: pressure_pa.unwrap_or(profile.pressure_pa),
+                pressure_pa: site_pa,
                 rows: profile
                     .rows
                     .iter()
                     .map(|r| AirRow {
                         height_m: r.height_m,
                         temperature_k: r.temperature_k + shift,
+                        pressure_pa: r
+                            .pressure_pa
+                            .map(|p| if ratio == 1.0 { p } else { p * ratio }),
                     })
                     .collect(),
             }));
@@ -298,6 +319,29 @@ impl AirModel {
                     });
                 }
                 below = r.height_m;
+            }
+            // Measured pressures: after the site, falling, each layer's gas constant dry
+            // air's within the range.
+            let layers = profile_layers(p);
+            for (row, r) in p.rows.iter().enumerate() {
+                let Some(value) = r.pressure_pa else {
+                    continue;
+                };
+                let under = layers[row.saturating_sub(1)];
+                let ok = row > 0
+                    && value.is_finite()
+                    && value > 0.0
+                    && value < under.p_base_pa
+                    && (ROW_GAS_CONSTANT_RANGE.0..=ROW_GAS_CONSTANT_RANGE.1)
+                        .contains(&under.gas_constant_ratio());
+                if !ok {
+                    return Err(AtmosphereError::ProfilePressure {
+                        row,
+                        value,
+                        below_pa: under.p_base_pa,
+                        ratio: under.gas_constant_ratio(),
+                    });
+                }
             }
             return Ok(());
         }
@@ -373,6 +417,20 @@ pub enum AtmosphereError {
          {MAX_PROFILE_HEIGHT_M} m above the site"
     )]
     ProfileHeight { row: usize, value: f64 },
+    /// A profile row's measured pressure: not below the row beneath's, or one that asks of
+    /// the layer beneath a gas constant outside [`ROW_GAS_CONSTANT_RANGE`] of dry air's.
+    #[error(
+        "atmosphere: field \"air_profile[{row}].pressure_pa\" = {value}: a row's pressure must \
+         be finite and below the row beneath's ({below_pa} Pa), and agree with the heights and \
+         temperatures between them (it asks of the air a gas constant {ratio:.4} times dry \
+         air's; humid air's is at most 1.02 times)"
+    )]
+    ProfilePressure {
+        row: usize,
+        value: f64,
+        below_pa: f64,
+        ratio: f64,
+    },
     /// A profile row's temperature outside [`SITE_TEMPERATURE_RANGE_K`].
     #[error(
         "atmosphere: field \"air_profile[{row}].temperature_k\" = {value}: must be finite and \
@@ -502,12 +560,24 @@ fn profile_layers(profile: &AirProfile) -> Vec<Layer> {
             Some(next) => (next.temperature_k - t_b) / (bases[i + 1] - base),
             None => 0.0,
         };
-        let layer = Layer::new(base, lapse, t_b, p_b);
+        let mut layer = Layer::new(base, lapse, t_b, p_b);
         if let Some(&top) = bases.get(i + 1) {
-            // The next row's temperature as given (not the lapse's rounding of it), the
-            // pressure carried up.
-            p_b = layer.temperature_pressure(top - base).1;
-            t_b = profile.rows[i + 1].temperature_k;
+            let next = &profile.rows[i + 1];
+            match next.pressure_pa {
+                // A measured pressure: the layer meets it.
+                Some(p_top) => {
+                    layer.exponent = if layer.lapse_k_m == 0.0 {
+                        (p_b / p_top).ln() / (top - base)
+                    } else {
+                        (p_top / p_b).ln() / (t_b / (t_b + layer.lapse_k_m * (top - base))).ln()
+                    };
+                    p_b = p_top;
+                }
+                // The next row's temperature as given (not the lapse's rounding of it), the
+                // pressure carried up.
+                None => p_b = layer.temperature_pressure(top - base).1,
+            }
+            t_b = next.temperature_k;
         }
         layers.push(layer);
     }
@@ -534,6 +604,17 @@ impl Layer {
                 G0_M_S2 / (R_AIR_J_KG_K * lapse_k_m)
             },
         }
+    }
+
+    /// The layer's gas constant over dry air's: 1 for a layer carried up hydrostatically,
+    /// the ratio its exponent implies for one that meets a measured pressure.
+    fn gas_constant_ratio(&self) -> f64 {
+        let hydrostatic = if self.lapse_k_m == 0.0 {
+            G0_M_S2 / (R_AIR_J_KG_K * self.t_base_k)
+        } else {
+            G0_M_S2 / (R_AIR_J_KG_K * self.lapse_k_m)
+        };
+        hydrostatic / self.exponent
     }
 
     /// Temperature and pressure `dh` geopotential metres above this layer's base.

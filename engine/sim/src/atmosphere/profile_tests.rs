@@ -16,6 +16,7 @@ fn profile(elevation_m: f64, pressure_pa: f64, rows: &[(f64, f64)]) -> AirModel 
             .map(|&(height_m, temperature_k)| AirRow {
                 height_m,
                 temperature_k,
+                pressure_pa: None,
             })
             .collect(),
     }))
@@ -194,4 +195,94 @@ fn a_profile_s_site_temperature_shifts_every_row_and_its_pressure_is_the_site_s(
         p.with_site_values(300.0, Some(355.0), None),
         Err(AtmosphereError::ProfileTemperature { row: 0, .. })
     ));
+}
+
+/// A profile from a sea-level site whose rows carry the pressures `pressures` (None: none).
+fn measured(rows: &[(f64, f64, Option<f64>)]) -> AirModel {
+    AirModel::Profile(Arc::new(AirProfile {
+        elevation_m: 0.0,
+        pressure_pa: 101_325.0,
+        rows: rows
+            .iter()
+            .map(|&(h, t, p)| AirRow {
+                height_m: geometric_altitude_m(h),
+                temperature_k: t,
+                pressure_pa: p,
+            })
+            .collect(),
+    }))
+}
+
+#[test]
+fn a_row_s_measured_pressure_is_met_by_the_layer_below_with_the_gas_constant_it_implies() {
+    // Rows at 0 and 2 km geopotential, 288.15 K to 275.15 K (the standard's lapse), and a
+    // measured pressure at 2 km that the standard's dry air would reach with a gas constant
+    // 1 % larger (humid air): p = p0 (T/T0)^(g0 / (1.01 R L)). The layer meets it, and at
+    // 1 km has that same law's pressure; the density is p / (R T) there (dry air's gas law
+    // at the layer's pressure and temperature).
+    let lapse = -6.5e-3;
+    let exponent = -G0_M_S2 / (1.01 * R_AIR_J_KG_K * lapse);
+    let p = |h: f64| 101_325.0 * ((288.15 + lapse * h) / 288.15).powf(exponent);
+    let air = Atmosphere::new(
+        0.0,
+        &measured(&[(0.0, 288.15, None), (2000.0, 275.15, Some(p(2000.0)))]),
+    )
+    .unwrap();
+    for h in [500.0, 1000.0, 2000.0] {
+        let a = air.at_msl(geometric_altitude_m(h));
+        assert!(rel(a.pressure_pa, p(h)) < 1e-13, "{h}");
+        let t = 288.15 + lapse * h;
+        assert!(rel(a.density_kg_m3, p(h) / (R_AIR_J_KG_K * t)) < 1e-13);
+    }
+    // Above the last row: isothermal, carried up from the measured pressure as dry air.
+    let above = air.at_msl(geometric_altitude_m(3000.0));
+    let carried = p(2000.0) * (-G0_M_S2 * 1000.0 / (R_AIR_J_KG_K * 275.15)).exp();
+    assert!(rel(above.pressure_pa, carried) < 1e-13);
+    // A measured pressure that is the dry air's own is the profile without it.
+    let dry = -G0_M_S2 / (R_AIR_J_KG_K * lapse);
+    let p_dry = 101_325.0 * (275.15_f64 / 288.15).powf(dry);
+    let (with, without) = (
+        Atmosphere::new(
+            0.0,
+            &measured(&[(0.0, 288.15, None), (2000.0, 275.15, Some(p_dry))]),
+        )
+        .unwrap(),
+        Atmosphere::new(
+            0.0,
+            &measured(&[(0.0, 288.15, None), (2000.0, 275.15, None)]),
+        )
+        .unwrap(),
+    );
+    let z = geometric_altitude_m(1234.0);
+    assert!(rel(with.at_msl(z).pressure_pa, without.at_msl(z).pressure_pa) < 1e-14);
+    // An isothermal layer meets its measured pressure too: ln p linear in height.
+    let iso = Atmosphere::new(
+        0.0,
+        &measured(&[(0.0, 250.0, None), (1000.0, 250.0, Some(89_000.0))]),
+    )
+    .unwrap();
+    let half = iso.at_msl(geometric_altitude_m(500.0)).pressure_pa;
+    assert!(rel(half, (101_325.0_f64 * 89_000.0).sqrt()) < 1e-13);
+}
+
+#[test]
+fn a_measured_pressure_that_asks_for_an_impossible_gas_constant_is_refused_naming_its_row() {
+    // 2 km of air at about 280 K weighs 22 % of the site's pressure: a row 2 km up at 95 % of
+    // it would need a gas constant four times dry air's; one at a higher pressure than the
+    // row beneath, a negative one.
+    for p in [96_000.0, 102_000.0, f64::NAN, -1.0] {
+        let e = measured(&[(0.0, 288.15, None), (2000.0, 275.15, Some(p))])
+            .check()
+            .unwrap_err();
+        assert!(
+            matches!(e, AtmosphereError::ProfilePressure { row: 1, .. }),
+            "{p}: {e}"
+        );
+        assert!(e.to_string().contains("air_profile[1].pressure_pa"), "{e}");
+    }
+    // The first row's pressure is the profile's own: a row 0 pressure is refused.
+    let e = measured(&[(0.0, 288.15, Some(101_325.0)), (2000.0, 275.15, None)])
+        .check()
+        .unwrap_err();
+    assert!(matches!(e, AtmosphereError::ProfilePressure { row: 0, .. }));
 }

@@ -174,6 +174,7 @@ fn air_of(r: &Value) -> AirModel {
                 .map(|row| AirRow {
                     height_m: num(row, "/height_m"),
                     temperature_k: num(row, "/temperature_k"),
+                    pressure_pa: None,
                 })
                 .collect(),
         })),
