@@ -207,6 +207,90 @@ impl Motor {
         Motor::parse_all(&bytes, &file)
     }
 
+    /// The motor with its thrust curve cut at `burn_time_s` (RocketPy's `burn_time`): the
+    /// samples before it, then one at it with the curve's thrust there (linear between the
+    /// samples around it), after which the motor burns out. The impulse is the cut curve's;
+    /// the propellant (the file's, or the one a flight gives) burns over it. A cut at the
+    /// curve's own burnout is the motor unchanged; a cut must be after 0 and no later than
+    /// burnout.
+    pub fn cut_at(&self, burn_time_s: f64) -> Result<Motor, MotorError> {
+        let end = self.burn_time_s();
+        if !(burn_time_s.is_finite() && burn_time_s > 0.0 && burn_time_s <= end) {
+            return Err(MotorError::InvalidOption {
+                motor: self.designation.clone(),
+                field: "burn_time_s",
+                value: burn_time_s,
+                rule:
+                    "must be after 0 and no later than the thrust curve's burnout (its last sample)",
+            });
+        }
+        if burn_time_s == end {
+            return Ok(self.clone());
+        }
+        let (t, f) = (&self.times_s, &self.thrust_n);
+        let k = t.partition_point(|&x| x < burn_time_s); // t[k - 1] < cut <= t[k]
+        let thrust_at_cut = if t[k] == burn_time_s {
+            f[k]
+        } else {
+            let w = (burn_time_s - t[k - 1]) / (t[k] - t[k - 1]);
+            f[k - 1] + w * (f[k] - f[k - 1])
+        };
+        let mut times_s = t[..k].to_vec();
+        let mut thrust_n = f[..k].to_vec();
+        times_s.push(burn_time_s);
+        thrust_n.push(thrust_at_cut);
+        let total_impulse_ns = times_s
+            .windows(2)
+            .zip(thrust_n.windows(2))
+            .map(|(t, f)| 0.5 * (f[0] + f[1]) * (t[1] - t[0]))
+            .sum::<f64>();
+        if total_impulse_ns <= 0.0 {
+            return Err(MotorError::InvalidOption {
+                motor: self.designation.clone(),
+                field: "burn_time_s",
+                value: burn_time_s,
+                rule: "cuts the curve before it delivers any impulse",
+            });
+        }
+        let class = impulse_class(total_impulse_ns).unwrap_or('?');
+        let mut notes = self.notes.clone();
+        notes.push(format!(
+            "thrust curve cut at {burn_time_s} s (its burnout was {end} s): {thrust_at_cut:.2} N there, then none; impulse {total_impulse_ns:.1} N·s of {:.1}",
+            self.total_impulse_ns
+        ));
+        Ok(Motor {
+            common_name: curve::common_name(
+                &self.designation,
+                class,
+                total_impulse_ns / burn_time_s,
+            ),
+            notes,
+            times_s,
+            thrust_n,
+            total_impulse_ns,
+            ..self.clone()
+        })
+    }
+
+    /// The motor in a casing of outer diameter `diameter_m` instead of its file's (a motor
+    /// flown in another casing, or a set-up whose published grains are wider than the file's
+    /// casing, as RocketPy's Bella Lui's): the mount must hold it, and its grains and nozzle
+    /// must fit it.
+    pub fn with_diameter(&self, diameter_m: f64) -> Result<Motor, MotorError> {
+        if !(diameter_m.is_finite() && diameter_m > 0.0 && diameter_m <= 2.0) {
+            return Err(MotorError::InvalidOption {
+                motor: self.designation.clone(),
+                field: "diameter_m",
+                value: diameter_m,
+                rule: "must be positive and at most 2 m",
+            });
+        }
+        Ok(Motor {
+            diameter_m,
+            ..self.clone()
+        })
+    }
+
     /// Sample times, s: start at 0, strictly increasing, the implicit (0, 0) point included.
     pub fn times_s(&self) -> &[f64] {
         &self.times_s

@@ -384,3 +384,50 @@ fn a_file_with_two_motors_is_refused_by_name_and_bad_utf8_is_reported() {
         .to_string();
     assert_eq!(err, "bad.eng, line 2, text: the file is not UTF-8 text");
 }
+
+/// The K828FJ's RASP file as RocketPy ships it (the Bella Lui flight's motor).
+const K828FJ: &str =
+    include_str!("../../../../validation/real-flights/bella-lui/AeroTech_K828FJ.eng");
+
+#[test]
+fn a_curve_cut_at_a_burn_time_ends_there_with_the_thrust_interpolated_as_rocketpy_clips_it() {
+    // RocketPy's burn_time = 2.43 on the K828FJ (last samples 2.39 s 49.85 N, 2.50 s 0 N):
+    // the samples before 2.43 s, then 2.43 s at 49.85 × (2.50 − 2.43) / (2.50 − 2.39) N,
+    // then nothing. The impulse loses the triangle from 2.43 to 2.50 s.
+    let m = Motor::parse(K828FJ.as_bytes(), "AeroTech_K828FJ.eng").unwrap();
+    let cut = m.cut_at(2.43).unwrap();
+    let f_cut = 49.85 * (2.50 - 2.43) / (2.50 - 2.39);
+    assert_eq!(cut.burn_time_s(), 2.43);
+    assert_eq!(cut.times_s().len(), m.times_s().len()); // 2.50 s gave way to 2.43 s
+    assert!((cut.thrust_n().last().unwrap() - f_cut).abs() < 1e-12);
+    assert_eq!(
+        &cut.times_s()[..cut.times_s().len() - 1],
+        &m.times_s()[..m.times_s().len() - 1]
+    );
+    let lost = 0.5 * f_cut * (2.50 - 2.43);
+    assert!((cut.total_impulse_ns() - (m.total_impulse_ns() - lost)).abs() < 1e-9);
+    assert!(cut.notes.last().unwrap().contains("cut at 2.43 s"));
+    // At a sample's own time: that sample ends the curve.
+    let at_sample = m.cut_at(2.39).unwrap();
+    assert_eq!(at_sample.thrust_n().last(), Some(&49.85));
+    // At burnout: unchanged.
+    assert_eq!(m.cut_at(2.5).unwrap(), m);
+    // Outside the curve: refused with the rule.
+    for bad in [0.0, -1.0, 2.6, f64::NAN] {
+        let e = m.cut_at(bad).unwrap_err().to_string();
+        assert!(
+            e.contains("burn_time_s") && e.contains("no later than"),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn a_motor_in_another_casing_takes_its_diameter_and_refuses_a_nonsense_one() {
+    let m = Motor::parse(K828FJ.as_bytes(), "AeroTech_K828FJ.eng").unwrap();
+    assert_eq!(m.diameter_m, 0.054);
+    let wide = m.with_diameter(0.098).unwrap();
+    assert_eq!(wide.diameter_m, 0.098);
+    assert_eq!(wide.total_impulse_ns(), m.total_impulse_ns());
+    assert!(m.with_diameter(0.0).is_err() && m.with_diameter(f64::INFINITY).is_err());
+}
