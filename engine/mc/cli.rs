@@ -3,7 +3,7 @@
 
 use crate::campaign::scenario::GravityModel;
 use crate::report;
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use hpr_design::motor::{self, Grains, Motor, MotorOptions};
 use hpr_design::{Design, MAX_SAMPLING_RATE_HZ};
 use hpr_sim::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
@@ -85,6 +85,14 @@ pub struct MotorMasses {
     /// 0.88 of the motor's radius).
     #[arg(long, value_parser = positive)]
     pub motor_nozzle_radius_m: Option<f64>,
+    /// Cut the thrust curve at this time, s: the samples before it, the thrust there, then
+    /// burnout (RocketPy's burn_time).
+    #[arg(long, value_parser = positive)]
+    pub motor_burn_time_s: Option<f64>,
+    /// The casing's outer diameter, m, in place of its file's (a motor flown in another
+    /// casing; grains and nozzle must fit it, and the mount must hold it).
+    #[arg(long, value_parser = positive)]
+    pub motor_diameter_m: Option<f64>,
 }
 
 /// Comma-separated numbers, as many as `names`, each finite (the rules beyond that are the
@@ -139,6 +147,25 @@ fn inertia_pair(text: &str) -> std::result::Result<[f64; 2], String> {
 }
 
 impl MotorMasses {
+    /// `motor` cut at `--motor-burn-time-s` and in the casing of `--motor-diameter-m`.
+    pub fn edit(&self, motor: Motor) -> Result<Motor> {
+        let mut m = motor;
+        if let Some(t) = self.motor_burn_time_s {
+            m = m
+                .cut_at(t)
+                .map_err(|e| anyhow!("--motor-burn-time-s: {e}"))?;
+            if let Some(note) = m.notes.last() {
+                eprintln!("note: motor {}: {note}", m.source);
+            }
+        }
+        if let Some(d) = self.motor_diameter_m {
+            m = m
+                .with_diameter(d)
+                .map_err(|e| anyhow!("--motor-diameter-m: {e}"))?;
+        }
+        Ok(m)
+    }
+
     pub fn options(&self) -> MotorOptions {
         MotorOptions {
             propellant_mass_kg: self.propellant_mass_kg,
@@ -168,7 +195,8 @@ pub struct FlyArgs {
         "main_height_m", "lag_s", "sampling_rate_hz", "temperature_k", "pressure_pa",
         "sounding", "propellant_mass_kg", "motor_dry_mass_kg", "motor_dry_center_from_nozzle_m",
         "motor_propellant_center_from_nozzle_m", "motor_dry_inertia_kg_m2", "motor_grains",
-        "motor_chamber_m", "motor_nozzle_radius_m",
+        "motor_chamber_m", "motor_nozzle_radius_m", "motor_burn_time_s", "motor_diameter_m",
+        "weather", "longitude_deg", "launch_time", "weather_member",
     ])]
     pub scenario: Option<PathBuf>,
     /// With --scenario: the sweep point whose nominal flight to fly (see the run's summary;
@@ -203,9 +231,13 @@ pub struct FlyArgs {
     /// Without it the launch frame is inertial.
     #[arg(long, allow_negative_numbers = true)]
     pub latitude_deg: Option<f64>,
-    /// Gravity: standard (9.80665 m/s²), inverse_square, or somigliana (the WGS 84
-    /// ellipsoid's at --latitude-deg, RocketPy's default).
-    #[arg(long, value_enum, default_value_t = GravityModel::Standard)]
+    /// The site's longitude, degrees east (a weather file's grid is read there).
+    #[arg(long, allow_negative_numbers = true)]
+    pub longitude_deg: Option<f64>,
+    /// Gravity: standard (9.80665 m/s²), inverse_square, somigliana (the WGS 84
+    /// ellipsoid's at --latitude-deg, RocketPy's default), or a constant value in m/s² (such
+    /// as 9.81, RocketPy's gravity=9.81).
+    #[arg(long, value_parser = GravityModel::parse, default_value = "standard")]
     pub gravity: GravityModel,
     /// The air's temperature at the site, K: with --pressure-pa, the atmosphere runs from the
     /// site's measured air to the standard 216.65 K at 11 km (OpenRocket's custom launch
@@ -222,6 +254,21 @@ pub struct FlyArgs {
         "temperature_k", "pressure_pa", "wind_m_s", "wind_from_deg",
     ])]
     pub sounding: Option<PathBuf>,
+    /// A weather-model file on pressure levels (ECMWF's ERA5 as NetCDF-3 or NetCDF-4, a GFS
+    /// forecast, an ensemble): the air and the wind over the site (--latitude-deg,
+    /// --longitude-deg, --elevation-m, all needed) at --launch-time, in place of
+    /// --temperature-k, --pressure-pa, --wind-m-s, --wind-from-deg and --sounding.
+    #[arg(long, value_name = "FILE", requires_all = ["launch_time", "latitude_deg", "longitude_deg", "elevation_m"], conflicts_with_all = [
+        "temperature_k", "pressure_pa", "wind_m_s", "wind_from_deg", "sounding",
+    ])]
+    pub weather: Option<PathBuf>,
+    /// With --weather: the launch time, with its zone (2020-02-22T13:00Z, or
+    /// 2020-02-22T14:00+01:00).
+    #[arg(long, value_name = "TIME", requires = "weather")]
+    pub launch_time: Option<String>,
+    /// With --weather: the ensemble member, by the file's number (default: its first).
+    #[arg(long, value_name = "N", requires = "weather")]
+    pub weather_member: Option<f64>,
     /// Constant wind speed, m/s.
     #[arg(long, default_value_t = 0.0, value_parser = not_negative)]
     pub wind_m_s: f64,
@@ -261,7 +308,7 @@ pub struct FlyArgs {
     #[arg(long, conflicts_with_all = [
         "scenario", "rail_length_m", "inclination_deg", "heading_deg", "elevation_m",
         "latitude_deg", "gravity", "temperature_k", "pressure_pa", "sounding", "wind_m_s",
-        "wind_from_deg", "wind_turbulence_intensity",
+        "wind_from_deg", "wind_turbulence_intensity", "weather",
     ])]
     pub openrocket_conditions: bool,
 }
@@ -340,6 +387,7 @@ fn roomy_rail(design: &Design) -> Rail {
 
 pub fn inspect(a: &InspectArgs) -> Result<ExitCode> {
     let (design, motor) = load(&a.design, &a.motor)?;
+    let motor = a.motor_masses.edit(motor)?;
     let sim = Simulation::with_motor_options(
         design.clone(),
         motor.clone(),
@@ -578,8 +626,41 @@ fn as_openrocket_flew(
 /// The flight `fly`'s options describe for `design`.
 fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
     let (design, motor) = load(design, &a.motor)?;
-    let (elevation_m, wind, air) = match &a.sounding {
-        None => {
+    let motor = a.motor_masses.edit(motor)?;
+    let (elevation_m, wind, air) = match (&a.sounding, &a.weather) {
+        (None, Some(file)) => {
+            let what = |e: &dyn std::fmt::Display| anyhow!("--weather {}: {e}", file.display());
+            // clap requires these four with --weather.
+            let (Some(lat), Some(lon), Some(elevation_m), Some(time)) = (
+                a.latitude_deg,
+                a.longitude_deg,
+                a.elevation_m,
+                &a.launch_time,
+            ) else {
+                bail!("--weather needs --latitude-deg, --longitude-deg, --elevation-m and --launch-time");
+            };
+            let time_s =
+                hpr_sim::weather::parse_utc(time).map_err(|e| anyhow!("--launch-time: {e}"))?;
+            let w = hpr_sim::weather::SiteWeather::read(file, lat, lon).map_err(|e| what(&e))?;
+            let member = w
+                .member_index(a.weather_member.unwrap_or(w.members()[0]))
+                .map_err(|e| anyhow!("--weather-member: {e}"))?;
+            let site = w
+                .over_site(time_s, member, elevation_m)
+                .map_err(|e| what(&e))?;
+            let top = w.top_m(time_s, member).map_err(|e| what(&e))?;
+            eprintln!(
+                "note: --weather {}: the air and wind of {} over {lat}° N, {lon}° E at {elevation_m} m, its top level {top:.0} m above sea level (above it: the standard lapse, the top's wind)",
+                file.display(),
+                hpr_sim::weather::format_utc(time_s)
+            );
+            (
+                elevation_m,
+                site.wind().map_err(|e| what(&e))?,
+                site.air_model(),
+            )
+        }
+        (None, None) => {
             let elevation_m = a.elevation_m.unwrap_or(0.0);
             let wind = hpr_sim::wind::Wind::constant(a.wind_m_s, a.wind_from_deg)
                 .map_err(|e| anyhow!("--wind: {e}"))?;
@@ -587,7 +668,7 @@ fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
                 .map_err(|e| anyhow!("--temperature-k/--pressure-pa: {e}"))?;
             (elevation_m, wind, air)
         }
-        Some(file) => {
+        (Some(file), _) => {
             let what = |e: &dyn std::fmt::Display| anyhow!("--sounding {}: {e}", file.display());
             let text = std::fs::read_to_string(file).map_err(|e| what(&e))?;
             let site = hpr_sim::sounding::Sounding::parse(&text)

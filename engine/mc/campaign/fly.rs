@@ -23,7 +23,7 @@ use super::variants::{Plan, PlanInput, Variant};
 use hpr_design::design::model::Design;
 use hpr_design::mass;
 use hpr_design::motor::{self, Motor, MotorError, MotorTables};
-use hpr_sim::batch::{Batch, LaneResult};
+use hpr_sim::batch::{Batch, BatchWeather, LaneResult};
 use hpr_sim::{SimError, SimOptions, Simulation, Trigger};
 use setup::{Fixed, Setup};
 
@@ -113,7 +113,18 @@ impl Prepared {
         };
         let design =
             Design::load(&scenario.design_file).map_err(|e| bad("design.file", e.to_string()))?;
-        let motor = motor::find(&scenario.motor).map_err(|e| bad("motor.name", e.to_string()))?;
+        let mut motor =
+            motor::find(&scenario.motor).map_err(|e| bad("motor.name", e.to_string()))?;
+        if let Some(t) = scenario.motor_burn_time_s {
+            motor = motor
+                .cut_at(t)
+                .map_err(|e| bad("motor.burn_time_s", e.to_string()))?;
+        }
+        if let Some(d) = scenario.motor_diameter_m {
+            motor = motor
+                .with_diameter(d)
+                .map_err(|e| bad("motor.diameter_m", e.to_string()))?;
+        }
         // The motor's own numbers against the motor (a center within its length).
         if let Err(e) = MotorTables::new(&motor, &scenario.motor_options) {
             let key = match &e {
@@ -226,6 +237,15 @@ impl Prepared {
             elevation_m: scenario.environment.elevation_m,
             temperature_k,
             pressure_pa,
+            launch_time_h: match &scenario.environment.weather {
+                Some(_) => 0.0,
+                None => f64::NAN,
+            },
+            weather_member: scenario
+                .environment
+                .weather
+                .as_ref()
+                .map_or(f64::NAN, |w| w.member),
             wind_speed_m_s: scenario.environment.wind_speed_m_s,
             wind_from_deg: scenario.environment.wind_from_deg,
             wind_scale: 1.0,
@@ -340,7 +360,16 @@ impl Prepared {
                         }
                     })?;
                     let part = ballast.map(|i| design.components[i].id.as_str());
-                    batch = Some(Batch::new(base, part).map_err(refused)?);
+                    let mut b = Batch::new(base, part).map_err(refused)?;
+                    if let Some(w) = &scenario.environment.weather {
+                        b = b.with_weather(BatchWeather {
+                            site: w.site.clone(),
+                            time_s: w.time_s,
+                            member: w.member,
+                            elevation_m: scenario.environment.elevation_m,
+                        });
+                    }
+                    batch = Some(b);
                 }
                 Some(b) => {
                     b.variant(&fixed.columns(&[&setup]), 0).map_err(refused)?;

@@ -41,6 +41,12 @@ pub enum Param {
     RailHeadingDeg,
     /// The air brakes' target apogee, m above the site (nominal: the design's).
     AirBrakesTargetM,
+    /// The launch time, hours after `environment.weather.time` (nominal 0): the air and the
+    /// wind are the weather file's then.
+    LaunchTimeH,
+    /// The weather file's ensemble member, by the file's number (nominal:
+    /// `environment.weather.member`).
+    WeatherMember,
     ParachuteCdsM2(usize),
     ParachuteLagS(usize),
     /// The number in the parachute's trigger (its time, height or delay).
@@ -53,7 +59,7 @@ pub enum Param {
 
 /// The global inputs, in their canonical order (the order of the output's columns and of the
 /// sweep's axes), with their key and unit.
-pub const GLOBAL: [(Param, &str, &str); 18] = [
+pub const GLOBAL: [(Param, &str, &str); 20] = [
     (Param::StructureMassKg, "structure_mass_kg", "kg"),
     (Param::StructureCgM, "structure_cg_m", "m"),
     (Param::BallastKg, "ballast_kg", "kg"),
@@ -76,6 +82,8 @@ pub const GLOBAL: [(Param, &str, &str); 18] = [
     (Param::RailInclinationDeg, "rail_inclination_deg", "deg"),
     (Param::RailHeadingDeg, "rail_heading_deg", "deg"),
     (Param::AirBrakesTargetM, "air_brakes_target_apogee_m", "m"),
+    (Param::LaunchTimeH, "launch_time_h", "h"),
+    (Param::WeatherMember, "weather_member", "1"),
 ];
 
 /// The rule a value of an input must obey.
@@ -149,7 +157,9 @@ impl Param {
             | Param::WindFromDeg
             | Param::WindRotationDeg
             | Param::RailHeadingDeg
+            | Param::LaunchTimeH
             | Param::ShiftTravelM(_) => Domain::Finite,
+            Param::WeatherMember => Domain::NonNegative,
             Param::RailInclinationDeg => Domain::Within(0.0, 90.0),
             Param::WindTurbulenceIntensity => {
                 Domain::Between(0.0, hpr_sim::turbulence::MAX_TURBULENCE_INTENSITY)
@@ -205,6 +215,7 @@ mod tests {
                 "deg" => "_deg",
                 "K" => "_k",
                 "Pa" => "_pa",
+                "h" => "_h",
                 _ => "",
             };
             assert!(key.ends_with(suffix), "{key} should end in {suffix}");

@@ -52,6 +52,9 @@ pub enum Shape {
     Triangular { min: f64, mode: f64, max: f64 },
     /// `value = center × exp(mu + sigma Z)`, Z standard normal.
     LogNormal { mu: f64, sigma: f64 },
+    /// `value = first + k`, `k` uniform on `0 .. count` (a weather file's ensemble member,
+    /// whatever the center).
+    Members { first: f64, count: u32 },
 }
 
 /// A dispersion of one input: a shape and whether its deviation is a fraction of the center.
@@ -94,6 +97,12 @@ impl Dispersion {
             Shape::LogNormal { mu, sigma } => {
                 return center * (mu + sigma * standard_normal(rng)).exp()
             }
+            Shape::Members { first, count } => {
+                let k = (f64::from(count) * unit_open(rng))
+                    .floor()
+                    .min(f64::from(count) - 1.0);
+                return first + k;
+            }
         };
         if self.relative {
             center * (1.0 + d)
@@ -104,7 +113,10 @@ impl Dispersion {
 
     /// Whether the value depends on the center (everything but a normal given by its mean).
     pub fn uses_center(&self) -> bool {
-        !matches!(self.shape, Shape::NormalAbout { .. })
+        !matches!(
+            self.shape,
+            Shape::NormalAbout { .. } | Shape::Members { .. }
+        )
     }
 
     /// Whether a center of zero makes the dispersion meaningless (relative and log-normal).
@@ -133,6 +145,10 @@ impl Dispersion {
                     (min * min + mode * mode + max * max - min * mode - min * max - mode * max)
                         / 18.0;
                 ((min + mode + max) / 3.0, var.sqrt())
+            }
+            Shape::Members { first, count } => {
+                let n = f64::from(count);
+                return (first + 0.5 * (n - 1.0), ((n * n - 1.0) / 12.0).sqrt());
             }
             Shape::LogNormal { mu, sigma } => {
                 let m = (mu + 0.5 * sigma * sigma).exp();

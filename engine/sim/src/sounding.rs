@@ -114,6 +114,18 @@ pub struct SiteAir {
     pub wind: Vec<WindRow>,
 }
 
+impl SiteAir {
+    /// The air a flight reads: the profile.
+    pub fn air_model(&self) -> crate::atmosphere::AirModel {
+        crate::atmosphere::AirModel::Profile(std::sync::Arc::new(self.air.clone()))
+    }
+
+    /// The wind a flight reads: the rows' table.
+    pub fn wind(&self) -> Result<crate::wind::Wind, crate::wind::WindError> {
+        crate::wind::Wind::table(&self.wind)
+    }
+}
+
 /// The columns read, by their header names.
 const PRES: &str = "PRES";
 const HGHT: &str = "HGHT";

@@ -23,6 +23,10 @@ pub(super) struct Setup {
     /// The site's air temperature, K, and pressure, Pa.
     pub(super) temperature_k: f64,
     pub(super) pressure_pa: f64,
+    /// The launch time, hours after the weather file's `time`, and its ensemble member (NaN
+    /// without a weather file).
+    pub(super) launch_time_h: f64,
+    pub(super) weather_member: f64,
     pub(super) wind_speed_m_s: f64,
     pub(super) wind_from_deg: f64,
     pub(super) wind_scale: f64,
@@ -51,6 +55,8 @@ impl Setup {
             Param::ElevationM => self.elevation_m,
             Param::TemperatureK => self.temperature_k,
             Param::PressurePa => self.pressure_pa,
+            Param::LaunchTimeH => self.launch_time_h,
+            Param::WeatherMember => self.weather_member,
             Param::WindSpeedMS => self.wind_speed_m_s,
             Param::WindFromDeg => self.wind_from_deg,
             Param::WindScale => self.wind_scale,
@@ -80,6 +86,8 @@ impl Setup {
             Param::ElevationM => &mut self.elevation_m,
             Param::TemperatureK => &mut self.temperature_k,
             Param::PressurePa => &mut self.pressure_pa,
+            Param::LaunchTimeH => &mut self.launch_time_h,
+            Param::WeatherMember => &mut self.weather_member,
             Param::WindSpeedMS => &mut self.wind_speed_m_s,
             Param::WindFromDeg => &mut self.wind_from_deg,
             Param::WindScale => &mut self.wind_scale,
@@ -133,19 +141,33 @@ impl Fixed<'_> {
             .gravity
             .at_site(site.latitude_deg, s.elevation_m, "environment.latitude_deg")
             .map_err(|e| err(&e))?;
+        // A launch time or member of its own: the weather file's air and wind then.
+        let drawn = self.drawn_weather(s).map_err(|e| err(&e))?;
+        let base_air = match &drawn {
+            Some(w) => w.air_model(),
+            None => site.air.clone(),
+        };
         let air = if (s.temperature_k, s.pressure_pa)
             == (self.nominal.temperature_k, self.nominal.pressure_pa)
         {
-            site.air.clone()
+            base_air
         } else {
             // The air of the scenario's site, at this setup's temperature and pressure.
-            site.air
+            base_air
                 .with_site_values(site.elevation_m, Some(s.temperature_k), Some(s.pressure_pa))
                 .map_err(|e| err(&e))?
         };
+        let wind = match &drawn {
+            Some(w) => w
+                .wind()
+                .and_then(|w| w.transformed(s.wind_scale, s.wind_rotation_deg))
+                .and_then(|w| w.with_turbulence(s.wind_turbulence_intensity)),
+            None => self.wind(s),
+        }
+        .map_err(|e| err(&e))?;
         let env = Environment {
             elevation_m: s.elevation_m,
-            wind: self.wind(s).map_err(|e| err(&e))?,
+            wind,
             gravity,
             vacuum: false,
             latitude_deg: self.scenario.environment.latitude_deg,
@@ -223,6 +245,39 @@ impl Fixed<'_> {
         })
     }
 
+    /// The launch time of a setup, seconds since 1970 UTC (NaN without a weather file).
+    pub(super) fn launch_time_s(&self, s: &Setup) -> f64 {
+        self.scenario
+            .environment
+            .weather
+            .as_ref()
+            .map_or(f64::NAN, |w| w.time_s + s.launch_time_h * 3600.0)
+    }
+
+    /// The weather file's air and wind over the site at a setup's launch time and member,
+    /// when either is not the nominal's (whose are the scenario's own).
+    pub(super) fn drawn_weather(
+        &self,
+        s: &Setup,
+    ) -> Result<Option<hpr_sim::sounding::SiteAir>, hpr_sim::weather::WeatherError> {
+        let Some(w) = &self.scenario.environment.weather else {
+            return Ok(None);
+        };
+        if (s.launch_time_h, s.weather_member)
+            == (self.nominal.launch_time_h, self.nominal.weather_member)
+        {
+            return Ok(None);
+        }
+        let member = w.site.member_index(s.weather_member)?;
+        w.site
+            .over_site(
+                self.launch_time_s(s),
+                member,
+                self.scenario.environment.elevation_m,
+            )
+            .map(Some)
+    }
+
     /// The wind of a setup: the scenario's profile, or its constant wind at the setup's speed
     /// and direction, scaled and turned by the setup's `wind_scale` and `wind_rotation_deg`.
     pub(super) fn wind(&self, s: &Setup) -> Result<Wind, hpr_sim::wind::WindError> {
@@ -274,6 +329,7 @@ impl Fixed<'_> {
         let constant_wind = wind && self.scenario.environment.wind_profile.is_none();
         let rail = any(&[RailLengthM, RailInclinationDeg, RailHeadingDeg]);
         let air = any(&[TemperatureK, PressurePa]);
+        let drawn = any(&[LaunchTimeH, WeatherMember]);
         let per = |count: usize, p: fn(usize) -> Param, f: fn(&Setup, usize) -> f64| {
             (0..count)
                 .map(|k| col(has(p(k)), &|s| f(s, k)))
@@ -297,6 +353,8 @@ impl Fixed<'_> {
             elevation_m: col(has(ElevationM), &|s| s.elevation_m),
             temperature_k: col(air, &|s| s.temperature_k),
             pressure_pa: col(air, &|s| s.pressure_pa),
+            launch_time_s: col(drawn, &|s| self.launch_time_s(s)),
+            weather_member: col(drawn, &|s| s.weather_member),
             wind_speed_m_s: col(constant_wind, &|s| s.wind_speed_m_s),
             wind_from_deg: col(constant_wind, &|s| s.wind_from_deg),
             wind_scale: col(wind, &|s| s.wind_scale),

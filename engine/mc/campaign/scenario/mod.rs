@@ -25,7 +25,7 @@ use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use raw::RawScenario;
 use rules::{
     canopy_shape, check_name, check_param, design_parachute, finite, inputs, integrator, noise,
-    one_line, requirements, sounding, ParachuteFromDesign,
+    one_line, requirements, sounding, weather, weather_inputs, ParachuteFromDesign,
 };
 use std::path::{Path, PathBuf};
 
@@ -79,11 +79,40 @@ pub struct EnvironmentSpec {
     /// The sounding the air and the wind were read from (`environment.sounding`), if any,
     /// and its text.
     pub sounding: Option<(PathBuf, String)>,
+    /// The site's longitude, degrees east (`environment.longitude_deg`): a weather file's
+    /// grid is read there.
+    pub longitude_deg: Option<f64>,
+    /// The weather-model file the air and the wind were read from (`environment.weather`),
+    /// if any.
+    pub weather: Option<WeatherSpec>,
+}
+
+/// `environment.weather`: a weather-model file read over the site, and the launch time and
+/// ensemble member whose air and wind the nominal flight flies.
+#[derive(Debug, Clone)]
+pub struct WeatherSpec {
+    pub file: PathBuf,
+    /// The file's weather over the site (every time and member).
+    pub site: std::sync::Arc<hpr_sim::weather::SiteWeather>,
+    /// The launch time, seconds since 1970 UTC.
+    pub time_s: f64,
+    /// The ensemble member, by the file's number.
+    pub member: f64,
+    /// The FNV-1a 64 fingerprint of the file's bytes (part of the scenario's).
+    pub fingerprint: String,
+}
+
+impl PartialEq for WeatherSpec {
+    fn eq(&self, other: &Self) -> bool {
+        self.file == other.file
+            && self.time_s == other.time_s
+            && self.member == other.member
+            && self.fingerprint == other.fingerprint
+    }
 }
 
 /// `environment.gravity` (and `fly --gravity`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-#[value(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum GravityModel {
     /// The constant standard gravity, 9.80665 m/s² (the default).
     Standard,
@@ -93,9 +122,38 @@ pub enum GravityModel {
     /// The WGS 84 ellipsoid's normal gravity at the site's latitude, with height (RocketPy's
     /// default).
     Somigliana,
+    /// A constant value, m/s², at every height (RocketPy's `gravity=9.81`).
+    Constant(f64),
 }
 
+/// The rule `environment.gravity` and `fly --gravity` keep.
+pub const GRAVITY_RULE: &str = "must be \"standard\", \"inverse_square\", \"somigliana\" or a constant value in m/s² from 0.1 to 100 (such as 9.81)";
+
 impl GravityModel {
+    /// A gravity model by its name, or a constant value in m/s².
+    pub fn parse(text: &str) -> Result<GravityModel, String> {
+        let t = text.trim();
+        match t {
+            "standard" => return Ok(GravityModel::Standard),
+            "inverse_square" => return Ok(GravityModel::InverseSquare),
+            "somigliana" => return Ok(GravityModel::Somigliana),
+            _ => {}
+        }
+        match t.parse::<f64>() {
+            Ok(g) => GravityModel::value(g),
+            Err(_) => Err(format!("{GRAVITY_RULE} (got \"{t}\")")),
+        }
+    }
+
+    /// A constant gravity of `g` m/s², from 0.1 to 100.
+    pub fn value(g: f64) -> Result<GravityModel, String> {
+        if g.is_finite() && (0.1..=100.0).contains(&g) {
+            Ok(GravityModel::Constant(g))
+        } else {
+            Err(format!("{GRAVITY_RULE} (got {g})"))
+        }
+    }
+
     /// The gravity of a site `elevation_m` above sea level at `latitude_deg`, which
     /// [`GravityModel::Somigliana`] needs (`None` is an error for it; the error says which
     /// setting is at fault, `latitude_key` naming the latitude's).
@@ -107,6 +165,7 @@ impl GravityModel {
     ) -> Result<Gravity, String> {
         match (self, latitude_deg) {
             (GravityModel::Standard, _) => Ok(Gravity::default()),
+            (GravityModel::Constant(g), _) => Gravity::constant(g).map_err(|e| e.to_string()),
             (GravityModel::InverseSquare, _) => {
                 Gravity::inverse_square(elevation_m).map_err(|e| e.to_string())
             }
@@ -204,6 +263,10 @@ pub struct Scenario {
     /// `grains`, `chamber`, `nozzle_radius_m`; a cluster's are each motor's);
     /// its scales are 1 (the dispersions set them flight by flight).
     pub motor_options: MotorOptions,
+    /// The thrust curve cut at this time, s (`motor.burn_time_s`, RocketPy's `burn_time`).
+    pub motor_burn_time_s: Option<f64>,
+    /// The casing's outer diameter in place of the file's, m (`motor.diameter_m`).
+    pub motor_diameter_m: Option<f64>,
     pub environment: EnvironmentSpec,
     pub rail: RailSpec,
     pub parachutes: Vec<ParachuteSpec>,
@@ -424,6 +487,8 @@ impl Scenario {
             ),
             ("motor.dry_inertia_kg_m2", Some(inertia[0])),
             ("motor.dry_inertia_kg_m2", Some(inertia[1])),
+            ("motor.burn_time_s", raw.motor.burn_time_s),
+            ("motor.diameter_m", raw.motor.diameter_m),
         ] {
             if let Some(v) = v {
                 if !(v.is_finite() && v >= 0.0) {
@@ -439,6 +504,7 @@ impl Scenario {
         // A sounding gives the air and the wind: read here, it becomes the air profile and
         // the wind profile below, as if the scenario had written their rows.
         let sounding = sounding(&bad, &dir, &mut env)?;
+        let weather = weather(&bad, &dir, &mut env)?;
         let wind_profile = match &env.wind_profile {
             None => None,
             Some(_) if env.wind_speed_m_s.is_some() || env.wind_from_deg.is_some() => {
@@ -509,16 +575,14 @@ impl Scenario {
                     ))
                 }
             },
-            gravity: match env.gravity.as_deref() {
+            gravity: match &env.gravity {
                 None => GravityModel::Standard,
-                Some(name) => <GravityModel as clap::ValueEnum>::from_str(name, false).map_err(
-                    |_| {
-                        bad(
-                            "environment.gravity",
-                            format!("must be \"standard\", \"inverse_square\" or \"somigliana\" (got \"{name}\")"),
-                        )
-                    },
-                )?,
+                Some(raw::RawGravity::Name(name)) => {
+                    GravityModel::parse(name).map_err(|r| bad("environment.gravity", r))?
+                }
+                Some(raw::RawGravity::Value(g)) => {
+                    GravityModel::value(*g).map_err(|r| bad("environment.gravity", r))?
+                }
             },
             latitude_deg: match env.latitude_deg {
                 Some(l) if !is_latitude(l) => {
@@ -531,6 +595,16 @@ impl Scenario {
             },
             air: AirModel::Standard,
             sounding,
+            longitude_deg: match env.longitude_deg {
+                Some(l) if !(l.is_finite() && l.abs() <= 180.0) => {
+                    return Err(bad(
+                        "environment.longitude_deg",
+                        format!("must be finite and within [-180, 180] degrees east (got {l})"),
+                    ))
+                }
+                l => l,
+            },
+            weather,
         };
         let air_error = |e: AtmosphereError| {
             let key = match &e {
@@ -567,7 +641,7 @@ impl Scenario {
                         .map(|r| AirRow {
                             height_m: r.height_m,
                             temperature_k: r.temperature_k,
-                            pressure_pa: None,
+                            pressure_pa: r.pressure_pa,
                         })
                         .collect(),
                 };
@@ -726,10 +800,12 @@ impl Scenario {
             file: path.to_path_buf(),
             dir,
             text: text.to_string(),
-            // A sounding is part of the scenario: a run resumed with another is refused.
-            hash: match &environment.sounding {
-                None => fingerprint(text.as_bytes()),
-                Some((_, sounding)) => fingerprint(format!("{text}\n{sounding}").as_bytes()),
+            // A sounding or a weather file is part of the scenario: a run resumed with
+            // another is refused.
+            hash: match (&environment.sounding, &environment.weather) {
+                (Some((_, sounding)), _) => fingerprint(format!("{text}\n{sounding}").as_bytes()),
+                (None, Some(w)) => fingerprint(format!("{text}\n{}", w.fingerprint).as_bytes()),
+                (None, None) => fingerprint(text.as_bytes()),
             },
             name,
             description: raw.description.take(),
@@ -757,6 +833,8 @@ impl Scenario {
                 nozzle_radius_m: raw.motor.nozzle_radius_m,
                 ..MotorOptions::default()
             },
+            motor_burn_time_s: raw.motor.burn_time_s,
+            motor_diameter_m: raw.motor.diameter_m,
             environment,
             rail,
             parachutes,
@@ -775,6 +853,7 @@ impl Scenario {
                 format!("must be at most {MAX_TURBULENT_FLIGHT_S} s in a turbulent wind (environment.wind_turbulence_intensity), whose gusts each flight draws to its time limit (got {})", scenario.max_time_s),
             ));
         }
+        weather_inputs(&scenario, &bad)?;
         if scenario.environment.wind_profile.is_some() {
             if let Some(i) = scenario
                 .inputs

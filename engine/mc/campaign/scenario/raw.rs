@@ -58,6 +58,10 @@ pub(super) struct RawMotor {
     pub(super) grains: Option<RawGrains>,
     pub(super) chamber: Option<RawChamber>,
     pub(super) nozzle_radius_m: Option<f64>,
+    /// The thrust curve cut at this time (RocketPy's `burn_time`).
+    pub(super) burn_time_s: Option<f64>,
+    /// The casing's outer diameter in place of the file's.
+    pub(super) diameter_m: Option<f64>,
 }
 
 #[derive(Deserialize, Clone, Copy)]
@@ -86,12 +90,35 @@ pub(super) struct RawEnvironment {
     pub(super) wind_from_deg: Option<f64>,
     pub(super) wind_profile: Option<Vec<RawWindRow>>,
     pub(super) wind_turbulence_intensity: Option<f64>,
-    pub(super) gravity: Option<String>,
+    pub(super) gravity: Option<RawGravity>,
     pub(super) latitude_deg: Option<f64>,
+    pub(super) longitude_deg: Option<f64>,
+    pub(super) weather: Option<RawWeather>,
     pub(super) temperature_k: Option<f64>,
     pub(super) pressure_pa: Option<f64>,
     pub(super) air_profile: Option<Vec<RawAirRow>>,
     pub(super) sounding: Option<String>,
+}
+
+/// `environment.gravity`: a model's name or a constant value, m/s².
+#[derive(Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a gravity model's name (\"standard\", \"inverse_square\", \"somigliana\") or a constant value in m/s² (such as 9.81)"
+)]
+pub(super) enum RawGravity {
+    Name(String),
+    Value(f64),
+}
+
+/// `environment.weather`: a weather-model file and the launch time in it.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawWeather {
+    pub(super) file: PathBuf,
+    pub(super) time: String,
+    /// The ensemble member, by the file's number (default: its first).
+    pub(super) member: Option<f64>,
 }
 
 /// A row of `environment.air_profile`.
@@ -100,6 +127,8 @@ pub(super) struct RawEnvironment {
 pub(super) struct RawAirRow {
     pub(super) height_m: f64,
     pub(super) temperature_k: f64,
+    /// The pressure measured there, Pa (optional; never on the first row).
+    pub(super) pressure_pa: Option<f64>,
 }
 
 /// A row of `environment.wind_profile`.
@@ -230,6 +259,8 @@ pub(super) struct RawParams<T> {
     pub(super) rail_inclination_deg: Option<T>,
     pub(super) rail_heading_deg: Option<T>,
     pub(super) air_brakes_target_apogee_m: Option<T>,
+    pub(super) launch_time_h: Option<T>,
+    pub(super) weather_member: Option<T>,
     #[serde(default = "BTreeMap::new")]
     pub(super) parachutes: BTreeMap<String, RawParachuteParams<T>>,
     #[serde(default = "BTreeMap::new")]
@@ -238,7 +269,7 @@ pub(super) struct RawParams<T> {
 
 impl<T> RawParams<T> {
     /// The global entries in [`GLOBAL`] order.
-    pub(super) fn globals(&mut self) -> [Option<T>; 18] {
+    pub(super) fn globals(&mut self) -> [Option<T>; 20] {
         [
             self.structure_mass_kg.take(),
             self.structure_cg_m.take(),
@@ -258,6 +289,8 @@ impl<T> RawParams<T> {
             self.rail_inclination_deg.take(),
             self.rail_heading_deg.take(),
             self.air_brakes_target_apogee_m.take(),
+            self.launch_time_h.take(),
+            self.weather_member.take(),
         ]
     }
 }

@@ -114,6 +114,223 @@ pub(super) fn noise(
     Ok(Some(noise))
 }
 
+/// `environment.weather`, read: the file's weather over the site (`latitude_deg`,
+/// `longitude_deg`, `elevation_m`, all required) at the launch time and member, its air
+/// (with each level's pressure) and wind written into `env` as if the scenario had given
+/// them, as a sounding's are. Refused beside the keys it replaces and beside a sounding.
+pub(super) fn weather(
+    bad: &Bad,
+    dir: &Path,
+    env: &mut RawEnvironment,
+) -> Result<Option<super::WeatherSpec>, ScenarioError> {
+    use hpr_sim::weather::{parse_utc, SiteWeather, MAX_WEATHER_FILE_BYTES};
+    let Some(w) = &env.weather else {
+        return Ok(None);
+    };
+    let key = "environment.weather";
+    if env.sounding.is_some() {
+        return Err(bad(
+            key,
+            "a weather file and a sounding each give the site's air and wind: give one of them"
+                .into(),
+        ));
+    }
+    let given = [
+        ("temperature_k", env.temperature_k.is_some()),
+        ("pressure_pa", env.pressure_pa.is_some()),
+        ("air_profile", env.air_profile.is_some()),
+        ("wind_speed_m_s", env.wind_speed_m_s.is_some()),
+        ("wind_from_deg", env.wind_from_deg.is_some()),
+        ("wind_profile", env.wind_profile.is_some()),
+    ];
+    if let Some((field, _)) = given.iter().find(|(_, g)| *g) {
+        return Err(bad(key, format!("a weather file gives the site's air and wind: give either it or environment.{field}, not both")));
+    }
+    let needs = |field: &str, v: Option<f64>| {
+        v.ok_or_else(|| {
+            bad(
+                &format!("environment.{field}"),
+                format!("is needed with environment.weather: the file's grid is read at the site's latitude and longitude, and a pressure-level file does not say where the ground is (elevation_m, m above sea level)"),
+            )
+        })
+    };
+    let latitude = needs("latitude_deg", env.latitude_deg)?;
+    let longitude = needs("longitude_deg", env.longitude_deg)?;
+    let elevation = needs("elevation_m", env.elevation_m)?;
+    let path = dir.join(&w.file);
+    let file_key = "environment.weather.file";
+    let size = std::fs::metadata(&path)
+        .map_err(|e| bad(file_key, format!("cannot read {}: {e}", path.display())))?;
+    if !size.is_file() {
+        return Err(bad(file_key, format!("{} is not a file", path.display())));
+    }
+    if size.len() > MAX_WEATHER_FILE_BYTES {
+        return Err(bad(file_key, format!("{}: it is {} bytes: a weather file may be at most {MAX_WEATHER_FILE_BYTES} bytes (2 GiB); cut it to the days and the area of the launch", path.display(), size.len())));
+    }
+    let bytes = std::fs::read(&path)
+        .map_err(|e| bad(file_key, format!("cannot read {}: {e}", path.display())))?;
+    let site = SiteWeather::from_bytes(&bytes, latitude, longitude)
+        .map_err(|e| bad(file_key, format!("{}: {e}", path.display())))?;
+    let time_s = parse_utc(&w.time).map_err(|r| bad("environment.weather.time", r))?;
+    site.check_time(time_s).map_err(|e| {
+        bad(
+            "environment.weather.time",
+            format!("{}: {e}", path.display()),
+        )
+    })?;
+    let member = w.member.unwrap_or(site.members()[0]);
+    let index = site.member_index(member).map_err(|e| {
+        bad(
+            "environment.weather.member",
+            format!("{}: {e}", path.display()),
+        )
+    })?;
+    let air = site.over_site(time_s, index, elevation).map_err(|e| {
+        bad(
+            file_key,
+            format!(
+                "{} (at environment.elevation_m = {elevation}): {e}",
+                path.display()
+            ),
+        )
+    })?;
+    env.pressure_pa = Some(air.air.pressure_pa);
+    env.air_profile = Some(
+        air.air
+            .rows
+            .iter()
+            .map(|r| RawAirRow {
+                height_m: r.height_m,
+                temperature_k: r.temperature_k,
+                pressure_pa: r.pressure_pa,
+            })
+            .collect(),
+    );
+    env.wind_profile = Some(
+        air.wind
+            .iter()
+            .map(|r| RawWindRow {
+                height_m: r.height_agl_m,
+                speed_m_s: r.speed_m_s,
+                from_deg: r.from_deg,
+            })
+            .collect(),
+    );
+    Ok(Some(super::WeatherSpec {
+        file: path,
+        site: std::sync::Arc::new(site),
+        time_s,
+        member,
+        fingerprint: crate::campaign::sample::fingerprint(&bytes),
+    }))
+}
+
+/// The rules of the inputs a weather file gives: `launch_time_h` and `weather_member` need
+/// one; a swept launch time, and a uniform or triangular one's ends, lie within its times;
+/// a swept member is one of its members; neither goes with `temperature_k` or
+/// `pressure_pa`, which set the same air.
+pub(super) fn weather_inputs(scenario: &Scenario, bad: &Bad) -> Result<(), ScenarioError> {
+    let drawn = |p: &Param| matches!(p, Param::LaunchTimeH | Param::WeatherMember);
+    let Some(w) = &scenario.environment.weather else {
+        if let Some(i) = scenario.inputs.iter().find(|i| drawn(&i.param)) {
+            return Err(bad(
+                &i.key_path(),
+                "needs environment.weather, the weather file whose launch times and members it draws".into(),
+            ));
+        }
+        return Ok(());
+    };
+    if let Some(i) = scenario.inputs.iter().find(|i| drawn(&i.param)) {
+        if let Some(j) = scenario
+            .inputs
+            .iter()
+            .find(|j| matches!(j.param, Param::TemperatureK | Param::PressurePa))
+        {
+            return Err(bad(
+                &j.key_path(),
+                format!("the site's air is the weather file's at each variant's {}: vary the one or the other", i.key),
+            ));
+        }
+    }
+    let times = w.site.times_s();
+    let (first_h, last_h) = (
+        (times[0] - w.time_s) / 3600.0,
+        (times[times.len() - 1] - w.time_s) / 3600.0,
+    );
+    let window = format!(
+        "the file's times are {first_h} to {last_h} h after environment.weather.time ({} to {})",
+        hpr_sim::weather::format_utc(times[0]),
+        hpr_sim::weather::format_utc(times[times.len() - 1])
+    );
+    for i in &scenario.inputs {
+        match i.param {
+            Param::LaunchTimeH => {
+                let mut ends: Vec<(String, f64)> = i
+                    .sweep
+                    .iter()
+                    .flatten()
+                    .enumerate()
+                    .map(|(k, &v)| (format!("sweep.{}[{k}]", i.key), v))
+                    .collect();
+                if let Some(d) = &i.dispersion {
+                    let key = format!("dispersions.{}", i.key);
+                    match d.shape {
+                        Shape::Uniform { min, max } | Shape::Triangular { min, max, .. }
+                            if !d.relative =>
+                        {
+                            for c in i.sweep.clone().unwrap_or(vec![0.0]) {
+                                ends.push((format!("{key}.min"), c + min));
+                                ends.push((format!("{key}.max"), c + max));
+                            }
+                        }
+                        Shape::Uniform { .. } | Shape::Triangular { .. } => {
+                            return Err(bad(
+                                &key,
+                                "a launch time's dispersion is in hours, not relative to the time"
+                                    .into(),
+                            ))
+                        }
+                        Shape::Members { .. } => {
+                            return Err(bad(
+                                &format!("{key}.dist"),
+                                "\"members\" draws a weather_member, not a launch time".into(),
+                            ))
+                        }
+                        // A normal's tail may leave the file: those variants are refused.
+                        _ => {}
+                    }
+                }
+                for (key, h) in ends {
+                    if !(first_h..=last_h).contains(&h) {
+                        return Err(bad(&key, format!("a launch {h} h after environment.weather.time is outside the weather file: {window}")));
+                    }
+                }
+            }
+            Param::WeatherMember => {
+                for (k, &m) in i.sweep.iter().flatten().enumerate() {
+                    w.site
+                        .member_index(m)
+                        .map_err(|e| bad(&format!("sweep.{}[{k}]", i.key), e.to_string()))?;
+                }
+                if let Some(d) = &i.dispersion {
+                    if !matches!(d.shape, Shape::Members { .. }) {
+                        return Err(bad(&format!("dispersions.{}.dist", i.key), "an ensemble member is dispersed with { dist = \"members\" }: each variant draws one of the file's members, each as likely".into()));
+                    }
+                    if i.sweep.is_some() {
+                        return Err(bad(
+                            &format!("dispersions.{}", i.key),
+                            "the member is swept: a sweep point's member can't also be drawn"
+                                .into(),
+                        ));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// `environment.sounding`, read: the site's elevation (the sounding's ground unless given),
 /// its pressure and the air and wind rows written into `env` as if the scenario had given
 /// them; the file and its text, to fingerprint. Refused beside the keys it replaces.
@@ -158,6 +375,7 @@ pub(super) fn sounding(
             .map(|r| RawAirRow {
                 height_m: r.height_m,
                 temperature_k: r.temperature_k,
+                pressure_pa: r.pressure_pa,
             })
             .collect(),
     );
@@ -496,6 +714,36 @@ pub(super) fn inputs(
                 sweep_values.is_some(),
             )?),
         };
+        // "members": the weather file's, which must be numbered one after another.
+        let dispersion = match dispersion {
+            Some(Dispersion {
+                shape: Shape::Members { .. },
+                relative,
+            }) => {
+                let k = format!("dispersions.{key}.dist");
+                if p != Param::WeatherMember {
+                    return Err(bad(&k, "\"members\" draws a weather file's ensemble member: it is weather_member's".into()));
+                }
+                let Some(w) = &scenario.environment.weather else {
+                    return Err(bad(
+                        &k,
+                        "needs environment.weather, the file whose members it draws".into(),
+                    ));
+                };
+                let m = w.site.members();
+                if m.windows(2).any(|p| p[1] != p[0] + 1.0) || m[0].fract() != 0.0 {
+                    return Err(bad(&k, format!("the file's members ({}) are not whole numbers one after another, which a draw needs", m.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", "))));
+                }
+                Some(Dispersion {
+                    shape: Shape::Members {
+                        first: m[0],
+                        count: m.len() as u32,
+                    },
+                    relative,
+                })
+            }
+            d => d,
+        };
         out.push(InputSpec {
             param: p,
             column: scenario.column(p),
@@ -555,8 +803,9 @@ fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersi
         "uniform" => &["min", "max"],
         "triangular" => &["min", "mode", "max"],
         "lognormal" => &["sigma", "mu"],
+        "members" => &[],
         other => {
-            return Err(bad(&format!("{key}.dist"), format!("unknown distribution \"{other}\" (normal, truncated_normal, uniform, triangular or lognormal)")));
+            return Err(bad(&format!("{key}.dist"), format!("unknown distribution \"{other}\" (normal, truncated_normal, uniform, triangular, lognormal, or members for a weather_member)")));
         }
     };
     for (f, v) in fields {
@@ -677,6 +926,19 @@ fn dispersion(bad: &Bad, key: &str, d: &RawDist, swept: bool) -> Result<Dispersi
                 return Err(bad(&format!("{key}.mode"), format!("must be from min to max ({min} to {max}; got {mode}, and it is 0 when not given)")));
             }
             Shape::Triangular { min, mode, max }
+        }
+        "members" => {
+            if d.relative.is_some() {
+                return Err(bad(
+                    &format!("{key}.relative"),
+                    "a member is drawn, not scaled: remove relative".into(),
+                ));
+            }
+            // The file's members are filled in by `inputs`, which knows them.
+            Shape::Members {
+                first: f64::NAN,
+                count: 0,
+            }
         }
         _ => {
             if d.relative.is_some() {

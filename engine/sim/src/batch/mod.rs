@@ -57,6 +57,7 @@ use crate::events::EventKind;
 use crate::flight::driver::{fly_to_free, AfterFree, Progress};
 use crate::flight::{Flight, Metrics, SimError, Simulation, Warning};
 use crate::trigger::Trigger;
+use crate::weather::SiteWeather;
 use crate::wind::Wind;
 use group::{step_group, Flying, Lane, LaneEnd, Scratch};
 use std::cell::{OnceCell, RefCell};
@@ -108,6 +109,11 @@ pub struct Columns {
     /// ([`crate::atmosphere::AirModel::with_site_values`]).
     pub temperature_k: Vec<f64>,
     pub pressure_pa: Vec<f64>,
+    /// The launch time, seconds since 1970 UTC, and the ensemble member (by the file's
+    /// number) of the batch's weather file ([`Batch::with_weather`]): the variant's air and
+    /// wind are that file's at them, before the columns above and below change them.
+    pub launch_time_s: Vec<f64>,
+    pub weather_member: Vec<f64>,
     pub wind_speed_m_s: Vec<f64>,
     /// Direction the wind blows from, degrees clockwise from north (with the speed: a
     /// constant wind's as given).
@@ -219,6 +225,8 @@ impl Columns {
             elevation_m: flat(&self.elevation_m),
             temperature_k: flat(&self.temperature_k),
             pressure_pa: flat(&self.pressure_pa),
+            launch_time_s: flat(&self.launch_time_s),
+            weather_member: flat(&self.weather_member),
             wind_speed_m_s: flat(&self.wind_speed_m_s),
             wind_from_deg: flat(&self.wind_from_deg),
             wind_scale: flat(&self.wind_scale),
@@ -248,6 +256,19 @@ impl Columns {
 pub struct Batch {
     base: Simulation,
     part: Option<String>,
+    weather: Option<BatchWeather>,
+}
+
+/// The weather file a batch's variants draw their launch time and ensemble member from
+/// (the `launch_time_s` and `weather_member` columns), and the base's: its air and wind are
+/// the file's over a site `elevation_m` above sea level at `time_s`, member `member` (by the
+/// file's number).
+#[derive(Debug, Clone)]
+pub struct BatchWeather {
+    pub site: Arc<SiteWeather>,
+    pub time_s: f64,
+    pub member: f64,
+    pub elevation_m: f64,
 }
 
 fn with_number(t: Trigger, v: f64) -> Result<Trigger, String> {
@@ -287,7 +308,15 @@ impl Batch {
         Ok(Batch {
             base,
             part: part.map(str::to_string),
+            weather: None,
         })
+    }
+
+    /// The batch whose variants may draw their launch time and ensemble member from
+    /// `weather` (the base's air and wind must be the file's at its time and member).
+    pub fn with_weather(mut self, weather: BatchWeather) -> Batch {
+        self.weather = Some(weather);
+        self
     }
 
     /// The base flight (samples off).
@@ -299,7 +328,7 @@ impl Batch {
     /// nested one empty or one column per parachute (shift) of the base, each empty or full.
     pub fn check(&self, columns: &Columns) -> Result<(), String> {
         let n = columns.len;
-        let flat: [(&str, &Vec<f64>); 18] = [
+        let flat: [(&str, &Vec<f64>); 20] = [
             ("structure_delta_mass_kg", &columns.structure_delta_mass_kg),
             ("structure_delta_cg_m", &columns.structure_delta_cg_m),
             ("part_mass_kg", &columns.part_mass_kg),
@@ -309,6 +338,8 @@ impl Batch {
             ("elevation_m", &columns.elevation_m),
             ("temperature_k", &columns.temperature_k),
             ("pressure_pa", &columns.pressure_pa),
+            ("launch_time_s", &columns.launch_time_s),
+            ("weather_member", &columns.weather_member),
             ("wind_speed_m_s", &columns.wind_speed_m_s),
             ("wind_from_deg", &columns.wind_from_deg),
             ("wind_scale", &columns.wind_scale),
@@ -383,9 +414,12 @@ impl Batch {
         let setup = SimError::Setup;
         let changed = base.clone().with_changes(|ch| {
             let (temperature, pressure) = (get(&c.temperature_k), get(&c.pressure_pa));
+            let (time, member) = (get(&c.launch_time_s), get(&c.weather_member));
+            let drawn = time.is_some() || member.is_some();
             if get(&c.elevation_m).is_some()
                 || temperature.is_some()
                 || pressure.is_some()
+                || drawn
                 || get(&c.wind_speed_m_s).is_some()
                 || get(&c.wind_from_deg).is_some()
                 || get(&c.wind_scale).is_some()
@@ -396,11 +430,32 @@ impl Batch {
                 || get(&c.rail_heading_deg).is_some()
             {
                 let mut env = base.environment().clone();
+                // The base wind's transformation and turbulence, before a drawn weather
+                // replaces the wind as given.
+                let (scale, rotation) = env.wind.transformation();
+                let base_turbulence = env.wind.turbulence_intensity();
+                if drawn {
+                    let w = self.weather.as_ref().ok_or_else(|| {
+                        setup("the launch time and weather member columns need the batch's weather file".into())
+                    })?;
+                    let index = w
+                        .site
+                        .member_index(member.unwrap_or(w.member))
+                        .map_err(|e| setup(format!("weather: {e}")))?;
+                    let site = w
+                        .site
+                        .over_site(time.unwrap_or(w.time_s), index, w.elevation_m)
+                        .map_err(|e| setup(format!("weather: {e}")))?;
+                    env.air = site.air_model();
+                    env.wind = site.wind().map_err(|e| setup(format!("weather: {e}")))?;
+                }
                 if temperature.is_some() || pressure.is_some() {
                     env.air = env
                         .air
                         .with_site_values(env.elevation_m, temperature, pressure)
                         .map_err(|e| setup(format!("environment: {e}")))?;
+                }
+                if drawn || temperature.is_some() || pressure.is_some() {
                     if let Some(table) = tables.find(&env.air) {
                         ch.air_table_candidate(table);
                     }
@@ -412,9 +467,7 @@ impl Batch {
                         .at_launch_elevation(v)
                         .map_err(|e| setup(format!("environment: {e}")))?;
                 }
-                let (scale, rotation) = env.wind.transformation();
-                let turbulence = get(&c.wind_turbulence_intensity)
-                    .unwrap_or(env.wind.turbulence_intensity());
+                let turbulence = get(&c.wind_turbulence_intensity).unwrap_or(base_turbulence);
                 if get(&c.wind_speed_m_s).is_some() || get(&c.wind_from_deg).is_some() {
                     let (speed, from) = env.wind.constant_parts().ok_or_else(|| {
                         setup("the base wind is a table, whose speed and direction the wind columns can't set (scale and turn it with wind_scale and wind_rotation_deg)".into())
