@@ -541,7 +541,13 @@ fn every_bundled_scenario_reads_and_sets_up_at_every_sweep_point() {
     names.sort();
     assert_eq!(
         names,
-        vec!["ballast_sweep", "calisto", "sounding", "wind_study"]
+        vec![
+            "ballast_sweep",
+            "bella_lui",
+            "calisto",
+            "sounding",
+            "wind_study"
+        ]
     );
 }
 
