@@ -10,6 +10,7 @@ mod fly;
 mod motor;
 mod outputs;
 mod site;
+mod weather;
 mod wind;
 
 use arrow::array::{Array, BooleanArray, Float64Array, StringArray, UInt32Array, UInt64Array};
