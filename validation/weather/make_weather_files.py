@@ -22,6 +22,9 @@ test can ask the reader for the same site and time in every layout and get the s
   the ERA5 wind times (1 + 0.1 k); the geopotential is the same in all. Its longitudes are
   relabelled 0-360 east of a meridian 340 degrees away (every longitude plus 340), so that a
   site given at -10.996664 degrees (9.003336 - 20) finds the grid by wrapping to 349.003336.
+* ``broken_no_north_wind.nc``, ``broken_nan_temperature.nc``: a 2 x 2 cut of the ERA5 file
+  around the site at 12:00 and 13:00 without its ``v``, and with a NaN in ``t`` (at 13:00,
+  875 hPa) where its fill value is -9999: files the reader must refuse, naming why.
 
 Run from the repository root (netCDF4 and numpy; the venv of validation/rocketpy has both):
     .venv/bin/python validation/weather/make_weather_files.py
@@ -189,6 +192,38 @@ def write_gfs_like(era, path):
     out.close()
 
 
+def write_broken(era, path, drop=None, nan_at=None):
+    """A small NetCDF-4 file of the ERA5 values around the site (2 x 2 grid points, the 12:00
+    and 13:00 times) with one thing wrong: the variable `drop` left out, or a NaN written at
+    `nan_at` (variable, index) where the fill value is -9999 (a NaN that marks nothing)."""
+    out = netCDF4.Dataset(path, "w", format="NETCDF4")
+    lat, lon = era["lat"][3:5], era["lon"][4:6]  # 47.25-47.0 N, 9.0-9.25 E
+    out.createDimension("valid_time", 2)
+    out.createDimension("pressure_level", len(era["level_hpa"]))
+    out.createDimension("latitude", 2)
+    out.createDimension("longitude", 2)
+    vt = out.createVariable("valid_time", "i8", ("valid_time",))
+    vt.units = "seconds since 1970-01-01"
+    vt[:] = seconds_since_1970(era["times"][2:4])
+    pl = out.createVariable("pressure_level", "f8", ("pressure_level",))
+    pl.units = "hPa"
+    pl[:] = era["level_hpa"]
+    out.createVariable("latitude", "f8", ("latitude",))[:] = lat
+    out.createVariable("longitude", "f8", ("longitude",))[:] = lon
+    for name, (standard, units, _) in FIELDS.items():
+        if name == drop:
+            continue
+        var = out.createVariable(name, "f4", ("valid_time", "pressure_level", "latitude",
+                                              "longitude"), fill_value=np.float32(-9999.0))
+        var.units = units
+        var.standard_name = standard
+        values = era[name][2:4, :, 3:5, 4:6].astype(np.float32)
+        if nan_at and nan_at[0] == name:
+            values[nan_at[1]] = np.nan
+        var[:] = values
+    out.close()
+
+
 def member(k, name, values):
     if name == "t":
         return values + 0.5 * k
@@ -203,7 +238,10 @@ def main():
     write_gfs_like(era, os.path.join(HERE, "bella_lui_gfs_like.nc"))
     write_cds2024(era, os.path.join(HERE, "bella_lui_ensemble.nc"), members=3,
                   lon_shift=340.0)
-    for f in ("bella_lui_era5_netcdf4.nc", "bella_lui_gfs_like.nc", "bella_lui_ensemble.nc"):
+    write_broken(era, os.path.join(HERE, "broken_no_north_wind.nc"), drop="v")
+    write_broken(era, os.path.join(HERE, "broken_nan_temperature.nc"), nan_at=("t", (1, 3, 0, 1)))
+    for f in ("bella_lui_era5_netcdf4.nc", "bella_lui_gfs_like.nc", "bella_lui_ensemble.nc",
+              "broken_no_north_wind.nc", "broken_nan_temperature.nc"):
         print(f, os.path.getsize(os.path.join(HERE, f)), "bytes")
 
 

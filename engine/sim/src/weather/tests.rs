@@ -431,3 +431,31 @@ fn damaged_copies_of_the_real_files_give_errors_or_finite_air_never_a_panic() {
     );
     assert_eq!(outcomes[0] + outcomes[1], 1600);
 }
+
+#[test]
+fn a_file_without_a_quantity_or_with_a_value_that_is_no_number_is_refused_naming_the_variable() {
+    // validation/weather/make_weather_files.py: a cut of the ERA5 file without `v`, and one
+    // with a NaN in `t` at 13:00, 875 hPa, where its fill value (-9999) marks the missing.
+    let e = SiteWeather::read(
+        &repo("validation/weather/broken_no_north_wind.nc"),
+        LAT,
+        LON,
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "it has no wind's north component (looked for: v, vgrdprs, \
+         v-component_of_wind_isobaric, va, VGRD, vwnd)"
+    );
+    let e = SiteWeather::read(
+        &repo("validation/weather/broken_nan_temperature.nc"),
+        LAT,
+        LON,
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "variable \"t\": holds NaN, which is neither a number nor its fill value: every value \
+         must be finite"
+    );
+}
