@@ -73,7 +73,12 @@ def rocketpy_profile(path):
             "wind_north_m_s": float(env.wind_velocity_y(z)),
         })
         h += 100.0
-    levels = [{"height_msl_m": float(hh), "pressure_pa": float(p)}
+    # At each level: where RocketPy's speed and direction (interpolated as themselves
+    # between levels, not as the components it flies) are the levels' own.
+    levels = [{"height_msl_m": float(hh), "pressure_pa": float(p),
+               "wind_speed_m_s": float(env.wind_speed(hh)),
+               "wind_from_deg": float(env.wind_direction(hh)),
+               "temperature_k": float(env.temperature(hh))}
               for hh, p in zip(env.height, env.levels)]
     return {"earth_radius_m": float(env.earth_radius), "top_msl_m": top, "rows": rows,
             "levels": levels}

@@ -115,6 +115,7 @@ fn the_air_and_the_wind_over_bella_lui_s_site_are_rocketpy_s_reading_of_the_same
     // The same radius for the heights (RocketPy's SIRGAS2000 ellipsoid is WGS 84's to 1e-9).
     assert!((earth_radius_m(LAT) / num(rp, "earth_radius_m") - 1.0).abs() < 1e-10);
     let mut worst = [0.0f64; 6];
+    let mut speed_direction = [0.0f64; 2];
     let rows = rp["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 40); // 0 to 3.9 km above the site, every 100 m
     for row in rows {
@@ -132,7 +133,28 @@ fn the_air_and_the_wind_over_bella_lui_s_site_are_rocketpy_s_reading_of_the_same
         for (w, d) in worst.iter_mut().zip(d) {
             *w = w.max(d);
         }
+        let (speed, turn) = speed_and_turn(row, [e, n]);
+        speed_direction[0] = speed_direction[0].max(speed);
+        speed_direction[1] = speed_direction[1].max(turn);
     }
+    // RocketPy reports the wind's speed and direction interpolated as themselves between
+    // levels (it flies the components, which agree above): at the levels the two agree to
+    // rounding; between them its speed is the levels' mean, not the mean wind's.
+    let mut at_levels = [0.0f64; 2];
+    for level in rp["levels"].as_array().unwrap() {
+        let h = num(level, "height_msl_m") - ELEVATION_M;
+        if h < 0.0 {
+            continue;
+        }
+        let (speed, turn) = speed_and_turn(level, wind.velocity_en(h));
+        at_levels = [at_levels[0].max(speed), at_levels[1].max(turn)];
+    }
+    eprintln!(
+        "wind speed and direction: at the levels within {:.1e} m/s and {:.1e} degrees; between \
+         them within {:.2} m/s and {:.2} degrees (RocketPy's interpolation of speed and angle)",
+        at_levels[0], at_levels[1], speed_direction[0], speed_direction[1]
+    );
+    assert!(at_levels[0] < 1e-9 && at_levels[1] < 1e-6);
     let [t, e, n, p, rho, a] = worst;
     eprintln!(
         "0 to 3.9 km over Bella Lui's site against RocketPy: temperature {t:.1e} (relative), \
@@ -162,6 +184,14 @@ fn the_air_and_the_wind_over_bella_lui_s_site_are_rocketpy_s_reading_of_the_same
         at_levels[0], at_levels[1]
     );
     assert!(at_levels[0] < 1e-12 && at_levels[1] < 1e-9);
+}
+
+/// How far a wind `en` (east, north) is from RocketPy's `row` in speed (m/s) and in the
+/// direction it blows from (degrees).
+fn speed_and_turn(row: &Value, [e, n]: [f64; 2]) -> (f64, f64) {
+    let from = (e.atan2(n).to_degrees() + 180.0).rem_euclid(360.0);
+    let turn = (from - num(row, "wind_from_deg") + 540.0).rem_euclid(360.0) - 180.0;
+    ((e.hypot(n) - num(row, "wind_speed_m_s")).abs(), turn.abs())
 }
 
 /// The worst differences between two readings' levels at `when`: height (m), temperature
