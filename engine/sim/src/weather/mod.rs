@@ -75,6 +75,10 @@ pub const MAX_WEATHER_FILE_BYTES: u64 = 2 << 30;
 pub const MAX_TIMES: usize = 100_000;
 /// Most members an ensemble may hold.
 pub const MAX_MEMBERS: usize = 1_000;
+/// Most (time, member, level) values of one quantity over the site (2 million: a month of
+/// hourly ERA5 on its 37 levels is 27,528; a 51-member ensemble's week of 3-hourly
+/// forecasts, 105,672): what is read is four times this, the grid cell's corners.
+pub const MAX_COLUMN_VALUES: usize = 2_000_000;
 /// How far below the file's lowest level a site may be, m.
 pub const BELOW_LOWEST_LEVEL_M: f64 = 500.0;
 /// The largest wind component taken for a measurement, m/s (the strongest jet streams blow

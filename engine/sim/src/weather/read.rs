@@ -8,7 +8,7 @@
 //! (`raw × scale_factor + add_offset`, with `_FillValue` and `missing_value` marking a value
 //! that is not there).
 
-use super::{SiteWeather, WeatherError, MAX_MEMBERS, MAX_TIMES};
+use super::{SiteWeather, WeatherError, MAX_COLUMN_VALUES, MAX_MEMBERS, MAX_TIMES};
 use crate::atmosphere::G0_M_S2;
 use netcdf_reader::{NcFile, NcSliceInfo, NcSliceInfoElem, NcVariable};
 
@@ -490,6 +490,15 @@ pub(super) fn site_weather(
     // Each quantity's values at the cell's four corners, bilinear at the site, for every
     // member, time and level.
     let (nm, nt, nl) = (members.len(), times_s.len(), levels_pa.len());
+    if nm * nt * nl > MAX_COLUMN_VALUES {
+        return Err(WeatherError::Value {
+            variable: t_var.name().to_string(),
+            rule: format!(
+                "{nt} times × {nm} members × {nl} levels over the site is more than \
+                 {MAX_COLUMN_VALUES} values a quantity: cut the file to the days of the launch"
+            ),
+        });
+    }
     let read = |v: &NcVariable, scale: f64, shift: f64| -> Result<Vec<Option<f64>>, WeatherError> {
         let data = file
             .read_variable_slice_as_f64(v.name(), &selection)
