@@ -414,6 +414,53 @@ impl Prepared {
         sim.with_options(options).map_err(|e| e.to_string())
     }
 
+    /// The single flight of variant `id` of the plan (every sampled input and its noise
+    /// seed, as its lane flies it: [`Batch::variant`]), keeping its samples: what `hpr-mc fly
+    /// --scenario FILE --variant ID` and the run's `trajectories.parquet` fly. Its
+    /// [`Prepared::flight_result`] is the variant's row, bit for bit. Errs for an id past the
+    /// plan or a variant the run records as `refused` (saying why).
+    pub fn variant_flight(&self, id: u64) -> Result<Simulation, String> {
+        let total = self.plan.total();
+        if id >= total {
+            return Err(format!(
+                "--variant {id}: the run has {total} variants (0 to {})",
+                total.saturating_sub(1)
+            ));
+        }
+        let v = self.plan.variant(id);
+        let fixed = self.fixed();
+        let setup = fixed
+            .setup(&v.values)
+            .map(|s| Setup {
+                sensor_seed: v.sensor_seed,
+                ..s
+            })
+            .map_err(|e| {
+                hpr_design::error::tidy_numbers(&format!("variant {id} is refused: sampled {e}"))
+            })?;
+        let sim = self
+            .batch
+            .variant(&fixed.columns(&[&setup]), 0)
+            .map_err(|e| format!("variant {id} is refused: {e}"))?;
+        let options = SimOptions {
+            keep_samples: true,
+            ..*sim.options()
+        };
+        sim.with_options(options).map_err(|e| e.to_string())
+    }
+
+    /// Variant `id`'s result from its single flight ([`Prepared::variant_flight`]), judged
+    /// by the code that judges its lane: the row `variants.parquet` holds for it.
+    pub fn flight_result(
+        &self,
+        id: u64,
+        sim: &Simulation,
+        flight: Result<hpr_sim::Flight, SimError>,
+    ) -> VariantResult {
+        let lane = self.batch.lane_result(sim, flight, id as usize);
+        self.result(id, lane)
+    }
+
     /// " at sweep point k (key = v, ...)" for `point`, or "" without a sweep.
     pub fn point_label(&self, point: usize) -> String {
         at_point(&self.scenario, &self.plan, point)

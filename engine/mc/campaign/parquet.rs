@@ -42,6 +42,10 @@ pub struct RunMeta {
     pub points: usize,
     pub shard: Shard,
     pub chunk_size: usize,
+    /// The site on the Earth (`environment.latitude_deg`, `longitude_deg`), where given:
+    /// the report's landing maps read it (`hpr_mc.latitude_deg`, `hpr_mc.longitude_deg`).
+    pub latitude_deg: Option<f64>,
+    pub longitude_deg: Option<f64>,
 }
 
 impl RunMeta {
@@ -56,6 +60,8 @@ impl RunMeta {
             points: s.points(),
             shard,
             chunk_size: s.chunk_size,
+            latitude_deg: s.environment.latitude_deg,
+            longitude_deg: s.environment.longitude_deg,
         }
     }
 
@@ -78,13 +84,29 @@ impl RunMeta {
             ),
             ("hpr_mc.chunk_size".into(), self.chunk_size.to_string()),
         ]
+        .into_iter()
+        .chain(
+            [
+                ("hpr_mc.latitude_deg", self.latitude_deg),
+                ("hpr_mc.longitude_deg", self.longitude_deg),
+            ]
+            .into_iter()
+            .filter_map(|(k, v)| v.map(|v| (k.to_string(), v.to_string()))),
+        )
+        .collect()
     }
 
     /// Why a file's metadata shows another run (None if it is from this one). The version
     /// and the file's path may differ: a rerun may come from another build or directory.
     pub fn mismatch(&self, kv: &HashMap<String, String>) -> Option<String> {
         for (k, v) in self.pairs() {
-            if k == "hpr_mc.version" || k == "hpr_mc.scenario_file" || k == "hpr_mc.scenario" {
+            // The site follows from the scenario's text, whose fingerprint is compared.
+            if k == "hpr_mc.version"
+                || k == "hpr_mc.scenario_file"
+                || k == "hpr_mc.scenario"
+                || k == "hpr_mc.latitude_deg"
+                || k == "hpr_mc.longitude_deg"
+            {
                 continue;
             }
             match kv.get(&k) {

@@ -526,8 +526,10 @@ impl Batch {
         }
     }
 
-    /// A lane's result from its simulation and its flight.
-    fn result_of(
+    /// A lane's result from its simulation and its flight: what a lane of `sim` gives
+    /// for `flight` (public so that a variant flown again alone, with its samples, is judged
+    /// by the same code as its lane).
+    pub fn lane_result(
         &self,
         sim: &Simulation,
         flight: Result<Flight, SimError>,
@@ -642,9 +644,9 @@ impl Batch {
                         retrying: false,
                     }),
                     Ok(Ok(Progress::Done(flight))) => {
-                        results[row] = Some(self.result_of(sim, Ok(flight), variant))
+                        results[row] = Some(self.lane_result(sim, Ok(flight), variant))
                     }
-                    Ok(Err(e)) => results[row] = Some(self.result_of(sim, Err(e), variant)),
+                    Ok(Err(e)) => results[row] = Some(self.lane_result(sim, Err(e), variant)),
                     Err(p) => results[row] = Some(self.panicked(variant, &p)),
                 }
             }
@@ -690,17 +692,17 @@ impl Batch {
                                 continue;
                             }
                             Ok(Ok(AfterFree::Done(flight))) => {
-                                self.result_of(sim, Ok(flight), variant)
+                                self.lane_result(sim, Ok(flight), variant)
                             }
-                            Ok(Err(e)) => self.result_of(sim, Err(e), variant),
+                            Ok(Err(e)) => self.lane_result(sim, Err(e), variant),
                             Err(p) => self.panicked(variant, &p),
                         }
                     }
                     (LaneEnd::Landed, Flying::Descent(d)) => match guarded(move || d.finish()) {
-                        Ok(flight) => self.result_of(sim, Ok(flight), variant),
+                        Ok(flight) => self.lane_result(sim, Ok(flight), variant),
                         Err(p) => self.panicked(variant, &p),
                     },
-                    (LaneEnd::Error(e), _) => self.result_of(sim, Err(e), variant),
+                    (LaneEnd::Error(e), _) => self.lane_result(sim, Err(e), variant),
                     (LaneEnd::Panic(p), _) => self.panicked(variant, &p),
                     _ => self.panicked(variant, "lost its flight"),
                 };
