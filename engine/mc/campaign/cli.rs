@@ -38,6 +38,12 @@ pub struct RunArgs {
     /// Keep the complete chunks of an interrupted run and fly only the missing ones.
     #[arg(long)]
     pub resume: bool,
+    /// Write no report (report.html and the landing maps) at the end.
+    #[arg(long)]
+    pub no_report: bool,
+    /// Print every metric's statistics per sweep point after the summary table.
+    #[arg(long)]
+    pub verbose: bool,
 }
 
 /// Exit codes, as `--help` shows them.
@@ -64,6 +70,7 @@ impl RunArgs {
             shard: self.shard,
             resume: self.resume,
             max_chunks: None,
+            no_report: self.no_report,
         }
     }
 }

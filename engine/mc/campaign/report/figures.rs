@@ -367,7 +367,7 @@ pub fn landing_map(
         ch.circle((0.0, 0.0), rr, "#009E73", 2.0, false, Some(("#009E73", 0.06)), "recovery");
         ch.key(&format!("recovery area: {} m about the rail", short(rr)), "#009E73", Key::Line);
     }
-    for (k, (name, rad)) in ["R50", "R90", "R99"].iter().zip(r).enumerate() {
+    for (k, (name, &rad)) in ["R50", "R90", "R99"].iter().zip(&r).enumerate() {
         ch.circle(mean, rad, "#555555", 1.2, true, None, &format!("radius {}", name.to_lowercase()));
         let a = std::f64::consts::FRAC_PI_4 * (1.0 + k as f64 * 0.35);
         ch.text(
