@@ -480,6 +480,12 @@ impl Chart {
 
     /// A vertical line at x across the plot area, labelled at its top.
     pub fn vline(&mut self, x: f64, color: &str, dashed: bool, label: &str) {
+        self.vline_row(x, color, dashed, label, 0);
+    }
+
+    /// [`Chart::vline`] with its label on text row `row` from the top (labels of lines close
+    /// together on rows of their own).
+    pub fn vline_row(&mut self, x: f64, color: &str, dashed: bool, label: &str, row: usize) {
         if !x.is_finite() {
             return;
         }
@@ -508,7 +514,7 @@ impl Chart {
                     self.over,
                     "<text x=\"{}\" y=\"{}\" text-anchor=\"{}\" font-size=\"11\" fill=\"{color}\" paint-order=\"stroke\" stroke=\"#ffffff\" stroke-width=\"3\">{}</text>",
                     c(anchor.1),
-                    c(self.y.px1 + 12.0),
+                    c(self.y.px1 + 12.0 + 13.0 * row as f64),
                     anchor.0,
                     esc(label)
                 );

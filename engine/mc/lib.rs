@@ -5,4 +5,5 @@
 pub mod campaign;
 pub mod chart;
 pub mod cli;
+pub mod flight_plot;
 pub mod report;

@@ -123,7 +123,7 @@ impl Context {
         let mut fly_overrides = String::new();
         let file_seed = doc.get("seed").and_then(|v| v.as_integer()).map(|s| s.to_string());
         if file_seed.as_deref() != Some(run.meta("hpr_mc.seed")) {
-            let _ = write!(fly_overrides, " --seed {}", run.meta("hpr_mc.seed"));
+            let _ = write!(fly_overrides, " --run-seed {}", run.meta("hpr_mc.seed"));
         }
         let file_vpp = doc
             .get("variants_per_point")
