@@ -56,11 +56,12 @@ pub fn fmt_tick(v: f64, step: f64) -> String {
         0
     };
     // 2.5-type steps need one decimal more than their magnitude says.
-    let decimals = if step > 0.0 && ((step / 10f64.powi(-(decimals as i32))).fract() - 0.5).abs() < 1e-6 {
-        decimals + 1
-    } else {
-        decimals
-    };
+    let decimals =
+        if step > 0.0 && ((step / 10f64.powi(-(decimals as i32))).fract() - 0.5).abs() < 1e-6 {
+            decimals + 1
+        } else {
+            decimals
+        };
     let s = format!("{v:.decimals$}");
     // Thousands separated by a thin space for large round numbers.
     if decimals == 0 && a >= 10_000.0 {
@@ -174,6 +175,9 @@ pub struct Chart {
     /// Tick label text for x tick values (categories), in place of numbers.
     x_names: Option<Vec<(f64, String)>>,
     y_names: Option<Vec<(f64, String)>>,
+    /// Pixels where something is drawn in the plot area: the legend goes in the corner that
+    /// hides the fewest of them.
+    ink: Vec<(f64, f64)>,
 }
 
 /// Margins around the plot area, px: left, right, top, bottom.
@@ -236,6 +240,7 @@ impl Chart {
             y_ticks: true,
             x_names: None,
             y_names: None,
+            ink: vec![],
         }
     }
 
@@ -298,7 +303,8 @@ impl Chart {
     }
 
     pub fn key(&mut self, label: &str, color: &str, key: Key) {
-        self.legend.push((label.to_string(), color.to_string(), key));
+        self.legend
+            .push((label.to_string(), color.to_string(), key));
     }
 
     /// A line through the points; a non-finite point breaks it.
@@ -312,6 +318,7 @@ impl Chart {
             }
             let (px, py) = self.px(x, y);
             let _ = write!(d, "{}{} {}", if pen { "L" } else { "M" }, c(px), c(py));
+            self.ink.push((px, py));
             pen = true;
         }
         if d.is_empty() {
@@ -351,6 +358,12 @@ impl Chart {
         };
         let mut body = std::mem::take(&mut self.body);
         for i in 0..xs.len() {
+            for v in [lo[i], hi[i], 0.5 * (lo[i] + hi[i])] {
+                if xs[i].is_finite() && v.is_finite() {
+                    let p = self.px(xs[i], v);
+                    self.ink.push(p);
+                }
+            }
             if xs[i].is_finite() && lo[i].is_finite() && hi[i].is_finite() {
                 run.push(i);
             } else {
@@ -365,6 +378,12 @@ impl Chart {
     pub fn rect(&mut self, x0: f64, x1: f64, y0: f64, y1: f64, fill: &str, opacity: f64) {
         let (a, b) = self.px(x0.min(x1), y0.max(y1));
         let (e, f) = self.px(x0.max(x1), y0.min(y1));
+        for i in 0..=2 {
+            for j in 0..=2 {
+                self.ink
+                    .push((a + (e - a) * i as f64 / 2.0, b + (f - b) * j as f64 / 2.0));
+            }
+        }
         let _ = writeln!(
             self.body,
             "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{fill}\" fill-opacity=\"{opacity}\"/>",
@@ -379,6 +398,11 @@ impl Chart {
     pub fn bar(&mut self, x0: f64, x1: f64, height: f64, fill: &str, count: u64) {
         let (a, b) = self.px(x0, height);
         let (e, f) = self.px(x1, 0.0f64.max(self.y.lo));
+        let mut y = b;
+        while y < f {
+            self.ink.push((0.5 * (a + e), y));
+            y += 8.0;
+        }
         let _ = writeln!(
             self.body,
             "<rect class=\"bar\" data-count=\"{count}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{fill}\" stroke=\"#ffffff\" stroke-width=\"0.5\"/>",
@@ -401,6 +425,7 @@ impl Chart {
         for &(x, y) in pts {
             if x.is_finite() && y.is_finite() {
                 let (px, py) = self.px(x, y);
+                self.ink.push((px, py));
                 let _ = write!(
                     self.body,
                     "<circle cx=\"{}\" cy=\"{}\" r=\"{r}\"/>",
@@ -552,8 +577,27 @@ impl Chart {
     }
 
     /// Text at a data point (clipped with the plot), `anchor` start, middle or end.
-    pub fn text(&mut self, (x, y): (f64, f64), dx: f64, dy: f64, s: &str, anchor: &str, color: &str) {
+    pub fn text(
+        &mut self,
+        (x, y): (f64, f64),
+        dx: f64,
+        dy: f64,
+        s: &str,
+        anchor: &str,
+        color: &str,
+    ) {
         let (px, py) = self.px(x, y);
+        let width = 6.0 * s.chars().count() as f64;
+        let start = match anchor {
+            "end" => px + dx - width,
+            "middle" => px + dx - width / 2.0,
+            _ => px + dx,
+        };
+        let mut k = 0.0;
+        while k <= width {
+            self.ink.push((start + k, py + dy - 4.0));
+            k += 6.0;
+        }
         let _ = writeln!(
             self.over,
             "<text x=\"{}\" y=\"{}\" text-anchor=\"{anchor}\" font-size=\"11\" fill=\"{color}\" paint-order=\"stroke\" stroke=\"#ffffff\" stroke-width=\"3\">{}</text>",
@@ -602,7 +646,7 @@ impl Chart {
                 Some(n) => n.clone(),
                 None if self.x.log => log_ticks(self.x.lo, self.x.hi),
                 None => {
-                    let (t, step) = ticks(self.x.lo, self.x.hi, ((r - l) / 90.0).max(2.0) as usize);
+                    let (t, step) = ticks(self.x.lo, self.x.hi, ((r - l) / 70.0).max(2.0) as usize);
                     t.into_iter().map(|v| (v, fmt_tick(v, step))).collect()
                 }
             };
@@ -626,7 +670,8 @@ impl Chart {
             let yt: Vec<(f64, String)> = match &self.y_names {
                 Some(n) => n.clone(),
                 None => {
-                    let (tk, step) = ticks(self.y.lo, self.y.hi, ((b - t) / 45.0).max(2.0) as usize);
+                    let (tk, step) =
+                        ticks(self.y.lo, self.y.hi, ((b - t) / 40.0).max(2.0) as usize);
                     tk.into_iter().map(|v| (v, fmt_tick(v, step))).collect()
                 }
             };
@@ -698,14 +743,32 @@ impl Chart {
                 .unwrap_or(0) as f64
                 * 6.3
                 + 34.0;
-            let (x0, y0) = (r - width - 6.0, t + 6.0);
+            let height = 8.0 + 16.0 * self.legend.len() as f64;
+            // The corner whose box hides the least of what is drawn (top right first).
+            let corners = [
+                (r - width - 6.0, t + 6.0),
+                (l + 6.0, t + 6.0),
+                (r - width - 6.0, b - height - 6.0),
+                (l + 6.0, b - height - 6.0),
+            ];
+            let hidden = |(x0, y0): (f64, f64)| {
+                self.ink
+                    .iter()
+                    .filter(|(x, y)| *x >= x0 && *x <= x0 + width && *y >= y0 && *y <= y0 + height)
+                    .count()
+            };
+            let (x0, y0) = corners
+                .iter()
+                .copied()
+                .min_by_key(|c| hidden(*c))
+                .unwrap_or(corners[0]);
             let _ = writeln!(
                 s,
                 "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#ffffff\" fill-opacity=\"0.85\" stroke=\"#cccccc\"/>",
                 c(x0),
                 c(y0),
                 c(width),
-                c(8.0 + 16.0 * self.legend.len() as f64)
+                c(height)
             );
             for (k, (label, color, key)) in self.legend.iter().enumerate() {
                 let y = y0 + 14.0 + 16.0 * k as f64;
@@ -734,7 +797,11 @@ impl Chart {
 fn log_ticks(lo: f64, hi: f64) -> Vec<(f64, String)> {
     let mut out = vec![];
     let (k0, k1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
-    let mults: &[f64] = if k1 - k0 > 3 { &[1.0] } else { &[1.0, 2.0, 5.0] };
+    let mults: &[f64] = if k1 - k0 > 3 {
+        &[1.0]
+    } else {
+        &[1.0, 2.0, 5.0]
+    };
     for k in k0..=k1 {
         for m in mults {
             let v = m * 10f64.powi(k);

@@ -591,8 +591,14 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
             || format!("{} on {}", sim.design().name, sim.motor().designation),
             |(_, label)| label.clone(),
         );
-        crate::flight_plot::write(path, &title, &report::flight_text(&sim, &flight), &sim, &flight)
-            .with_context(|| format!("writing {}", path.display()))?;
+        crate::flight_plot::write(
+            path,
+            &title,
+            &report::flight_text(&sim, &flight),
+            &sim,
+            &flight,
+        )
+        .with_context(|| format!("writing {}", path.display()))?;
     }
     if a.json {
         let mut json = report::flight_json(&sim, &flight);

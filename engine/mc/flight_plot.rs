@@ -45,11 +45,15 @@ fn events(sim: &Simulation, f: &Flight) -> Vec<(f64, String)> {
                 EventKind::Landing => "landing".to_string(),
                 EventKind::Shift(k) => format!(
                     "{} moves",
-                    sim.shifts().get(k).map_or("shift", |m| m.component.as_str())
+                    sim.shifts()
+                        .get(k)
+                        .map_or("shift", |m| m.component.as_str())
                 ),
                 EventKind::ParachuteDeploy(i) => format!(
                     "{} opens",
-                    sim.parachutes().get(i).map_or("canopy", |p| p.name.as_str())
+                    sim.parachutes()
+                        .get(i)
+                        .map_or("canopy", |p| p.name.as_str())
                 ),
                 _ => return None,
             };
@@ -169,7 +173,9 @@ pub fn charts(sim: &Simulation, f: &Flight) -> Vec<(String, String)> {
             &free,
             &[
                 ("static (CP at Mach 0)", PALETTE[0], |s| s.static_margin_cal),
-                ("flight (CP at the flight's Mach)", PALETTE[1], |s| s.flight_margin_cal),
+                ("flight (CP at the flight's Mach)", PALETTE[1], |s| {
+                    s.flight_margin_cal
+                }),
             ],
             (0.0, apogee.min(end)),
             &marks,
@@ -228,8 +234,16 @@ pub fn charts(sim: &Simulation, f: &Flight) -> Vec<(String, String)> {
         "Height against the horizontal distance from the rail's foot.",
     );
     // Ground track on a map.
-    let xs: Vec<f64> = samples.iter().map(|s| s.position_m[0]).chain([0.0]).collect();
-    let ys: Vec<f64> = samples.iter().map(|s| s.position_m[1]).chain([0.0]).collect();
+    let xs: Vec<f64> = samples
+        .iter()
+        .map(|s| s.position_m[0])
+        .chain([0.0])
+        .collect();
+    let ys: Vec<f64> = samples
+        .iter()
+        .map(|s| s.position_m[1])
+        .chain([0.0])
+        .collect();
     let (ex0, ex1) = extent(&xs, 0.08).unwrap_or((-1.0, 1.0));
     let (ey0, ey1) = extent(&ys, 0.08).unwrap_or((-1.0, 1.0));
     let mut track = Chart::map("track", W, 420.0, (ex0, ex1), (ey0, ey1))
@@ -243,9 +257,20 @@ pub fn charts(sim: &Simulation, f: &Flight) -> Vec<(String, String)> {
     track.dots(&[(0.0, 0.0)], 4.0, "#000000", 1.0);
     track.text((0.0, 0.0), 6.0, -6.0, "launch", "start", "#000000");
     if let Some(a) = f.event(EventKind::Apogee) {
-        if let Some(s) = samples.iter().min_by(|p, q| (p.t_s - a.time_s).abs().total_cmp(&(q.t_s - a.time_s).abs())) {
+        if let Some(s) = samples.iter().min_by(|p, q| {
+            (p.t_s - a.time_s)
+                .abs()
+                .total_cmp(&(q.t_s - a.time_s).abs())
+        }) {
             track.dots(&[(s.position_m[0], s.position_m[1])], 4.0, PALETTE[1], 1.0);
-            track.text((s.position_m[0], s.position_m[1]), 6.0, -6.0, "apogee", "start", PALETTE[1]);
+            track.text(
+                (s.position_m[0], s.position_m[1]),
+                6.0,
+                -6.0,
+                "apogee",
+                "start",
+                PALETTE[1],
+            );
         }
     }
     if let Some(l) = f.metrics.landing_position_m {

@@ -180,11 +180,19 @@ pub fn summary_text(r: &RunReport, verbose: bool) -> String {
                 w.seconds
             );
             if let (Some(k), Some(g)) = (&w.kml, &w.geojson) {
-                let _ = writeln!(s, "landing maps: {} (Google Earth), {} (QGIS, web maps)", k.display(), g.display());
+                let _ = writeln!(
+                    s,
+                    "landing maps: {} (Google Earth), {} (QGIS, web maps)",
+                    k.display(),
+                    g.display()
+                );
             }
         }
         None => {
-            let _ = writeln!(s, "no report (--no-report); hpr-mc report {dir} draws it from the files");
+            let _ = writeln!(
+                s,
+                "no report (--no-report); hpr-mc report {dir} draws it from the files"
+            );
         }
     }
     let _ = writeln!(
@@ -229,10 +237,25 @@ pub fn sweep_table(r: &RunReport) -> String {
             .requirements
             .iter()
             .enumerate()
-            .map(|(k, (m, req))| format!("{} {} {}", letters(k), req.metric, req.bounds_text(p.metrics[*m].unit)))
+            .map(|(k, (m, req))| {
+                format!(
+                    "{} {} {}",
+                    letters(k),
+                    req.metric,
+                    req.bounds_text(p.metrics[*m].unit)
+                )
+            })
             .collect();
-        let _ = writeln!(s, "share of each point's flights meeting: {}", list.join(" · "));
+        let _ = writeln!(
+            s,
+            "share of each point's flights meeting: {}",
+            list.join(" · ")
+        );
     }
+    let _ = writeln!(
+        s,
+        "key metrics: median (5 % – 95 %) of each point's landed flights"
+    );
     let keys = key_metrics(p);
     let swept: Vec<_> = p.scenario.swept().collect();
     let mut head: Vec<String> = vec!["point".into()];
@@ -241,14 +264,11 @@ pub fn sweep_table(r: &RunReport) -> String {
         u => format!("{} ({u})", i.column),
     }));
     head.extend((0..p.requirements.len()).map(letters));
-    head.extend(keys.iter().map(|&m| {
-        let c = &p.metrics[m];
-        format!("{} p50 (p5–p95)", c.name)
-    }));
+    head.extend(keys.iter().map(|&m| p.metrics[m].name.clone()));
     let mut rows: Vec<Vec<String>> = vec![];
     for st in &r.stats {
         let mut row = vec![st.point.to_string()];
-        row.extend(p.plan.sweep_values(st.point).iter().map(|v| num(*v)));
+        row.extend(p.plan.sweep_values(st.point).iter().map(|v| short(*v)));
         row.extend(
             st.requirements
                 .iter()

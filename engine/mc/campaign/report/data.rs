@@ -238,11 +238,17 @@ impl Run {
             .filter_map(|kv| kv.value.map(|v| (kv.key, v)))
             .collect();
         if !meta.contains_key("hpr_mc.scenario") {
-            bail!("{}: not a file of an hpr-mc run (no hpr_mc.scenario metadata)", path.display());
+            bail!(
+                "{}: not a file of an hpr-mc run (no hpr_mc.scenario metadata)",
+                path.display()
+            );
         }
         let schema = builder.schema().clone();
         let unit = |f: &arrow::datatypes::Field| {
-            f.metadata().get("unit").cloned().unwrap_or_else(|| "1".into())
+            f.metadata()
+                .get("unit")
+                .cloned()
+                .unwrap_or_else(|| "1".into())
         };
         let names: Vec<&str> = schema.fields().iter().map(|f| f.name().as_str()).collect();
         let status_at = names
@@ -267,10 +273,7 @@ impl Run {
                         unit: unit(f),
                     });
                 }
-            } else if n != "status"
-                && n != "error"
-                && n != "warnings"
-                && !n.starts_with("warning_")
+            } else if n != "status" && n != "error" && n != "warnings" && !n.starts_with("warning_")
             {
                 metrics.push(Col {
                     name: n.clone(),
@@ -490,7 +493,9 @@ impl Run {
 
     /// The rows of sweep point `pt`.
     pub fn rows_of(&self, pt: usize) -> Vec<usize> {
-        (0..self.id.len()).filter(|&r| self.point[r] == pt).collect()
+        (0..self.id.len())
+            .filter(|&r| self.point[r] == pt)
+            .collect()
     }
 
     /// The finite values of metric `m` among the landed rows of point `pt`, in row order.

@@ -4,8 +4,8 @@
 
 use super::data::{EllipseRow, Run};
 use super::numbers::{at_time, bands, histogram, radii};
-use crate::chart::{esc, extent, fmt_tick, ticks, Chart, Key, PALETTE};
 use crate::campaign::stats::quantile;
+use crate::chart::{esc, extent, fmt_tick, ticks, Chart, Key, PALETTE};
 
 pub const W: f64 = 560.0;
 pub const H: f64 = 330.0;
@@ -117,10 +117,17 @@ pub fn rows_chart(id: &str, title: &str, x_label: &str, rows: &[Row]) -> Option<
         .iter()
         .flat_map(|(_, v)| [v[0], v[v.len() - 1]])
         .collect();
-    xs.extend(rows.iter().filter_map(|(r, _)| r.bound.as_ref().map(|b| b.0)));
+    xs.extend(
+        rows.iter()
+            .filter_map(|(r, _)| r.bound.as_ref().map(|b| b.0)),
+    );
     let (x0, x1) = extent(&xs, 0.04)?;
     let n = rows.len();
-    let longest = rows.iter().map(|(r, _)| r.label.chars().count()).max().unwrap_or(8);
+    let longest = rows
+        .iter()
+        .map(|(r, _)| r.label.chars().count())
+        .max()
+        .unwrap_or(8);
     let left = (longest as f64 * 6.4 + 16.0).clamp(70.0, 260.0);
     let h = (74.0 + 30.0 * n as f64).max(140.0);
     let names = rows
@@ -137,7 +144,12 @@ pub fn rows_chart(id: &str, title: &str, x_label: &str, rows: &[Row]) -> Option<
         let q = |p: f64| quantile(v, p);
         ch.line(&[(q(0.05), y), (q(0.95), y)], "#444444", 1.5, false);
         ch.rect(q(0.25), q(0.75), y - 0.22, y + 0.22, PALETTE[0], 0.55);
-        ch.line(&[(q(0.5), y - 0.3), (q(0.5), y + 0.3)], "#000000", 2.5, false);
+        ch.line(
+            &[(q(0.5), y - 0.3), (q(0.5), y + 0.3)],
+            "#000000",
+            2.5,
+            false,
+        );
         ch.dots(&[(v[0], y), (v[v.len() - 1], y)], 2.5, "#444444", 0.9);
         let (tx, anchor) = if (q(0.95) - x0) / (x1 - x0) > 0.75 {
             (q(0.05), "end")
@@ -145,10 +157,24 @@ pub fn rows_chart(id: &str, title: &str, x_label: &str, rows: &[Row]) -> Option<
             (q(0.95), "start")
         };
         let dx = if anchor == "end" { -6.0 } else { 6.0 };
-        ch.text((tx, y), dx, 4.0, &format!("median {}", short(q(0.5))), anchor, "#222222");
+        ch.text(
+            (tx, y),
+            dx,
+            4.0,
+            &format!("median {}", short(q(0.5))),
+            anchor,
+            "#222222",
+        );
         if let Some((b, label)) = &r.bound {
             ch.line(&[(*b, y - 0.42), (*b, y + 0.42)], "#C00000", 3.0, false);
-            ch.text((*b, y + 0.42), 0.0, -2.0, label, "middle", "#C00000");
+            ch.text(
+                (*b, y - 0.42),
+                0.0,
+                11.0,
+                &format!("required {label}"),
+                "middle",
+                "#C00000",
+            );
         }
     }
     Some(ch.svg())
@@ -167,7 +193,11 @@ pub fn short(x: f64) -> String {
         return format!("{x:.2e}");
     }
     let digits = a.log10().floor() as i32 + 1;
-    format!("{x:.*}", (4 - digits).clamp(0, 5) as usize).replacen('-', "−", 1)
+    let mut t = format!("{x:.*}", (4 - digits).clamp(0, 5) as usize);
+    if t.contains('.') {
+        t = t.trim_end_matches('0').trim_end_matches('.').to_string();
+    }
+    t.replacen('-', "−", 1)
 }
 
 /// A quantity band against time: `(label, colour, lo, mid, hi)` over the common times `t`.
@@ -352,7 +382,14 @@ pub fn landing_map(
                 if c > 0 {
                     let (gx, gy) = ((cx0 + i as f64) * cell, (cy0 + j as f64) * cell);
                     let o = 0.12 + 0.88 * (f64::from(c) / top).sqrt();
-                    ch.rect(gx, gx + cell, gy, gy + cell, PALETTE[0], (o * 100.0).round() / 100.0);
+                    ch.rect(
+                        gx,
+                        gx + cell,
+                        gy,
+                        gy + cell,
+                        PALETTE[0],
+                        (o * 100.0).round() / 100.0,
+                    );
                 }
             }
         }
@@ -364,11 +401,31 @@ pub fn landing_map(
         );
     }
     if let Some(rr) = marks.recovery_m {
-        ch.circle((0.0, 0.0), rr, "#009E73", 2.0, false, Some(("#009E73", 0.06)), "recovery");
-        ch.key(&format!("recovery area: {} m about the rail", short(rr)), "#009E73", Key::Line);
+        ch.circle(
+            (0.0, 0.0),
+            rr,
+            "#009E73",
+            2.0,
+            false,
+            Some(("#009E73", 0.06)),
+            "recovery",
+        );
+        ch.key(
+            &format!("recovery area: {} m about the rail", short(rr)),
+            "#009E73",
+            Key::Line,
+        );
     }
     for (k, (name, &rad)) in ["R50", "R90", "R99"].iter().zip(&r).enumerate() {
-        ch.circle(mean, rad, "#555555", 1.2, true, None, &format!("radius {}", name.to_lowercase()));
+        ch.circle(
+            mean,
+            rad,
+            "#555555",
+            1.2,
+            true,
+            None,
+            &format!("radius {}", name.to_lowercase()),
+        );
         let a = std::f64::consts::FRAC_PI_4 * (1.0 + k as f64 * 0.35);
         ch.text(
             (mean.0 + rad * a.cos(), mean.1 + rad * a.sin()),
@@ -455,7 +512,13 @@ pub fn tornado(id: &str, run: &Run, pt: usize, metric: &str, unit: &str) -> Opti
         .sensitivity
         .iter()
         .filter(|s| s.point == pt && s.metric == metric)
-        .filter_map(|s| Some((s.input.as_str(), s.standardized? * sd, s.share.unwrap_or(0.0))))
+        .filter_map(|s| {
+            Some((
+                s.input.as_str(),
+                s.standardized? * sd,
+                s.share.unwrap_or(0.0),
+            ))
+        })
         .collect();
     if rows.is_empty() {
         return None;
@@ -467,7 +530,11 @@ pub fn tornado(id: &str, run: &Run, pt: usize, metric: &str, unit: &str) -> Opti
         .map_or(f64::NAN, |s| s.r2);
     rows.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
     rows.truncate(8);
-    let reach = rows.iter().map(|r| r.1.abs()).fold(0.0f64, f64::max).max(1e-12);
+    let reach = rows
+        .iter()
+        .map(|r| r.1.abs())
+        .fold(0.0f64, f64::max)
+        .max(1e-12);
     let n = rows.len();
     let longest = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(8);
     let left = (longest as f64 * 6.4 + 16.0).clamp(70.0, 260.0);
@@ -476,29 +543,36 @@ pub fn tornado(id: &str, run: &Run, pt: usize, metric: &str, unit: &str) -> Opti
         .enumerate()
         .map(|(k, r)| ((n - 1 - k) as f64, r.0.to_string()))
         .collect();
+    // The bars on the left part, their figures in a column on the right.
     let mut ch = Chart::with_margins(
         id,
         W,
         (84.0 + 28.0 * n as f64).max(150.0),
-        (-1.45 * reach, 1.45 * reach),
+        (-1.08 * reach, 2.35 * reach),
         (-0.7, n as f64 - 0.3),
         left,
     )
     .title(&format!("What moves {metric} (linear fit R² {:.2})", r2))
     .labels(
-        &format!("change of {metric} for one standard deviation of the input{}", unit_text(unit)),
+        &format!("change for +1σ and −1σ of the input{}", unit_text(unit)),
         "",
     )
-    .y_names(names);
+    .y_names(names)
+    .x_names({
+        let (t, step) = ticks(-reach, reach, 4);
+        t.into_iter().map(|v| (v, fmt_tick(v, step))).collect()
+    });
     for (k, (_, effect, share)) in rows.iter().enumerate() {
         let y = (n - 1 - k) as f64;
         ch.rect(0.0, *effect, y - 0.32, y + 0.32, PALETTE[0], 0.85);
         ch.rect(0.0, -*effect, y - 0.32, y + 0.32, PALETTE[1], 0.85);
+        // Pratt's share can come out a hair below 0 for an input that does nothing.
+        let share = (100.0 * share).max(0.0);
         ch.text(
-            (effect.abs(), y),
-            5.0,
+            (1.14 * reach, y),
+            0.0,
             4.0,
-            &format!("±{} · {:.0} % of variance", short(effect.abs()), 100.0 * share),
+            &format!("±{} · {share:.0} % of variance", short(effect.abs())),
             "start",
             "#222222",
         );
@@ -547,7 +621,11 @@ pub fn convergence(id: &str, title: &str, y_label: &str, values: &[f64]) -> Opti
         .log_x()
         .title(title)
         .labels("flights counted (the first n, in variant order)", y_label);
-    for (series, color, label) in [(&p95, PALETTE[1], "95 %"), (&mean, PALETTE[0], "mean"), (&p5, PALETTE[2], "5 %")] {
+    for (series, color, label) in [
+        (&p95, PALETTE[1], "95 %"),
+        (&mean, PALETTE[0], "mean"),
+        (&p5, PALETTE[2], "5 %"),
+    ] {
         let last = series[series.len() - 1];
         ch.hline(last, color, true, "");
         let pts: Vec<(f64, f64)> = x.iter().copied().zip(series.iter().copied()).collect();

@@ -72,7 +72,10 @@ impl Site {
     /// The latitude and longitude (degrees) of a point `east`, `north` m from the rail's
     /// foot in the launch frame's ground plane.
     pub fn to_geodetic(&self, east: f64, north: f64) -> (f64, f64) {
-        let (phi, lam) = (self.latitude_deg.to_radians(), self.longitude_deg.to_radians());
+        let (phi, lam) = (
+            self.latitude_deg.to_radians(),
+            self.longitude_deg.to_radians(),
+        );
         let o = ecef(self.latitude_deg, self.longitude_deg, self.height_m);
         let (sp, cp, sl, cl) = (phi.sin(), phi.cos(), lam.sin(), lam.cos());
         let p = [
@@ -88,7 +91,10 @@ impl Site {
     /// Earth's normal there meets the launch frame's ground plane (the exact inverse of
     /// [`Site::to_geodetic`]).
     pub fn to_launch_frame(&self, lat: f64, lon: f64) -> (f64, f64) {
-        let (phi, lam) = (self.latitude_deg.to_radians(), self.longitude_deg.to_radians());
+        let (phi, lam) = (
+            self.latitude_deg.to_radians(),
+            self.longitude_deg.to_radians(),
+        );
         let o = ecef(self.latitude_deg, self.longitude_deg, self.height_m);
         let (sp, cp, sl, cl) = (phi.sin(), phi.cos(), lam.sin(), lam.cos());
         let (east, north, up) = (
@@ -102,7 +108,11 @@ impl Site {
         let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let d0 = [p0[0] - o[0], p0[1] - o[1], p0[2] - o[2]];
         let s = -dot(d0, up) / dot(normal, up);
-        let d = [d0[0] + s * normal[0], d0[1] + s * normal[1], d0[2] + s * normal[2]];
+        let d = [
+            d0[0] + s * normal[0],
+            d0[1] + s * normal[1],
+            d0[2] + s * normal[2],
+        ];
         (dot(d, east), dot(d, north))
     }
 }
@@ -153,7 +163,13 @@ pub fn shapes(run: &Run, labels: &[String]) -> Vec<PointShapes> {
         .map(|pt| {
             let landings: Vec<(u64, f64, f64)> = (0..run.id.len())
                 .filter(|&r| run.point[r] == pt && run.status[r] == super::data::Status::Landed)
-                .map(|r| (run.id[r], run.metric_values[mx][r], run.metric_values[my][r]))
+                .map(|r| {
+                    (
+                        run.id[r],
+                        run.metric_values[mx][r],
+                        run.metric_values[my][r],
+                    )
+                })
                 .filter(|(_, x, y)| x.is_finite() && y.is_finite())
                 .collect();
             let ellipses = run
@@ -322,7 +338,10 @@ pub fn kml(site: &Site, title: &str, points: &[PointShapes]) -> anyhow::Result<S
         }));
     }
     let doc = Kml::KmlDocument(kml::KmlDocument {
-        attrs: HashMap::from([("xmlns".to_string(), "http://www.opengis.net/kml/2.2".to_string())]),
+        attrs: HashMap::from([(
+            "xmlns".to_string(),
+            "http://www.opengis.net/kml/2.2".to_string(),
+        )]),
         elements: vec![Kml::Document {
             attrs: HashMap::new(),
             elements,
@@ -449,7 +468,10 @@ mod tests {
         for (e, n) in [(0.0, 0.0), (350.0, -1200.0), (-2500.0, 800.0)] {
             let (lat, lon) = site.to_geodetic(e, n);
             let (e2_, n2) = site.to_launch_frame(lat, lon);
-            assert!((e2_ - e).abs() < 1e-7 && (n2 - n).abs() < 1e-7, "{e2_} {n2}");
+            assert!(
+                (e2_ - e).abs() < 1e-7 && (n2 - n).abs() < 1e-7,
+                "{e2_} {n2}"
+            );
         }
     }
 }

@@ -61,13 +61,22 @@ pub fn write_files(outputs: &Outputs) -> Result<Written> {
         .and_then(|n| n.strip_suffix(".parquet"))
         .unwrap_or("")
         .to_string();
-    write(&outputs.dir, &suffix, &outputs.report, &outputs.kml, &outputs.geojson)
+    write(
+        &outputs.dir,
+        &suffix,
+        &outputs.report,
+        &outputs.kml,
+        &outputs.geojson,
+    )
 }
 
 /// `hpr-mc report RESULTS_DIR`: the report and maps of the (whole) run in `dir`, again.
 pub fn write_dir(dir: &Path) -> Result<Written> {
     if !dir.is_dir() {
-        anyhow::bail!("{}: no such directory (give a run's output directory)", dir.display());
+        anyhow::bail!(
+            "{}: no such directory (give a run's output directory)",
+            dir.display()
+        );
     }
     write(
         dir,

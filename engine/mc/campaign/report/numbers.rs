@@ -173,7 +173,9 @@ mod tests {
 
     #[test]
     fn every_value_falls_in_one_histogram_bin() {
-        let v: Vec<f64> = (0..1000).map(|i| (i as f64 * 0.37).sin() * 50.0 + 100.0).collect();
+        let v: Vec<f64> = (0..1000)
+            .map(|i| (i as f64 * 0.37).sin() * 50.0 + 100.0)
+            .collect();
         let bins = histogram(&v, 30);
         assert_eq!(bins.iter().map(|b| b.2).sum::<u64>(), 1000);
         assert!(bins[0].0 <= 50.0 && bins.last().unwrap().1 >= 150.0);

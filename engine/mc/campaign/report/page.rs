@@ -5,11 +5,11 @@
 //! convergence) and the flights to look at, each with the command that flies it again.
 
 use super::data::{Run, Status};
-use super::figures::{self, short, unit_text, MapMarks, Row};
 use super::figures::series_bands;
+use super::figures::{self, short, unit_text, MapMarks, Row};
 use super::numbers::{binomial_upper, utc};
-use crate::chart::{esc, PALETTE};
 use crate::campaign::stats::quantile;
+use crate::chart::{esc, PALETTE};
 use std::fmt::Write as _;
 
 /// What the page takes from the scenario's text (kept in the files' metadata) and the
@@ -121,7 +121,10 @@ impl Context {
             .map(|c| (find(&sweep, &c.name), find(&disp, &c.name)))
             .collect();
         let mut fly_overrides = String::new();
-        let file_seed = doc.get("seed").and_then(|v| v.as_integer()).map(|s| s.to_string());
+        let file_seed = doc
+            .get("seed")
+            .and_then(|v| v.as_integer())
+            .map(|s| s.to_string());
         if file_seed.as_deref() != Some(run.meta("hpr_mc.seed")) {
             let _ = write!(fly_overrides, " --run-seed {}", run.meta("hpr_mc.seed"));
         }
@@ -156,7 +159,9 @@ impl Context {
             run.metrics
                 .iter()
                 .enumerate()
-                .filter(|(_, m)| m.name.starts_with("shift_") && m.name.ends_with("_margin_after_cal"))
+                .filter(|(_, m)| {
+                    m.name.starts_with("shift_") && m.name.ends_with("_margin_after_cal")
+                })
                 .map(|(k, _)| k),
         );
         if key_metrics.len() == 1 {
@@ -165,7 +170,10 @@ impl Context {
         key_metrics.extend(run.metric("landing_distance_m"));
         Context {
             name,
-            description: doc.get("description").and_then(|v| v.as_str()).map(str::to_string),
+            description: doc
+                .get("description")
+                .and_then(|v| v.as_str())
+                .map(str::to_string),
             scenario_file,
             elevation_m,
             point_labels,
@@ -211,7 +219,7 @@ h1{font-size:24px;margin:4px 0 2px}h2{font-size:19px;margin:28px 0 8px;border-bo
 h3{font-size:15px;margin:18px 0 6px}
 p,li{font-size:14px;line-height:1.45}.sub{color:#555;margin-top:0}
 table{border-collapse:collapse;font-size:13px;margin:6px 0 10px}
-th,td{border:1px solid #ddd;padding:3px 7px;text-align:left;vertical-align:top}
+th,td{border:1px solid #ddd;padding:3px 6px;overflow-wrap:anywhere;text-align:left;vertical-align:top}
 th{background:#f0f4f8}td.n{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 .grid{display:flex;flex-wrap:wrap;gap:10px}
 figure{margin:0;border:1px solid #e4e4e4;padding:4px;background:#fff;max-width:100%}
@@ -294,7 +302,10 @@ fn header(s: &mut String, run: &Run, ctx: &Context) {
         run.meta.get("hpr_mc.latitude_deg"),
         run.meta.get("hpr_mc.longitude_deg"),
     ) {
-        (Some(a), Some(b)) => format!("{a}° N, {b}° E, {} m above sea level", short(ctx.elevation_m)),
+        (Some(a), Some(b)) => format!(
+            "{a}° N, {b}° E, {} m above sea level",
+            short(ctx.elevation_m)
+        ),
         (Some(a), None) => format!("{a}° N, {} m above sea level", short(ctx.elevation_m)),
         _ => format!("{} m above sea level", short(ctx.elevation_m)),
     };
@@ -323,10 +334,13 @@ fn header(s: &mut String, run: &Run, ctx: &Context) {
         let v = &run.input_values[j];
         let n = v.len() as f64;
         let mean = v.iter().sum::<f64>() / n;
-        let sd = (v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0).max(1.0)).sqrt();
+        let sd =
+            (v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0).max(1.0)).sqrt();
         let (lo, hi) = v
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
         let (sweep, disp) = &ctx.inputs[j];
         let _ = write!(
             s,
@@ -364,7 +378,14 @@ fn sweep_layout(run: &Run) -> Option<(usize, Vec<(String, Vec<usize>)>)> {
             .iter()
             .enumerate()
             .filter(|(k, _)| *k != axis)
-            .map(|(k, c)| format!("{} = {}{}", c.name, short(run.sweep_values[pt][k]), unit_suffix(&c.unit)))
+            .map(|(k, c)| {
+                format!(
+                    "{} = {}{}",
+                    c.name,
+                    short(run.sweep_values[pt][k]),
+                    unit_suffix(&c.unit)
+                )
+            })
             .collect();
         let label = label.join(", ");
         match series.iter_mut().find(|(l, _)| *l == label) {
@@ -394,14 +415,19 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
     for r in &reqs {
         let _ = write!(
             s,
-            "<th>{} {}</th>",
+            "<th>{}<br><span class=\"small\">{}, 95 % interval</span></th>",
             esc(&r.metric),
             esc(&bounds(r.min, r.max, &r.unit))
         );
     }
     for &m in &ctx.key_metrics {
         let c = &run.metrics[m];
-        let _ = write!(s, "<th>{}{}: median (5–95 %)</th>", esc(&c.name), esc(&unit_text(&c.unit)));
+        let _ = write!(
+            s,
+            "<th>{}{}<br><span class=\"small\">median, 5–95 %</span></th>",
+            esc(&c.name),
+            esc(&unit_text(&c.unit))
+        );
     }
     s.push_str("</tr>\n");
     for pt in 0..run.points() {
@@ -411,10 +437,16 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
         }
         for r0 in &reqs {
             if let Some(r) = run.requirement(pt, &r0.metric) {
-                let class = if r.fraction >= 0.99 { "ok" } else if r.fraction < 0.9 { "bad" } else { "" };
+                let class = if r.fraction >= 0.99 {
+                    "ok"
+                } else if r.fraction < 0.9 {
+                    "bad"
+                } else {
+                    ""
+                };
                 let _ = write!(
                     s,
-                    "<td class=\"n {class}\">{} <span class=\"small\">({}–{})</span></td>",
+                    "<td class=\"n {class}\">{}<br><span class=\"small\">{}–{}</span></td>",
                     pct(r.fraction),
                     pct(r.low),
                     pct(r.high)
@@ -427,7 +459,7 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
                 Some(sm) => {
                     let _ = write!(
                         s,
-                        "<td class=\"n\">{} <span class=\"small\">({} – {})</span></td>",
+                        "<td class=\"n\">{}<br><span class=\"small\">{} – {}</span></td>",
                         sm.p50.map_or("–".into(), short),
                         sm.p5.map_or("–".into(), short),
                         sm.p95.map_or("–".into(), short)
@@ -453,9 +485,15 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
                 (
                     label.clone(),
                     pts.iter().map(|&p| run.sweep_values[p][axis]).collect(),
-                    pts.iter().map(|&p| row(p).map_or(f64::NAN, |r| 100.0 * r.low)).collect(),
-                    pts.iter().map(|&p| row(p).map_or(f64::NAN, |r| 100.0 * r.fraction)).collect(),
-                    pts.iter().map(|&p| row(p).map_or(f64::NAN, |r| 100.0 * r.high)).collect(),
+                    pts.iter()
+                        .map(|&p| row(p).map_or(f64::NAN, |r| 100.0 * r.low))
+                        .collect(),
+                    pts.iter()
+                        .map(|&p| row(p).map_or(f64::NAN, |r| 100.0 * r.fraction))
+                        .collect(),
+                    pts.iter()
+                        .map(|&p| row(p).map_or(f64::NAN, |r| 100.0 * r.high))
+                        .collect(),
                 )
             })
             .collect();
@@ -521,7 +559,10 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
 
 fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
     let rows = run.rows_of(pt);
-    let landed = rows.iter().filter(|&&r| run.status[r] == Status::Landed).count();
+    let landed = rows
+        .iter()
+        .filter(|&&r| run.status[r] == Status::Landed)
+        .count();
     let title = if run.points() > 1 {
         format!("Point {pt}{}", ctx.point_labels[pt])
     } else {
@@ -546,7 +587,9 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
             }
         }
         let ellipses: Vec<_> = run.ellipses.iter().filter(|e| e.point == pt).collect();
-        let recovery = run.requirement(pt, "landing_distance_m").and_then(|r| r.max);
+        let recovery = run
+            .requirement(pt, "landing_distance_m")
+            .and_then(|r| r.max);
         let marks = MapMarks {
             ellipses,
             recovery_m: recovery,
@@ -609,27 +652,51 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
             },
         );
         s.push_str(&figure(
-            figures::histogram_chart(&id("apogee-hist"), "Apogee", "apogee above the ground (m)", &v, &lines),
+            figures::histogram_chart(
+                &id("apogee-hist"),
+                "Apogee",
+                "apogee above the ground (m)",
+                &v,
+                &lines,
+            ),
             &format!("How high the {} landed flights go.{p_text}", v.len()),
         ));
         s.push_str(&figure(
-            figures::ecdf_chart(&id("apogee-cdf"), "Apogee: empirical distribution", "apogee above the ground (m)", &v, &lines),
+            figures::ecdf_chart(
+                &id("apogee-cdf"),
+                "Apogee: empirical distribution",
+                "apogee above the ground (m)",
+                &v,
+                &lines,
+            ),
             "The share of flights whose apogee is at or below each height.",
         ));
     }
     // Rail exit speed.
     if let Some(m) = run.metric("rail_exit_speed_m_s") {
         let v = run.landed_values(m, pt);
-        let min = run.requirement(pt, "rail_exit_speed_m_s").and_then(|r| r.min);
+        let min = run
+            .requirement(pt, "rail_exit_speed_m_s")
+            .and_then(|r| r.min);
         let lines: Vec<(f64, String, &str)> = min
             .map(|c| vec![(c, format!("required ≥ {} m/s", short(c)), "#C00000")])
             .unwrap_or_default();
         let below = min.map_or(String::new(), |c| {
             let k = v.iter().filter(|&&x| x < c).count();
-            format!(" {k} of {} leave the rail slower than the {} m/s required.", v.len(), short(c))
+            format!(
+                " {k} of {} leave the rail slower than the {} m/s required.",
+                v.len(),
+                short(c)
+            )
         });
         s.push_str(&figure(
-            figures::histogram_chart(&id("rail"), "Speed off the rail", "rail exit speed (m/s)", &v, &lines),
+            figures::histogram_chart(
+                &id("rail"),
+                "Speed off the rail",
+                "rail exit speed (m/s)",
+                &v,
+                &lines,
+            ),
             &format!("The speed as the rocket leaves the rail.{below}"),
         ));
     }
@@ -656,7 +723,11 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
         }
     }
     for (k, c) in run.metrics.iter().enumerate() {
-        if let Some(shift) = c.name.strip_prefix("shift_").and_then(|n| n.strip_suffix("_margin_after_cal")) {
+        if let Some(shift) = c
+            .name
+            .strip_prefix("shift_")
+            .and_then(|n| n.strip_suffix("_margin_after_cal"))
+        {
             margin_rows.push(Row {
                 label: format!("static, after {shift} moves"),
                 values: run.landed_values(k, pt),
@@ -682,9 +753,19 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
     ));
     // Loads.
     for (name, title, label, scale) in [
-        ("max_dynamic_pressure_pa", "Largest dynamic pressure", "max q (kPa)", 1e-3),
+        (
+            "max_dynamic_pressure_pa",
+            "Largest dynamic pressure",
+            "max q (kPa)",
+            1e-3,
+        ),
         ("max_mach", "Largest Mach number", "max Mach", 1.0),
-        ("max_accel_m_s2", "Largest acceleration", "max acceleration (m/s²)", 1.0),
+        (
+            "max_accel_m_s2",
+            "Largest acceleration",
+            "max acceleration (m/s²)",
+            1.0,
+        ),
     ] {
         if let Some(m) = run.metric(name) {
             let v: Vec<f64> = run.landed_values(m, pt).iter().map(|x| x * scale).collect();
@@ -692,7 +773,11 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
                 let med = {
                     let mut w = v.clone();
                     w.sort_by(f64::total_cmp);
-                    if w.is_empty() { f64::NAN } else { quantile(&w, 0.5) }
+                    if w.is_empty() {
+                        f64::NAN
+                    } else {
+                        quantile(&w, 0.5)
+                    }
                 };
                 format!(" (median {} g)", short(med / 9.80665))
             } else {
@@ -710,7 +795,10 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
         .iter()
         .enumerate()
         .filter_map(|(k, c)| {
-            let name = c.name.strip_prefix("parachute_")?.strip_suffix("_deploy_time_s")?;
+            let name = c
+                .name
+                .strip_prefix("parachute_")?
+                .strip_suffix("_deploy_time_s")?;
             let speed = run.metric(&format!("parachute_{name}_deploy_speed_m_s"))?;
             Some((name.to_string(), k, speed))
         })
@@ -766,11 +854,23 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
         };
         let sm: Vec<(&[f64], &[f64], f64)> = series
             .iter()
-            .map(|x| (x.time_s.as_slice(), x.static_margin_cal.as_slice(), apogee_t(x)))
+            .map(|x| {
+                (
+                    x.time_s.as_slice(),
+                    x.static_margin_cal.as_slice(),
+                    apogee_t(x),
+                )
+            })
             .collect();
         let fm: Vec<(&[f64], &[f64], f64)> = series
             .iter()
-            .map(|x| (x.time_s.as_slice(), x.flight_margin_cal.as_slice(), apogee_t(x)))
+            .map(|x| {
+                (
+                    x.time_s.as_slice(),
+                    x.flight_margin_cal.as_slice(),
+                    apogee_t(x),
+                )
+            })
             .collect();
         let (t, lo, mid, hi) = series_bands(&sm, None);
         let (_, flo, fmid, fhi) = series_bands(&fm, None);
@@ -793,7 +893,13 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
         ));
         let hs: Vec<(&[f64], &[f64], f64)> = series
             .iter()
-            .map(|x| (x.time_s.as_slice(), x.altitude_m.as_slice(), *x.time_s.last().unwrap_or(&0.0)))
+            .map(|x| {
+                (
+                    x.time_s.as_slice(),
+                    x.altitude_m.as_slice(),
+                    *x.time_s.last().unwrap_or(&0.0),
+                )
+            })
             .collect();
         let (t, lo, mid, hi) = series_bands(&hs, Some(0.0));
         s.push_str(&figure(
@@ -904,7 +1010,9 @@ fn flights_to_look_at(s: &mut String, run: &Run, ctx: &Context) {
             };
             let worst = (0..run.id.len())
                 .filter(|&r| run.point[r] == pt && run.metric_values[m][r].is_finite())
-                .max_by(|&a, &b| score(run.metric_values[m][a]).total_cmp(&score(run.metric_values[m][b])));
+                .max_by(|&a, &b| {
+                    score(run.metric_values[m][a]).total_cmp(&score(run.metric_values[m][b]))
+                });
             if let Some(r) = worst {
                 let v = run.metric_values[m][r];
                 let met = r0.min.is_none_or(|a| v >= a) && r0.max.is_none_or(|b| v <= b);
