@@ -14,7 +14,9 @@
 //!
 //! A chart has a plot area (its scales map data to pixels, y up) inside margins that hold
 //! the ticks, the axis labels, the title and the legend; what is drawn in the plot area is
-//! clipped to it.
+//! clipped to it. The root element carries its scales (`data-x-scale`, `data-y-scale`: the
+//! data values at the plot area's two edges and their pixels), so what is drawn can be read
+//! back in data units.
 
 use std::fmt::Write as _;
 
@@ -623,8 +625,16 @@ impl Chart {
         let mut s = String::with_capacity(self.body.len() + self.over.len() + 4096);
         let _ = writeln!(
             s,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"chart\" viewBox=\"0 0 {w} {h}\" width=\"{w}\" height=\"{h}\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"12\" role=\"img\" aria-label=\"{}\">",
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"chart\" viewBox=\"0 0 {w} {h}\" width=\"{w}\" height=\"{h}\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"12\" role=\"img\" aria-label=\"{}\" data-x-scale=\"{} {} {} {}\" data-y-scale=\"{} {} {} {}\">",
             esc(&self.title),
+            self.x.lo,
+            self.x.hi,
+            self.x.px0,
+            self.x.px1,
+            self.y.lo,
+            self.y.hi,
+            self.y.px0,
+            self.y.px1,
             w = self.w,
             h = self.h
         );

@@ -9,6 +9,7 @@ mod canopy;
 mod fly;
 mod motor;
 mod outputs;
+mod report;
 mod site;
 mod wind;
 

@@ -489,7 +489,7 @@ pub fn landing_map(
     let (_, step) = ticks(0.0, (ch.x.hi - ch.x.lo) / 4.0, 1);
     let len_px = step * ch.x.per_unit();
     ch.overlay(&format!(
-        "<g stroke=\"#000000\" stroke-width=\"2\"><line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{2:.1}\" y2=\"{1:.1}\"/><line x1=\"{0:.1}\" y1=\"{3:.1}\" x2=\"{0:.1}\" y2=\"{1:.1}\"/><line x1=\"{2:.1}\" y1=\"{3:.1}\" x2=\"{2:.1}\" y2=\"{1:.1}\"/></g><text class=\"scale\" data-metres=\"{4}\" data-pixels=\"{5:.3}\" x=\"{6:.1}\" y=\"{7:.1}\" text-anchor=\"middle\" paint-order=\"stroke\" stroke=\"#ffffff\" stroke-width=\"3\">{8} m</text>\n",
+        "<g stroke=\"#000000\" stroke-width=\"2\"><line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{2:.1}\" y2=\"{1:.1}\"/><line x1=\"{0:.1}\" y1=\"{3:.1}\" x2=\"{0:.1}\" y2=\"{1:.1}\"/><line x1=\"{2:.1}\" y1=\"{3:.1}\" x2=\"{2:.1}\" y2=\"{1:.1}\"/></g><text class=\"scale\" data-metres=\"{4}\" data-pixels=\"{5}\" x=\"{6:.1}\" y=\"{7:.1}\" text-anchor=\"middle\" paint-order=\"stroke\" stroke=\"#ffffff\" stroke-width=\"3\">{8} m</text>\n",
         l + 14.0,
         b - 14.0,
         l + 14.0 + len_px,

@@ -748,17 +748,18 @@ impl Scenario {
         }
 
         let requirements = requirements(&bad, raw.requirements.take().unwrap_or_default())?;
-        let trajectories =
-            match raw.outputs.take().and_then(|o| o.trajectories) {
-                None => DEFAULT_TRAJECTORIES,
-                Some(n) if n <= MAX_TRAJECTORIES => n,
-                Some(n) => return Err(bad(
+        let trajectories = match raw.outputs.take().and_then(|o| o.trajectories) {
+            None => DEFAULT_TRAJECTORIES,
+            Some(n) if n <= MAX_TRAJECTORIES => n,
+            Some(n) => {
+                return Err(bad(
                     "outputs.trajectories",
                     format!(
                         "must be from 0 to {MAX_TRAJECTORIES} variants per sweep point (got {n})"
                     ),
-                )),
-            };
+                ))
+            }
+        };
 
         let mut scenario = Scenario {
             file: path.to_path_buf(),
