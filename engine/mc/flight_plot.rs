@@ -218,20 +218,42 @@ pub fn charts(sim: &Simulation, f: &Flight) -> Vec<(String, String)> {
         ),
         "The rocket's mass as the propellant burns.",
     );
-    // Side profile: height against the distance from the rail's foot.
+    // Side profile: height against the horizontal distance along the line from the rail's
+    // foot toward the apogee (east if the apogee is straight above it), signed.
+    let top = samples
+        .iter()
+        .max_by(|p, q| p.altitude_m.total_cmp(&q.altitude_m))
+        .map_or([0.0, 0.0], |s| [s.position_m[0], s.position_m[1]]);
+    let reach = top[0].hypot(top[1]);
+    let along = if reach > 1.0 {
+        [top[0] / reach, top[1] / reach]
+    } else {
+        [1.0, 0.0]
+    };
     let d: Vec<(f64, f64)> = samples
         .iter()
-        .map(|s| (s.position_m[0].hypot(s.position_m[1]), s.altitude_m))
+        .map(|s| {
+            (
+                s.position_m[0] * along[0] + s.position_m[1] * along[1],
+                s.altitude_m,
+            )
+        })
         .collect();
     let (x0, x1) = extent(d.iter().map(|p| &p.0).chain([&0.0]), 0.05).unwrap_or((0.0, 1.0));
     let (y0, y1) = extent(d.iter().map(|p| &p.1), 0.05).unwrap_or((0.0, 1.0));
     let mut side = Chart::new("side", W, H, (x0.min(0.0), x1), (y0.min(0.0), y1))
         .title("Side profile")
-        .labels("distance from the rail (m)", "height (m)");
+        .labels(
+            &format!(
+                "distance toward the apogee, {:.0}° from north (m)",
+                along[0].atan2(along[1]).to_degrees().rem_euclid(360.0)
+            ),
+            "height (m)",
+        );
     side.line(&d, PALETTE[0], 2.0, false);
     push(
         Some(side.svg()),
-        "Height against the horizontal distance from the rail's foot.",
+        "Height against the horizontal distance from the rail's foot along the line toward the apogee (negative: the other way).",
     );
     // Ground track on a map.
     let xs: Vec<f64> = samples
