@@ -537,6 +537,14 @@ impl Chart {
                 } else {
                     ("start", px + 4.0)
                 };
+                let width = 6.0 * label.chars().count() as f64;
+                let x0 = if anchor.0 == "end" {
+                    anchor.1 - width
+                } else {
+                    anchor.1
+                };
+                let y = self.y.px1 + 8.0 + 13.0 * row as f64;
+                self.occupy((x0, y), (x0 + width, y + 6.0));
                 let _ = writeln!(
                     self.over,
                     "<text x=\"{}\" y=\"{}\" text-anchor=\"{}\" font-size=\"11\" fill=\"{color}\" paint-order=\"stroke\" stroke=\"#ffffff\" stroke-width=\"3\">{}</text>",
@@ -568,6 +576,12 @@ impl Chart {
             c(py)
         );
         if !label.is_empty() && py > self.y.px1 && py < self.y.px0 {
+            let width = 6.0 * label.chars().count() as f64;
+            let mut k = 0.0;
+            while k <= width {
+                self.ink.push((self.x.px1 - 4.0 - k, py - 8.0));
+                k += 6.0;
+            }
             let _ = writeln!(
                 self.over,
                 "<text x=\"{}\" y=\"{}\" text-anchor=\"end\" font-size=\"11\" fill=\"{color}\" paint-order=\"stroke\" stroke=\"#ffffff\" stroke-width=\"3\">{}</text>",
@@ -612,6 +626,20 @@ impl Chart {
     /// Raw SVG drawn above the plot, in pixels (north arrows, scale bars).
     pub fn overlay(&mut self, svg: &str) {
         self.over.push_str(svg);
+    }
+
+    /// Mark the pixel box (x0, y0)–(x1, y1) as drawn on, so that the legend keeps off it
+    /// (what [`Chart::overlay`] draws).
+    pub fn occupy(&mut self, (x0, y0): (f64, f64), (x1, y1): (f64, f64)) {
+        let mut y = y0;
+        while y <= y1 {
+            let mut x = x0;
+            while x <= x1 {
+                self.ink.push((x, y));
+                x += 6.0;
+            }
+            y += 6.0;
+        }
     }
 
     /// The plot area's corners in pixels: (left, top, right, bottom).

@@ -477,8 +477,8 @@ pub fn landing_map(
     ch.key("landing", PALETTE[0], Key::Dot);
     ch.key("launch point", "#000000", Key::Dot);
     // North arrow and scale bar.
-    let (l, t, right, b) = ch.area();
-    let _ = right;
+    let (l, t, _, b) = ch.area();
+    ch.occupy((l + 8.0, t + 18.0), (l + 32.0, t + 70.0));
     ch.overlay(&format!(
         "<g stroke=\"#000000\" fill=\"#000000\"><line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{0:.1}\" y2=\"{2:.1}\" stroke-width=\"2\"/><path d=\"M{0:.1} {2:.1}l-5 9h10z\"/></g><text x=\"{0:.1}\" y=\"{3:.1}\" text-anchor=\"middle\" font-weight=\"bold\">N</text>\n",
         l + 20.0,
@@ -488,6 +488,7 @@ pub fn landing_map(
     ));
     let (_, step) = ticks(0.0, (ch.x.hi - ch.x.lo) / 4.0, 1);
     let len_px = step * ch.x.per_unit();
+    ch.occupy((l + 10.0, b - 36.0), (l + 18.0 + len_px, b - 10.0));
     ch.overlay(&format!(
         "<g stroke=\"#000000\" stroke-width=\"2\"><line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{2:.1}\" y2=\"{1:.1}\"/><line x1=\"{0:.1}\" y1=\"{3:.1}\" x2=\"{0:.1}\" y2=\"{1:.1}\"/><line x1=\"{2:.1}\" y1=\"{3:.1}\" x2=\"{2:.1}\" y2=\"{1:.1}\"/></g><text class=\"scale\" data-metres=\"{4}\" data-pixels=\"{5}\" x=\"{6:.1}\" y=\"{7:.1}\" text-anchor=\"middle\" paint-order=\"stroke\" stroke=\"#ffffff\" stroke-width=\"3\">{8} m</text>\n",
         l + 14.0,
