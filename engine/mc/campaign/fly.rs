@@ -591,6 +591,42 @@ fn check_ballast(design: &Design, idx: usize) -> Result<(), String> {
 /// values are in range become the rows of one set of columns, flown in order on this thread
 /// as lanes of the prepared base flight (the run loop spreads the chunks over the threads).
 pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult> {
+    fly_lanes(prepared, &prepared.batch, variants)
+        .into_iter()
+        .map(|r| r.0)
+        .collect()
+}
+
+/// [`fly_chunk`] with each flight's samples (one per step; none for a variant not flown),
+/// for the few variants whose time series a run writes: the same lanes, keeping samples.
+pub fn fly_chunk_with_samples(
+    prepared: &Prepared,
+    variants: &[Variant],
+) -> Vec<(VariantResult, Vec<hpr_sim::flight::Sample>)> {
+    match prepared.batch.keeping_samples() {
+        Ok(batch) => fly_lanes(prepared, &batch, variants),
+        Err(e) => variants
+            .iter()
+            .map(|v| {
+                let r = VariantResult {
+                    id: v.id,
+                    status: Status::Failed,
+                    error: Some(format!("internal error: {e}")),
+                    warnings: None,
+                    warned: None,
+                    metrics: vec![None; prepared.metrics.len()],
+                };
+                (r, vec![])
+            })
+            .collect(),
+    }
+}
+
+fn fly_lanes(
+    prepared: &Prepared,
+    batch: &Batch,
+    variants: &[Variant],
+) -> Vec<(VariantResult, Vec<hpr_sim::flight::Sample>)> {
     let fixed = prepared.fixed();
     let setups: Vec<Result<Setup, String>> = variants
         .iter()
@@ -602,19 +638,22 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
         })
         .collect();
     let rows: Vec<&Setup> = setups.iter().filter_map(|s| s.as_ref().ok()).collect();
-    let lanes = prepared.batch.fly_chunk(&fixed.columns(&rows), 0);
+    let lanes = batch.fly_chunk(&fixed.columns(&rows), 0);
     let mut lanes = match lanes {
         Ok(l) => l.into_iter(),
         // The columns are built here from checked setups: a shape error is a bug of this
         // module, reported on every row rather than stopping the run.
         Err(e) => {
-            let failed = |v: &Variant| VariantResult {
-                id: v.id,
-                status: Status::Failed,
-                error: Some(format!("internal error: {e}")),
-                warnings: None,
-                warned: None,
-                metrics: vec![None; prepared.metrics.len()],
+            let failed = |v: &Variant| {
+                let r = VariantResult {
+                    id: v.id,
+                    status: Status::Failed,
+                    error: Some(format!("internal error: {e}")),
+                    warnings: None,
+                    warned: None,
+                    metrics: vec![None; prepared.metrics.len()],
+                };
+                (r, vec![])
             };
             return variants.iter().map(failed).collect();
         }
@@ -624,21 +663,25 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
         .zip(setups)
         .map(|(v, setup)| {
             let (status, error) = match setup.map(|_| lanes.next()) {
-                Ok(Some(lane)) => return prepared.result(v.id, lane),
+                Ok(Some(mut lane)) => {
+                    let samples = std::mem::take(&mut lane.samples);
+                    return (prepared.result(v.id, lane), samples);
+                }
                 Err(e) => (
                     Status::Refused,
                     hpr_design::error::tidy_numbers(&format!("sampled {e}")),
                 ),
                 Ok(None) => (Status::Failed, "internal error: a lane is missing".into()),
             };
-            VariantResult {
+            let r = VariantResult {
                 id: v.id,
                 status,
                 error: Some(error),
                 warnings: None,
                 warned: None,
                 metrics: vec![None; prepared.metrics.len()],
-            }
+            };
+            (r, vec![])
         })
         .collect()
 }

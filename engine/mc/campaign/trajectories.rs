@@ -2,15 +2,16 @@
 //! of every sweep point, in long format (one row per variant and integrator step), for the
 //! report's bands of margin and height against time and for analysts.
 //!
-//! The batch engine's lanes keep no samples, so these variants are flown again, alone, by
-//! [`Prepared::variant_flight`]: the single flight a lane is bit for bit, so each series
-//! ends at the apogee and the landing its row in `variants.parquet` gives. A variant that is
-//! refused or fails has no rows. Flights are flown a window at a time on the run's threads
-//! and written in id order, so memory stays that of one window.
+//! The run's lanes keep no samples, so these variants are flown again after the run as
+//! lanes of a batch that keeps them ([`fly_chunk_with_samples`]): the same lanes, so each
+//! series ends at the apogee and the landing its row in `variants.parquet` gives (and is
+//! what `hpr-mc fly --variant` flies). A variant that is refused or fails has no rows.
+//! Flights are flown a window at a time on the run's threads and written in id order, so
+//! memory stays that of one window.
 
-use super::fly::Prepared;
+use super::fly::{fly_chunk_with_samples, Prepared};
 use super::parquet::{field, write_atomic};
-use super::variants::Shard;
+use super::variants::{Shard, Variant};
 use arrow::array::{ArrayRef, Float64Array, StringArray, UInt32Array, UInt64Array};
 use arrow::datatypes::{DataType, Schema, SchemaRef};
 use arrow::record_batch::RecordBatch;
@@ -79,25 +80,25 @@ pub fn chosen(p: &Prepared, shard: Shard, per_point: u64) -> Vec<u64> {
         .collect()
 }
 
-/// One flight's rows (none if the variant is refused or its flight fails).
-fn rows(p: &Prepared, schema: &SchemaRef, id: u64) -> anyhow::Result<Option<RecordBatch>> {
-    let Ok(sim) = p.variant_flight(id) else {
+/// One flight's rows (none if it has no samples: a variant refused, or a flight that failed).
+fn rows(
+    schema: &SchemaRef,
+    v: &Variant,
+    samples: &[Sample],
+) -> anyhow::Result<Option<RecordBatch>> {
+    if samples.is_empty() {
         return Ok(None);
-    };
-    let Ok(flight) = sim.run(&mut ()) else {
-        return Ok(None);
-    };
-    let v = p.plan.variant(id);
-    let n = flight.samples.len();
+    }
+    let n = samples.len();
     let mut cols: Vec<ArrayRef> = vec![
-        Arc::new(UInt64Array::from_value(id, n)),
+        Arc::new(UInt64Array::from_value(v.id, n)),
         Arc::new(UInt32Array::from_value(v.point as u32, n)),
         Arc::new(UInt64Array::from_value(v.replicate, n)),
         Arc::new(StringArray::from_iter_values(
-            flight.samples.iter().map(|s| s.phase.name()),
+            samples.iter().map(|s| s.phase.name()),
         )),
     ];
-    let table: Vec<[f64; 11]> = flight.samples.iter().map(values).collect();
+    let table: Vec<[f64; 11]> = samples.iter().map(values).collect();
     for j in 0..SERIES.len() {
         cols.push(Arc::new(Float64Array::from_iter(
             table.iter().map(|r| Some(r[j]).filter(|x| x.is_finite())),
@@ -118,12 +119,21 @@ pub fn write(
     let schema = schema(pairs);
     let mut written = 0;
     write_atomic(path, &schema, pairs, p.scenario.row_group_rows, |w| {
+        // Windows of 64, each cut into chunks of 8 flown as lanes on the threads.
         for window in ids.chunks(64) {
-            let batches: Vec<Option<RecordBatch>> = window
-                .par_iter()
-                .map(|&id| rows(p, &schema, id))
+            let chunks: Vec<Vec<Option<RecordBatch>>> = window
+                .par_chunks(8)
+                .map(|chunk| {
+                    let variants: Vec<Variant> =
+                        chunk.iter().map(|&id| p.plan.variant(id)).collect();
+                    fly_chunk_with_samples(p, &variants)
+                        .iter()
+                        .zip(&variants)
+                        .map(|((_, samples), v)| rows(&schema, v, samples))
+                        .collect::<anyhow::Result<Vec<_>>>()
+                })
                 .collect::<anyhow::Result<_>>()?;
-            for b in batches.into_iter().flatten() {
+            for b in chunks.into_iter().flatten().flatten() {
                 w.write(&b)?;
                 written += 1;
             }

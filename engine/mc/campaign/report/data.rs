@@ -449,7 +449,29 @@ impl Run {
     }
 
     fn read_series(&mut self, p: &Path) -> Result<()> {
-        for b in batches(p)? {
+        // Only the columns drawn.
+        let file = File::open(p).with_context(|| format!("can't open {}", p.display()))?;
+        let builder = ParquetRecordBatchReaderBuilder::try_new(file)
+            .with_context(|| format!("{} is not a readable Parquet file", p.display()))?;
+        let mask = parquet::arrow::ProjectionMask::columns(
+            builder.parquet_schema(),
+            [
+                "variant_id",
+                "point",
+                "time_s",
+                "x_m",
+                "y_m",
+                "altitude_m",
+                "static_margin_cal",
+                "flight_margin_cal",
+            ],
+        );
+        let reader = builder
+            .with_projection(mask)
+            .with_batch_size(8192)
+            .build()?;
+        for b in reader {
+            let b = b.with_context(|| format!("reading {}", p.display()))?;
             let id = u64s(&b, "variant_id", p)?;
             let pt = u32s(&b, "point", p)?;
             let f = |n: &str| f64s(&b, n, p);

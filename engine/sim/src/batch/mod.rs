@@ -181,6 +181,9 @@ pub struct LaneResult {
     /// What the flight's figures hide (empty where the flight did not happen).
     pub warnings: Vec<Warning>,
     pub derivative_evaluations: u64,
+    /// The flight's samples, one per step, for a batch that keeps them
+    /// ([`Batch::keeping_samples`]); empty otherwise.
+    pub samples: Vec<crate::flight::Sample>,
 }
 
 /// When one parachute opened in a lane (`None` if it never did).
@@ -290,7 +293,25 @@ impl Batch {
         })
     }
 
-    /// The base flight (samples off).
+    /// This batch with its lanes keeping their samples (each lane's [`LaneResult::samples`]),
+    /// for the few variants whose time series are wanted. Recording a sample changes no
+    /// number of the flight.
+    pub fn keeping_samples(&self) -> Result<Batch, String> {
+        let options = crate::flight::SimOptions {
+            keep_samples: true,
+            ..*self.base.options()
+        };
+        Ok(Batch {
+            base: self
+                .base
+                .clone()
+                .with_options(options)
+                .map_err(|e| e.to_string())?,
+            part: self.part.clone(),
+        })
+    }
+
+    /// The base flight (samples off, unless [`Batch::keeping_samples`]).
     pub fn base(&self) -> &Simulation {
         &self.base
     }
@@ -523,6 +544,7 @@ impl Batch {
             parachutes: vec![ParachuteOutcome::default(); self.base.parachutes().len()],
             warnings: Vec::new(),
             derivative_evaluations: 0,
+            samples: Vec::new(),
         }
     }
 
@@ -535,10 +557,11 @@ impl Batch {
         flight: Result<Flight, SimError>,
         variant: usize,
     ) -> LaneResult {
-        let flight = match flight {
+        let mut flight = match flight {
             Ok(f) => f,
             Err(e) => return self.empty(variant, Status::Failed, e.to_string()),
         };
+        let samples = std::mem::take(&mut flight.samples);
         let model = sim.model();
         let end = flight.events.last().map_or(0.0, |e| e.time_s);
         let margin = |t: f64| {
@@ -590,6 +613,7 @@ impl Batch {
             parachutes,
             warnings: flight.warnings(),
             derivative_evaluations: flight.derivative_evaluations,
+            samples,
         }
     }
 
