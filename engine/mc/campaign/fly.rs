@@ -597,14 +597,21 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
         .collect()
 }
 
+/// The run's batch with its lanes keeping their samples ([`fly_chunk_with_samples`]).
+pub fn sampling_batch(prepared: &Prepared) -> Result<Batch, String> {
+    prepared.batch.keeping_samples()
+}
+
 /// [`fly_chunk`] with each flight's samples (one per step; none for a variant not flown),
-/// for the few variants whose time series a run writes: the same lanes, keeping samples.
+/// for the few variants whose time series a run writes: the same lanes, of `batch`
+/// ([`sampling_batch`]), keeping samples.
 pub fn fly_chunk_with_samples(
     prepared: &Prepared,
+    batch: &Result<Batch, String>,
     variants: &[Variant],
 ) -> Vec<(VariantResult, Vec<hpr_sim::flight::Sample>)> {
-    match prepared.batch.keeping_samples() {
-        Ok(batch) => fly_lanes(prepared, &batch, variants),
+    match batch {
+        Ok(batch) => fly_lanes(prepared, batch, variants),
         Err(e) => variants
             .iter()
             .map(|v| {

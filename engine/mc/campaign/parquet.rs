@@ -274,13 +274,34 @@ pub fn write_atomic(
     row_group_rows: usize,
     fill: impl FnOnce(&mut ArrowWriter<File>) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
+    write_atomic_with(path, schema, pairs, row_group_rows, &[], fill)
+}
+
+/// [`write_atomic`] with `float_columns` written as measured series are best: each double's
+/// bytes split into streams (BYTE_STREAM_SPLIT, which zstd compresses well) and no
+/// dictionary (a series rarely repeats a value), at zstd's quickest level.
+pub fn write_atomic_with(
+    path: &Path,
+    schema: &SchemaRef,
+    pairs: &[(String, String)],
+    row_group_rows: usize,
+    float_columns: &[&str],
+    fill: impl FnOnce(&mut ArrowWriter<File>) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
     let tmp = temporary(path);
     let result = (|| -> anyhow::Result<()> {
         let file = File::create(&tmp).with_context(|| format!("can't create {}", tmp.display()))?;
-        let props = WriterProperties::builder()
-            .set_compression(Compression::ZSTD(ZstdLevel::try_new(3)?))
-            .set_max_row_group_row_count(Some(row_group_rows.max(1)))
-            .build();
+        let level = if float_columns.is_empty() { 3 } else { 1 };
+        let mut props = WriterProperties::builder()
+            .set_compression(Compression::ZSTD(ZstdLevel::try_new(level)?))
+            .set_max_row_group_row_count(Some(row_group_rows.max(1)));
+        for c in float_columns {
+            let col = parquet::schema::types::ColumnPath::from(*c);
+            props = props
+                .set_column_dictionary_enabled(col.clone(), false)
+                .set_column_encoding(col, parquet::basic::Encoding::BYTE_STREAM_SPLIT);
+        }
+        let props = props.build();
         let mut w = ArrowWriter::try_new(file, schema.clone(), Some(props))?;
         for (k, v) in pairs {
             w.append_key_value_metadata(KeyValue::new(k.clone(), v.clone()));

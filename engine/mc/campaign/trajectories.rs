@@ -9,8 +9,8 @@
 //! Flights are flown a window at a time on the run's threads and written in id order, so
 //! memory stays that of one window.
 
-use super::fly::{fly_chunk_with_samples, Prepared};
-use super::parquet::{field, write_atomic};
+use super::fly::{fly_chunk_with_samples, sampling_batch, Prepared};
+use super::parquet::{field, write_atomic_with};
 use super::variants::{Shard, Variant};
 use arrow::array::{ArrayRef, Float64Array, StringArray, UInt32Array, UInt64Array};
 use arrow::datatypes::{DataType, Schema, SchemaRef};
@@ -118,27 +118,37 @@ pub fn write(
     let ids = chosen(p, shard, p.scenario.trajectories);
     let schema = schema(pairs);
     let mut written = 0;
-    write_atomic(path, &schema, pairs, p.scenario.row_group_rows, |w| {
-        // Windows of 64, each cut into chunks of 8 flown as lanes on the threads.
-        for window in ids.chunks(64) {
-            let chunks: Vec<Vec<Option<RecordBatch>>> = window
-                .par_chunks(8)
-                .map(|chunk| {
-                    let variants: Vec<Variant> =
-                        chunk.iter().map(|&id| p.plan.variant(id)).collect();
-                    fly_chunk_with_samples(p, &variants)
-                        .iter()
-                        .zip(&variants)
-                        .map(|((_, samples), v)| rows(&schema, v, samples))
-                        .collect::<anyhow::Result<Vec<_>>>()
-                })
-                .collect::<anyhow::Result<_>>()?;
-            for b in chunks.into_iter().flatten().flatten() {
-                w.write(&b)?;
-                written += 1;
+    let floats: Vec<&str> = SERIES.iter().map(|c| c.0).collect();
+    write_atomic_with(
+        path,
+        &schema,
+        pairs,
+        p.scenario.row_group_rows,
+        &floats,
+        |w| {
+            // Windows of 64, each cut into a chunk per thread flown as lanes.
+            let batch = sampling_batch(p);
+            for window in ids.chunks(64) {
+                let size = 8;
+                let chunks: Vec<Vec<Option<RecordBatch>>> = window
+                    .par_chunks(size)
+                    .map(|chunk| {
+                        let variants: Vec<Variant> =
+                            chunk.iter().map(|&id| p.plan.variant(id)).collect();
+                        fly_chunk_with_samples(p, &batch, &variants)
+                            .iter()
+                            .zip(&variants)
+                            .map(|((_, samples), v)| rows(&schema, v, samples))
+                            .collect::<anyhow::Result<Vec<_>>>()
+                    })
+                    .collect::<anyhow::Result<_>>()?;
+                for b in chunks.into_iter().flatten().flatten() {
+                    w.write(&b)?;
+                    written += 1;
+                }
             }
-        }
-        Ok(())
-    })?;
+            Ok(())
+        },
+    )?;
     Ok(written)
 }
