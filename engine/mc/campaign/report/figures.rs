@@ -635,3 +635,63 @@ pub fn convergence(id: &str, title: &str, y_label: &str, values: &[f64]) -> Opti
     }
     Some(ch.svg())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `n` landings on a deterministic spiral about (200, −50) m.
+    fn cloud(n: usize) -> (Vec<f64>, Vec<f64>) {
+        (0..n)
+            .map(|k| {
+                let r = 300.0 * ((k as f64 + 0.5) / n as f64).sqrt();
+                let a = k as f64 * 2.399_963;
+                (200.0 + r * a.cos(), -50.0 + 0.6 * r * a.sin())
+            })
+            .unzip()
+    }
+
+    fn marks() -> MapMarks<'static> {
+        MapMarks {
+            ellipses: vec![],
+            recovery_m: Some(600.0),
+        }
+    }
+
+    #[test]
+    fn a_dense_landing_cloud_is_drawn_as_a_density_whose_size_does_not_grow_with_it() {
+        let (xs, ys) = cloud(1000);
+        let (svg, ..) = landing_map("a", "t", &xs, &ys, &marks()).unwrap();
+        // Every landing a dot, plus R50/R90/R99, the recovery area and the legend's dot.
+        assert_eq!(svg.matches("<circle").count(), 1000 + 3 + 1 + 2);
+        let mut sizes = vec![];
+        for n in [20_000, 160_000] {
+            let (xs, ys) = cloud(n);
+            let (svg, _, _, cloud_text) = landing_map("b", "t", &xs, &ys, &marks()).unwrap();
+            assert!(cloud_text.contains("density"), "{cloud_text}");
+            assert_eq!(svg.matches("<circle").count(), 3 + 1 + 2);
+            sizes.push(svg.len());
+        }
+        // The same cells filled: the size is the cells', not the flights'.
+        assert!(sizes[0] < 400_000, "{sizes:?}");
+        assert!((sizes[1] as f64) < 1.1 * sizes[0] as f64, "{sizes:?}");
+    }
+
+    #[test]
+    fn r50_r90_r99_hold_their_shares_of_the_landings() {
+        let (xs, ys) = cloud(2000);
+        let (_, r, mean, _) = landing_map("c", "t", &xs, &ys, &marks()).unwrap();
+        for (radius, share) in r.iter().zip([0.5, 0.9, 0.99]) {
+            let inside = xs
+                .iter()
+                .zip(&ys)
+                .filter(|(x, y)| (*x - mean.0).hypot(*y - mean.1) <= *radius)
+                .count();
+            // Type-7 quantiles of 2,000 distances: within one landing of the share.
+            assert!(
+                (inside as f64 - share * 2000.0).abs() <= 1.0,
+                "{share}: {inside}"
+            );
+        }
+    }
+}

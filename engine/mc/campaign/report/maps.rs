@@ -294,6 +294,19 @@ pub fn kml(site: &Site, title: &str, points: &[PointShapes]) -> anyhow::Result<S
             }),
             ..Style::default()
         }),
+        Kml::Style(Style {
+            id: Some("pad".into()),
+            icon: Some(kml::types::IconStyle {
+                scale: 1.1,
+                color: kml_color("#000000", 1.0),
+                icon: kml::types::Icon {
+                    href: "http://maps.google.com/mapfiles/kml/shapes/triangle.png".into(),
+                    ..kml::types::Icon::default()
+                },
+                ..kml::types::IconStyle::default()
+            }),
+            ..Style::default()
+        }),
         placemark(
             "launch point".into(),
             "pad",
@@ -437,17 +450,19 @@ mod tests {
     #[test]
     fn a_kilometre_north_is_the_meridian_arc_of_a_kilometre() {
         // M = a (1 − e²) / (1 − e² sin² φ)^(3/2): the meridian's radius of curvature. The
-        // tangent plane's point sits 0.08 m above the ground, which moves the latitude by
-        // less than 1e-5 m's worth.
+        // tangent plane's point sits 0.08 m above the ground; its arc is shorter than the
+        // kilometre by d³/3R² = 8e-6 m.
         let site = Site {
             latitude_deg: 45.0,
             longitude_deg: -100.0,
             height_m: 0.0,
         };
         let phi = 45f64.to_radians();
-        let m = A * (1.0 - e2()) / (1.0 - e2() * phi.sin().powi(2)).powf(1.5);
+        let m_at = |phi: f64| A * (1.0 - e2()) / (1.0 - e2() * phi.sin().powi(2)).powf(1.5);
         let (lat, lon) = site.to_geodetic(0.0, 1000.0);
-        let arc_m = (lat - 45.0).to_radians() * m;
+        // The arc ∫ M dφ by Simpson's rule (M grows by 1.6e-6 of itself over it).
+        let (p0, p1) = (phi, lat.to_radians());
+        let arc_m = (p1 - p0) / 6.0 * (m_at(p0) + 4.0 * m_at(0.5 * (p0 + p1)) + m_at(p1));
         assert!((arc_m - 1000.0).abs() < 1e-4, "{arc_m}");
         assert!((lon + 100.0).abs() < 1e-12);
         // East: the parallel's radius N cos φ.
@@ -455,7 +470,7 @@ mod tests {
         let (lat, lon) = site.to_geodetic(1000.0, 0.0);
         let arc_m = (lon + 100.0).to_radians() * n * phi.cos();
         assert!((arc_m - 1000.0).abs() < 1e-4, "{arc_m}");
-        assert!(lat < 45.0 && (45.0 - lat).to_radians() * m < 0.1);
+        assert!(lat < 45.0 && (45.0 - lat).to_radians() * m_at(phi) < 0.1);
     }
 
     #[test]

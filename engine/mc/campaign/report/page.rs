@@ -270,6 +270,12 @@ pub fn html(run: &Run, ctx: &Context) -> String {
         esc(&ctx.name)
     );
     header(&mut s, run, ctx);
+    // Contents: the page is long with many sweep points.
+    s.push_str("<p class=\"small\">Contents: <a href=\"#answer\">the answer</a>");
+    for pt in 0..run.points() {
+        let _ = write!(s, " · <a href=\"#point-{pt}\">point {pt}</a>");
+    }
+    s.push_str(" · <a href=\"#flights\">flights to look at</a></p>\n");
     answer(&mut s, run, ctx);
     for pt in 0..run.points() {
         point_section(&mut s, run, ctx, pt);
@@ -403,7 +409,7 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
     let swept = run.points() > 1;
     let _ = write!(
         s,
-        "<h2>{}</h2>\n<p>One row per sweep point: the share of its flights meeting each requirement (95 % interval), and each key metric's median with its 5–95 % range over the landed flights.</p>\n",
+        "<h2 id=\"answer\">{}</h2>\n<p>One row per sweep point: the share of its flights meeting each requirement (95 % interval), and each key metric's median with its 5–95 % range over the landed flights.</p>\n",
         if swept { "The sweep's answer" } else { "The answer" }
     );
     let reqs: Vec<&super::data::Requirement> =
@@ -570,7 +576,7 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
     };
     let _ = write!(
         s,
-        "<details open><summary>{}</summary>\n<p>{} variants, {} landed.</p>\n<div class=\"grid\">\n",
+        "<details open id=\"point-{pt}\"><summary>{}</summary>\n<p>{} variants, {} landed.</p>\n<div class=\"grid\">\n",
         esc(&title),
         rows.len(),
         landed
@@ -950,7 +956,7 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
 }
 
 fn flights_to_look_at(s: &mut String, run: &Run, ctx: &Context) {
-    s.push_str("<h2>Flights to look at</h2>\n");
+    s.push_str("<h2 id=\"flights\">Flights to look at</h2>\n");
     let mut rows: Vec<usize> = (0..run.id.len())
         .filter(|&r| run.status[r] != Status::Landed || run.warnings.contains_key(&r))
         .collect();
