@@ -231,7 +231,7 @@ pub struct Scenario {
 
 /// Variants per sweep point whose time series a run writes unless `[outputs] trajectories`
 /// says otherwise.
-pub const DEFAULT_TRAJECTORIES: u64 = 20;
+pub const DEFAULT_TRAJECTORIES: u64 = 10;
 /// The most `[outputs] trajectories` may ask for.
 pub const MAX_TRAJECTORIES: u64 = 10_000;
 
