@@ -219,7 +219,7 @@ h1{font-size:24px;margin:4px 0 2px}h2{font-size:19px;margin:28px 0 8px;border-bo
 h3{font-size:15px;margin:18px 0 6px}
 p,li{font-size:14px;line-height:1.45}.sub{color:#555;margin-top:0}
 table{border-collapse:collapse;font-size:13px;margin:6px 0 10px}
-th,td{border:1px solid #ddd;padding:3px 6px;overflow-wrap:anywhere;text-align:left;vertical-align:top}
+th,td{border:1px solid #ddd;padding:3px 6px;overflow-wrap:break-word;text-align:left;vertical-align:top}
 th{background:#f0f4f8}td.n{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 .grid{display:flex;flex-wrap:wrap;gap:10px}
 figure{margin:0;border:1px solid #e4e4e4;padding:4px;background:#fff;max-width:100%}
@@ -229,6 +229,7 @@ code{font-size:12px;background:#f3f3f3;padding:1px 3px;border-radius:2px}
 .bad{color:#B00000;font-weight:bold}.ok{color:#006400}
 details>summary{cursor:pointer;font-size:19px;font-weight:bold;margin:24px 0 6px}
 .small{font-size:12px;color:#555}
+.wide{overflow-x:auto;max-width:100%}
 ";
 
 fn figure(svg: Option<String>, caption: &str) -> String {
@@ -414,7 +415,7 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
     );
     let reqs: Vec<&super::data::Requirement> =
         run.requirements.iter().filter(|r| r.point == 0).collect();
-    s.push_str("<table><tr><th>point</th>");
+    s.push_str("<div class=\"wide\"><table><tr><th>point</th>");
     for c in &run.sweep {
         let _ = write!(s, "<th>{}{}</th>", esc(&c.name), esc(&unit_text(&c.unit)));
     }
@@ -476,7 +477,7 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
         }
         s.push_str("</tr>\n");
     }
-    s.push_str("</table>\n");
+    s.push_str("</table></div>\n");
     let Some((axis, series)) = sweep_layout(run) else {
         return;
     };
@@ -977,6 +978,12 @@ fn flights_to_look_at(s: &mut String, run: &Run, ctx: &Context) {
             }
         );
         for &r in rows.iter().take(SHOWN) {
+            // A refused variant has nothing to fly: the why says which input is out of range.
+            let again = if run.status[r] == Status::Refused {
+                "–".to_string()
+            } else {
+                format!("<code>{}</code>", esc(&ctx.fly_command(run.id[r])))
+            };
             let why = run
                 .errors
                 .get(&r)
@@ -985,12 +992,11 @@ fn flights_to_look_at(s: &mut String, run: &Run, ctx: &Context) {
                 .unwrap_or_default();
             let _ = write!(
                 s,
-                "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td><td>{}</td><td><code>{}</code></td></tr>\n",
+                "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td><td>{}</td><td>{again}</td></tr>\n",
                 run.id[r],
                 run.point[r],
                 run.status[r].name(),
-                esc(&why),
-                esc(&ctx.fly_command(run.id[r]))
+                esc(&why)
             );
         }
         s.push_str("</table>\n");
