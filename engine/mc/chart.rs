@@ -172,8 +172,6 @@ pub struct Chart {
     body: String,
     over: String,
     legend: Vec<(String, String, Key)>,
-    x_ticks: bool,
-    y_ticks: bool,
     /// Tick label text for x tick values (categories), in place of numbers.
     x_names: Option<Vec<(f64, String)>>,
     y_names: Option<Vec<(f64, String)>>,
@@ -238,8 +236,6 @@ impl Chart {
             body: String::new(),
             over: String::new(),
             legend: vec![],
-            x_ticks: true,
-            y_ticks: true,
             x_names: None,
             y_names: None,
             ink: vec![],
@@ -287,16 +283,6 @@ impl Chart {
     /// Category names at y values in place of numeric ticks.
     pub fn y_names(mut self, names: Vec<(f64, String)>) -> Chart {
         self.y_names = Some(names);
-        self
-    }
-
-    pub fn no_y_ticks(mut self) -> Chart {
-        self.y_ticks = false;
-        self
-    }
-
-    pub fn no_x_ticks(mut self) -> Chart {
-        self.x_ticks = false;
         self
     }
 
@@ -679,7 +665,7 @@ impl Chart {
         );
         // Grid and ticks.
         let mut axes = String::new();
-        if self.x_ticks {
+        {
             let xt: Vec<(f64, String)> = match &self.x_names {
                 Some(n) => n.clone(),
                 None if self.x.log => log_ticks(self.x.lo, self.x.hi),
@@ -704,7 +690,7 @@ impl Chart {
                 );
             }
         }
-        if self.y_ticks {
+        {
             let yt: Vec<(f64, String)> = match &self.y_names {
                 Some(n) => n.clone(),
                 None => {

@@ -547,12 +547,4 @@ impl Run {
             .iter()
             .find(|r| r.point == pt && r.metric == metric)
     }
-
-    /// Whether any flight of the run raised a warning (the warning columns are true/false;
-    /// the text column names them).
-    pub fn warned_rows(&self) -> Vec<usize> {
-        let mut rows: Vec<usize> = self.warnings.keys().copied().collect();
-        rows.sort_unstable();
-        rows
-    }
 }
