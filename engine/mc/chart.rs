@@ -670,7 +670,7 @@ impl Chart {
                 Some(n) => n.clone(),
                 None if self.x.log => log_ticks(self.x.lo, self.x.hi),
                 None => {
-                    let (t, step) = ticks(self.x.lo, self.x.hi, ((r - l) / 70.0).max(2.0) as usize);
+                    let (t, step) = ticks(self.x.lo, self.x.hi, ((r - l) / 55.0).max(2.0) as usize);
                     t.into_iter().map(|v| (v, fmt_tick(v, step))).collect()
                 }
             };

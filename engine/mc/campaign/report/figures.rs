@@ -123,17 +123,22 @@ pub fn rows_chart(id: &str, title: &str, x_label: &str, rows: &[Row]) -> Option<
     );
     let (x0, x1) = extent(&xs, 0.04)?;
     let n = rows.len();
+    // A row's bound is said in its name (the red mark on the row shows where it is).
+    let named = |r: &Row| match &r.bound {
+        Some((_, b)) => format!("{} (required {b})", r.label),
+        None => r.label.clone(),
+    };
     let longest = rows
         .iter()
-        .map(|(r, _)| r.label.chars().count())
+        .map(|(r, _)| named(r).chars().count())
         .max()
         .unwrap_or(8);
-    let left = (longest as f64 * 6.4 + 16.0).clamp(70.0, 260.0);
+    let left = (longest as f64 * 6.4 + 16.0).clamp(70.0, 300.0);
     let h = (74.0 + 30.0 * n as f64).max(140.0);
     let names = rows
         .iter()
         .enumerate()
-        .map(|(k, (r, _))| ((n - 1 - k) as f64, r.label.clone()))
+        .map(|(k, (r, _))| ((n - 1 - k) as f64, named(r)))
         .collect();
     let mut ch = Chart::with_margins(id, W, h, (x0, x1), (-0.7, n as f64 - 0.3), left)
         .title(title)
@@ -165,16 +170,8 @@ pub fn rows_chart(id: &str, title: &str, x_label: &str, rows: &[Row]) -> Option<
             anchor,
             "#222222",
         );
-        if let Some((b, label)) = &r.bound {
+        if let Some((b, _)) = &r.bound {
             ch.line(&[(*b, y - 0.42), (*b, y + 0.42)], "#C00000", 3.0, false);
-            ch.text(
-                (*b, y - 0.42),
-                0.0,
-                11.0,
-                &format!("required {label}"),
-                "middle",
-                "#C00000",
-            );
         }
     }
     Some(ch.svg())
