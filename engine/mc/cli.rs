@@ -203,6 +203,21 @@ pub struct FlyArgs {
     /// default 0).
     #[arg(long)]
     pub point: Option<usize>,
+    /// With --scenario: fly variant ID of the scenario's run as the run flew it (its sampled
+    /// inputs and its noise seed): its metrics are its row of variants.parquet, bit for bit.
+    #[arg(long, value_name = "ID", requires = "scenario", conflicts_with_all = ["point", "seed"])]
+    pub variant: Option<u64>,
+    /// With --variant: the run's variants per sweep point, where `hpr-mc run --variants`
+    /// replaced the scenario's.
+    #[arg(long, value_name = "N", requires = "variant")]
+    pub variants: Option<u64>,
+    /// With --variant: the run's seed, where `hpr-mc run --seed` replaced the scenario's.
+    #[arg(long, value_name = "S", requires = "variant")]
+    pub run_seed: Option<u64>,
+    /// Draw the flight to FILE.html (a page) or FILE.svg: height, speed, acceleration,
+    /// margins, angle of attack, thrust and mass against time, side profile, ground track.
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
     /// Motor (see `inspect --motor`).
     #[arg(long)]
     pub motor: Option<String>,
@@ -280,9 +295,10 @@ pub struct FlyArgs {
     #[arg(long, default_value_t = 0.0, value_parser = turbulence_intensity)]
     pub wind_turbulence_intensity: f64,
     /// The flight's noise seed: the wind's gusts and a noisy barometer's readings (with
-    /// --scenario, its nominal flight's; a campaign writes each variant's as sensor_seed).
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// --scenario, its nominal flight's; a campaign writes each variant's as sensor_seed,
+    /// which --variant flies) [default: 0].
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Drogue CdS, m², opened at apogee (default: the design's smaller parachute). Any of
     /// the four parachute flags flies a drogue and a main by them, in place of the
     /// design's own deployments (its parachutes' `deploy`).
@@ -405,6 +421,28 @@ pub fn inspect(a: &InspectArgs) -> Result<ExitCode> {
     } else {
         emit(&r.to_text())?;
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+#[derive(clap::Args, Debug)]
+pub struct ReportArgs {
+    /// A run's output directory (its variants.parquet and the other files).
+    pub results_dir: PathBuf,
+}
+
+/// `hpr-mc report RESULTS_DIR`: the report and the landing maps drawn again from the files.
+pub fn report(a: &ReportArgs) -> Result<ExitCode> {
+    let w = crate::campaign::report::write_dir(&a.results_dir)?;
+    let mut text = format!(
+        "wrote {} ({:.0} kB) in {:.2} s\n",
+        w.report.display(),
+        w.bytes as f64 / 1000.0,
+        w.seconds
+    );
+    if let (Some(k), Some(g)) = (&w.kml, &w.geojson) {
+        text.push_str(&format!("wrote {} and {}\n", k.display(), g.display()));
+    }
+    emit(&text)?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -533,6 +571,32 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
     // With a scenario, which flight of it this is: its file and sweep point.
     let mut openrocket = None;
     let (sim, origin) = match (&a.scenario, &a.design) {
+        (Some(scenario), _) if a.variant.is_some() => {
+            let id = a.variant.unwrap_or_default();
+            let cfg = crate::campaign::RunConfig {
+                seed: a.run_seed,
+                variants_per_point: a.variants,
+                ..Default::default()
+            };
+            let prepared = crate::campaign::run::prepare(scenario, &cfg)?;
+            let sim = prepared
+                .variant_flight(id)
+                .map_err(|e| anyhow!("{}: {e}", scenario.display()))?;
+            let v = prepared.plan.variant(id);
+            let label = format!(
+                "variant {id} of {} (replicate {}{}; seed {}, {} variants per point)",
+                scenario.display(),
+                v.replicate,
+                if prepared.plan.points() > 1 {
+                    prepared.point_label(v.point)
+                } else {
+                    String::new()
+                },
+                prepared.scenario.seed,
+                prepared.scenario.variants_per_point
+            );
+            (sim, Some((v.point, label)))
+        }
         (Some(scenario), _) => {
             let prepared = crate::campaign::run::prepare(scenario, &Default::default())?;
             let point = a.point.unwrap_or(0);
@@ -557,14 +621,38 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
     if let Some(path) = &a.trajectory {
         report::trajectory_format(path)?;
     }
-    let sim = sim.with_sensor_seed(a.seed);
+    if let Some(path) = &a.plot {
+        crate::flight_plot::plot_format(path)?;
+    }
+    // A variant flies its own noise seed, as its row says.
+    let sim = match (a.variant, a.seed) {
+        (Some(_), _) => sim,
+        (None, seed) => sim.with_sensor_seed(seed.unwrap_or(0)),
+    };
     let flight = sim.run(&mut ()).map_err(|e| anyhow!("{e}"))?;
     if let Some(path) = &a.trajectory {
         report::write_trajectory(path, &flight)
             .with_context(|| format!("writing {}", path.display()))?;
     }
+    if let Some(path) = &a.plot {
+        let title = origin.as_ref().map_or_else(
+            || format!("{} on {}", sim.design().name, sim.motor().designation),
+            |(_, label)| label.clone(),
+        );
+        crate::flight_plot::write(
+            path,
+            &title,
+            &report::flight_text(&sim, &flight),
+            &sim,
+            &flight,
+        )
+        .with_context(|| format!("writing {}", path.display()))?;
+    }
     if a.json {
         let mut json = report::flight_json(&sim, &flight);
+        if let (Some(id), Some(o)) = (a.variant, json.as_object_mut()) {
+            o.insert("variant".into(), id.into());
+        }
         if let (Some((point, label)), Some(o)) = (&origin, json.as_object_mut()) {
             o.insert("scenario_point".into(), (*point).into());
             o.insert("flown".into(), label.clone().into());

@@ -3,5 +3,7 @@
 //! the Parquet output ([`campaign`]). The physics is `hpr_design` and `hpr_sim`.
 
 pub mod campaign;
+pub mod chart;
 pub mod cli;
+pub mod flight_plot;
 pub mod report;

@@ -31,6 +31,8 @@ enum Command {
     Run(hpr_mc::cli::RunCommand),
     /// Read an OpenRocket design (.ork) into hpr's design format (JSON).
     Import(hpr_mc::cli::ImportArgs),
+    /// Draw a run's report (report.html) and landing maps again from its Parquet files.
+    Report(hpr_mc::cli::ReportArgs),
 }
 
 fn main() -> ExitCode {
@@ -40,10 +42,11 @@ fn main() -> ExitCode {
         Some(Command::Fly(a)) => hpr_mc::cli::fly(&a),
         Some(Command::Run(a)) => hpr_mc::cli::run(&a.scenario, &a.args),
         Some(Command::Import(a)) => hpr_mc::cli::import(&a),
+        Some(Command::Report(a)) => hpr_mc::cli::report(&a),
         None => match cli.scenario {
             Some(s) => hpr_mc::cli::run(&s, &cli.run),
             None => {
-                eprintln!("hpr-mc: give a scenario file (hpr-mc SCENARIO.toml) or a command (inspect, fly, run, import); see hpr-mc --help");
+                eprintln!("hpr-mc: give a scenario file (hpr-mc SCENARIO.toml) or a command (inspect, fly, run, import, report); see hpr-mc --help");
                 return ExitCode::from(2);
             }
         },

@@ -38,6 +38,12 @@ pub struct RunArgs {
     /// Keep the complete chunks of an interrupted run and fly only the missing ones.
     #[arg(long)]
     pub resume: bool,
+    /// Write no report (report.html and the landing maps) at the end.
+    #[arg(long)]
+    pub no_report: bool,
+    /// Print every metric's statistics per sweep point after the summary table.
+    #[arg(long)]
+    pub verbose: bool,
 }
 
 /// Exit codes, as `--help` shows them.
@@ -64,6 +70,7 @@ impl RunArgs {
             shard: self.shard,
             resume: self.resume,
             max_chunks: None,
+            no_report: self.no_report,
         }
     }
 }
@@ -74,7 +81,7 @@ pub fn run(scenario: &Path, args: &RunArgs) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--threads must be at least 1");
     }
     let report = run_campaign(scenario, &args.config())?;
-    crate::cli::emit(&summary_text(&report))?;
+    crate::cli::emit(&summary_text(&report, args.verbose))?;
     let failures = report.failures();
     if failures > 0 {
         eprintln!(
@@ -111,9 +118,11 @@ const SENSITIVITY_PRINTED: [&str; 4] = [
     "landing_y_m",
 ];
 
-/// The printed summary: per sweep point, each metric's mean, std, p5, p50 and p95, the 1 σ
-/// landing ellipse, and the largest shares of variance of a few metrics.
-pub fn summary_text(r: &RunReport) -> String {
+/// The printed summary: one table across the sweep points (a row a point: the swept values,
+/// the share of the point's flights meeting each requirement, and the key metrics' medians
+/// with their 5–95 % range), where the report and the files are, and with `verbose` every
+/// metric's statistics per point.
+pub fn summary_text(r: &RunReport, verbose: bool) -> String {
     use std::fmt::Write;
     let p: &Prepared = &r.prepared;
     let mut s = String::new();
@@ -149,15 +158,6 @@ pub fn summary_text(r: &RunReport) -> String {
         );
         return s;
     }
-    let _ = writeln!(
-        s,
-        "wrote {}, {}, {}, {}, {}",
-        r.outputs.variants.display(),
-        r.outputs.summary.display(),
-        r.outputs.ellipses.display(),
-        r.outputs.sensitivity.display(),
-        r.outputs.requirements.display()
-    );
     if !r.warned.is_empty() {
         let counts: Vec<String> = r.warned.iter().map(|(k, n)| format!("{n} {k}")).collect();
         let _ = writeln!(
@@ -166,6 +166,155 @@ pub fn summary_text(r: &RunReport) -> String {
             counts.join(", ")
         );
     }
+    s.push('\n');
+    s.push_str(&sweep_table(r));
+    s.push('\n');
+    let dir = r.outputs.dir.display();
+    match &r.report {
+        Some(w) => {
+            let _ = writeln!(
+                s,
+                "report: {} ({:.0} kB, drawn in {:.2} s)",
+                w.report.display(),
+                w.bytes as f64 / 1000.0,
+                w.seconds
+            );
+            if let (Some(k), Some(g)) = (&w.kml, &w.geojson) {
+                let _ = writeln!(
+                    s,
+                    "landing maps: {} (Google Earth), {} (QGIS, web maps)",
+                    k.display(),
+                    g.display()
+                );
+            }
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "no report (--no-report); hpr-mc report {dir} draws it from the files"
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "files in {dir}: variants, summary, ellipses, sensitivity, requirements and trajectories ({} variants' time series) .parquet{}",
+        r.trajectories,
+        if verbose { "" } else { "; --verbose prints every metric per point" }
+    );
+    if verbose {
+        s.push_str(&point_details(r));
+    }
+    s
+}
+
+/// The key metrics of the printed table and the report: the apogee, the static margin
+/// after each shift (the least static margin without one) and the landing distance.
+pub fn key_metrics(p: &Prepared) -> Vec<usize> {
+    let find = |n: &str| p.metrics.iter().position(|m| m.name == n);
+    let mut keys: Vec<usize> = find("apogee_m").into_iter().collect();
+    keys.extend(
+        p.metrics
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.name.starts_with("shift_") && m.name.ends_with("_margin_after_cal"))
+            .map(|(k, _)| k),
+    );
+    if keys.len() == 1 {
+        keys.extend(find("static_margin_min_cal"));
+    }
+    keys.extend(find("landing_distance_m"));
+    keys
+}
+
+/// The table across the sweep points, its requirements lettered A, B, … above it.
+pub fn sweep_table(r: &RunReport) -> String {
+    use std::fmt::Write;
+    let p = &r.prepared;
+    let mut s = String::new();
+    let letters = |k: usize| ((b'A' + (k % 26) as u8) as char).to_string();
+    if !p.requirements.is_empty() {
+        let list: Vec<String> = p
+            .requirements
+            .iter()
+            .enumerate()
+            .map(|(k, (m, req))| {
+                format!(
+                    "{} {} {}",
+                    letters(k),
+                    req.metric,
+                    req.bounds_text(p.metrics[*m].unit)
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            s,
+            "share of each point's flights meeting: {}",
+            list.join(" · ")
+        );
+    }
+    let _ = writeln!(
+        s,
+        "key metrics: median (5 % – 95 %) of each point's landed flights"
+    );
+    let keys = key_metrics(p);
+    let swept: Vec<_> = p.scenario.swept().collect();
+    let mut head: Vec<String> = vec!["point".into()];
+    head.extend(swept.iter().map(|i| match i.unit {
+        "1" => i.column.clone(),
+        u => format!("{} ({u})", i.column),
+    }));
+    head.extend((0..p.requirements.len()).map(letters));
+    head.extend(keys.iter().map(|&m| p.metrics[m].name.clone()));
+    let mut rows: Vec<Vec<String>> = vec![];
+    for st in &r.stats {
+        let mut row = vec![st.point.to_string()];
+        row.extend(p.plan.sweep_values(st.point).iter().map(|v| short(*v)));
+        row.extend(
+            st.requirements
+                .iter()
+                .map(|c| format!("{:.1} %", 100.0 * c.fraction)),
+        );
+        row.extend(keys.iter().map(|&m| match &st.summaries[m] {
+            Some(x) => format!("{} ({}–{})", short(x.p50), short(x.p5), short(x.p95)),
+            None => "-".into(),
+        }));
+        rows.push(row);
+    }
+    let widths: Vec<usize> = (0..head.len())
+        .map(|k| {
+            rows.iter()
+                .map(|r| r[k].chars().count())
+                .chain([head[k].chars().count()])
+                .max()
+                .unwrap_or(1)
+        })
+        .collect();
+    let line = |cells: &[String]| -> String {
+        let parts: Vec<String> = cells
+            .iter()
+            .zip(&widths)
+            .map(|(c, w)| format!("{}{c}", " ".repeat(w - c.chars().count())))
+            .collect();
+        parts.join("  ")
+    };
+    let _ = writeln!(s, "{}", line(&head));
+    for row in &rows {
+        let _ = writeln!(s, "{}", line(row));
+    }
+    s
+}
+
+/// A number with about four significant digits (the table's).
+fn short(x: f64) -> String {
+    crate::campaign::report::figures::short(x).replace('−', "-")
+}
+
+/// Per sweep point, each metric's mean, std, p5, p50 and p95, the requirements, the 1 σ
+/// landing ellipse, and the largest shares of variance of a few metrics (`--verbose`).
+fn point_details(r: &RunReport) -> String {
+    use std::fmt::Write;
+    let p: &Prepared = &r.prepared;
+    let mut s = String::new();
     let width = p
         .metrics
         .iter()

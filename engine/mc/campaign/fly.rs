@@ -443,6 +443,53 @@ impl Prepared {
         sim.with_options(options).map_err(|e| e.to_string())
     }
 
+    /// The single flight of variant `id` of the plan (every sampled input and its noise
+    /// seed, as its lane flies it: [`Batch::variant`]), keeping its samples: what `hpr-mc fly
+    /// --scenario FILE --variant ID` and the run's `trajectories.parquet` fly. Its
+    /// [`Prepared::flight_result`] is the variant's row, bit for bit. Errs for an id past the
+    /// plan or a variant the run records as `refused` (saying why).
+    pub fn variant_flight(&self, id: u64) -> Result<Simulation, String> {
+        let total = self.plan.total();
+        if id >= total {
+            return Err(format!(
+                "--variant {id}: the run has {total} variants (0 to {})",
+                total.saturating_sub(1)
+            ));
+        }
+        let v = self.plan.variant(id);
+        let fixed = self.fixed();
+        let setup = fixed
+            .setup(&v.values)
+            .map(|s| Setup {
+                sensor_seed: v.sensor_seed,
+                ..s
+            })
+            .map_err(|e| {
+                hpr_design::error::tidy_numbers(&format!("variant {id} is refused: sampled {e}"))
+            })?;
+        let sim = self
+            .batch
+            .variant(&fixed.columns(&[&setup]), 0)
+            .map_err(|e| format!("variant {id} is refused: {e}"))?;
+        let options = SimOptions {
+            keep_samples: true,
+            ..*sim.options()
+        };
+        sim.with_options(options).map_err(|e| e.to_string())
+    }
+
+    /// Variant `id`'s result from its single flight ([`Prepared::variant_flight`]), judged
+    /// by the code that judges its lane: the row `variants.parquet` holds for it.
+    pub fn flight_result(
+        &self,
+        id: u64,
+        sim: &Simulation,
+        flight: Result<hpr_sim::Flight, SimError>,
+    ) -> VariantResult {
+        let lane = self.batch.lane_result(sim, flight, id as usize);
+        self.result(id, lane)
+    }
+
     /// " at sweep point k (key = v, ...)" for `point`, or "" without a sweep.
     pub fn point_label(&self, point: usize) -> String {
         at_point(&self.scenario, &self.plan, point)
@@ -573,6 +620,49 @@ fn check_ballast(design: &Design, idx: usize) -> Result<(), String> {
 /// values are in range become the rows of one set of columns, flown in order on this thread
 /// as lanes of the prepared base flight (the run loop spreads the chunks over the threads).
 pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult> {
+    fly_lanes(prepared, &prepared.batch, variants)
+        .into_iter()
+        .map(|r| r.0)
+        .collect()
+}
+
+/// The run's batch with its lanes keeping their samples ([`fly_chunk_with_samples`]).
+pub fn sampling_batch(prepared: &Prepared) -> Result<Batch, String> {
+    prepared.batch.keeping_samples()
+}
+
+/// [`fly_chunk`] with each flight's samples (one per step; none for a variant not flown),
+/// for the few variants whose time series a run writes: the same lanes, of `batch`
+/// ([`sampling_batch`]), keeping samples.
+pub fn fly_chunk_with_samples(
+    prepared: &Prepared,
+    batch: &Result<Batch, String>,
+    variants: &[Variant],
+) -> Vec<(VariantResult, Vec<hpr_sim::flight::Sample>)> {
+    match batch {
+        Ok(batch) => fly_lanes(prepared, batch, variants),
+        Err(e) => variants
+            .iter()
+            .map(|v| {
+                let r = VariantResult {
+                    id: v.id,
+                    status: Status::Failed,
+                    error: Some(format!("internal error: {e}")),
+                    warnings: None,
+                    warned: None,
+                    metrics: vec![None; prepared.metrics.len()],
+                };
+                (r, vec![])
+            })
+            .collect(),
+    }
+}
+
+fn fly_lanes(
+    prepared: &Prepared,
+    batch: &Batch,
+    variants: &[Variant],
+) -> Vec<(VariantResult, Vec<hpr_sim::flight::Sample>)> {
     let fixed = prepared.fixed();
     let setups: Vec<Result<Setup, String>> = variants
         .iter()
@@ -584,19 +674,22 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
         })
         .collect();
     let rows: Vec<&Setup> = setups.iter().filter_map(|s| s.as_ref().ok()).collect();
-    let lanes = prepared.batch.fly_chunk(&fixed.columns(&rows), 0);
+    let lanes = batch.fly_chunk(&fixed.columns(&rows), 0);
     let mut lanes = match lanes {
         Ok(l) => l.into_iter(),
         // The columns are built here from checked setups: a shape error is a bug of this
         // module, reported on every row rather than stopping the run.
         Err(e) => {
-            let failed = |v: &Variant| VariantResult {
-                id: v.id,
-                status: Status::Failed,
-                error: Some(format!("internal error: {e}")),
-                warnings: None,
-                warned: None,
-                metrics: vec![None; prepared.metrics.len()],
+            let failed = |v: &Variant| {
+                let r = VariantResult {
+                    id: v.id,
+                    status: Status::Failed,
+                    error: Some(format!("internal error: {e}")),
+                    warnings: None,
+                    warned: None,
+                    metrics: vec![None; prepared.metrics.len()],
+                };
+                (r, vec![])
             };
             return variants.iter().map(failed).collect();
         }
@@ -606,21 +699,25 @@ pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult
         .zip(setups)
         .map(|(v, setup)| {
             let (status, error) = match setup.map(|_| lanes.next()) {
-                Ok(Some(lane)) => return prepared.result(v.id, lane),
+                Ok(Some(mut lane)) => {
+                    let samples = std::mem::take(&mut lane.samples);
+                    return (prepared.result(v.id, lane), samples);
+                }
                 Err(e) => (
                     Status::Refused,
                     hpr_design::error::tidy_numbers(&format!("sampled {e}")),
                 ),
                 Ok(None) => (Status::Failed, "internal error: a lane is missing".into()),
             };
-            VariantResult {
+            let r = VariantResult {
                 id: v.id,
                 status,
                 error: Some(error),
                 warnings: None,
                 warned: None,
                 metrics: vec![None; prepared.metrics.len()],
-            }
+            };
+            (r, vec![])
         })
         .collect()
 }

@@ -13,6 +13,8 @@
 //! - [`stats`]: percentiles, landing ellipses, sensitivity (faer), the share of variants meeting
 //!   each requirement (Wilson interval).
 //! - [`parquet`]: the output files, written atomically and streamed by row groups.
+//! - [`trajectories`]: the time series of a few variants per point, flown again alone.
+//! - [`report`]: `report.html` and the landing maps, drawn from the files a run wrote.
 //! - [`run`]: the loop (rayon, shards, resume, progress) and [`cli`]: arguments, printed
 //!   summary, exit codes.
 
@@ -20,10 +22,12 @@ pub mod cli;
 pub mod fly;
 pub mod params;
 pub mod parquet;
+pub mod report;
 pub mod run;
 pub mod sample;
 pub mod scenario;
 pub mod stats;
+pub mod trajectories;
 pub mod variants;
 
 pub use fly::{fly_chunk, Prepared, Status, VariantResult};

@@ -42,6 +42,10 @@ pub struct RunMeta {
     pub points: usize,
     pub shard: Shard,
     pub chunk_size: usize,
+    /// The site on the Earth (`environment.latitude_deg`, `longitude_deg`), where given:
+    /// the report's landing maps read it (`hpr_mc.latitude_deg`, `hpr_mc.longitude_deg`).
+    pub latitude_deg: Option<f64>,
+    pub longitude_deg: Option<f64>,
 }
 
 impl RunMeta {
@@ -56,6 +60,8 @@ impl RunMeta {
             points: s.points(),
             shard,
             chunk_size: s.chunk_size,
+            latitude_deg: s.environment.latitude_deg,
+            longitude_deg: s.environment.longitude_deg,
         }
     }
 
@@ -78,13 +84,29 @@ impl RunMeta {
             ),
             ("hpr_mc.chunk_size".into(), self.chunk_size.to_string()),
         ]
+        .into_iter()
+        .chain(
+            [
+                ("hpr_mc.latitude_deg", self.latitude_deg),
+                ("hpr_mc.longitude_deg", self.longitude_deg),
+            ]
+            .into_iter()
+            .filter_map(|(k, v)| v.map(|v| (k.to_string(), v.to_string()))),
+        )
+        .collect()
     }
 
     /// Why a file's metadata shows another run (None if it is from this one). The version
     /// and the file's path may differ: a rerun may come from another build or directory.
     pub fn mismatch(&self, kv: &HashMap<String, String>) -> Option<String> {
         for (k, v) in self.pairs() {
-            if k == "hpr_mc.version" || k == "hpr_mc.scenario_file" || k == "hpr_mc.scenario" {
+            // The site follows from the scenario's text, whose fingerprint is compared.
+            if k == "hpr_mc.version"
+                || k == "hpr_mc.scenario_file"
+                || k == "hpr_mc.scenario"
+                || k == "hpr_mc.latitude_deg"
+                || k == "hpr_mc.longitude_deg"
+            {
                 continue;
             }
             match kv.get(&k) {
@@ -252,13 +274,34 @@ pub fn write_atomic(
     row_group_rows: usize,
     fill: impl FnOnce(&mut ArrowWriter<File>) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
+    write_atomic_with(path, schema, pairs, row_group_rows, &[], fill)
+}
+
+/// [`write_atomic`] with `float_columns` written as measured series are best: each double's
+/// bytes split into streams (BYTE_STREAM_SPLIT, which zstd compresses well) and no
+/// dictionary (a series rarely repeats a value), at zstd's quickest level.
+pub fn write_atomic_with(
+    path: &Path,
+    schema: &SchemaRef,
+    pairs: &[(String, String)],
+    row_group_rows: usize,
+    float_columns: &[&str],
+    fill: impl FnOnce(&mut ArrowWriter<File>) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
     let tmp = temporary(path);
     let result = (|| -> anyhow::Result<()> {
         let file = File::create(&tmp).with_context(|| format!("can't create {}", tmp.display()))?;
-        let props = WriterProperties::builder()
-            .set_compression(Compression::ZSTD(ZstdLevel::try_new(3)?))
-            .set_max_row_group_row_count(Some(row_group_rows.max(1)))
-            .build();
+        let level = if float_columns.is_empty() { 3 } else { 1 };
+        let mut props = WriterProperties::builder()
+            .set_compression(Compression::ZSTD(ZstdLevel::try_new(level)?))
+            .set_max_row_group_row_count(Some(row_group_rows.max(1)));
+        for c in float_columns {
+            let col = parquet::schema::types::ColumnPath::from(*c);
+            props = props
+                .set_column_dictionary_enabled(col.clone(), false)
+                .set_column_encoding(col, parquet::basic::Encoding::BYTE_STREAM_SPLIT);
+        }
+        let props = props.build();
         let mut w = ArrowWriter::try_new(file, schema.clone(), Some(props))?;
         for (k, v) in pairs {
             w.append_key_value_metadata(KeyValue::new(k.clone(), v.clone()));

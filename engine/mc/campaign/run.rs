@@ -44,6 +44,8 @@ pub struct RunConfig {
     /// Fly at most this many chunks, then stop without merging, as an interruption would
     /// (for tests of `resume`).
     pub max_chunks: Option<usize>,
+    /// Skip the report (`report.html` and the landing maps) at the end (`--no-report`).
+    pub no_report: bool,
 }
 
 /// The files of a run.
@@ -55,6 +57,12 @@ pub struct Outputs {
     pub ellipses: PathBuf,
     pub sensitivity: PathBuf,
     pub requirements: PathBuf,
+    pub trajectories: PathBuf,
+    /// The report (`report.html`, or `report-shard-K-of-N.html`) and the landing maps
+    /// (`landing.kml`, `landing.geojson`, with the same suffix).
+    pub report: PathBuf,
+    pub kml: PathBuf,
+    pub geojson: PathBuf,
     pub parts: PathBuf,
 }
 
@@ -75,6 +83,10 @@ impl Outputs {
             ellipses: f("ellipses"),
             sensitivity: f("sensitivity"),
             requirements: f("requirements"),
+            trajectories: f("trajectories"),
+            report: dir.join(format!("report{suffix}.html")),
+            kml: dir.join(format!("landing{suffix}.kml")),
+            geojson: dir.join(format!("landing{suffix}.geojson")),
             parts: dir.join("parts").join(format!("variants{suffix}")),
         }
     }
@@ -106,6 +118,10 @@ pub struct RunReport {
     /// occurred, in the order of [`hpr_sim::Warning::KEYS`].
     pub warned: Vec<(String, u64)>,
     pub stats: Vec<PointStats>,
+    /// Variants whose time series trajectories.parquet holds.
+    pub trajectories: u64,
+    /// What the report wrote (None with `no_report`, or before the run is complete).
+    pub report: Option<crate::campaign::report::Written>,
     pub elapsed: Duration,
 }
 
@@ -163,8 +179,14 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         failed: 0,
         warned: Vec::new(),
         stats: vec![],
+        trajectories: 0,
+        report: None,
         elapsed: Duration::ZERO,
     };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(cfg.threads.unwrap_or(0))
+        .build()
+        .context("can't start the worker threads")?;
     let (p, out) = (&report.prepared, &report.outputs);
 
     // A resumed run whose merged file is already there only recomputes the statistics.
@@ -181,10 +203,6 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         if let Some(m) = cfg.max_chunks {
             missing.truncate(m);
         }
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(cfg.threads.unwrap_or(0))
-            .build()
-            .context("can't start the worker threads")?;
         let flights_left: u64 = missing
             .iter()
             .map(|&c| chunk_list[c].end - chunk_list[c].start)
@@ -249,7 +267,18 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         let _ = std::fs::remove_dir(out.dir.join("parts"));
         finish(&mut report, &meta, &table)?;
     }
+    report.trajectories = pool.install(|| {
+        super::trajectories::write(
+            &report.prepared,
+            shard,
+            &report.outputs.trajectories,
+            &meta.pairs(),
+        )
+    })?;
     report.complete = true;
+    if !cfg.no_report {
+        report.report = Some(super::report::write_files(&report.outputs)?);
+    }
     report.elapsed = started.elapsed();
     Ok(report)
 }

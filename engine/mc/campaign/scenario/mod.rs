@@ -73,15 +73,16 @@ pub struct EnvironmentSpec {
     /// The site's latitude, degrees north: given, the flights feel the Earth's rotation
     /// (Coriolis), and `gravity = "somigliana"` needs it.
     pub latitude_deg: Option<f64>,
+    /// The site's longitude, degrees east (WGS 84): with the latitude, the landing maps
+    /// (KML, GeoJSON) place the launch frame on the Earth, and a weather file's grid is read
+    /// there. The flights do not use it otherwise.
+    pub longitude_deg: Option<f64>,
     /// The atmosphere: the standard one, or the site's measured air (`temperature_k`,
     /// `pressure_pa` at the nominal `elevation_m`, built once: every variant flies it).
     pub air: AirModel,
     /// The sounding the air and the wind were read from (`environment.sounding`), if any,
     /// and its text.
     pub sounding: Option<(PathBuf, String)>,
-    /// The site's longitude, degrees east (`environment.longitude_deg`): a weather file's
-    /// grid is read there.
-    pub longitude_deg: Option<f64>,
     /// The weather-model file the air and the wind were read from (`environment.weather`),
     /// if any.
     pub weather: Option<WeatherSpec>,
@@ -284,7 +285,16 @@ pub struct Scenario {
     /// What a flight must meet (`[requirements]`), by metric name in name order; each sweep
     /// point's share of the variants that meet each is reported.
     pub requirements: Vec<RequirementSpec>,
+    /// Variants per sweep point (its first replicates) whose time series are written to
+    /// `trajectories.parquet` (`[outputs] trajectories`).
+    pub trajectories: u64,
 }
+
+/// Variants per sweep point whose time series a run writes unless `[outputs] trajectories`
+/// says otherwise.
+pub const DEFAULT_TRAJECTORIES: u64 = 10;
+/// The most `[outputs] trajectories` may ask for.
+pub const MAX_TRAJECTORIES: u64 = 10_000;
 
 /// Bounds a metric must keep: `min ≤ value ≤ max` (either may be absent, not both). A
 /// variant whose metric has no value (a flight that failed, or never reached what the metric
@@ -593,8 +603,6 @@ impl Scenario {
                 }
                 l => l,
             },
-            air: AirModel::Standard,
-            sounding,
             longitude_deg: match env.longitude_deg {
                 Some(l) if !(l.is_finite() && l.abs() <= 180.0) => {
                     return Err(bad(
@@ -602,8 +610,17 @@ impl Scenario {
                         format!("must be finite and within [-180, 180] degrees east (got {l})"),
                     ))
                 }
+                Some(_) if env.latitude_deg.is_none() => {
+                    return Err(bad(
+                        "environment.longitude_deg",
+                        "places the site on the Earth with environment.latitude_deg: give both"
+                            .into(),
+                    ))
+                }
                 l => l,
             },
+            air: AirModel::Standard,
+            sounding,
             weather,
         };
         let air_error = |e: AtmosphereError| {
@@ -795,6 +812,18 @@ impl Scenario {
         }
 
         let requirements = requirements(&bad, raw.requirements.take().unwrap_or_default())?;
+        let trajectories = match raw.outputs.take().and_then(|o| o.trajectories) {
+            None => DEFAULT_TRAJECTORIES,
+            Some(n) if n <= MAX_TRAJECTORIES => n,
+            Some(n) => {
+                return Err(bad(
+                    "outputs.trajectories",
+                    format!(
+                        "must be from 0 to {MAX_TRAJECTORIES} variants per sweep point (got {n})"
+                    ),
+                ))
+            }
+        };
 
         let mut scenario = Scenario {
             file: path.to_path_buf(),
@@ -845,6 +874,7 @@ impl Scenario {
             chunk_size: chunk_size as usize,
             row_group_rows: row_group_rows as usize,
             requirements,
+            trajectories,
         };
         scenario.inputs = inputs(&scenario, &bad, raw.sweep.take(), raw.dispersions.take())?;
         if scenario.turbulent() && scenario.max_time_s > MAX_TURBULENT_FLIGHT_S {

@@ -27,6 +27,7 @@ pub(super) struct RawScenario {
     pub(super) sweep: Option<RawParams<Vec<f64>>>,
     pub(super) dispersions: Option<RawParams<RawDist>>,
     pub(super) run: Option<RawRun>,
+    pub(super) outputs: Option<RawOutputs>,
     /// Metric name → bounds.
     pub(super) requirements: Option<std::collections::BTreeMap<String, RawRequirement>>,
 }
@@ -199,6 +200,12 @@ pub(super) struct RawIntegrator {
     pub(super) atol_rate_rad_s: Option<f64>,
     pub(super) step_s: Option<f64>,
     pub(super) max_time_s: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawOutputs {
+    pub(super) trajectories: Option<u64>,
 }
 
 #[derive(Deserialize, Default)]

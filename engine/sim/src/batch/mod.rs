@@ -187,6 +187,9 @@ pub struct LaneResult {
     /// What the flight's figures hide (empty where the flight did not happen).
     pub warnings: Vec<Warning>,
     pub derivative_evaluations: u64,
+    /// The flight's samples, one per step, for a batch that keeps them
+    /// ([`Batch::keeping_samples`]); empty otherwise.
+    pub samples: Vec<crate::flight::Sample>,
 }
 
 /// When one parachute opened in a lane (`None` if it never did).
@@ -319,7 +322,26 @@ impl Batch {
         self
     }
 
-    /// The base flight (samples off).
+    /// This batch with its lanes keeping their samples (each lane's [`LaneResult::samples`]),
+    /// for the few variants whose time series are wanted. Recording a sample changes no
+    /// number of the flight.
+    pub fn keeping_samples(&self) -> Result<Batch, String> {
+        let options = crate::flight::SimOptions {
+            keep_samples: true,
+            ..*self.base.options()
+        };
+        Ok(Batch {
+            base: self
+                .base
+                .clone()
+                .with_options(options)
+                .map_err(|e| e.to_string())?,
+            part: self.part.clone(),
+            weather: self.weather.clone(),
+        })
+    }
+
+    /// The base flight (samples off, unless [`Batch::keeping_samples`]).
     pub fn base(&self) -> &Simulation {
         &self.base
     }
@@ -576,20 +598,24 @@ impl Batch {
             parachutes: vec![ParachuteOutcome::default(); self.base.parachutes().len()],
             warnings: Vec::new(),
             derivative_evaluations: 0,
+            samples: Vec::new(),
         }
     }
 
-    /// A lane's result from its simulation and its flight.
-    fn result_of(
+    /// A lane's result from its simulation and its flight: what a lane of `sim` gives
+    /// for `flight` (public so that a variant flown again alone, with its samples, is judged
+    /// by the same code as its lane).
+    pub fn lane_result(
         &self,
         sim: &Simulation,
         flight: Result<Flight, SimError>,
         variant: usize,
     ) -> LaneResult {
-        let flight = match flight {
+        let mut flight = match flight {
             Ok(f) => f,
             Err(e) => return self.empty(variant, Status::Failed, e.to_string()),
         };
+        let samples = std::mem::take(&mut flight.samples);
         let model = sim.model();
         let end = flight.events.last().map_or(0.0, |e| e.time_s);
         let margin = |t: f64| {
@@ -641,6 +667,7 @@ impl Batch {
             parachutes,
             warnings: flight.warnings(),
             derivative_evaluations: flight.derivative_evaluations,
+            samples,
         }
     }
 
@@ -695,9 +722,9 @@ impl Batch {
                         retrying: false,
                     }),
                     Ok(Ok(Progress::Done(flight))) => {
-                        results[row] = Some(self.result_of(sim, Ok(flight), variant))
+                        results[row] = Some(self.lane_result(sim, Ok(flight), variant))
                     }
-                    Ok(Err(e)) => results[row] = Some(self.result_of(sim, Err(e), variant)),
+                    Ok(Err(e)) => results[row] = Some(self.lane_result(sim, Err(e), variant)),
                     Err(p) => results[row] = Some(self.panicked(variant, &p)),
                 }
             }
@@ -743,17 +770,17 @@ impl Batch {
                                 continue;
                             }
                             Ok(Ok(AfterFree::Done(flight))) => {
-                                self.result_of(sim, Ok(flight), variant)
+                                self.lane_result(sim, Ok(flight), variant)
                             }
-                            Ok(Err(e)) => self.result_of(sim, Err(e), variant),
+                            Ok(Err(e)) => self.lane_result(sim, Err(e), variant),
                             Err(p) => self.panicked(variant, &p),
                         }
                     }
                     (LaneEnd::Landed, Flying::Descent(d)) => match guarded(move || d.finish()) {
-                        Ok(flight) => self.result_of(sim, Ok(flight), variant),
+                        Ok(flight) => self.lane_result(sim, Ok(flight), variant),
                         Err(p) => self.panicked(variant, &p),
                     },
-                    (LaneEnd::Error(e), _) => self.result_of(sim, Err(e), variant),
+                    (LaneEnd::Error(e), _) => self.lane_result(sim, Err(e), variant),
                     (LaneEnd::Panic(p), _) => self.panicked(variant, &p),
                     _ => self.panicked(variant, "lost its flight"),
                 };
