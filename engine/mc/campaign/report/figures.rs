@@ -156,12 +156,14 @@ pub fn rows_chart(id: &str, title: &str, x_label: &str, rows: &[Row]) -> Option<
             false,
         );
         ch.dots(&[(v[0], y), (v[v.len() - 1], y)], 2.5, "#444444", 0.9);
-        let (tx, anchor) = if (q(0.95) - x0) / (x1 - x0) > 0.75 {
-            (q(0.05), "end")
+        // The label beyond the row's outermost dot (the least or the greatest), so that
+        // neither the whisker nor the dot crosses it.
+        let (tx, anchor) = if (v[v.len() - 1] - x0) / (x1 - x0) > 0.75 {
+            (v[0], "end")
         } else {
-            (q(0.95), "start")
+            (v[v.len() - 1], "start")
         };
-        let dx = if anchor == "end" { -6.0 } else { 6.0 };
+        let dx = if anchor == "end" { -8.0 } else { 8.0 };
         ch.text(
             (tx, y),
             dx,
