@@ -2,8 +2,8 @@
 //! and 100k variants, on 1 thread for 1k and 10k, and `Simulation` set up from scratch in a
 //! rayon loop on 2 threads for 1k and 10k, all over the same variants (`fleet`: the reference
 //! design, ballast moving, drogue and main, wind, rail, motor and mass dispersions). Criterion
-//! reports flights per second (its "elements"); the ratios the batch issue asks for are the
-//! ratios of those. `batch.rs` measures the same with interleaved rounds and peak memory.
+//! reports flights per second (its "elements"); the batch's targets (batch / loop, 2 threads /
+//! 1) are ratios of those. `batch.rs` measures the same with interleaved rounds and peak memory.
 //!
 //! Ten samples each; the 100k runs take about 35 s a sample, so the whole takes about eight
 //! minutes. One size: `cargo bench --bench flights -- '/10k$'`.

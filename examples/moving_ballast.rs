@@ -1,4 +1,4 @@
-//! The moving-mass spec's worked example: the reference 54 mm design on the Cesaroni I175
+//! The worked example of `docs/moving-mass.md`: the reference 54 mm design on the Cesaroni I175
 //! (411I175-14A), with its 200 g ballast sliding 0.3 m toward the tail over one second from
 //! 5 s after launch. Prints the rocket's mass properties before, during and after the move,
 //! the static margin before and after, and the apogee with the ballast moving and held still.

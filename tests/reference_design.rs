@@ -1,5 +1,5 @@
-//! The reference design against the moving-mass specification's worked example, digit for
-//! digit as the specification prints it (issue 2 §6 and issue 4), and `hpr-mc inspect` on it.
+//! The reference design against the moving-mass worked example, digit for digit as
+//! `docs/moving-mass.md` ("The worked example") prints it, and `hpr-mc inspect` on it.
 
 use hpr_design::{motor, Design};
 use hpr_sim::flight::{Environment, Rail, Simulation};
@@ -76,10 +76,10 @@ fn the_moving_ballast_example_prints_the_specification_s_table_to_every_digit() 
     let moving = flight.metrics.apogee_m.unwrap();
     let held = still.run(&mut ()).unwrap().metrics.apogee_m.unwrap();
     eprintln!("apogee {moving:.3} m with the ballast moving, {held:.3} m held still");
-    // The specification: 1749.8 m moving, 1749.9 m held. Measured 1749.987 and 1750.084 m
-    // (0.01 % above; the specification does not say which atmosphere, rail and integrator
-    // settings its figures used, so 0.5 m is allowed); the ballast's worth, −0.097 m, is the
-    // specification's −0.1 m.
+    // The example's stated apogees (`docs/moving-mass.md`): 1749.8 m moving, 1749.9 m held.
+    // Measured 1749.987 and 1750.084 m (0.01 % above; they were stated without the
+    // atmosphere, rail and integrator settings behind them, so 0.5 m is allowed); the
+    // ballast's worth, −0.097 m, is the stated −0.1 m.
     for (a, spec) in [(moving, 1749.8), (held, 1749.9)] {
         assert!(
             (a - spec).abs() <= 0.5,

@@ -267,7 +267,8 @@ fn the_variants_file_reads_back_with_its_schema_units_nulls_metadata_and_values(
         );
     }
     // The shift's margin falls by m Δ / (M d) when the ballast moves 0.25 m: at least 1 cal
-    // for 200 g in a 0.8 kg, 56.3 mm rocket (spec: 1.302 cal for 0.3 m).
+    // for 200 g in a 0.8 kg, 56.3 mm rocket (`docs/moving-mass.md`'s worked example: 1.302 cal
+    // for 0.3 m).
     let (before, after) = (
         f64s(&b, "shift_ballast_margin_before_cal"),
         f64s(&b, "shift_ballast_margin_after_cal"),

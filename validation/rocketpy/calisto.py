@@ -515,7 +515,7 @@ def main():
             "motor_samples": [motor_state(motor, t) for t in
                               (0.0, 0.5, 1.0, 2.0, 3.0, 3.5, 3.9)],
         },
-        "target_numbers_from_issue": {
+        "target_numbers": {
             "apogee_agl_m": 3305.6, "apogee_time_s": 25.885,
             "rail_exit_time_s": 0.3632, "max_speed_m_s": 285.95,
             "max_mach": 0.860},

@@ -12,7 +12,7 @@ is compared:
   rocket with a conical nose, four fins, a launch lug for its rail guide and a boattail, on
   the AeroTech K1100T (3.6 kg at liftoff, Mach 1.2);
 * ``reference_design`` (``validation/designs/synthetic-54mm-three-fin.json``): the moving-mass
-  specification's 54 mm design, ogive nose, three plain fins, on its Cesaroni I175;
+  worked example's 54 mm design (``docs/moving-mass.md``), ogive nose, three plain fins, on its Cesaroni I175;
 * ``elliptical_fins`` (``validation/designs/crosscheck-102mm-elliptical-fins.json``): a 102 mm
   rocket with an elliptical nose and three elliptical fins (RocketPy's ``EllipticalFins``,
   whose center of pressure it rounds to 0.288 root chords where hpr-mc's quarter-MAC point is

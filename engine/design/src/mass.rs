@@ -6,8 +6,7 @@
 //! moves it to any point. Shapes have closed forms (thin cylindrical shell, solid cylinder,
 //! conical shell, fin plate, ...) in [`solids`]; a design's components, subtrees, stages and
 //! dry rocket, with the design's overrides applied, are in [`components`]. [`moved_part`] is
-//! the moving-mass update of the spec (`spec/moving-mass.md`, "What the rocket's mass
-//! properties do").
+//! the moving-mass update (`docs/moving-mass.md`, "What changes").
 
 pub mod components;
 pub mod solids;
@@ -154,7 +153,8 @@ impl MassProps {
     }
 }
 
-/// The whole after one of its parts moved by `delta` (moving-mass spec, exactly):
+/// The whole after one of its parts moved by `delta` (exactly as `docs/moving-mass.md`, "What
+/// changes", says):
 /// the mass doesn't change; `cg_new = cg + m δ / M`;
 /// `I_new = I_whole(about cg_new) + m [J(c₀ + δ − cg_new) − J(c₀ − cg_new)]`, with `m` and
 /// `c₀` the part's mass and center where `whole` has it. The part's own inertia goes with it

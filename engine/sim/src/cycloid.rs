@@ -106,7 +106,7 @@ mod tests {
         // Peak at τ = 1/4: travel/T² · 2π · sin(π/2).
         let s = evaluate(0.25e-2, 0.0, 1e-2, 1.0);
         assert!((s.accel_m_s2 - peak_acceleration(1.0, 1e-2)).abs() < 1e-9 * s.accel_m_s2);
-        // The spec's figure: 63 km/s² per metre for a 10 ms move.
+        // `docs/moving-mass.md`'s figure: 63 km/s² per metre for a 10 ms move.
         assert!((peak_acceleration(1.0, 0.01) / 1000.0 - 62.83).abs() < 0.01);
     }
 }

@@ -4,8 +4,8 @@
 //! The rigid body follows RocketPy's "Equations of Motion v1", written about O, the nose tip
 //! (a point fixed in the airframe), in body axes (see [`crate::frames`]). With `m` the mass,
 //! `r` the center of mass seen from O, primes for rates seen from the airframe, `h` the
-//! moving parts' angular momentum about O relative to the airframe (moving mass, spec
-//! "What the equations of motion add"), `F` the external forces but gravity and `M_O` their
+//! moving parts' angular momentum about O relative to the airframe (moving mass,
+//! `docs/moving-mass.md`, "What changes"), `F` the external forces but gravity and `M_O` their
 //! moment about O:
 //!
 //! ```text

@@ -5,8 +5,9 @@
 //! airframe (structure, casing, every part where the design puts it), the propellant (whose
 //! mass falls while its shape scales with it, see `hpr_design::motor`), and the parts that
 //! shifts move. Moving a part of mass `m` from `c₀` by `d` adds `m d` to the first moment and
-//! `m [J(c₀ + d) − J(c₀)]` to the inertia about O (parallel-axis theorem, the spec's
-//! `I_new` formula written about O rather than about the new center; the two are the same).
+//! `m [J(c₀ + d) − J(c₀)]` to the inertia about O (parallel-axis theorem: the
+//! `I_new` of `hpr_design::mass::moved_part` written about O rather than about the new center;
+//! the two are the same).
 //! The rates follow exactly from the cycloid and the propellant's mass rates:
 //!
 //! ```text
@@ -16,7 +17,8 @@
 //! h   = Σ m c × d′,   h′ = Σ m c × d″
 //! ```
 //!
-//! which are the spec's `r′`, `r″` and `I′` expanded. Pure, allocation-free, and written once
+//! which are the rates of the center of mass and of the inertia (`docs/moving-mass.md`, "What
+//! changes") expanded. Pure, allocation-free, and written once
 //! over [`Real`] ([`mass_state_lanes`]): the single flight evaluates it on one lane
 //! (`FlightModel::instant_computed_into`), the batch engine on four lanes at once for the
 //! lanes whose mass is changing (the motor burning or a part moving), lane by lane the same

@@ -1,5 +1,9 @@
-//! Triggers: when a parachute opens or a mass shift starts. Parachutes and shifts share them,
-//! as the spec requires ("the same triggers a parachute has").
+//! Triggers: when a parachute opens or a mass shift starts. Both use this one type, so a shift
+//! can start on anything that opens a parachute (apogee, a height on the way down, a time after
+//! launch, burnout, burnout plus a delay), and the flight driver judges both alike: a trigger
+//! with a time known before the flight ([`Trigger::fixed_time`]) is a stop time, apogee and a
+//! height are events located on the step's dense output, and one call fires every parachute and
+//! shift that a moment triggers.
 
 use std::fmt;
 
@@ -19,8 +23,9 @@ pub enum Trigger {
 }
 
 impl Trigger {
-    /// Check the trigger's own numbers: finite, non-negative. `what` names the owner for the
-    /// message (e.g. `parachute "main"`).
+    /// Check the trigger's own numbers: finite, non-negative. The message names the trigger and
+    /// the field; the caller puts its owner in front of it (a parachute's name, a shift's index
+    /// and part).
     pub fn validate(&self) -> Result<(), String> {
         let bad = |field: &str, v: f64| -> Result<(), String> {
             if v.is_finite() && v >= 0.0 {

@@ -1,12 +1,13 @@
 """Build validation/designs/synthetic-54mm-three-fin.json.
 
 The reference design is synthetic: a believable 54 mm three-fin rocket whose after-burnout
-mass properties and static margin are the moving-mass spec's worked example (mass 0.8188 kg,
+mass properties and static margin are those of the moving-mass worked example
+(docs/moving-mass.md, "The worked example": mass 0.8188 kg,
 center of mass 0.6681 m aft of the tip, transverse inertia 0.09556 kg m^2, static margin
 4.297 calibres). Four free parameters are solved so that hpr-mc's own mass and Barrowman code
 give those numbers: the nose weight's mass, the body tube's length, the body tube's density
 and the fins' span. The drag curve's scale is then solved (by flying it) so that the apogee
-is 1750 m on the Cesaroni I175, as issue 4 asks. Run from the repository root after
+is 1750 m on the Cesaroni I175, as the worked example has it. Run from the repository root after
 `cargo build --release`:  python3 validation/designs/tools/make_reference.py
 """
 import json, math, subprocess, sys
@@ -14,8 +15,8 @@ import json, math, subprocess, sys
 OUT = "validation/designs/synthetic-54mm-three-fin.json"
 HPR = "./target/release/hpr-mc"
 
-# Targets (moving-mass spec, "A worked example").
-# The spec prints 4 or 5 digits; its table of the moving ballast (rows at 5.25 to 7.00 s)
+# Targets (docs/moving-mass.md, "The worked example").
+# The example prints 4 or 5 digits; its table of the moving ballast (rows at 5.25 to 7.00 s)
 # pins the unrounded center of mass to [0.668112, 0.668128] m and the inertia to
 # [0.0955609, 0.095565] kg m^2, so the targets are the middle of those windows.
 M_T, CG_T, I_T, SM_T = 0.8188, 0.66812, 0.095563, 4.2973
@@ -34,9 +35,10 @@ def design(p):
     d = 0.0563
     return {
         "name": "Synthetic 54 mm three-fin (hpr-mc reference design)",
-        "notes": ("Synthetic reference design of the moving-mass spec. Its nose weight, avionics "
+        "notes": ("Synthetic reference design of the moving-mass worked example "
+                  "(docs/moving-mass.md). Its nose weight, avionics "
                   "mass, body-tube density and fin span were solved (validation/designs/tools/"
-                  "make_reference.py) so that after burnout it has the spec's mass 0.8188 kg, center "
+                  "make_reference.py) so that after burnout it has the example's mass 0.8188 kg, center "
                   "of mass 0.6681 m, transverse inertia 0.09556 kg m^2 and static margin 4.297 cal; "
                   "its drag curve is a typical shape scaled by %.6f so that it reaches 1750 m on the "
                   "Cesaroni I175. Not a real rocket: tuned, not measured." % drag_scale),

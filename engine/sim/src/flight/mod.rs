@@ -251,8 +251,8 @@ impl Simulation {
         self.with_changes(|c| c.parachutes(parachutes))
     }
 
-    /// Mass shifts (the spec's `MassShift`). Every rule that can be checked before the flight
-    /// is checked here, and a refusal names the rule it broke.
+    /// Mass shifts ([`MassShift`], rules in `docs/moving-mass.md`). Every rule that can be
+    /// checked before the flight is checked here, and a refusal names the rule it broke.
     pub fn with_shifts(self, shifts: Vec<MassShift>) -> Result<Simulation, SimError> {
         self.with_changes(|c| c.shifts(shifts))
     }

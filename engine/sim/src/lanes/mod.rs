@@ -136,7 +136,7 @@ impl Real for f64 {
 /// `std::array::from_fn` and `map`, the compiler stopped inlining those calls when unrelated
 /// code moved (+1 % of the batch's instructions); spelled out they stay in line (−1.2 %). The
 /// arithmetic of [`F64x4`] keeps `from_fn` and `map`, which it vectorises better than spelled-out
-/// lanes (those cost +4.3 %, measured again in session 13).
+/// lanes (those cost +4.3 %, measured again on 2026-12-02, 48cb63e).
 macro_rules! four {
     ($i:ident => $e:expr) => {
         [

@@ -1,5 +1,5 @@
 //! Mass shifts: a part carried inside the airframe that slides along the axis during the
-//! flight (`../shared/spec/moving-mass.md`, "Moving mass").
+//! flight (`docs/moving-mass.md` states the rules for users).
 //!
 //! This module owns the [`MassShift`] description, every rule that refuses one (each refusal
 //! names the rule it broke), and the grouping of shifts by part that the mass-property kernel
@@ -46,7 +46,8 @@ impl MassShift {
     }
 }
 
-/// Why a shift was refused. Each variant is one rule of the spec.
+/// Why a shift was refused. Each variant is one rule of `docs/moving-mass.md` ("What is refused,
+/// and why").
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ShiftRefusal {
     #[error("shift {index} ({component}): duration_s must be at least 0.01 s, a shorter move is closer to an impact than a motion (got {duration_s} s)")]

@@ -1,4 +1,5 @@
-//! Every refusal of the spec has a test that checks which rule fired.
+//! Every refusal `docs/moving-mass.md` lists ("What is refused, and why") has a test that checks
+//! which rule fired.
 
 use super::tests::{component_mut, design, reference_json, simulation};
 use super::{plan, ShiftRefusal};

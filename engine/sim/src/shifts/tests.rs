@@ -1,5 +1,5 @@
-//! The moving-mass spec's tests ("How it is checked"), each holding the bound given there and
-//! printing what it measured.
+//! The tests `docs/moving-mass.md` lists ("How it is checked"), each holding the bound given
+//! there and printing what it measured.
 
 use crate::cycloid;
 use crate::eom::{self, N6};
@@ -55,7 +55,7 @@ pub(super) fn simulation(design: Design, env: Environment, options: SimOptions) 
         .unwrap()
 }
 
-/// The specification's worked example: the reference design on its I175, the 200 g ballast
+/// The worked example of `docs/moving-mass.md`: the reference design on its I175, the 200 g ballast
 /// slid 0.3 m aft over 1 s from t = 5 s, in still standard air.
 fn worked_example() -> Simulation {
     simulation(
@@ -159,7 +159,7 @@ fn mass_properties_before_during_and_after_a_shift_match_the_hand_calculation() 
         assert_eq!(p.mass_kg, big_m, "the mass does not change");
     }
     assert!(worst <= 1e-15, "worst error {worst:e} (bound 1e-15)");
-    // The specification's two-body figures: its hand arithmetic on the table's rounded
+    // The two-body figures by hand: arithmetic on the worked example's rounded table
     // figures (M 0.8188 kg, center 0.6681 m; ballast 0.2 kg at 0.375 m) gives μ = 0.1511 kg,
     // the rest's center 0.7628 m, the ballast 0.3878 m from it and then 0.0878 m, and the
     // inertia changed by μ (0.0878² − 0.3878²) = −0.0216 kg·m²; the simulator's unrounded
@@ -232,7 +232,8 @@ fn a_moving_mass_shifts_the_static_margin_by_the_hand_calculation() {
     eprintln!("{n} coast samples, worst static-margin error {worst:.1e} calibres");
     assert!(n > 20);
     assert!(worst <= 1e-12, "worst {worst:e} (bound 1e-12)");
-    // The spec's figures: 4.297 → 2.996, a change of −1.302 = −0.0733/0.0563.
+    // The worked example's figures (`docs/moving-mass.md`): 4.297 → 2.996, a change of
+    // −1.302 = −0.0733/0.0563.
     let sm1 = sim.static_margin_for(sim.mass_properties(&flight, 7.0).cg_m.x);
     assert_eq!(
         format!("{sm0:.3} {sm1:.3} {:.3}", sm1 - sm0),
@@ -303,8 +304,8 @@ fn a_part_moving_off_the_axis_keeps_both_momenta_in_free_space() {
     assert!(eh <= 1e-10, "angular momentum {eh:e} (bound 1e-10)");
     assert!(ev <= 1e-10, "center's velocity {ev:e} m/s (bound 1e-10)");
     // The term ω × h + h′ matters here: the ballast's own angular momentum is not negligible
-    // (1.19 % of the rocket's at its peak with this test's turning rates; the specification
-    // quotes 1.8 % for rates it does not give), far above the bounds above.
+    // (1.19 % of the rocket's at its peak with this test's turning rates; 1.8 % was given
+    // for the worked example at rates not stated), far above the bounds above.
     assert!(h_rel_max > 5e-3, "{h_rel_max}");
 }
 

@@ -1,8 +1,8 @@
 //! RocketPy 1.13's Calisto (validation/rocketpy/calisto_reference.json, produced by
 //! validation/rocketpy/calisto.py) flown by hpr from validation/designs/calisto.json.
 //!
-//! All five figures the issue names (apogee above ground, its time, the rail exit time, the
-//! maximum speed and Mach) must be within 1 % of RocketPy's. Measured (release build, default
+//! Five figures (apogee above ground, its time, the rail exit time, the maximum speed and
+//! Mach) must be within 1 % of RocketPy's. Measured (release build, default
 //! integrator): apogee 3307.02 m (+0.043 %), its time 25.8859 s (+0.004 %), rail exit 0.36324 s
 //! (−0.001 %), max speed 285.89 m/s (−0.022 %), max Mach 0.8589 (−0.149 %). (With the casing
 //! and the propellant at the motor's mid-length, before the motor was RocketPy's

@@ -13,8 +13,9 @@
 //!   guide (RocketPy's two buttons at the lug's ends), on the K1100T to Mach 1.22, a 3.5 m
 //!   rail heading west-north-west, 7 m/s from the north-north-east;
 //! * `reference_design` (validation/designs/synthetic-54mm-three-fin.json): the moving-mass
-//!   spec's design on its I175 (Mach 0.98), its motor standing 10 mm out of its tube, a 2.5 m
-//!   rail heading south-south-west, 5 m/s from the east-south-east;
+//!   worked example's design (`docs/moving-mass.md`) on its I175 (Mach 0.98), its motor
+//!   standing 10 mm out of its tube, a 2.5 m rail heading south-south-west, 5 m/s from the
+//!   east-south-east;
 //! * `elliptical_fins` (validation/designs/crosscheck-102mm-elliptical-fins.json): a 102 mm
 //!   rocket of 9.66 kg with an elliptical nose and three elliptical fins (RocketPy's
 //!   `EllipticalFins`) on the Cesaroni L1115 to Mach 1.22 and 3.85 km, a 5.2 m rail heading

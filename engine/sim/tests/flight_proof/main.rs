@@ -1,4 +1,4 @@
-//! The proof of the 6-DOF flight simulator (GitHub issue 3): flights checked against exact
+//! The proof of the 6-DOF flight simulator: flights checked against exact
 //! answers (the vacuum parabola, conservation of momentum and angular momentum, the rocket
 //! equation), the convergence order of RK4, events landing on their roots, RocketPy 1.13's
 //! Calisto, and bad input. Each test states its tolerance and prints what it measured

@@ -161,7 +161,7 @@ fn tolerances(r: &Value, case: &str, c: &Crosscheck, rp: &Value) -> Tolerances {
                 / (2.0 * num(r, "/inputs/rail/rocketpy_rail_length_m")),
         max_speed_m_s: MAX_SPEED_RELATIVE * at("/max_speed_m_s"),
         max_mach: MAX_MACH_RELATIVE * at("/max_mach"),
-        // Not compared here (the brief's figures are the apogee, the canopies and the
+        // Not compared here (this cross-check's figures are the apogee, the canopies and the
         // landing; the speed and Mach cover the peak); no fin is canted, so no roll.
         max_dynamic_pressure_pa: f64::INFINITY,
         roll_rate_at_burnout_rad_s: f64::INFINITY,

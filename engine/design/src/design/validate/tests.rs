@@ -483,7 +483,8 @@ fn a_part_entirely_outside_its_parent_is_refused_but_one_partly_outside_is_not()
     let (rule, loc, field) = invalid(with(|v| *at(v, ballast) = json!(1.15)));
     assert!(matches!(rule, Rule::OutsideParent { .. }), "{rule:?}");
     assert_eq!((loc, field.as_deref()), (comp("ballast"), Some("position")));
-    // At 1.12 it is partly outside: allowed (the moving-mass spec relies on it).
+    // At 1.12 it is partly outside: allowed (a moving part may go as far as it already reaches,
+    // `docs/moving-mass.md`).
     let d = with(|v| *at(v, ballast) = json!(1.12)).expect("partly outside is allowed");
     assert_eq!(d.component("ballast").unwrap().x_top_m, 1.12);
 }

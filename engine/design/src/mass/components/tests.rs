@@ -250,7 +250,7 @@ fn the_dry_mass_is_the_sum_of_every_part_without_overrides() {
 
 #[test]
 fn a_part_moved_in_the_example_matches_the_design_rebuilt_with_it_moved() {
-    // The spec's example move: the ballast 0.3 m aft.
+    // The worked example's move (`docs/moving-mass.md`): the ballast 0.3 m aft.
     let d = design(&example());
     let whole = dry(&d);
     let ballast = subtree(&d, d.component_index("ballast").unwrap());
