@@ -13,7 +13,8 @@
 //! memory must not grow with the number of variants.
 //!
 //! `batch --once batch|loop N` flies N variants once on one thread, one way or the other, for
-//! instruction counts under callgrind (see `ARCHITECTURE.md`).
+//! instruction counts under callgrind (the dated logs under `results/bench-*` give the
+//! commands and the counts).
 
 mod fleet;
 
