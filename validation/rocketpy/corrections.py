@@ -29,7 +29,8 @@ terms, the inertia about the center of mass, the weight's moment and the angular
 One term was written for the attribute as it is: the translational equation
 ``v_dot = K (T20 / m - r_CM x w_dot)``. For the acceleration of the CDM it must be
 ``T20 / m - w_dot x r_CM = T20 / m + r_CM x w_dot`` with ``r_CM`` from the CDM (then
-``m (v_dot + w_dot x r_CM + w x (w x r_CM) + ...)`` is ``m a_CM``, as RocketPy issue #1186 shows);
+``m (v_dot + w_dot x r_CM + w x (w x r_CM) + ...)`` is ``m a_CM``, as RocketPy issue #1186
+shows);
 RocketPy's ``- r_CM x w_dot`` is that only with ``r_CM`` from the CM. So after negating the
 attribute this term has the wrong sign, and ``u_dot`` below adds ``2 K (r_CM x w_dot)`` back.
 Measured at a state of the canted, boattailed rocket 0.3 s after liftoff in wind: without it
