@@ -126,6 +126,15 @@ pub enum Rule {
         width_m: f64,
         inner_diameter_m: f64,
     },
+    /// A file the field names (a drag or lift table) that cannot be read.
+    FileUnreadable {
+        file: String,
+        why: String,
+    },
+    /// A part that reaches ahead of the nose tip, where no rocket is.
+    AheadOfNoseTip {
+        top_m: f64,
+    },
     /// Fins with a tip chord but no root chord.
     FinRootChord {
         root_m: f64,
@@ -226,6 +235,15 @@ impl fmt::Display for Rule {
                 write!(f, "does not apply to a fin of planform \"{planform}\"")
             }
             Rule::FinOutline { point, why } => write!(f, "point {point}: {why}"),
+            Rule::FileUnreadable { file, why } => {
+                write!(f, "names {file}, which cannot be read: {why}")
+            }
+            Rule::AheadOfNoseTip { top_m } => write!(
+                f,
+                "the part starts {} m ahead of the nose tip: every part lies aft of the tip \
+                 (positions are metres aft of it; is the position or a chord too large?)",
+                -top_m
+            ),
             Rule::EmptyId => write!(f, "must not be empty"),
             Rule::DuplicateId { first } => write!(f, "is already the id of {first}"),
             Rule::BodyInsideComponent { kind } => write!(

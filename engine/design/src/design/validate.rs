@@ -51,7 +51,12 @@ impl Design {
     /// Reads and validates a design file. Drag CSVs are found relative to it.
     pub fn load(path: impl AsRef<Path>) -> Result<Design, DesignError> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path).map_err(|source| DesignError::Io {
+        let bytes = crate::limits::read_limited(
+            path,
+            crate::limits::MAX_DESIGN_FILE_BYTES,
+            "a design file",
+        )
+        .map_err(|source| DesignError::Io {
             file: path.display().to_string(),
             source,
         })?;
@@ -70,6 +75,8 @@ impl Design {
     /// it and drag CSVs are found relative to its directory (relative to the working
     /// directory when `None`).
     pub fn from_json_str(text: &str, source: Option<&Path>) -> Result<Design, DesignError> {
+        // A byte-order mark (some Windows editors write one) is not part of the JSON.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let file = match source {
             Some(p) => p.display().to_string(),
             None => "<design>".to_owned(),

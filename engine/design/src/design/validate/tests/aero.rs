@@ -70,11 +70,22 @@ fn drag_csvs_are_read_relative_to_the_design_file() {
     };
     assert!(file.ends_with("bad.csv") && *line == 3, "{e}");
     assert!(message.contains("strictly increasing"), "{e}");
+    // A missing table is the fault of the field that names it: the error says which.
     v["drag"] = json!({"power_off_csv": "data/missing.csv"});
     let e = Design::from_json_str(&v.to_string(), Some(&design_path)).unwrap_err();
+    let text = e.to_string();
     assert!(
-        matches!(e, DesignError::Io { ref file, .. } if file.ends_with("missing.csv")),
+        matches!(
+            &e,
+            DesignError::Invalid { at: Location::Drag, field: Some(f), rule: Rule::FileUnreadable { file, .. }, .. }
+                if f == "power_off_csv" && file.ends_with("missing.csv")
+        ),
         "{e}"
+    );
+    assert!(
+        text.contains("drag: field \"power_off_csv\": names ")
+            && text.contains("missing.csv, which cannot be read"),
+        "{text}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
