@@ -13,11 +13,14 @@
 //! - [`stats`]: percentiles, landing ellipses, sensitivity (faer), the share of variants meeting
 //!   each requirement (Wilson interval).
 //! - [`parquet`]: the output files, written atomically and streamed by row groups.
+//! - [`outdir`]: the output directory: one run per output set (a lock), temporary names of
+//!   the run's own, a clean start without `--resume`.
 //! - [`run`]: the loop (rayon, shards, resume, progress) and [`cli`]: arguments, printed
 //!   summary, exit codes.
 
 pub mod cli;
 pub mod fly;
+pub mod outdir;
 pub mod params;
 pub mod parquet;
 pub mod run;

@@ -207,6 +207,25 @@ impl Default for SimOptions {
     }
 }
 
+/// Most steps RK4 may take over a flight's time limit: `max_time_s / step_s` must be at
+/// most this, 10,000,000 (some 40 million derivative evaluations, tens of seconds of one
+/// flight). A smaller step would run for hours (`step_s = 1e-9` over 600 s: 6·10¹¹ steps),
+/// and is refused before the flight.
+pub const MAX_RK4_STEPS: f64 = 1e7;
+
+/// The rule RK4's fixed step breaks, if it does: `max_time_s / step_s` steps above
+/// [`MAX_RK4_STEPS`] (both positive and finite, checked apart).
+pub fn rk4_steps_rule(step_s: f64, max_time_s: f64) -> Option<String> {
+    let steps = max_time_s / step_s;
+    (steps > MAX_RK4_STEPS).then(|| {
+        format!(
+            "max_time_s / step_s is {steps:.4e} steps, more than the {MAX_RK4_STEPS:.0} a flight \
+             may take: give a step of at least {:e} s, or a shorter max_time_s (got {step_s})",
+            max_time_s / MAX_RK4_STEPS
+        )
+    })
+}
+
 impl SimOptions {
     /// Check every number: the time limit, RK4's step, the adaptive tolerances (the same
     /// ranges as the integrators enforce, named by the fields a user sets).
@@ -222,7 +241,13 @@ impl SimOptions {
         };
         positive("max_time_s", self.max_time_s)?;
         match self.integrator {
-            Integrator::Rk4 { step_s } => positive("step_s", step_s),
+            Integrator::Rk4 { step_s } => {
+                positive("step_s", step_s)?;
+                match rk4_steps_rule(step_s, self.max_time_s) {
+                    Some(rule) => Err(format!("options: field \"step_s\": {rule}")),
+                    None => Ok(()),
+                }
+            }
             Integrator::Adaptive {
                 rtol,
                 atol_position_m,

@@ -15,7 +15,10 @@ pub mod model;
 pub mod output;
 
 pub use changes::Changes;
-pub use config::{AirModel, CanopyShape, Environment, Integrator, Parachute, Rail, SimOptions};
+pub use config::{
+    rk4_steps_rule, AirModel, CanopyShape, Environment, Integrator, Parachute, Rail, SimOptions,
+    MAX_RK4_STEPS,
+};
 pub use model::FlightModel;
 pub use output::{Flight, Metrics, Observer, Phase, Sample, Warning, LARGE_ALPHA_DEG};
 

@@ -733,13 +733,23 @@ fn pad<O: Observer>(run: &mut Run<'_, O>) -> Result<(f64, [f64; N6]), SimError> 
             .copied()
             .filter(|&k| k > 0.0 && k <= model.burnout_s),
     );
+    // The thrust stops at burnout, so a curve that ends above zero (it burns out there) is
+    // judged at its last sample by the instant just before it, where it still pushes.
+    let before_burnout = |k: f64| {
+        if k == model.burnout_s {
+            k.next_down()
+        } else {
+            k
+        }
+    };
     let mut t_lift = None;
     for w in knots.windows(2) {
-        if excess(w[1]) > 0.0 {
+        let end = before_burnout(w[1]);
+        if excess(end) > 0.0 {
             t_lift = Some(if excess(w[0]) > 0.0 {
                 w[0]
             } else {
-                brent_root(excess, w[0], w[1], EVENT_TOL_S)
+                brent_root(excess, w[0], end, EVENT_TOL_S)
                     .map_err(|e| SimError::Setup(format!("liftoff: {e}")))?
             });
             break;
@@ -749,7 +759,7 @@ fn pad<O: Observer>(run: &mut Run<'_, O>) -> Result<(f64, [f64; N6]), SimError> 
         max_thrust_n: model
             .thrust_knots_s
             .iter()
-            .map(|&k| model.motor.eval(k).thrust_n)
+            .map(|&k| model.motor.eval(before_burnout(k)).thrust_n)
             .fold(0.0, f64::max),
         weight_n: model.instant(&run.starts, 0.0).mass.mass_kg * g0 * sin_inc,
     })?;
