@@ -725,16 +725,20 @@ fn pad<O: Observer>(run: &mut Run<'_, O>) -> Result<(f64, [f64; N6]), SimError> 
         let i = model.instant(&run.starts, t);
         i.motor.thrust_n - i.mass.mass_kg * g0 * sin_inc
     };
+    // The curve's knots (interior ones only in `thrust_knots_s`) and its last sample, the
+    // burnout: a curve that ends above zero (it burns out there) is judged at its last
+    // sample by the instant just before it, where it still pushes.
     let mut knots: Vec<f64> = vec![0.0];
     knots.extend(
         model
             .thrust_knots_s
             .iter()
             .copied()
-            .filter(|&k| k > 0.0 && k <= model.burnout_s),
+            .filter(|&k| k > 0.0 && k < model.burnout_s),
     );
-    // The thrust stops at burnout, so a curve that ends above zero (it burns out there) is
-    // judged at its last sample by the instant just before it, where it still pushes.
+    if model.burnout_s > 0.0 {
+        knots.push(model.burnout_s);
+    }
     let before_burnout = |k: f64| {
         if k == model.burnout_s {
             k.next_down()
@@ -756,8 +760,7 @@ fn pad<O: Observer>(run: &mut Run<'_, O>) -> Result<(f64, [f64; N6]), SimError> 
         }
     }
     let t_lift = t_lift.ok_or(SimError::NeverLeavesPad {
-        max_thrust_n: model
-            .thrust_knots_s
+        max_thrust_n: knots
             .iter()
             .map(|&k| model.motor.eval(before_burnout(k)).thrust_n)
             .fold(0.0, f64::max),
