@@ -509,3 +509,98 @@ fn progress(len: u64, quiet: bool) -> ProgressBar {
     bar.set_style(style.progress_chars("=> "));
     bar
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use arrow::array::UInt64Array;
+    use arrow::datatypes::{DataType, Field, Schema};
+    use arrow::record_batch::RecordBatch;
+    use std::sync::Arc;
+
+    fn meta(seed: u64) -> RunMeta {
+        RunMeta {
+            scenario_file: "s.toml".into(),
+            scenario_text: "text".into(),
+            scenario_hash: "abc".into(),
+            seed,
+            variants_per_point: 8,
+            points: 1,
+            shard: Shard { k: 1, n: 2 },
+            chunk_size: 2,
+        }
+    }
+
+    /// A part of `ids` written as run `writer` of the run `meta`, chunk `c`.
+    fn part(dir: &Path, meta: &RunMeta, c: usize, writer: &str, ids: &[u64]) -> PathBuf {
+        let schema = Arc::new(Schema::new(vec![Field::new(
+            "variant_id",
+            DataType::UInt64,
+            false,
+        )]));
+        let batch = RecordBatch::try_new(
+            schema.clone(),
+            vec![Arc::new(UInt64Array::from(ids.to_vec()))],
+        )
+        .unwrap();
+        let mut pairs = meta.pairs();
+        pairs.push(("hpr_mc.chunk".into(), c.to_string()));
+        pairs.push((RUN_ID.into(), writer.into()));
+        let path = dir.join(format!("chunk-{c}-{}-{writer}-{ids:?}.parquet", meta.seed));
+        pq::write_atomic(&path, &dir.join("tmp"), &schema, &pairs, 100, |w| {
+            Ok(w.write(&batch)?)
+        })
+        .unwrap();
+        path
+    }
+
+    #[test]
+    fn the_merge_takes_only_a_part_of_this_run_s_chunk_writer_rows_and_ids() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let m = meta(5);
+        // Shard 1 of 2, chunks of 2: chunk 1 holds the shard's variants 2 and 3, ids 5 and 7.
+        let good = part(d, &m, 1, "me", &[5, 7]);
+        check_part(&good, 1, &m, Some("me"), 2).unwrap();
+        let mut q = 2;
+        for b in pq::read_batches(&good).unwrap() {
+            check_ids(&good, &b.unwrap(), m.shard, &mut q).unwrap();
+        }
+        assert_eq!(q, 4);
+        let refusal = |path: &Path, c: usize, writer: &str, rows: u64| {
+            check_part(path, c, &m, Some(writer), rows)
+                .unwrap_err()
+                .to_string()
+        };
+        // Another seed's part under this chunk's name (what two runs into one directory made).
+        let other = part(d, &meta(7), 1, "me", &[5, 7]);
+        let e = refusal(&other, 1, "me", 2);
+        assert!(
+            e.contains("is not chunk 1 of this run (its hpr_mc.seed is 7, this run's is 5)")
+                && e.contains("nothing was merged"),
+            "{e}"
+        );
+        let e = refusal(&good, 1, "another", 2);
+        assert!(
+            e.contains("(it was written by run me, not by run another)"),
+            "{e}"
+        );
+        let e = refusal(&good, 0, "me", 2);
+        assert!(e.contains("(its hpr_mc.chunk is 1)"), "{e}");
+        let e = refusal(&good, 1, "me", 3);
+        assert!(e.contains("(it holds 2 rows, the chunk 3)"), "{e}");
+        // The right metadata over other rows: the ids give it away.
+        let wrong = part(d, &m, 1, "me", &[5, 9]);
+        let mut q = 2;
+        let e = pq::read_batches(&wrong)
+            .unwrap()
+            .map(|b| check_ids(&wrong, &b.unwrap(), m.shard, &mut q))
+            .find_map(Result::err)
+            .unwrap()
+            .to_string();
+        assert!(
+            e.contains("holds variant 9 where this run's variant 7 belongs"),
+            "{e}"
+        );
+    }
+}

@@ -384,3 +384,12 @@ fn a_file_with_two_motors_is_refused_by_name_and_bad_utf8_is_reported() {
         .to_string();
     assert_eq!(err, "bad.eng, line 2, text: the file is not UTF-8 text");
 }
+
+#[test]
+fn a_motor_file_past_its_limit_is_refused_saying_so() {
+    let e = Motor::from_file("/dev/zero").unwrap_err().to_string();
+    assert!(
+        e.contains("it is larger than 16 MiB, the most hpr-mc reads for a motor file"),
+        "{e}"
+    );
+}

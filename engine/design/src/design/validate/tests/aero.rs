@@ -247,3 +247,29 @@ fn a_trapezoidal_fin_s_sweep_may_be_its_leading_edge_angle_as_rocketpy_gives_it(
     assert!(matches!(rule, Rule::OutOfRange { .. }), "{rule}");
     assert_eq!(field.as_deref(), Some("sweep_deg"));
 }
+
+#[test]
+fn a_table_that_never_ends_is_refused_at_its_limit_naming_the_field() {
+    for (field, drag) in [
+        ("power_off_csv", json!({"power_off_csv": "/dev/zero"})),
+        (
+            "power_on_csv",
+            json!({"power_off": [[0.0, 0.5], [1.0, 0.6]], "power_on_csv": "/dev/zero"}),
+        ),
+    ] {
+        let (rule, loc, f) = invalid(with(|v| v["drag"] = drag));
+        assert_eq!((loc, f.as_deref()), (Location::Drag, Some(field)));
+        assert_eq!(
+            rule,
+            Rule::FileUnreadable {
+                file: "/dev/zero".into(),
+                why: "it is larger than 16 MiB, the most hpr-mc reads for a table (CSV)".into()
+            }
+        );
+    }
+    let (rule, loc, f) = invalid(with(|v| {
+        at(v, FINS)["airfoil"] = json!({"csv": "/dev/zero", "angles": "degrees"});
+    }));
+    assert_eq!((loc, f.as_deref()), (comp("fins"), Some("airfoil.csv")));
+    assert!(matches!(rule, Rule::FileUnreadable { .. }), "{rule:?}");
+}
