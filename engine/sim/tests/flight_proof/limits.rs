@@ -4,7 +4,7 @@
 
 use crate::common::*;
 use hpr_design::motor::Motor;
-use hpr_sim::flight::{Integrator, SimError, SimOptions, MAX_RK4_STEPS};
+use hpr_sim::flight::{Integrator, SimError, SimOptions, MAX_INPUT_STEPS};
 use hpr_sim::EventKind;
 
 /// A motor of the I175's size and masses with the RASP samples `rows` (time s, thrust N).
@@ -105,6 +105,36 @@ fn an_rk4_step_that_would_take_more_than_the_stated_steps_is_refused_before_the_
         "{e}"
     );
     // At the bound exactly it is allowed.
-    assert!(with(600.0 / MAX_RK4_STEPS, 600.0).is_ok());
-    assert!(with(600.0 / MAX_RK4_STEPS * 0.999, 600.0).is_err());
+    assert!(with(600.0 / MAX_INPUT_STEPS, 600.0).is_ok());
+    assert!(with(600.0 / MAX_INPUT_STEPS * 0.999, 600.0).is_err());
+}
+
+#[test]
+fn a_sampler_whose_samples_to_the_time_limit_pass_the_stated_steps_is_refused() {
+    // A main read 10,000 times a second: to 1000 s that is the 10,000,000 steps allowed;
+    // to 1001 s one second's samples more.
+    let chute = hpr_sim::Parachute {
+        sampling_rate_hz: Some(10_000.0),
+        ..hpr_sim::Parachute::new(
+            "main",
+            0.9,
+            hpr_sim::Trigger::HeightDescending { height_m: 150.0 },
+            1.0,
+        )
+    };
+    let with = |max_time_s: f64| {
+        still_air(
+            design("synthetic-54mm-three-fin.json"),
+            motor("Cesaroni_I175"),
+        )
+        .with_parachutes(vec![chute.clone()])
+        .and_then(|s| s.with_options(options(Integrator::DEFAULT, max_time_s)))
+    };
+    assert!(with(1000.0).is_ok());
+    let e = with(1001.0).unwrap_err().to_string();
+    assert!(
+        e.contains("a sampler read 10000 times a second to the time limit (max_time_s = 1001 s) takes 1.0010e7 samples")
+            && e.contains("give a time limit of at most 1000 s"),
+        "{e}"
+    );
 }
