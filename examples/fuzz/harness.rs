@@ -300,6 +300,17 @@ pub fn generate(bases: &Bases, seed: u64, k: u64) -> Case {
     }
 }
 
+/// The most bytes one repetition or nesting may add to a case (8 MiB), and the size past
+/// which no further mutation is stacked: the harness's own inputs stay bounded (a block
+/// nested 50,000 deep and then repeated 2,000 times would be gigabytes before hpr-mc sees
+/// it). Inputs past hpr-mc's size limits are made on purpose, by padding, to be refused.
+const MAX_GROWTH: usize = 8 << 20;
+
+/// How many copies of `len` bytes fit in [`MAX_GROWTH`] (at least 1), at most `n`.
+fn copies(n: usize, len: usize) -> usize {
+    n.min(MAX_GROWTH / len.max(1)).max(1)
+}
+
 struct Mutator {
     rng: ChaCha8Rng,
     notes: Vec<String>,
@@ -462,6 +473,9 @@ impl Mutator {
         if structured {
             let rounds = 1 + self.below(3);
             for _ in 0..rounds {
+                if out.len() > 2 * MAX_GROWTH {
+                    break;
+                }
                 let current = String::from_utf8_lossy(&out).into_owned();
                 out = match t {
                     Target::Design => self.json(&current).into_bytes(),
@@ -530,7 +544,7 @@ impl Mutator {
                 self.notes.push(format!("padded past {} bytes", self.limit));
             }
             7 => {
-                let n = 2 + self.below(30);
+                let n = copies(2 + self.below(30), b.len());
                 let once = b.clone();
                 for _ in 1..n {
                     b.extend_from_slice(&once);
@@ -645,7 +659,8 @@ impl Mutator {
                     if let Ok(i) = key.parse::<usize>() {
                         if i < a.len() {
                             let item = a[i].clone();
-                            let n = n.min(20_000);
+                            let len = serde_json::to_string(&item).map_or(1, |t| t.len());
+                            let n = copies(n.min(20_000), len);
                             a.splice(i..i, std::iter::repeat_n(item, n));
                             self.notes.push(format!("{path} repeated {n} times"));
                         }
@@ -755,7 +770,6 @@ impl Mutator {
             }
             5 => {
                 // A long list: a sweep of many values, or an array of tables repeated.
-                let n = self.count().min(200_000);
                 let item = toml_get(&table, &path)
                     .cloned()
                     .unwrap_or(toml::Value::Float(1.0));
@@ -763,6 +777,7 @@ impl Mutator {
                     toml::Value::Array(a) if !a.is_empty() => a[0].clone(),
                     other => other,
                 };
+                let n = copies(self.count().min(200_000), item.to_string().len() + 2);
                 let items: Vec<toml::Value> = (0..n)
                     .map(|i| match &item {
                         toml::Value::Float(f) => toml::Value::Float(f * (1.0 + i as f64 * 1e-4)),
@@ -854,7 +869,7 @@ impl Mutator {
                 format!("{}{}", &text[..r.start], &text[r.end..])
             }
             5 => {
-                let n = self.count().min(20_000);
+                let n = copies(self.count().min(20_000), element.len());
                 self.notes.push(format!("<{name}> repeated {n} times"));
                 format!(
                     "{}{}{}",
@@ -864,11 +879,11 @@ impl Mutator {
                 )
             }
             6 => {
-                let n = self.count();
-                self.notes
-                    .push(format!("<{name}> nested {n} deep in itself"));
                 let open = format!("<{name}>");
                 let close = format!("</{name}>");
+                let n = copies(self.count(), open.len() + close.len());
+                self.notes
+                    .push(format!("<{name}> nested {n} deep in itself"));
                 let mut s = String::with_capacity(text.len() + n * (open.len() + close.len()));
                 s.push_str(&text[..r.start]);
                 for _ in 0..n {
@@ -934,8 +949,8 @@ impl Mutator {
                 self.notes.push(format!("lines {}..{} removed", i + 1, end));
             }
             4 => {
-                let n = self.count().min(200_000);
                 let line = lines[i].clone();
+                let n = copies(self.count().min(200_000), line.len() + 1);
                 lines.splice(i..i, std::iter::repeat_n(line, n));
                 self.notes
                     .push(format!("line {} repeated {n} times", i + 1));
@@ -948,7 +963,7 @@ impl Mutator {
                     .filter_map(|f| f.parse().ok())
                     .collect();
                 if nums.len() >= 2 {
-                    let n = self.count().min(200_000);
+                    let n = copies(self.count().min(200_000), 24 * nums.len());
                     let step = 1e-5 + self.rng.random::<f64>() * 1e-3;
                     let rows: Vec<String> = (1..=n)
                         .map(|k| {

@@ -131,6 +131,10 @@ pub enum Rule {
         file: String,
         why: String,
     },
+    /// A rocket whose parts weigh nothing (or not a finite mass) together, its motor aside.
+    Weightless {
+        mass_kg: f64,
+    },
     /// A part that reaches ahead of the nose tip, where no rocket is.
     AheadOfNoseTip {
         top_m: f64,
@@ -238,6 +242,11 @@ impl fmt::Display for Rule {
             Rule::FileUnreadable { file, why } => {
                 write!(f, "names {file}, which cannot be read: {why}")
             }
+            Rule::Weightless { mass_kg } => write!(
+                f,
+                "the rocket without its motor weighs {mass_kg} kg: a part's mass may be 0 when it \
+                 is counted in another's, but some part must weigh something"
+            ),
             Rule::AheadOfNoseTip { top_m } => write!(
                 f,
                 "the part starts {} m ahead of the nose tip: every part lies aft of the tip \

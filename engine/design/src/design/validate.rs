@@ -90,8 +90,8 @@ impl Design {
             };
             located.unwrap_or_else(|| json_error(&file, &e))
         })?;
-        Builder {
-            file,
+        let design = Builder {
+            file: file.clone(),
             source,
             components: Vec::new(),
             ids: HashMap::new(),
@@ -99,7 +99,21 @@ impl Design {
             openrocket_geometry: false,
             warnings: Vec::new(),
         }
-        .design(raw)
+        .design(raw)?;
+        // A part may weigh nothing (its mass lumped into another), but not every part: a
+        // rocket without its motor weighs something.
+        let dry = crate::mass::dry(&design);
+        if !(dry.mass_kg > 0.0 && dry.mass_kg.is_finite()) {
+            return Err(DesignError::Invalid {
+                file,
+                at: Location::Design,
+                field: None,
+                rule: Rule::Weightless {
+                    mass_kg: dry.mass_kg,
+                },
+            });
+        }
+        Ok(design)
     }
 
     /// Checks that a motor of this diameter and length fits the motor mount: its diameter
