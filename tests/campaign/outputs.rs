@@ -229,3 +229,46 @@ fn a_negative_thread_count_is_named_as_one() {
     assert_eq!(code, 2);
     assert!(stderr.contains("must be at least 1 (got 0)"), "{stderr}");
 }
+
+#[test]
+fn a_run_killed_with_sigkill_leaves_a_free_directory_and_resumes_to_the_same_rows() {
+    // 120 flights in 30 chunks, on one thread: killed once a few parts are written.
+    let (dir, file) = setup(&tiny(60));
+    let reference = run_campaign(&file, &config(&dir.path().join("reference"))).unwrap();
+    let out = dir.path().join("out");
+    let mut child = spawn_run(&file, &out, &[]);
+    let parts = out.join("parts/variants");
+    let t0 = std::time::Instant::now();
+    while t0.elapsed() < std::time::Duration::from_secs(60) {
+        let n = std::fs::read_dir(&parts)
+            .map(|d| {
+                d.flatten()
+                    .filter(|e| e.file_name().to_string_lossy().ends_with(".parquet"))
+                    .count()
+            })
+            .unwrap_or(0);
+        if n >= 3 || child.try_wait().unwrap().is_some() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    child.kill().unwrap(); // SIGKILL: no clean-up of any kind
+    let _ = child.wait();
+    // The lock died with it: the resumed run is not refused, and gives the reference rows.
+    let (code, _, stderr) = hpr_mc(&[
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--resume",
+    ]);
+    assert!(code <= 1, "{stderr}");
+    assert_eq!(
+        columns(&read(&out.join("variants.parquet"))),
+        columns(&read(&reference.outputs.variants))
+    );
+    assert_eq!(
+        columns(&read(&out.join("summary.parquet"))),
+        columns(&read(&reference.outputs.summary))
+    );
+}
