@@ -131,6 +131,16 @@ pub enum Rule {
         file: String,
         why: String,
     },
+    /// More components than a design may hold.
+    TooManyComponents {
+        max: usize,
+    },
+    /// A part entirely outside the rocket, fore of its tip or aft of its tail.
+    OutsideRocket {
+        top_m: f64,
+        bottom_m: f64,
+        length_m: f64,
+    },
     /// A rocket whose parts weigh nothing (or not a finite mass) together, its motor aside.
     Weightless {
         mass_kg: f64,
@@ -242,6 +252,20 @@ impl fmt::Display for Rule {
             Rule::FileUnreadable { file, why } => {
                 write!(f, "names {file}, which cannot be read: {why}")
             }
+            Rule::TooManyComponents { max } => write!(
+                f,
+                "the design holds more than {max} components (body components and parts), \
+                 the most hpr-mc reads of one design"
+            ),
+            Rule::OutsideRocket {
+                top_m,
+                bottom_m,
+                length_m,
+            } => write!(
+                f,
+                "the part ({top_m} m to {bottom_m} m aft of the nose tip) lies entirely outside \
+                 the rocket (0 to {length_m} m): it is attached to nothing"
+            ),
             Rule::Weightless { mass_kg } => write!(
                 f,
                 "the rocket without its motor weighs {mass_kg} kg: a part's mass may be 0 when it \

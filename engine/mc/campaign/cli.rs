@@ -58,7 +58,7 @@ pub const EXIT_CODES: &str = "Exit codes: 0 every variant landed; 1 the run fini
 
 Output directory: one run at a time writes a scenario's files (or a shard's) in a directory: a second is refused at once, naming the first (its pid, host, start time, seed). Without --resume a run first removes the earlier results of its files (other shards' stay).
 
-Limits (refused before anything is flown, with the rule): at most 100,000 sweep points; at most 1,000,000,000 variants (sweep points x variants per point), 10,000,000 in one process (split a larger run with --shard); a scenario file of 4 MiB, a design or .ork file of 64 MiB (its inflated document 64 MiB, nested 100 deep), a motor file, sounding or drag/lift CSV of 16 MiB; RK4 at most 10,000,000 steps (max_time_s / step_s), and a parachute's or the air brakes' sampler at most 10,000,000 samples to the time limit (max_time_s x sampling_rate_hz). See docs/scenarios.md, \"Limits\".";
+Limits (refused before anything is flown, with the rule): at most 100,000 sweep points; at most 1,000,000,000 variants (sweep points x variants per point), 10,000,000 in one process (split a larger run with --shard); a scenario file of 4 MiB, a design or .ork file of 64 MiB (its inflated document 64 MiB, nested 100 deep; 1,000 components), a motor file, sounding or drag/lift CSV of 16 MiB; RK4 at most 10,000,000 steps (max_time_s / step_s), and a parachute's or the air brakes' sampler at most 10,000,000 samples to the time limit (max_time_s x sampling_rate_hz). See docs/scenarios.md, \"Limits\".";
 
 /// `hpr-mc run SCENARIO.toml [options]`.
 #[derive(clap::Args, Debug)]

@@ -40,6 +40,12 @@ pub const CLUSTER_CENTRE_TOLERANCE_M: f64 = 1e-9;
 /// Largest fin count of a fin set.
 pub const MAX_FINS: u32 = 32;
 
+/// Most components (stages' body components and every part, at any depth) a design may
+/// hold: 1,000, where OpenRocket's designs hold tens. Each is weighed and its aerodynamics
+/// tabulated before a flight, and the flight reads every surface at every step, so a design
+/// of thousands would take minutes to set up and fly; it is refused before any of that.
+pub const MAX_COMPONENTS: usize = 1000;
+
 /// Largest cant angle of a fin set, degrees (OpenRocket's limit).
 pub const MAX_CANT_DEG: f64 = 15.0;
 
@@ -90,6 +96,23 @@ impl Design {
             };
             located.unwrap_or_else(|| json_error(&file, &e))
         })?;
+        // Counted before anything is built (without recursion: nesting is not bounded yet).
+        let mut count = 0usize;
+        let mut stack: Vec<&RawComponent> = raw.stages.iter().flat_map(|s| &s.components).collect();
+        while let Some(c) = stack.pop() {
+            count += 1;
+            if count > MAX_COMPONENTS {
+                return Err(DesignError::Invalid {
+                    file,
+                    at: Location::Design,
+                    field: Some("stages".into()),
+                    rule: Rule::TooManyComponents {
+                        max: MAX_COMPONENTS,
+                    },
+                });
+            }
+            stack.extend(c.children());
+        }
         let design = Builder {
             file: file.clone(),
             source,
@@ -100,6 +123,24 @@ impl Design {
             warnings: Vec::new(),
         }
         .design(raw)?;
+        // A part may lie partly outside its parent (and, drawn so in OpenRocket, entirely),
+        // but not entirely outside the rocket: there it is attached to nothing, and its mass
+        // there (a position of 4e9 m) makes nonsense of the rocket's.
+        for c in design.components.iter().filter(|c| !c.is_body()) {
+            let (top, bottom) = (c.x_top_m, c.x_bottom_m());
+            if top > design.length_m + FIT_TOLERANCE_M || bottom < -FIT_TOLERANCE_M {
+                return Err(DesignError::Invalid {
+                    file,
+                    at: Location::Component(c.id.clone()),
+                    field: Some("position".into()),
+                    rule: Rule::OutsideRocket {
+                        top_m: top,
+                        bottom_m: bottom,
+                        length_m: design.length_m,
+                    },
+                });
+            }
+        }
         // A part may weigh nothing (its mass lumped into another), but not every part: a
         // rocket without its motor weighs something.
         let dry = crate::mass::dry(&design);

@@ -351,12 +351,13 @@ fn fins_that_reach_ahead_of_the_nose_tip_are_refused_in_either_geometry_check() 
 
 #[test]
 fn an_internal_part_ahead_of_the_nose_tip_is_an_error_and_kept_with_a_warning_for_openrocket() {
+    // The 5 cm ballast from 2 cm ahead of the tip to 3 cm aft of it: partly ahead.
     let ballast_ahead = |v: &mut Value| {
         *at(v, &format!("{BODY}/children/5/position")) =
-            json!({"from": "nose_tip", "offset_m": -0.1});
+            json!({"from": "nose_tip", "offset_m": -0.02});
     };
     let (rule, loc, _) = invalid(with(ballast_ahead));
-    assert_eq!(rule, Rule::AheadOfNoseTip { top_m: -0.1 });
+    assert_eq!(rule, Rule::AheadOfNoseTip { top_m: -0.02 });
     assert_eq!(loc, comp("ballast"));
     let d = with(|v| {
         v["geometry_checks"] = json!("openrocket");

@@ -258,3 +258,48 @@ fn a_rocket_whose_parts_all_weigh_nothing_is_refused() {
     assert_eq!(rule, Rule::Weightless { mass_kg: 0.0 });
     assert_eq!((loc, field), (Location::Design, None));
 }
+
+#[test]
+fn a_part_entirely_outside_the_rocket_is_refused_even_where_openrocket_keeps_it() {
+    // The ballast 4294967296 m aft of the tip (a fuzzed OpenRocket offset): kept with a
+    // warning as outside its parent, it flew to an apogee of −1.2e9 m. Now refused.
+    // (Strict checks refuse it first as outside its parent.)
+    let (rule, loc, field) = invalid(with(|v| {
+        v["geometry_checks"] = json!("openrocket");
+        *at(v, "/stages/0/components/1/children/5/position") =
+            json!({"from": "nose_tip", "offset_m": 4294967296.0});
+    }));
+    assert_eq!(loc, Location::Component("ballast".into()));
+    assert_eq!(field.as_deref(), Some("position"));
+    assert!(
+        matches!(rule, Rule::OutsideRocket { top_m, length_m, .. }
+            if top_m == 4294967296.0 && (length_m - 1.15).abs() < 1e-12),
+        "{rule:?}"
+    );
+    // Past the tail by its own length but touching it: allowed where OpenRocket keeps it.
+    assert!(with(|v| {
+        v["geometry_checks"] = json!("openrocket");
+        *at(v, "/stages/0/components/1/children/5/position") =
+            json!({"from": "nose_tip", "offset_m": 1.15});
+    })
+    .is_ok());
+}
+
+#[test]
+fn a_design_of_more_components_than_the_limit_is_refused_before_it_is_built() {
+    // 1,001 body tubes (a fuzzed .ork of 11,881 nose cones took a minute to weigh).
+    let r = with(|v| {
+        let tube = v["stages"][0]["components"][1].clone();
+        let comps = v["stages"][0]["components"].as_array_mut().unwrap();
+        comps.truncate(1);
+        for i in 0..1000 {
+            let mut t = tube.clone();
+            t["id"] = json!(format!("tube{i}"));
+            t["children"] = json!([]);
+            comps.push(t);
+        }
+    });
+    let (rule, loc, field) = invalid(r);
+    assert_eq!(rule, Rule::TooManyComponents { max: 1000 });
+    assert_eq!((loc, field.as_deref()), (Location::Design, Some("stages")));
+}
