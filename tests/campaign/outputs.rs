@@ -272,3 +272,34 @@ fn a_run_killed_with_sigkill_leaves_a_free_directory_and_resumes_to_the_same_row
         columns(&read(&reference.outputs.summary))
     );
 }
+
+#[test]
+fn a_run_of_more_variants_than_one_process_may_fly_is_refused_before_anything_is_written() {
+    // 2 sweep points × 6,000,000 = 12,000,000 variants in one process (the limit is 10^7):
+    // refused with the shard count that fits; nothing is created.
+    let (dir, file) = setup(&tiny(6_000_000));
+    let out = dir.path().join("out");
+    let e = run_campaign(&file, &config(&out)).unwrap_err().to_string();
+    assert!(
+        e.ends_with(
+            "tiny.toml: 12000000 variants in one run is more than 10000000, the most one \
+             process flies (its statistics hold every row in memory); split the run with \
+             --shard K/N, N at least 2"
+        ),
+        "{e}"
+    );
+    assert!(!out.exists());
+    // One shard of two holds 6,000,000: within the limit (refused here only by its size in
+    // flights, which this test does not fly: it stops after its first chunk).
+    let r = run_campaign(
+        &file,
+        &RunConfig {
+            shard: Some(Shard { k: 0, n: 2 }),
+            max_chunks: Some(1),
+            ..config(&out)
+        },
+    )
+    .unwrap();
+    assert_eq!(r.variants, 6_000_000);
+    assert!(!r.complete);
+}

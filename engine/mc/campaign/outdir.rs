@@ -13,7 +13,9 @@
 //!   ends. A second run into the same set is refused at once, naming the holder written in
 //!   the lock file (process id, host, start time, seed, scenario). The kernel releases the
 //!   lock when its holder ends, killed or not, so a dead run never blocks the next; the file
-//!   itself stays (removing it would let two runs lock two different files).
+//!   itself stays (removing it would let two runs lock two different files). On a file
+//!   system that does not lock files (ENOLCK, EOPNOTSUPP: some network ones) the run goes on
+//!   unguarded, with a warning.
 //! - **Temporary names of the run's own.** Every file is written as
 //!   `NAME.<run id>.tmp` and renamed into place when complete (the run id is the process id
 //!   and the start time in nanoseconds), so no two runs ever write the same temporary file.
@@ -139,6 +141,17 @@ impl OutputDir {
                     "{}: another hpr-mc run is writing {} there ({who}); wait for it to end, or give another --out",
                     dir.display(),
                     set_name(shard)
+                );
+            }
+            // A file system without locks (some network ones): the run goes on unguarded,
+            // and says so.
+            Err(std::fs::TryLockError::Error(e))
+                if e.kind() == std::io::ErrorKind::Unsupported
+                    || matches!(e.raw_os_error(), Some(37 | 95)) =>
+            {
+                eprintln!(
+                    "warning: {}: the file system does not lock files ({e}): nothing keeps another run from writing here at the same time",
+                    dir.display()
                 );
             }
             Err(std::fs::TryLockError::Error(e)) => {
