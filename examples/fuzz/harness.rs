@@ -1405,21 +1405,32 @@ fn design_case(d: Result<Design, hpr_design::DesignError>, fly_it: bool) -> Outc
     if !(dry.mass_kg.is_finite() && dry.mass_kg > 0.0) {
         return bad(format!("dry mass {} kg", dry.mass_kg));
     }
-    let lo = d
+    // The airframe's extent, shoulders included; parts may lie outside it (OpenRocket draws
+    // them so) by at most its length, so the center of mass lies within that reach.
+    let shoulder = |s: Option<hpr_design::design::Shoulder>| s.map_or(0.0, |s| s.length_m);
+    let (lo, hi) = d
         .components
         .iter()
-        .map(|c| c.x_top_m)
-        .fold(f64::INFINITY, f64::min);
-    let hi = d
-        .components
-        .iter()
-        .map(|c| c.x_bottom_m())
-        .fold(f64::NEG_INFINITY, f64::max);
+        .filter(|c| c.is_body())
+        .map(|c| match &c.kind {
+            hpr_design::ComponentKind::NoseCone(n) => {
+                (c.x_top_m, c.x_bottom_m() + shoulder(n.shoulder))
+            }
+            hpr_design::ComponentKind::Transition(t) => (
+                c.x_top_m - shoulder(t.fore_shoulder),
+                c.x_bottom_m() + shoulder(t.aft_shoulder),
+            ),
+            _ => (c.x_top_m, c.x_bottom_m()),
+        })
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (t, u)| {
+            (a.min(t), b.max(u))
+        });
+    let reach = hi - lo;
     let slack = 1e-9 * hi.abs().max(1.0);
     let cg = dry.cg_m.x;
-    if !(cg.is_finite() && cg >= lo.min(0.0) - slack && cg <= hi + slack) {
+    if !(cg.is_finite() && cg >= lo - reach - slack && cg <= hi + reach + slack) {
         return bad(format!(
-            "center of mass {cg} m outside its parts ({lo} to {hi} m)"
+            "center of mass {cg} m outside the reach of its airframe ({lo} to {hi} m)"
         ));
     }
     if !(d.length_m.is_finite() && d.length_m > 0.0 && d.reference_diameter_m > 0.0) {

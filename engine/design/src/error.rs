@@ -135,7 +135,8 @@ pub enum Rule {
     TooManyComponents {
         max: usize,
     },
-    /// A part entirely outside the rocket, fore of its tip or aft of its tail.
+    /// A part further outside the rocket (fore of its tip, aft of its tail) than the
+    /// rocket is long.
     OutsideRocket {
         top_m: f64,
         bottom_m: f64,
@@ -263,8 +264,8 @@ impl fmt::Display for Rule {
                 length_m,
             } => write!(
                 f,
-                "the part ({top_m} m to {bottom_m} m aft of the nose tip) lies entirely outside \
-                 the rocket (0 to {length_m} m): it is attached to nothing"
+                "the part ({top_m} m to {bottom_m} m aft of the nose tip) lies further outside \
+                 the rocket (0 to {length_m} m) than the rocket is long: it is attached to nothing"
             ),
             Rule::Weightless { mass_kg } => write!(
                 f,

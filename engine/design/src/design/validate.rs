@@ -123,12 +123,21 @@ impl Design {
             warnings: Vec::new(),
         }
         .design(raw)?;
-        // A part may lie partly outside its parent (and, drawn so in OpenRocket, entirely),
-        // but not entirely outside the rocket: there it is attached to nothing, and its mass
-        // there (a position of 4e9 m) makes nonsense of the rocket's.
+        // A part may lie outside its parent (drawn so in OpenRocket, a weight past the tail),
+        // but not further outside the rocket than the rocket is long: there it is attached
+        // to nothing, and its mass (at a fuzzed 4e9 m) makes nonsense of the rocket's.
+        let (lo, hi) = design
+            .components
+            .iter()
+            .filter(|c| c.is_body())
+            .map(parts::extent)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (t, u)| {
+                (a.min(t), b.max(u))
+            });
+        let reach = hi - lo;
         for c in design.components.iter().filter(|c| !c.is_body()) {
             let (top, bottom) = (c.x_top_m, c.x_bottom_m());
-            if top > design.length_m + FIT_TOLERANCE_M || bottom < -FIT_TOLERANCE_M {
+            if top > hi + reach + FIT_TOLERANCE_M || bottom < lo - reach - FIT_TOLERANCE_M {
                 return Err(DesignError::Invalid {
                     file,
                     at: Location::Component(c.id.clone()),

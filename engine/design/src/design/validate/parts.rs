@@ -90,7 +90,7 @@ fn norm(a: [f64; 2]) -> f64 {
 }
 
 /// The parent's axial extent, shoulders included, m aft of the nose tip.
-fn extent(c: &Component) -> (f64, f64) {
+pub(super) fn extent(c: &Component) -> (f64, f64) {
     match &c.kind {
         ComponentKind::NoseCone(n) => (
             c.x_top_m,

@@ -260,7 +260,7 @@ fn a_rocket_whose_parts_all_weigh_nothing_is_refused() {
 }
 
 #[test]
-fn a_part_entirely_outside_the_rocket_is_refused_even_where_openrocket_keeps_it() {
+fn a_part_further_outside_the_rocket_than_its_length_is_refused_even_where_openrocket_keeps_it() {
     // The ballast 4294967296 m aft of the tip (a fuzzed OpenRocket offset): kept with a
     // warning as outside its parent, it flew to an apogee of −1.2e9 m. Now refused.
     // (Strict checks refuse it first as outside its parent.)
@@ -276,13 +276,23 @@ fn a_part_entirely_outside_the_rocket_is_refused_even_where_openrocket_keeps_it(
             if top_m == 4294967296.0 && (length_m - 1.15).abs() < 1e-12),
         "{rule:?}"
     );
-    // Past the tail by its own length but touching it: allowed where OpenRocket keeps it.
-    assert!(with(|v| {
-        v["geometry_checks"] = json!("openrocket");
-        *at(v, "/stages/0/components/1/children/5/position") =
-            json!({"from": "nose_tip", "offset_m": 1.15});
-    })
-    .is_ok());
+    // Past the tail, a rocket's length past it at most: kept where OpenRocket keeps it (a
+    // weight drawn past the tail), with its warning; a little further, refused.
+    let past = |offset_m: f64| {
+        with(|v| {
+            v["geometry_checks"] = json!("openrocket");
+            *at(v, "/stages/0/components/1/children/5/position") =
+                json!({"from": "nose_tip", "offset_m": offset_m});
+        })
+    };
+    let kept = past(2.0 * 1.15).unwrap();
+    assert!(
+        kept.warnings[0].contains("lies entirely outside its parent"),
+        "{:?}",
+        kept.warnings
+    );
+    let (rule, ..) = invalid(past(2.0 * 1.15 + 1e-3));
+    assert!(matches!(rule, Rule::OutsideRocket { .. }), "{rule:?}");
 }
 
 #[test]
