@@ -1402,7 +1402,8 @@ fn design_case(d: Result<Design, hpr_design::DesignError>, fly_it: bool) -> Outc
     };
     let dry = hpr_design::mass::dry(&d);
     let bad = |what: String| Outcome::Impossible(format!("design \"{}\": {what}", d.name));
-    if !(dry.mass_kg.is_finite() && dry.mass_kg > 0.0) {
+    // Zero is a mass (every part's mass lumped elsewhere: the motor flies alone).
+    if !(dry.mass_kg.is_finite() && dry.mass_kg >= 0.0) {
         return bad(format!("dry mass {} kg", dry.mass_kg));
     }
     // The airframe's extent, shoulders included; parts may lie outside it (OpenRocket draws

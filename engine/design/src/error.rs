@@ -142,10 +142,6 @@ pub enum Rule {
         bottom_m: f64,
         length_m: f64,
     },
-    /// A rocket whose parts weigh nothing (or not a finite mass) together, its motor aside.
-    Weightless {
-        mass_kg: f64,
-    },
     /// A part that reaches ahead of the nose tip, where no rocket is.
     AheadOfNoseTip {
         top_m: f64,
@@ -266,11 +262,6 @@ impl fmt::Display for Rule {
                 f,
                 "the part ({top_m} m to {bottom_m} m aft of the nose tip) lies further outside \
                  the rocket (0 to {length_m} m) than the rocket is long: it is attached to nothing"
-            ),
-            Rule::Weightless { mass_kg } => write!(
-                f,
-                "the rocket without its motor weighs {mass_kg} kg: a part's mass may be 0 when it \
-                 is counted in another's, but some part must weigh something"
             ),
             Rule::AheadOfNoseTip { top_m } => write!(
                 f,

@@ -150,19 +150,6 @@ impl Design {
                 });
             }
         }
-        // A part may weigh nothing (its mass lumped into another), but not every part: a
-        // rocket without its motor weighs something.
-        let dry = crate::mass::dry(&design);
-        if !(dry.mass_kg > 0.0 && dry.mass_kg.is_finite()) {
-            return Err(DesignError::Invalid {
-                file,
-                at: Location::Design,
-                field: None,
-                rule: Rule::Weightless {
-                    mass_kg: dry.mass_kg,
-                },
-            });
-        }
         Ok(design)
     }
 
