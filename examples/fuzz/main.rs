@@ -203,10 +203,12 @@ fn worker(a: &Args) -> i32 {
     let stdout = std::io::stdout();
     let mut k = a.from;
     while k < a.cases {
+        // The runner gone (its pipe closed), the worker ends too.
         {
             let mut o = stdout.lock();
-            let _ = writeln!(o, "s {k}");
-            let _ = o.flush();
+            if writeln!(o, "s {k}").and_then(|_| o.flush()).is_err() {
+                return 3;
+            }
         }
         let case = harness::generate(&bases, a.seed, k);
         let outcome = harness::run(&case, &scratch);
@@ -219,8 +221,9 @@ fn worker(a: &Args) -> i32 {
             Outcome::Impossible(m) => format!("f {k} impossible {}", one_line(m)),
             other => format!("d {k} {} {}", other.word(), case.target.name()),
         };
-        let _ = writeln!(o, "{line}");
-        let _ = o.flush();
+        if writeln!(o, "{line}").and_then(|_| o.flush()).is_err() {
+            return 3;
+        }
         k += a.stride;
     }
     0
