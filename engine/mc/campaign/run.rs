@@ -126,7 +126,7 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
     }
     let (inputs_n, metrics_n) = (prepared.scenario.inputs.len(), prepared.metrics.len());
     // The statistics' room, asked before anything is flown or written.
-    let table = Table::with_room(inputs_n, metrics_n, count as usize).map_err(|_| {
+    let mut table = Table::with_room(inputs_n, metrics_n, count as usize).map_err(|_| {
         anyhow::anyhow!(
             "{}: the statistics of {count} variants need {:.1} GB of memory, which this \
              machine does not give; split the run with --shard K/N",
@@ -171,7 +171,6 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
             .map(|kv| meta.mismatch(&kv).is_none())
             .unwrap_or(false)
         && pq::row_count(&out.variants)? == count;
-    let mut table = table;
     if !finished {
         // Per chunk, the writer of its part: a kept part's, or this run's once flown.
         let mut writers = scan_parts(out, &meta, &chunk_list, cfg.resume)?;
