@@ -375,7 +375,7 @@ pub struct ImportArgs {
 
 /// What the import of an OpenRocket design left out, on standard error (nothing for a JSON
 /// design): a flight of a `.ork` says what it does not fly.
-fn ork_notes(design: &PathBuf) {
+fn ork_notes(design: &std::path::Path) {
     if let Some(Ok(import)) = ork_import(design) {
         for note in &import.notes {
             eprintln!("note: {note}");
@@ -386,7 +386,7 @@ fn ork_notes(design: &PathBuf) {
 /// The import of `design` if it is an OpenRocket file; `None` for a JSON design or a file
 /// that cannot be read (`Design::load` says why).
 fn ork_import(
-    design: &PathBuf,
+    design: &std::path::Path,
 ) -> Option<std::result::Result<hpr_design::ork::OrkImport, hpr_design::DesignError>> {
     let bytes = hpr_design::limits::read_limited(
         design,

@@ -677,7 +677,7 @@ impl Mutator {
                 let n = self.count().min(2_000);
                 let mut inner = std::mem::take(node);
                 for _ in 0..n {
-                    inner = if n % 2 == 0 {
+                    inner = if n.is_multiple_of(2) {
                         Value::Array(vec![inner])
                     } else {
                         serde_json::json!({ "children": [inner] })
@@ -1376,14 +1376,17 @@ fn motor_impossible(m: &Motor) -> Option<Outcome> {
     if t.is_empty() || t.len() != f.len() {
         return bad(format!("{} times for {} thrusts", t.len(), f.len()));
     }
-    if t.windows(2).any(|w| !(w[1] > w[0])) || t.iter().any(|x| !x.is_finite()) {
+    if t.windows(2)
+        .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+        || t.iter().any(|x| !x.is_finite())
+    {
         return bad("sample times not finite and increasing".into());
     }
     if f.iter().any(|x| !(x.is_finite() && *x >= 0.0)) {
         return bad("a thrust not finite or negative".into());
     }
     let i = m.total_impulse_ns();
-    if !(i.is_finite() && i > 0.0) || !(m.burn_time_s().is_finite() && m.burn_time_s() > 0.0) {
+    if !(i.is_finite() && i > 0.0 && m.burn_time_s().is_finite() && m.burn_time_s() > 0.0) {
         return bad(format!("impulse {i} N·s over {} s", m.burn_time_s()));
     }
     let (p, total) = (m.propellant_mass_kg, m.total_mass_kg);

@@ -126,17 +126,18 @@ pub enum Rule {
         width_m: f64,
         inner_diameter_m: f64,
     },
-    /// A file the field names (a drag or lift table) that cannot be read.
+    /// A file the field names (a drag or lift table) that cannot be read (boxed text: the
+    /// rule stays as small as the others).
     FileUnreadable {
-        file: String,
-        why: String,
+        file: Box<str>,
+        why: Box<str>,
     },
     /// More components than a design may hold.
     TooManyComponents {
         max: usize,
     },
-    /// A part further outside the rocket (fore of its tip, aft of its tail) than the
-    /// rocket is long.
+    /// A part reaching further outside the rocket (fore of its tip, aft of its tail) than
+    /// the rocket is long.
     OutsideRocket {
         top_m: f64,
         bottom_m: f64,
@@ -260,8 +261,9 @@ impl fmt::Display for Rule {
                 length_m,
             } => write!(
                 f,
-                "the part ({top_m} m to {bottom_m} m aft of the nose tip) lies further outside \
-                 the rocket (0 to {length_m} m) than the rocket is long: it is attached to nothing"
+                "the part ({top_m} m to {bottom_m} m aft of the nose tip) reaches further \
+                 outside the rocket (0 to {length_m} m) than the rocket is long: no rocket holds \
+                 it so (is a position or a length too large?)"
             ),
             Rule::AheadOfNoseTip { top_m } => write!(
                 f,

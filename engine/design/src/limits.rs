@@ -45,7 +45,7 @@ pub const MAX_SCENARIO_FILE_BYTES: u64 = 4 * MIB;
 
 /// A size in the words the limits are stated in: `16 MiB`, `1500 bytes`.
 pub fn size_text(bytes: u64) -> String {
-    if bytes >= MIB && bytes % MIB == 0 {
+    if bytes >= MIB && bytes.is_multiple_of(MIB) {
         format!("{} MiB", bytes / MIB)
     } else {
         format!("{bytes} bytes")

@@ -37,6 +37,32 @@ pub const FIT_TOLERANCE_M: f64 = 1e-6;
 /// OpenRocket pattern's sines and cosines (about 1e-18 m).
 pub const CLUSTER_CENTRE_TOLERANCE_M: f64 = 1e-9;
 
+/// Where a part reaches along the axis, m aft of the nose tip: its length from its fore
+/// end, and for a fin set its whole outline (a swept tip may reach past the root's trailing
+/// edge, or ahead of its leading edge).
+fn axial_reach(c: &Component) -> (f64, f64) {
+    let (top, bottom) = (c.x_top_m, c.x_bottom_m());
+    let ComponentKind::FinSet(f) = &c.kind else {
+        return (top, bottom);
+    };
+    let (fore, aft) = match &f.planform {
+        FinPlanform::Trapezoidal {
+            tip_chord_m,
+            sweep_m,
+        } => (
+            sweep_m.min(0.0),
+            (sweep_m + tip_chord_m).max(f.root_chord_m),
+        ),
+        FinPlanform::Elliptical => (0.0, f.root_chord_m),
+        FinPlanform::FreeForm { points_m } => {
+            points_m.iter().fold((0.0, f.root_chord_m), |(a, b), p| {
+                (p[0].min(a), p[0].max(b))
+            })
+        }
+    };
+    (top + fore, top + aft)
+}
+
 /// Largest fin count of a fin set.
 pub const MAX_FINS: u32 = 32;
 
@@ -124,8 +150,9 @@ impl Design {
         }
         .design(raw)?;
         // A part may lie outside its parent (drawn so in OpenRocket, a weight past the tail),
-        // but not further outside the rocket than the rocket is long: there it is attached
-        // to nothing, and its mass (at a fuzzed 4e9 m) makes nonsense of the rocket's.
+        // but no part of it further outside the rocket than the rocket is long: there it is
+        // attached to nothing, and its mass (at a fuzzed 4e9 m, or a 6 m tube in a 1.15 m
+        // rocket) makes nonsense of the rocket's.
         let (lo, hi) = design
             .components
             .iter()
@@ -136,8 +163,8 @@ impl Design {
             });
         let reach = hi - lo;
         for c in design.components.iter().filter(|c| !c.is_body()) {
-            let (top, bottom) = (c.x_top_m, c.x_bottom_m());
-            if top > hi + reach + FIT_TOLERANCE_M || bottom < lo - reach - FIT_TOLERANCE_M {
+            let (top, bottom) = axial_reach(c);
+            if bottom > hi + reach + FIT_TOLERANCE_M || top < lo - reach - FIT_TOLERANCE_M {
                 return Err(DesignError::Invalid {
                     file,
                     at: Location::Component(c.id.clone()),

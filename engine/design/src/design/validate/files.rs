@@ -34,8 +34,8 @@ impl Builder<'_> {
                     at,
                     Some(field),
                     Rule::FileUnreadable {
-                        file: file.clone(),
-                        why: e.to_string(),
+                        file: file.as_str().into(),
+                        why: e.to_string().into(),
                     },
                 )
             })?;

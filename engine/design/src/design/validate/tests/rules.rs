@@ -262,14 +262,41 @@ fn a_part_further_outside_the_rocket_than_its_length_is_refused_even_where_openr
                 json!({"from": "nose_tip", "offset_m": offset_m});
         })
     };
-    let kept = past(2.0 * 1.15).unwrap();
+    // (The 5 cm ballast ends a rocket's length past the tail at 2.25 m.)
+    let kept = past(2.0 * 1.15 - 0.05).unwrap();
     assert!(
         kept.warnings[0].contains("lies entirely outside its parent"),
         "{:?}",
         kept.warnings
     );
-    let (rule, ..) = invalid(past(2.0 * 1.15 + 1e-3));
+    let (rule, ..) = invalid(past(2.0 * 1.15 - 0.05 + 1e-3));
     assert!(matches!(rule, Rule::OutsideRocket { .. }), "{rule:?}");
+    // A part longer than the rocket by more than the rocket (a fuzzed 6 m inner tube in
+    // this 1.15 m rocket, its fore end at the tail's fore end): refused too, in either check.
+    for checks in ["strict", "openrocket"] {
+        let (rule, loc, _) = invalid(with(|v| {
+            v["geometry_checks"] = json!(checks);
+            *at(v, "/stages/0/components/1/children/1/length_m") = json!(6.0);
+            *at(v, "/stages/0/components/1/children/1/position") =
+                json!({"from": "top", "offset_m": 0.0});
+        }));
+        assert_eq!(loc, Location::Component("mmt".into()), "{checks}");
+        assert!(
+            matches!(rule, Rule::OutsideRocket { .. }),
+            "{checks}: {rule:?}"
+        );
+    }
+    // A fin swept 19.8 m (a fuzzed sweep, within the size limit): its tip reaches 19.8 m
+    // past the root, far past the tail: refused, the outline's reach named.
+    let (rule, loc, _) = invalid(with(|v| {
+        *at(v, "/stages/0/components/1/children/0/sweep_m") = json!(19.8);
+    }));
+    assert_eq!(loc, Location::Component("fins".into()));
+    assert!(
+        matches!(rule, Rule::OutsideRocket { top_m, bottom_m, .. }
+            if (top_m - 1.03).abs() < 1e-9 && (bottom_m - (1.03 + 19.8 + 0.05)).abs() < 1e-9),
+        "{rule:?}"
+    );
 }
 
 #[test]
