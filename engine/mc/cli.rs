@@ -181,7 +181,11 @@ impl MotorMasses {
     }
 }
 
+/// `fly`'s exit codes, as `fly --help` shows them.
+pub const FLY_EXIT_CODES: &str = "Exit codes: 0 the flight landed; 1 it did not (it never left the rail, or was still flying at its time limit: 600 s, a scenario's integrator.max_time_s), said on standard error; 2 bad input or an error that stopped the flight.";
+
 #[derive(clap::Args, Debug, Clone)]
+#[command(after_help = FLY_EXIT_CODES)]
 pub struct FlyArgs {
     /// The design (JSON, or an OpenRocket .ork).
     #[arg(required_unless_present = "scenario")]
@@ -457,7 +461,7 @@ pub struct ImportArgs {
 
 /// What the import of an OpenRocket design left out, on standard error (nothing for a JSON
 /// design): a flight of a `.ork` says what it does not fly.
-fn ork_notes(design: &PathBuf) {
+fn ork_notes(design: &std::path::Path) {
     if let Some(Ok(import)) = ork_import(design) {
         for note in &import.notes {
             eprintln!("note: {note}");
@@ -468,9 +472,14 @@ fn ork_notes(design: &PathBuf) {
 /// The import of `design` if it is an OpenRocket file; `None` for a JSON design or a file
 /// that cannot be read (`Design::load` says why).
 fn ork_import(
-    design: &PathBuf,
+    design: &std::path::Path,
 ) -> Option<std::result::Result<hpr_design::ork::OrkImport, hpr_design::DesignError>> {
-    let bytes = std::fs::read(design).ok()?;
+    let bytes = hpr_design::limits::read_limited(
+        design,
+        hpr_design::limits::MAX_DESIGN_FILE_BYTES,
+        "a design file",
+    )
+    .ok()?;
     hpr_design::ork::is_ork_file(design, &bytes)
         .then(|| hpr_design::ork::import(&bytes, &design.display().to_string()))
 }
@@ -480,7 +489,12 @@ fn ork_import(
 /// (`inspect`, `fly` and scenarios read a `.ork` directly; this shows and keeps the JSON.)
 pub fn import(a: &ImportArgs) -> Result<ExitCode> {
     let file = a.ork.display().to_string();
-    let bytes = std::fs::read(&a.ork).with_context(|| format!("{file}: can't read it"))?;
+    let bytes = hpr_design::limits::read_limited(
+        &a.ork,
+        hpr_design::limits::MAX_DESIGN_FILE_BYTES,
+        "a design file",
+    )
+    .with_context(|| format!("{file}: can't read it"))?;
     let import = hpr_design::ork::import(&bytes, &file).map_err(|e| anyhow!("{e}"))?;
     let text = hpr_design::ork::to_pretty_json(&import.json);
     // Checked before it is written: a design the import cannot make valid writes nothing.
@@ -671,6 +685,20 @@ pub fn fly(a: &FlyArgs) -> Result<ExitCode> {
             report::flight_text(&sim, &flight)
         ))?;
     }
+    // A flight that did not land is not a success: said, with exit code 1 (as a run whose
+    // variants did not all land).
+    if let Some(end) = flight.event(hpr_sim::EventKind::TimeLimit) {
+        let why = if flight.metrics.rail_exit_time_s.is_none() {
+            "never left the rail: it was still on it"
+        } else {
+            "did not land: it was still flying"
+        };
+        eprintln!(
+            "hpr-mc: the flight {why} at its time limit, {} s (its events above say how far it got)",
+            end.time_s
+        );
+        return Ok(ExitCode::from(1));
+    }
     Ok(ExitCode::SUCCESS)
 }
 
@@ -758,7 +786,12 @@ fn flight_of_arguments(design: &PathBuf, a: &FlyArgs) -> Result<Simulation> {
         }
         (Some(file), _) => {
             let what = |e: &dyn std::fmt::Display| anyhow!("--sounding {}: {e}", file.display());
-            let text = std::fs::read_to_string(file).map_err(|e| what(&e))?;
+            let text = hpr_design::limits::read_text_limited(
+                file,
+                hpr_design::limits::MAX_SOUNDING_FILE_BYTES,
+                "a sounding",
+            )
+            .map_err(|e| what(&e))?;
             let site = hpr_sim::sounding::Sounding::parse(&text)
                 .and_then(|s| s.over_site(a.elevation_m))
                 .map_err(|e| what(&e))?;

@@ -9,7 +9,8 @@ use std::process::ExitCode;
     name = "hpr-mc",
     version,
     about = "Monte Carlo 6-DOF flights of high-power rockets, with moving mass",
-    args_conflicts_with_subcommands = true
+    args_conflicts_with_subcommands = true,
+    after_help = hpr_mc::campaign::cli::EXIT_CODES
 )]
 struct Cli {
     #[command(subcommand)]

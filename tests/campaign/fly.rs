@@ -167,3 +167,42 @@ fn fly_with_a_sounding_flies_the_scenario_that_names_it() {
         "{err}"
     );
 }
+
+#[test]
+fn fly_exits_1_saying_so_for_a_flight_that_never_leaves_the_rail_or_reaches_its_time_limit() {
+    let design = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/validation/designs/synthetic-54mm-three-fin.json"
+    );
+    // A wind of 1e6 m/s holds the rocket on its rail until the time limit.
+    let (code, out, err) = hpr_mc(&["fly", design, "--wind-m-s", "1e6"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(out.contains("time_limit"), "{out}");
+    assert_eq!(
+        err.lines().last().unwrap(),
+        "hpr-mc: the flight never left the rail: it was still on it at its time limit, 600 s \
+         (its events above say how far it got)"
+    );
+    // Off the rail, but no parachute and a slow fall: still up at the time limit of a
+    // scenario's short max_time_s.
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("short.toml");
+    std::fs::write(
+        &scenario,
+        format!(
+            "seed = 1\nvariants_per_point = 1\n[design]\nfile = \"{design}\"\n[motor]\nname = \"Cesaroni_I175\"\n[integrator]\nmax_time_s = 20.0\n"
+        ),
+    )
+    .unwrap();
+    let (code, _, err) = hpr_mc(&["fly", "--scenario", scenario.to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains(
+            "hpr-mc: the flight did not land: it was still flying at its time limit, 20 s"
+        ),
+        "{err}"
+    );
+    // A flight that lands is a success.
+    let (code, _, err) = hpr_mc(&["fly", design]);
+    assert_eq!(code, 0, "{err}");
+}

@@ -126,6 +126,27 @@ pub enum Rule {
         width_m: f64,
         inner_diameter_m: f64,
     },
+    /// A file the field names (a drag or lift table) that cannot be read (boxed text: the
+    /// rule stays as small as the others).
+    FileUnreadable {
+        file: Box<str>,
+        why: Box<str>,
+    },
+    /// More components than a design may hold.
+    TooManyComponents {
+        max: usize,
+    },
+    /// A part reaching further outside the rocket (fore of its tip, aft of its tail) than
+    /// the rocket is long.
+    OutsideRocket {
+        top_m: f64,
+        bottom_m: f64,
+        length_m: f64,
+    },
+    /// A part that reaches ahead of the nose tip, where no rocket is.
+    AheadOfNoseTip {
+        top_m: f64,
+    },
     /// Fins with a tip chord but no root chord.
     FinRootChord {
         root_m: f64,
@@ -226,6 +247,30 @@ impl fmt::Display for Rule {
                 write!(f, "does not apply to a fin of planform \"{planform}\"")
             }
             Rule::FinOutline { point, why } => write!(f, "point {point}: {why}"),
+            Rule::FileUnreadable { file, why } => {
+                write!(f, "names {file}, which cannot be read: {why}")
+            }
+            Rule::TooManyComponents { max } => write!(
+                f,
+                "the design holds more than {max} components (body components and parts), \
+                 the most hpr-mc reads of one design"
+            ),
+            Rule::OutsideRocket {
+                top_m,
+                bottom_m,
+                length_m,
+            } => write!(
+                f,
+                "the part ({top_m} m to {bottom_m} m aft of the nose tip) reaches further \
+                 outside the rocket (0 to {length_m} m) than the rocket is long: no rocket holds \
+                 it so (is a position or a length too large?)"
+            ),
+            Rule::AheadOfNoseTip { top_m } => write!(
+                f,
+                "the part starts {} m ahead of the nose tip: every part lies aft of the tip \
+                 (positions are metres aft of it; is the position or a chord too large?)",
+                -top_m
+            ),
             Rule::EmptyId => write!(f, "must not be empty"),
             Rule::DuplicateId { first } => write!(f, "is already the id of {first}"),
             Rule::BodyInsideComponent { kind } => write!(

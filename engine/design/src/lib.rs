@@ -14,6 +14,7 @@
 pub mod aero;
 pub mod design;
 pub mod error;
+pub mod limits;
 pub mod mass;
 pub mod motor;
 pub mod ork;

@@ -17,14 +17,15 @@ use std::process::ExitCode;
 /// Options of a scenario run.
 #[derive(clap::Args, Debug, Default, Clone)]
 pub struct RunArgs {
-    /// Variants per sweep point (replaces the scenario's variants_per_point).
+    /// Variants per sweep point (replaces the scenario's variants_per_point; at most
+    /// 1,000,000,000 variants in all, 10,000,000 in one process).
     #[arg(long, value_name = "N")]
     pub variants: Option<u64>,
     /// Seed of the random draws (replaces the scenario's seed).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Worker threads (default: one per core). The results do not depend on it.
-    #[arg(long, value_name = "N")]
+    /// Worker threads, 1 or more (default: one per core). The results do not depend on it.
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = thread_count)]
     pub threads: Option<usize>,
     /// Output directory (default: results/ and the scenario's name).
     #[arg(long, value_name = "DIR")]
@@ -46,8 +47,24 @@ pub struct RunArgs {
     pub verbose: bool,
 }
 
-/// Exit codes, as `--help` shows them.
-pub const EXIT_CODES: &str = "Exit codes: 0 every variant landed; 1 the run finished but some variants did not land (counted; their rows say why); 2 bad input or usage, or an error that stopped the run. Ctrl-C leaves no half-written file: rerun with --resume to fly only what is missing.";
+/// `--threads N`: a whole number, 1 or more (a negative one is named as such, not taken
+/// for an option).
+fn thread_count(text: &str) -> Result<usize, String> {
+    match text.trim().parse::<i64>() {
+        Ok(n) if n >= 1 => usize::try_from(n).map_err(|_| format!("{n} is too many")),
+        Ok(n) => Err(format!("must be at least 1 (got {n})")),
+        Err(_) => Err(format!(
+            "must be a whole number, 1 or more (got \"{text}\")"
+        )),
+    }
+}
+
+/// Exit codes and limits, as `--help` shows them.
+pub const EXIT_CODES: &str = "Exit codes: 0 every variant landed; 1 the run finished but some variants did not land (counted; their rows say why); 2 bad input or usage, or an error that stopped the run. Ctrl-C leaves no half-written file: rerun with --resume to fly only what is missing.
+
+Output directory: one run at a time writes a scenario's files (or a shard's) in a directory: a second is refused at once, naming the first (its pid, host, start time, seed). Without --resume a run first removes the earlier results of its files (other shards' stay).
+
+Limits (refused before anything is flown, with the rule): at most 100,000 sweep points; at most 1,000,000,000 variants (sweep points x variants per point), 10,000,000 in one process (split a larger run with --shard); a scenario file of 4 MiB, a design or .ork file of 64 MiB (its inflated document 64 MiB, nested 100 deep; 1,000 components), a motor file, sounding or drag/lift CSV of 16 MiB; RK4 at most 10,000,000 steps (max_time_s / step_s), and a parachute's or the air brakes' sampler at most 10,000,000 samples to the time limit (max_time_s x sampling_rate_hz). See docs/scenarios.md, \"Limits\".";
 
 /// `hpr-mc run SCENARIO.toml [options]`.
 #[derive(clap::Args, Debug)]
@@ -77,9 +94,6 @@ impl RunArgs {
 
 /// Run a scenario, print its summary, and say by the exit code whether every variant landed.
 pub fn run(scenario: &Path, args: &RunArgs) -> anyhow::Result<ExitCode> {
-    if args.threads == Some(0) {
-        anyhow::bail!("--threads must be at least 1");
-    }
     let report = run_campaign(scenario, &args.config())?;
     crate::cli::emit(&summary_text(&report, args.verbose))?;
     let failures = report.failures();

@@ -15,11 +15,14 @@
 //! - [`parquet`]: the output files, written atomically and streamed by row groups.
 //! - [`trajectories`]: the time series of a few variants per point, flown again alone.
 //! - [`report`]: `report.html` and the landing maps, drawn from the files a run wrote.
+//! - [`outdir`]: the output directory: one run per output set (a lock), temporary names of
+//!   the run's own, a clean start without `--resume`.
 //! - [`run`]: the loop (rayon, shards, resume, progress) and [`cli`]: arguments, printed
 //!   summary, exit codes.
 
 pub mod cli;
 pub mod fly;
+pub mod outdir;
 pub mod params;
 pub mod parquet;
 pub mod report;

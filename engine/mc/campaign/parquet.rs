@@ -1,8 +1,8 @@
 //! The Parquet files of a campaign: their schemas, the rows of variants and of statistics as
 //! Arrow record batches, and writing them so that no reader ever sees half a file.
 //!
-//! Every file is zstd-compressed, written under a temporary name (`NAME.tmp`) in its final
-//! directory and renamed when complete: a rename within a directory is atomic, so Ctrl-C or a
+//! Every file is zstd-compressed, written under a temporary name of the run's own
+//! (`NAME.<run id>.tmp`, see `outdir`) in its final directory and renamed when complete: a rename within a directory is atomic, so Ctrl-C or a
 //! kill leaves either the old file or the new one. Rows are streamed: the writer holds at most
 //! one row group (`run.row_group_rows` rows) in memory.
 //!
@@ -28,7 +28,7 @@ use parquet::file::metadata::KeyValue;
 use parquet::file::properties::WriterProperties;
 use std::collections::HashMap;
 use std::fs::File;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 /// The metadata every file of a run carries.
@@ -255,26 +255,18 @@ pub fn variants_batch(
     Ok(RecordBatch::try_new(schema.clone(), cols)?)
 }
 
-/// The temporary name a file is written under before its rename.
-pub fn temporary(path: &Path) -> PathBuf {
-    let mut name = path
-        .file_name()
-        .map(|n| n.to_os_string())
-        .unwrap_or_default();
-    name.push(".tmp");
-    path.with_file_name(name)
-}
-
-/// Write a Parquet file atomically: `fill` writes the batches, the file is synced and renamed
-/// into place. On an error the temporary file is removed.
+/// Write a Parquet file atomically: `fill` writes the batches to `tmp` (a name of the run's
+/// own, [`super::outdir::OutputDir::temporary`]), the file is synced and renamed into
+/// place. On an error the temporary file is removed.
 pub fn write_atomic(
     path: &Path,
+    tmp: &Path,
     schema: &SchemaRef,
     pairs: &[(String, String)],
     row_group_rows: usize,
     fill: impl FnOnce(&mut ArrowWriter<File>) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
-    write_atomic_with(path, schema, pairs, row_group_rows, &[], fill)
+    write_atomic_with(path, tmp, schema, pairs, row_group_rows, &[], fill)
 }
 
 /// [`write_atomic`] with `float_columns` written as measured series are best: each double's
@@ -282,15 +274,15 @@ pub fn write_atomic(
 /// dictionary (a series rarely repeats a value), at zstd's quickest level.
 pub fn write_atomic_with(
     path: &Path,
+    tmp: &Path,
     schema: &SchemaRef,
     pairs: &[(String, String)],
     row_group_rows: usize,
     float_columns: &[&str],
     fill: impl FnOnce(&mut ArrowWriter<File>) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
-    let tmp = temporary(path);
     let result = (|| -> anyhow::Result<()> {
-        let file = File::create(&tmp).with_context(|| format!("can't create {}", tmp.display()))?;
+        let file = File::create(tmp).with_context(|| format!("can't create {}", tmp.display()))?;
         let level = if float_columns.is_empty() { 3 } else { 1 };
         let mut props = WriterProperties::builder()
             .set_compression(Compression::ZSTD(ZstdLevel::try_new(level)?))
@@ -312,13 +304,13 @@ pub fn write_atomic_with(
         Ok(())
     })();
     match result {
-        Ok(()) => std::fs::rename(&tmp, path).or_else(|e| {
+        Ok(()) => std::fs::rename(tmp, path).or_else(|e| {
             // Nothing half-written is left behind: the temporary file goes too.
-            let _ = std::fs::remove_file(&tmp);
+            let _ = std::fs::remove_file(tmp);
             Err(e).with_context(|| format!("can't rename {} to {}", tmp.display(), path.display()))
         }),
         Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
+            let _ = std::fs::remove_file(tmp);
             Err(e.context(format!("writing {}", path.display())))
         }
     }

@@ -11,8 +11,18 @@
 //! with `resume` keeps the complete parts whose metadata shows the same run (scenario
 //! fingerprint, seed, variants per point, shard, chunk size), flies only the missing chunks,
 //! then merges. Without `resume` a rerun starts over. The parts are removed once merged.
+//!
+//! The output directory (its lock, the run's temporary names, the clean start) is
+//! [`super::outdir`]'s; the merge here checks that every part it reads is the chunk this run
+//! flew or kept: same run identity, chunk, writer, rows and variant ids.
+//!
+//! Size: one process flies at most [`MAX_VARIANTS_PER_RUN`] variants (its statistics hold
+//! every row's inputs and metrics in memory); more are refused before anything is written,
+//! with the rule and the way round it (`--shard`).
 
 use super::fly::{fly_chunk, Prepared, Status, LANDING_XY};
+pub use super::outdir::Outputs;
+use super::outdir::{Holder, OutputDir};
 use super::parquet::{self as pq, RunMeta};
 use super::scenario::Scenario;
 use super::stats::{self, PointStats, Table};
@@ -48,53 +58,10 @@ pub struct RunConfig {
     pub no_report: bool,
 }
 
-/// The files of a run.
-#[derive(Debug, Clone)]
-pub struct Outputs {
-    pub dir: PathBuf,
-    pub variants: PathBuf,
-    pub summary: PathBuf,
-    pub ellipses: PathBuf,
-    pub sensitivity: PathBuf,
-    pub requirements: PathBuf,
-    pub trajectories: PathBuf,
-    /// The report (`report.html`, or `report-shard-K-of-N.html`) and the landing maps
-    /// (`landing.kml`, `landing.geojson`, with the same suffix).
-    pub report: PathBuf,
-    pub kml: PathBuf,
-    pub geojson: PathBuf,
-    pub parts: PathBuf,
-}
-
-impl Outputs {
-    /// File names for `shard` in `dir`: `variants.parquet`..., or
-    /// `variants-shard-K-of-N.parquet`... for one shard of several.
-    pub fn new(dir: &Path, shard: Shard) -> Outputs {
-        let suffix = if shard.is_all() {
-            String::new()
-        } else {
-            format!("-shard-{}-of-{}", shard.k, shard.n)
-        };
-        let f = |stem: &str| dir.join(format!("{stem}{suffix}.parquet"));
-        Outputs {
-            dir: dir.to_path_buf(),
-            variants: f("variants"),
-            summary: f("summary"),
-            ellipses: f("ellipses"),
-            sensitivity: f("sensitivity"),
-            requirements: f("requirements"),
-            trajectories: f("trajectories"),
-            report: dir.join(format!("report{suffix}.html")),
-            kml: dir.join(format!("landing{suffix}.kml")),
-            geojson: dir.join(format!("landing{suffix}.geojson")),
-            parts: dir.join("parts").join(format!("variants{suffix}")),
-        }
-    }
-
-    fn part(&self, chunk: usize) -> PathBuf {
-        self.parts.join(format!("chunk-{chunk:08}.parquet"))
-    }
-}
+/// Most variants one process flies (its shard's, or the whole run's): 10,000,000. Its
+/// statistics hold each row's inputs and metrics in memory (8 bytes each: about 0.4 kB a
+/// row for the bundled scenarios, 4 GB at the limit); a larger run is split with `--shard`.
+pub const MAX_VARIANTS_PER_RUN: u64 = 10_000_000;
 
 /// What a run did.
 #[derive(Debug)]
@@ -150,20 +117,40 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         .out
         .clone()
         .unwrap_or_else(|| Path::new("results").join(&prepared.scenario.name));
-    let outputs = Outputs::new(&dir, shard);
     let meta = RunMeta::of(&prepared, shard);
     let schema = pq::variants_schema(&prepared, &meta);
     let total = prepared.plan.total();
     let count = shard.count(total);
-    let chunk_list = chunks(count, prepared.scenario.chunk_size);
-    if dir.exists() && !dir.is_dir() {
+    if count > MAX_VARIANTS_PER_RUN {
         bail!(
-            "{}: the output directory is a file, not a directory (give another with --out)",
-            dir.display()
+            "{}: {count} variants in one run is more than {MAX_VARIANTS_PER_RUN}, the most one \
+             process flies (its statistics hold every row in memory); split the run with \
+             --shard K/N, N at least {}",
+            prepared.scenario.file.display(),
+            total.div_ceil(MAX_VARIANTS_PER_RUN)
         );
     }
-    std::fs::create_dir_all(&outputs.parts)
-        .with_context(|| format!("can't create {}", outputs.parts.display()))?;
+    let (inputs_n, metrics_n) = (prepared.scenario.inputs.len(), prepared.metrics.len());
+    // The statistics' room, asked before anything is flown or written.
+    let mut table = Table::with_room(inputs_n, metrics_n, count as usize).map_err(|_| {
+        anyhow::anyhow!(
+            "{}: the statistics of {count} variants need {:.1} GB of memory, which this \
+             machine does not give; split the run with --shard K/N",
+            prepared.scenario.file.display(),
+            count as f64 * Table::bytes_per_row(inputs_n, metrics_n) as f64 / 1e9
+        )
+    })?;
+    let chunk_list = chunks(count, prepared.scenario.chunk_size);
+    let held = OutputDir::open(
+        &dir,
+        shard,
+        cfg.resume,
+        &Holder {
+            scenario: prepared.scenario.file.display().to_string(),
+            seed: prepared.scenario.seed,
+        },
+    )?;
+    let outputs = held.outputs.clone();
 
     let mut report = RunReport {
         prepared,
@@ -197,9 +184,12 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
             .unwrap_or(false)
         && pq::row_count(&out.variants)? == count;
     if !finished {
-        let done = scan_parts(out, &meta, &chunk_list, cfg.resume)?;
-        report.chunks_kept = done.iter().filter(|d| **d).count();
-        let mut missing: Vec<usize> = (0..chunk_list.len()).filter(|&c| !done[c]).collect();
+        // Per chunk, the writer of its part: a kept part's, or this run's once flown.
+        let mut writers = scan_parts(out, &meta, &chunk_list, cfg.resume)?;
+        report.chunks_kept = writers.iter().filter(|d| d.is_some()).count();
+        let mut missing: Vec<usize> = (0..chunk_list.len())
+            .filter(|&c| writers[c].is_none())
+            .collect();
         if let Some(m) = cfg.max_chunks {
             missing.truncate(m);
         }
@@ -218,8 +208,11 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
                 let batch = pq::variants_batch(p, &schema, &variants, &results)?;
                 let mut pairs = meta.pairs();
                 pairs.push(("hpr_mc.chunk".into(), c.to_string()));
+                pairs.push((RUN_ID.into(), held.run_id.clone()));
+                let part = out.part(c);
                 pq::write_atomic(
-                    &out.part(c),
+                    &part,
+                    &held.temporary(&part),
                     &schema,
                     &pairs,
                     p.scenario.row_group_rows,
@@ -231,21 +224,30 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         })?;
         bar.finish_and_clear();
         report.chunks_flown = missing.len();
+        for &c in &missing {
+            writers[c] = Some(Some(held.run_id.clone()));
+        }
         if report.chunks_kept + report.chunks_flown < chunk_list.len() {
             report.elapsed = started.elapsed();
             return Ok(report);
         }
-        // Merge the parts, in order, into the variants file, reading the statistics' table.
-        let mut table = Table::new(p.scenario.inputs.len(), p.metrics.len());
+        // Merge the parts, in order, into the variants file, reading the statistics' table;
+        // each part must be the chunk this run flew or kept, row for row.
         pq::write_atomic(
             &out.variants,
+            &held.temporary(&out.variants),
             &schema,
             &meta.pairs(),
             p.scenario.row_group_rows,
             |w| {
-                for c in 0..chunk_list.len() {
-                    for batch in pq::read_batches(&out.part(c))? {
+                for (c, range) in chunk_list.iter().enumerate() {
+                    let path = out.part(c);
+                    let writer = writers[c].as_ref().and_then(|w| w.as_deref());
+                    check_part(&path, c, &meta, writer, range.end - range.start)?;
+                    let mut q = range.start;
+                    for batch in pq::read_batches(&path)? {
                         let batch = batch?;
+                        check_ids(&path, &batch, shard, &mut q)?;
                         pq::accumulate(p, &mut table, &batch)?;
                         w.write(&batch)?;
                     }
@@ -253,25 +255,25 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
                 Ok(())
             },
         )?;
-        finish(&mut report, &meta, &table)?;
+        finish(&mut report, &meta, &table, &held)?;
         std::fs::remove_dir_all(&report.outputs.parts)
             .with_context(|| format!("can't remove {}", report.outputs.parts.display()))?;
         let _ = std::fs::remove_dir(report.outputs.dir.join("parts"));
     } else {
         pq::check_schema(&out.variants, &schema)?;
-        let mut table = Table::new(p.scenario.inputs.len(), p.metrics.len());
         for batch in pq::read_batches(&out.variants)? {
             pq::accumulate(p, &mut table, &batch?)?;
         }
         let _ = std::fs::remove_dir_all(&out.parts);
         let _ = std::fs::remove_dir(out.dir.join("parts"));
-        finish(&mut report, &meta, &table)?;
+        finish(&mut report, &meta, &table, &held)?;
     }
     report.trajectories = pool.install(|| {
         super::trajectories::write(
             &report.prepared,
             shard,
             &report.outputs.trajectories,
+            &held.temporary(&report.outputs.trajectories),
             &meta.pairs(),
         )
     })?;
@@ -283,8 +285,79 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
     Ok(report)
 }
 
+/// The metadata key of the run that wrote a part.
+const RUN_ID: &str = "hpr_mc.run_id";
+
+/// Check that the part at `path` is chunk `c` of this run, written by `writer` (the run id
+/// in its metadata, `None` for a part of a version that wrote none), with `rows` rows: else
+/// the directory was changed under the run, and the merge stops rather than mix runs.
+fn check_part(
+    path: &Path,
+    c: usize,
+    meta: &RunMeta,
+    writer: Option<&str>,
+    rows: u64,
+) -> anyhow::Result<()> {
+    let kv = pq::read_pairs(path)?;
+    let why = if let Some(why) = meta.mismatch(&kv) {
+        Some(why)
+    } else if kv.get("hpr_mc.chunk") != Some(&c.to_string()) {
+        Some(format!(
+            "its hpr_mc.chunk is {}",
+            kv.get("hpr_mc.chunk").map_or("missing", |s| s.as_str())
+        ))
+    } else if kv.get(RUN_ID).map(String::as_str) != writer {
+        Some(format!(
+            "it was written by run {}, not by run {}",
+            kv.get(RUN_ID).map_or("(none)", |s| s.as_str()),
+            writer.unwrap_or("(none)")
+        ))
+    } else {
+        let got = pq::row_count(path)?;
+        (got != rows).then(|| format!("it holds {got} rows, the chunk {rows}"))
+    };
+    match why {
+        None => Ok(()),
+        Some(why) => bail!(
+            "{} is not chunk {c} of this run ({why}): something else wrote into the output \
+             directory during the run; nothing was merged, run again",
+            path.display()
+        ),
+    }
+}
+
+/// Check that a part's batch holds the shard's variants from its `q`-th on, in order, and
+/// move `q` past them.
+fn check_ids(
+    path: &Path,
+    batch: &arrow::record_batch::RecordBatch,
+    shard: Shard,
+    q: &mut u64,
+) -> anyhow::Result<()> {
+    let ids = batch
+        .column_by_name("variant_id")
+        .and_then(|c| c.as_any().downcast_ref::<arrow::array::UInt64Array>())
+        .with_context(|| format!("{} has no variant_id column", path.display()))?;
+    for id in ids.values().iter() {
+        if *id != shard.id(*q) {
+            bail!(
+                "{} holds variant {id} where this run's variant {} belongs; nothing was merged, run again",
+                path.display(),
+                shard.id(*q)
+            );
+        }
+        *q += 1;
+    }
+    Ok(())
+}
+
 /// Count the statuses, compute and write the statistics.
-fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Result<()> {
+fn finish(
+    report: &mut RunReport,
+    meta: &RunMeta,
+    table: &Table,
+    held: &OutputDir,
+) -> anyhow::Result<()> {
     count_outcomes(report)?;
     let p = &report.prepared;
     let dispersed: Vec<bool> = p
@@ -306,21 +379,42 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
     let pairs = meta.pairs();
     let rg = p.scenario.row_group_rows;
     let summary = pq::summary_batch(p, meta, &report.stats)?;
-    pq::write_atomic(&out.summary, &summary.schema(), &pairs, rg, |w| {
-        Ok(w.write(&summary)?)
-    })?;
+    let tmp = |path: &Path| held.temporary(path);
+    pq::write_atomic(
+        &out.summary,
+        &tmp(&out.summary),
+        &summary.schema(),
+        &pairs,
+        rg,
+        |w| Ok(w.write(&summary)?),
+    )?;
     let ellipses = pq::ellipses_batch(p, meta, &report.stats)?;
-    pq::write_atomic(&out.ellipses, &ellipses.schema(), &pairs, rg, |w| {
-        Ok(w.write(&ellipses)?)
-    })?;
+    pq::write_atomic(
+        &out.ellipses,
+        &tmp(&out.ellipses),
+        &ellipses.schema(),
+        &pairs,
+        rg,
+        |w| Ok(w.write(&ellipses)?),
+    )?;
     let sens = pq::sensitivity_batch(p, meta, &report.stats)?;
-    pq::write_atomic(&out.sensitivity, &sens.schema(), &pairs, rg, |w| {
-        Ok(w.write(&sens)?)
-    })?;
+    pq::write_atomic(
+        &out.sensitivity,
+        &tmp(&out.sensitivity),
+        &sens.schema(),
+        &pairs,
+        rg,
+        |w| Ok(w.write(&sens)?),
+    )?;
     let reqs = pq::requirements_batch(p, meta, &report.stats)?;
-    pq::write_atomic(&out.requirements, &reqs.schema(), &pairs, rg, |w| {
-        Ok(w.write(&reqs)?)
-    })?;
+    pq::write_atomic(
+        &out.requirements,
+        &tmp(&out.requirements),
+        &reqs.schema(),
+        &pairs,
+        rg,
+        |w| Ok(w.write(&reqs)?),
+    )?;
     Ok(())
 }
 
@@ -375,15 +469,17 @@ fn count_outcomes(report: &mut RunReport) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Which chunks have a complete part from this run. Without `resume`, every part of this
-/// shard is removed first (a fresh start). Leftover temporary files are always removed.
+/// Per chunk, the writer of its complete part kept from an earlier run (`Some(run id)`, the
+/// id `None` for a part that names none), or `None` to fly it. Only with `resume` are parts
+/// kept; without it the output directory has removed them already ([`OutputDir::open`]).
+/// Leftover temporary files are removed.
 fn scan_parts(
     out: &Outputs,
     meta: &RunMeta,
     chunk_list: &[std::ops::Range<u64>],
     resume: bool,
-) -> anyhow::Result<Vec<bool>> {
-    let mut done = vec![false; chunk_list.len()];
+) -> anyhow::Result<Vec<Option<Option<String>>>> {
+    let mut done = vec![None; chunk_list.len()];
     for entry in std::fs::read_dir(&out.parts)
         .with_context(|| format!("can't read {}", out.parts.display()))?
     {
@@ -409,7 +505,7 @@ fn scan_parts(
                 {
                     bail!("{} does not hold chunk {c} of this run; to start over, run without --resume, or remove {}", path.display(), out.parts.display());
                 }
-                done[c] = true;
+                done[c] = Some(kv.get(RUN_ID).cloned());
             }
             _ => std::fs::remove_file(&path)
                 .with_context(|| format!("can't remove {}", path.display()))?,
@@ -431,4 +527,101 @@ fn progress(len: u64, quiet: bool) -> ProgressBar {
     .unwrap_or_else(|_| ProgressStyle::default_bar());
     bar.set_style(style.progress_chars("=> "));
     bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use arrow::array::UInt64Array;
+    use arrow::datatypes::{DataType, Field, Schema};
+    use arrow::record_batch::RecordBatch;
+    use std::sync::Arc;
+
+    fn meta(seed: u64) -> RunMeta {
+        RunMeta {
+            scenario_file: "s.toml".into(),
+            scenario_text: "text".into(),
+            scenario_hash: "abc".into(),
+            seed,
+            variants_per_point: 8,
+            points: 1,
+            shard: Shard { k: 1, n: 2 },
+            chunk_size: 2,
+            latitude_deg: None,
+            longitude_deg: None,
+        }
+    }
+
+    /// A part of `ids` written as run `writer` of the run `meta`, chunk `c`.
+    fn part(dir: &Path, meta: &RunMeta, c: usize, writer: &str, ids: &[u64]) -> PathBuf {
+        let schema = Arc::new(Schema::new(vec![Field::new(
+            "variant_id",
+            DataType::UInt64,
+            false,
+        )]));
+        let batch = RecordBatch::try_new(
+            schema.clone(),
+            vec![Arc::new(UInt64Array::from(ids.to_vec()))],
+        )
+        .unwrap();
+        let mut pairs = meta.pairs();
+        pairs.push(("hpr_mc.chunk".into(), c.to_string()));
+        pairs.push((RUN_ID.into(), writer.into()));
+        let path = dir.join(format!("chunk-{c}-{}-{writer}-{ids:?}.parquet", meta.seed));
+        pq::write_atomic(&path, &dir.join("tmp"), &schema, &pairs, 100, |w| {
+            Ok(w.write(&batch)?)
+        })
+        .unwrap();
+        path
+    }
+
+    #[test]
+    fn the_merge_takes_only_a_part_of_this_run_s_chunk_writer_rows_and_ids() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let m = meta(5);
+        // Shard 1 of 2, chunks of 2: chunk 1 holds the shard's variants 2 and 3, ids 5 and 7.
+        let good = part(d, &m, 1, "me", &[5, 7]);
+        check_part(&good, 1, &m, Some("me"), 2).unwrap();
+        let mut q = 2;
+        for b in pq::read_batches(&good).unwrap() {
+            check_ids(&good, &b.unwrap(), m.shard, &mut q).unwrap();
+        }
+        assert_eq!(q, 4);
+        let refusal = |path: &Path, c: usize, writer: &str, rows: u64| {
+            check_part(path, c, &m, Some(writer), rows)
+                .unwrap_err()
+                .to_string()
+        };
+        // Another seed's part under this chunk's name (what two runs into one directory made).
+        let other = part(d, &meta(7), 1, "me", &[5, 7]);
+        let e = refusal(&other, 1, "me", 2);
+        assert!(
+            e.contains("is not chunk 1 of this run (its hpr_mc.seed is 7, this run's is 5)")
+                && e.contains("nothing was merged"),
+            "{e}"
+        );
+        let e = refusal(&good, 1, "another", 2);
+        assert!(
+            e.contains("(it was written by run me, not by run another)"),
+            "{e}"
+        );
+        let e = refusal(&good, 0, "me", 2);
+        assert!(e.contains("(its hpr_mc.chunk is 1)"), "{e}");
+        let e = refusal(&good, 1, "me", 3);
+        assert!(e.contains("(it holds 2 rows, the chunk 3)"), "{e}");
+        // The right metadata over other rows: the ids give it away.
+        let wrong = part(d, &m, 1, "me", &[5, 9]);
+        let mut q = 2;
+        let e = pq::read_batches(&wrong)
+            .unwrap()
+            .map(|b| check_ids(&wrong, &b.unwrap(), m.shard, &mut q))
+            .find_map(Result::err)
+            .unwrap()
+            .to_string();
+        assert!(
+            e.contains("holds variant 9 where this run's variant 7 belongs"),
+            "{e}"
+        );
+    }
 }

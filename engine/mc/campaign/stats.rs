@@ -276,6 +276,27 @@ impl Table {
             metrics: vec![vec![]; metrics],
         }
     }
+
+    /// [`Table::new`] with room for `rows` rows taken at once, or the error of an allocator
+    /// that cannot give it (asked before the run flies anything, not after).
+    pub fn with_room(
+        inputs: usize,
+        metrics: usize,
+        rows: usize,
+    ) -> Result<Table, std::collections::TryReserveError> {
+        let mut t = Table::new(inputs, metrics);
+        t.point.try_reserve_exact(rows)?;
+        t.landed.try_reserve_exact(rows)?;
+        for c in t.inputs.iter_mut().chain(t.metrics.iter_mut()) {
+            c.try_reserve_exact(rows)?;
+        }
+        Ok(t)
+    }
+
+    /// Bytes a table of these columns holds per row.
+    pub fn bytes_per_row(inputs: usize, metrics: usize) -> usize {
+        std::mem::size_of::<u32>() + std::mem::size_of::<bool>() + 8 * (inputs + metrics)
+    }
 }
 
 /// Statistics of one sweep point.

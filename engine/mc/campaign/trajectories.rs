@@ -113,6 +113,7 @@ pub fn write(
     p: &Prepared,
     shard: Shard,
     path: &Path,
+    tmp: &Path,
     pairs: &[(String, String)],
 ) -> anyhow::Result<u64> {
     let ids = chosen(p, shard, p.scenario.trajectories);
@@ -121,6 +122,7 @@ pub fn write(
     let floats: Vec<&str> = SERIES.iter().map(|c| c.0).collect();
     write_atomic_with(
         path,
+        tmp,
         &schema,
         pairs,
         p.scenario.row_group_rows,

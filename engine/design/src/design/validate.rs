@@ -37,8 +37,40 @@ pub const FIT_TOLERANCE_M: f64 = 1e-6;
 /// OpenRocket pattern's sines and cosines (about 1e-18 m).
 pub const CLUSTER_CENTRE_TOLERANCE_M: f64 = 1e-9;
 
+/// Where a part reaches along the axis, m aft of the nose tip: its length from its fore
+/// end, and for a fin set its whole outline (a swept tip may reach past the root's trailing
+/// edge, or ahead of its leading edge).
+fn axial_reach(c: &Component) -> (f64, f64) {
+    let (top, bottom) = (c.x_top_m, c.x_bottom_m());
+    let ComponentKind::FinSet(f) = &c.kind else {
+        return (top, bottom);
+    };
+    let (fore, aft) = match &f.planform {
+        FinPlanform::Trapezoidal {
+            tip_chord_m,
+            sweep_m,
+        } => (
+            sweep_m.min(0.0),
+            (sweep_m + tip_chord_m).max(f.root_chord_m),
+        ),
+        FinPlanform::Elliptical => (0.0, f.root_chord_m),
+        FinPlanform::FreeForm { points_m } => {
+            points_m.iter().fold((0.0, f.root_chord_m), |(a, b), p| {
+                (p[0].min(a), p[0].max(b))
+            })
+        }
+    };
+    (top + fore, top + aft)
+}
+
 /// Largest fin count of a fin set.
 pub const MAX_FINS: u32 = 32;
+
+/// Most components (stages' body components and every part, at any depth) a design may
+/// hold: 1,000, where OpenRocket's designs hold tens. Each is weighed and its aerodynamics
+/// tabulated before a flight, and the flight reads every surface at every step, so a design
+/// of thousands would take minutes to set up and fly; it is refused before any of that.
+pub const MAX_COMPONENTS: usize = 1000;
 
 /// Largest cant angle of a fin set, degrees (OpenRocket's limit).
 pub const MAX_CANT_DEG: f64 = 15.0;
@@ -51,7 +83,12 @@ impl Design {
     /// Reads and validates a design file. Drag CSVs are found relative to it.
     pub fn load(path: impl AsRef<Path>) -> Result<Design, DesignError> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path).map_err(|source| DesignError::Io {
+        let bytes = crate::limits::read_limited(
+            path,
+            crate::limits::MAX_DESIGN_FILE_BYTES,
+            "a design file",
+        )
+        .map_err(|source| DesignError::Io {
             file: path.display().to_string(),
             source,
         })?;
@@ -70,6 +107,8 @@ impl Design {
     /// it and drag CSVs are found relative to its directory (relative to the working
     /// directory when `None`).
     pub fn from_json_str(text: &str, source: Option<&Path>) -> Result<Design, DesignError> {
+        // A byte-order mark (some Windows editors write one) is not part of the JSON.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let file = match source {
             Some(p) => p.display().to_string(),
             None => "<design>".to_owned(),
@@ -83,8 +122,25 @@ impl Design {
             };
             located.unwrap_or_else(|| json_error(&file, &e))
         })?;
-        Builder {
-            file,
+        // Counted before anything is built (without recursion: nesting is not bounded yet).
+        let mut count = 0usize;
+        let mut stack: Vec<&RawComponent> = raw.stages.iter().flat_map(|s| &s.components).collect();
+        while let Some(c) = stack.pop() {
+            count += 1;
+            if count > MAX_COMPONENTS {
+                return Err(DesignError::Invalid {
+                    file,
+                    at: Location::Design,
+                    field: Some("stages".into()),
+                    rule: Rule::TooManyComponents {
+                        max: MAX_COMPONENTS,
+                    },
+                });
+            }
+            stack.extend(c.children());
+        }
+        let design = Builder {
+            file: file.clone(),
             source,
             components: Vec::new(),
             ids: HashMap::new(),
@@ -92,7 +148,36 @@ impl Design {
             openrocket_geometry: false,
             warnings: Vec::new(),
         }
-        .design(raw)
+        .design(raw)?;
+        // A part may lie outside its parent (drawn so in OpenRocket, a weight past the tail),
+        // but no part of it further outside the rocket than the rocket is long: there it is
+        // attached to nothing, and its mass (at a fuzzed 4e9 m, or a 6 m tube in a 1.15 m
+        // rocket) makes nonsense of the rocket's.
+        let (lo, hi) = design
+            .components
+            .iter()
+            .filter(|c| c.is_body())
+            .map(parts::extent)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (t, u)| {
+                (a.min(t), b.max(u))
+            });
+        let reach = hi - lo;
+        for c in design.components.iter().filter(|c| !c.is_body()) {
+            let (top, bottom) = axial_reach(c);
+            if bottom > hi + reach + FIT_TOLERANCE_M || top < lo - reach - FIT_TOLERANCE_M {
+                return Err(DesignError::Invalid {
+                    file,
+                    at: Location::Component(c.id.clone()),
+                    field: Some("position".into()),
+                    rule: Rule::OutsideRocket {
+                        top_m: top,
+                        bottom_m: bottom,
+                        length_m: design.length_m,
+                    },
+                });
+            }
+        }
+        Ok(design)
     }
 
     /// Checks that a motor of this diameter and length fits the motor mount: its diameter

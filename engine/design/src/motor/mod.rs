@@ -200,10 +200,12 @@ impl Motor {
     pub fn all_from_file(path: impl AsRef<Path>) -> Result<Vec<Motor>, MotorError> {
         let path = path.as_ref();
         let file = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|source| MotorError::Io {
-            file: file.clone(),
-            source,
-        })?;
+        let bytes =
+            crate::limits::read_limited(path, crate::limits::MAX_MOTOR_FILE_BYTES, "a motor file")
+                .map_err(|source| MotorError::Io {
+                    file: file.clone(),
+                    source,
+                })?;
         Motor::parse_all(&bytes, &file)
     }
 

@@ -24,11 +24,12 @@ pub fn parse_rse(text: &str, file: &str) -> Result<Vec<Motor>, MotorError> {
         line: e.pos().row as usize,
         message: e.to_string(),
     })?;
+    let src = Source::new(text);
     let root = doc.root_element();
     if !root.has_tag_name("engine-database") {
         return Err(parse_error(
             file,
-            line_of(&doc, root.range().start),
+            src.line(root.range().start),
             "<engine-database>",
             Rule::MissingElement,
         ));
@@ -36,7 +37,7 @@ pub fn parse_rse(text: &str, file: &str) -> Result<Vec<Motor>, MotorError> {
     let Some(list) = root.children().find(|n| n.has_tag_name("engine-list")) else {
         return Err(parse_error(
             file,
-            line_of(&doc, root.range().start),
+            src.line(root.range().start),
             "<engine-list>",
             Rule::MissingElement,
         ));
@@ -44,12 +45,12 @@ pub fn parse_rse(text: &str, file: &str) -> Result<Vec<Motor>, MotorError> {
     let motors = list
         .children()
         .filter(|n| n.has_tag_name("engine"))
-        .map(|engine| read_engine(&doc, engine, file))
+        .map(|engine| read_engine(&src, engine, file))
         .collect::<Result<Vec<_>, _>>()?;
     if motors.is_empty() {
         return Err(parse_error(
             file,
-            line_of(&doc, list.range().start),
+            src.line(list.range().start),
             "<engine>",
             Rule::MissingElement,
         ));
@@ -57,30 +58,47 @@ pub fn parse_rse(text: &str, file: &str) -> Result<Vec<Motor>, MotorError> {
     Ok(motors)
 }
 
-/// 1-based line of byte offset `pos`.
-fn line_of(doc: &Document, pos: usize) -> usize {
-    doc.text_pos_at(pos).row as usize
+/// The start of each line of the document, so that an offset's line is found by bisection
+/// (roxmltree's `text_pos_at` counts from the start each time: read for every sample of a
+/// long curve, quadratic in the curve's length).
+struct Source {
+    line_starts: Vec<usize>,
+}
+
+impl Source {
+    fn new(text: &str) -> Self {
+        Source {
+            line_starts: std::iter::once(0)
+                .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+                .collect(),
+        }
+    }
+
+    /// 1-based line of byte offset `pos`.
+    fn line(&self, pos: usize) -> usize {
+        self.line_starts.partition_point(|&s| s <= pos)
+    }
 }
 
 /// An attribute's text and line, or an error naming it.
 fn attribute<'a>(
-    doc: &Document,
+    doc: &Source,
     node: Node<'a, '_>,
     name: &str,
     file: &str,
 ) -> Result<(&'a str, usize), MotorError> {
     match node.attribute_node(name) {
-        Some(a) => Ok((a.value(), line_of(doc, a.range_value().start))),
+        Some(a) => Ok((a.value(), doc.line(a.range_value().start))),
         None => Err(parse_error(
             file,
-            line_of(doc, node.range().start),
+            doc.line(node.range().start),
             name,
             Rule::MissingAttribute,
         )),
     }
 }
 
-fn read_engine(doc: &Document, engine: Node, file: &str) -> Result<Motor, MotorError> {
+fn read_engine(doc: &Source, engine: Node, file: &str) -> Result<Motor, MotorError> {
     let (code, line) = attribute(doc, engine, "code", file)?;
     let designation = code.trim();
     if designation.is_empty() {
@@ -111,7 +129,7 @@ fn read_engine(doc: &Document, engine: Node, file: &str) -> Result<Motor, MotorE
             a.value(),
             ',',
             file,
-            line_of(doc, a.range_value().start),
+            doc.line(a.range_value().start),
             "delays (s)",
         )?,
         None => Vec::new(),
@@ -120,7 +138,7 @@ fn read_engine(doc: &Document, engine: Node, file: &str) -> Result<Motor, MotorE
     let Some(data) = engine.children().find(|n| n.has_tag_name("data")) else {
         return Err(parse_error(
             file,
-            line_of(doc, engine.range().start),
+            doc.line(engine.range().start),
             "<data>",
             Rule::MissingElement,
         ));
@@ -133,7 +151,7 @@ fn read_engine(doc: &Document, engine: Node, file: &str) -> Result<Motor, MotorE
         let thrust_n = parse_number(f.trim(), file, line, "f (N)")?;
         curve.push(time_s, thrust_n, line, "t (s)", "f (N)")?;
     }
-    let curve = curve.finish(line_of(doc, data.range().start), "t (s)")?;
+    let curve = curve.finish(doc.line(data.range().start), "t (s)")?;
     Ok(Motor::assemble(
         designation.to_string(),
         mfg.trim().to_string(),

@@ -431,3 +431,12 @@ fn a_motor_in_another_casing_takes_its_diameter_and_refuses_a_nonsense_one() {
     assert_eq!(wide.total_impulse_ns(), m.total_impulse_ns());
     assert!(m.with_diameter(0.0).is_err() && m.with_diameter(f64::INFINITY).is_err());
 }
+
+#[test]
+fn a_motor_file_past_its_limit_is_refused_saying_so() {
+    let e = Motor::from_file("/dev/zero").unwrap_err().to_string();
+    assert!(
+        e.contains("it is larger than 16 MiB, the most hpr-mc reads for a motor file"),
+        "{e}"
+    );
+}

@@ -34,9 +34,9 @@ pub use simulation::{OrkResults, OrkSimulation};
 mod tests;
 
 use crate::error::DesignError;
+use crate::limits::{read_to_string_limited, MAX_ORK_DEPTH, MAX_ORK_DOCUMENT_BYTES, MAX_ORK_NODES};
 use roxmltree::Node;
 use serde_json::{json, Map, Value};
-use std::io::Read;
 
 /// A design read from an `.ork`: its JSON (the design format) and what the import left out
 /// or approximated, one sentence each.
@@ -87,7 +87,11 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
         ));
     }
     let xml = document_text(bytes, file)?;
-    let doc = roxmltree::Document::parse(&xml).map_err(|e| {
+    let options = roxmltree::ParsingOptions {
+        nodes_limit: MAX_ORK_NODES,
+        ..roxmltree::ParsingOptions::default()
+    };
+    let doc = roxmltree::Document::parse_with_options(&xml, options).map_err(|e| {
         err(
             file,
             "document",
@@ -98,6 +102,16 @@ pub fn import(bytes: &[u8], file: &str) -> Result<OrkImport, DesignError> {
         )
     })?;
     let root = doc.root_element();
+    if depth(root) > MAX_ORK_DEPTH {
+        return Err(err(
+            file,
+            "document",
+            format!(
+                "its elements nest more than {MAX_ORK_DEPTH} deep, deeper than any OpenRocket design \
+                 (the most hpr-mc reads)"
+            ),
+        ));
+    }
     if root.tag_name().name() != "openrocket" {
         return Err(err(
             file,
@@ -277,9 +291,21 @@ fn short_name(file: &str) -> &str {
     file.rsplit(['/', '\\']).next().unwrap_or(file)
 }
 
-/// The XML text of the document: the first entry of a ZIP, a gunzipped stream, or the bytes.
+/// The XML text of the document: the first entry of a ZIP, a gunzipped stream, or the bytes;
+/// an inflated document larger than [`MAX_ORK_DOCUMENT_BYTES`] is refused as soon as it
+/// passes the limit (a ZIP bomb is never inflated whole).
 fn document_text(bytes: &[u8], file: &str) -> Result<String, DesignError> {
-    let mut text = String::new();
+    let limit = MAX_ORK_DOCUMENT_BYTES;
+    let too_large = || {
+        err(
+            file,
+            "container",
+            format!(
+                "its document inflates to more than {}, the most hpr-mc reads of an OpenRocket design",
+                crate::limits::size_text(limit)
+            ),
+        )
+    };
     if bytes.starts_with(b"PK") {
         let mut zip = zip::ZipArchive::new(std::io::Cursor::new(bytes))
             .map_err(|e| err(file, "container", format!("not a readable ZIP: {e}")))?;
@@ -288,27 +314,44 @@ fn document_text(bytes: &[u8], file: &str) -> Result<String, DesignError> {
         }
         // OpenRocket reads the first entry; `rocket.ork` is its name when OpenRocket wrote it.
         let index = zip.index_for_name("rocket.ork").unwrap_or(0);
-        let mut entry = zip
+        let entry = zip
             .by_index(index)
             .map_err(|e| err(file, "container", format!("cannot open its document: {e}")))?;
-        entry
-            .read_to_string(&mut text)
-            .map_err(|e| err(file, "container", format!("cannot read its document: {e}")))?;
+        // The size the ZIP declares first (it may lie: the read below is bounded too).
+        if entry.size() > limit {
+            return Err(too_large());
+        }
+        read_to_string_limited(entry, limit).map_err(|e| match e {
+            None => too_large(),
+            Some(e) => err(file, "container", format!("cannot read its document: {e}")),
+        })
     } else if bytes.starts_with(&[0x1f, 0x8b]) {
-        flate2::read::GzDecoder::new(bytes)
-            .read_to_string(&mut text)
-            .map_err(|e| {
-                err(
-                    file,
-                    "container",
-                    format!("not a readable gzip stream: {e}"),
-                )
-            })?;
+        read_to_string_limited(flate2::read::GzDecoder::new(bytes), limit).map_err(|e| match e {
+            None => too_large(),
+            Some(e) => err(
+                file,
+                "container",
+                format!("not a readable gzip stream: {e}"),
+            ),
+        })
     } else {
-        text = String::from_utf8(bytes.to_vec())
-            .map_err(|_| err(file, "document", "not UTF-8 text"))?;
+        String::from_utf8(bytes.to_vec()).map_err(|_| err(file, "document", "not UTF-8 text"))
     }
-    Ok(text)
+}
+
+/// How deeply the document's elements nest, counted without recursion (the import walks the
+/// tree recursively, so a document nested thousands deep must be refused before it does).
+fn depth(root: Node<'_, '_>) -> usize {
+    let mut deepest = 0;
+    let mut stack = vec![(root, 1usize)];
+    while let Some((node, d)) = stack.pop() {
+        deepest = deepest.max(d);
+        if d > MAX_ORK_DEPTH {
+            break;
+        }
+        stack.extend(node.children().filter(Node::is_element).map(|c| (c, d + 1)));
+    }
+    deepest
 }
 
 fn err(file: &str, element: &str, message: impl std::fmt::Display) -> DesignError {

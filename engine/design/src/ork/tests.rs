@@ -603,3 +603,63 @@ fn the_written_design_reads_back_as_the_same_json_with_ids_and_types_first() {
         "{text}"
     );
 }
+
+/// A document whose rocket holds stages nested `n` deep.
+fn nested(n: usize) -> String {
+    format!(
+        "<?xml version=\"1.0\" encoding=\"utf-8\"?><openrocket version=\"1.9\" creator=\"x\">\
+         <rocket><name>R</name><subcomponents>{}{}</subcomponents></rocket></openrocket>",
+        "<stage><subcomponents>".repeat(n),
+        "</subcomponents></stage>".repeat(n)
+    )
+}
+
+#[test]
+fn a_document_nested_deeper_than_the_limit_is_refused_before_the_import_walks_it() {
+    // 20,000 stages deep overflowed the import's recursion (an abort), plain or zipped.
+    for n in [20_000, 1_000_000] {
+        let text = nested(n);
+        for bytes in [text.clone().into_bytes(), zipped(&[("rocket.ork", &text)])] {
+            let e = refusal(&bytes, "deep.ork");
+            assert_eq!(
+                e,
+                format!(
+                    "deep.ork: document: its elements nest more than {MAX_ORK_DEPTH} deep, \
+                     deeper than any OpenRocket design (the most hpr-mc reads)"
+                )
+            );
+        }
+    }
+    // At the limit the document is read and judged on its parts (a stage in a stage).
+    let e = refusal(nested(MAX_ORK_DEPTH / 2 - 3).as_bytes(), "deep.ork");
+    assert!(
+        e.contains("a <stage> among a stage's body components"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_document_that_inflates_past_the_limit_is_refused_as_it_passes_it() {
+    // A ZIP bomb: 64 MiB and 1 KiB of spaces after the example inflate from about 65 KiB.
+    let size = MAX_ORK_DOCUMENT_BYTES as usize + 1024;
+    let mut text = String::with_capacity(size);
+    text.push_str(EXAMPLE);
+    text.push_str(&" ".repeat(size - EXAMPLE.len()));
+    let zip = zipped(&[("rocket.ork", &text)]);
+    assert!(zip.len() < 1 << 20, "{}", zip.len());
+    let rule = "its document inflates to more than 64 MiB, the most hpr-mc reads of an \
+                OpenRocket design";
+    assert_eq!(
+        refusal(&zip, "bomb.ork"),
+        format!("bomb.ork: container: {rule}")
+    );
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    gz.write_all(text.as_bytes()).unwrap();
+    assert_eq!(
+        refusal(&gz.finish().unwrap(), "bomb.ork"),
+        format!("bomb.ork: container: {rule}")
+    );
+    // The same document at the limit is read (and imported: white space after it).
+    text.truncate(MAX_ORK_DOCUMENT_BYTES as usize);
+    assert!(super::import(&zipped(&[("rocket.ork", &text)]), "big.ork").is_ok());
+}

@@ -43,7 +43,9 @@ pub struct Written {
 
 /// Write `text` to `path` through a temporary file renamed into place.
 fn write_atomic(path: &Path, text: &str) -> Result<()> {
-    let tmp = crate::campaign::parquet::temporary(path);
+    // A name of this process's own: a run writes its report under its lock; `hpr-mc report`
+    // may run beside another, and never renames another's half-written file.
+    let tmp = crate::campaign::outdir::temporary(path, &format!("report-{:x}", std::process::id()));
     std::fs::write(&tmp, text).with_context(|| format!("can't write {}", tmp.display()))?;
     std::fs::rename(&tmp, path).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);

@@ -355,8 +355,12 @@ pub(super) fn sounding(
         return Err(bad(key, format!("a sounding gives the site's air and wind: give either it or environment.{field}, not both")));
     }
     let path = dir.join(file);
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| bad(key, format!("cannot read {}: {e}", path.display())))?;
+    let text = hpr_design::limits::read_text_limited(
+        &path,
+        hpr_design::limits::MAX_SOUNDING_FILE_BYTES,
+        "a sounding",
+    )
+    .map_err(|e| bad(key, format!("cannot read {}: {e}", path.display())))?;
     let site = Sounding::parse(&text)
         .map_err(|e| bad(key, format!("{}: {e}", path.display())))?
         .over_site(env.elevation_m)
@@ -516,12 +520,11 @@ pub(super) fn integrator(bad: &Bad, r: RawIntegrator) -> Result<(Integrator, f64
                     "the \"rk4\" method needs a step_s".into(),
                 )
             })?;
-            Ok((
-                Integrator::Rk4 {
-                    step_s: pos("integrator.step_s", Some(step), 0.0)?,
-                },
-                max_time_s,
-            ))
+            let step_s = pos("integrator.step_s", Some(step), 0.0)?;
+            if let Some(rule) = hpr_sim::flight::rk4_steps_rule(step_s, max_time_s) {
+                return Err(bad("integrator.step_s", rule));
+            }
+            Ok((Integrator::Rk4 { step_s }, max_time_s))
         }
         other => Err(bad(
             "integrator.method",

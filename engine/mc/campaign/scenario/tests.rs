@@ -3,7 +3,7 @@
 use super::*;
 use crate::campaign::fly::Prepared;
 use crate::campaign::sample::Shape;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 mod chutes;
 mod motor;
@@ -577,4 +577,142 @@ fn a_site_s_latitude_and_its_ellipsoid_s_gravity_are_read_and_their_mistakes_ref
     let (key, rule) = err("gravity = \"wgs84\"\n");
     assert_eq!(key, "environment.gravity");
     assert!(rule.contains("\"somigliana\""), "{rule}");
+}
+
+#[test]
+fn an_rk4_step_that_would_run_for_days_is_refused_with_the_step_it_needs() {
+    let (k, r) = refused("[integrator]\nmethod = \"rk4\"\nstep_s = 1e-9\n");
+    assert_eq!(k, "integrator.step_s");
+    assert_eq!(
+        r,
+        "max_time_s / step_s is 6.0000e11 steps, more than the 10000000 a flight may take: \
+         give a step of at least 6e-5 s, or a shorter max_time_s (got 0.000000001)"
+    );
+    assert!(parse("[integrator]\nmethod = \"rk4\"\nstep_s = 6e-5\n").is_ok());
+}
+
+/// `n` values from 1 by 0.001.
+fn values(n: usize) -> String {
+    let v: Vec<String> = (0..n)
+        .map(|i| format!("{}", 1.0 + i as f64 * 1e-3))
+        .collect();
+    format!("[{}]", v.join(", "))
+}
+
+/// BASE with `variants_per_point` and a sweep of `lists` (key, count of values).
+fn swept(variants_per_point: u64, lists: &[(&str, usize)]) -> Result<Scenario, ScenarioError> {
+    let mut text = BASE.replace(
+        "variants_per_point = 3\n",
+        &format!("variants_per_point = {variants_per_point}\n"),
+    );
+    text.push_str("[sweep]\n");
+    for (key, n) in lists {
+        text.push_str(&format!("{key} = {}\n", values(*n)));
+    }
+    Scenario::parse(&text, &path())
+}
+
+#[test]
+fn a_sweep_of_more_points_than_the_limit_is_refused_before_anything_is_built() {
+    // Four lists of 1,000 values: 10^12 points, once a silent spin through every point's
+    // set-up. Refused by parse, with the grid.
+    let four = [
+        ("drag_scale", 1000),
+        ("wind_speed_m_s", 1000),
+        ("rail_length_m", 1000),
+        ("wind_from_deg", 1000),
+    ];
+    let e = swept(1, &four).unwrap_err();
+    assert_eq!(e.key(), "sweep");
+    assert!(
+        e.to_string().ends_with(
+            "test.toml: sweep: the grid of 1000 of drag_scale × 1000 of wind_speed_m_s × \
+             1000 of wind_from_deg × 1000 of rail_length_m values has more than 100000 points, \
+             the most a scenario may sweep (every point's flight is set up and checked before \
+             the run); sweep fewer values, or split the sweep over several scenarios"
+        ),
+        "{e}"
+    );
+    // Seven lists of 1,000 (10^21 points) overflow 64 bits: refused in the same words.
+    let seven = [
+        ("drag_scale", 1000),
+        ("wind_speed_m_s", 1000),
+        ("rail_length_m", 1000),
+        ("wind_from_deg", 1000),
+        ("elevation_m", 1000),
+        ("rail_heading_deg", 1000),
+        ("structure_mass_kg", 1000),
+    ];
+    let e = swept(1, &seven).unwrap_err();
+    assert_eq!(e.key(), "sweep");
+    assert!(e.to_string().contains("has more than 100000 points"), "{e}");
+    // 100 × 1,000 points is the limit itself: accepted (nothing is set up by parse).
+    let s = swept(1, &[("drag_scale", 100), ("wind_speed_m_s", 1000)]).unwrap();
+    assert_eq!(s.points(), MAX_SWEEP_POINTS as usize);
+    let e = swept(1, &[("drag_scale", 101), ("wind_speed_m_s", 1000)]).unwrap_err();
+    assert_eq!(e.key(), "sweep");
+}
+
+#[test]
+fn more_variants_than_the_limit_are_refused_naming_where_they_were_given() {
+    // The limit itself is allowed; one more is not, in the file or from --variants.
+    let s = swept(MAX_VARIANTS / 2, &[("drag_scale", 2)]).unwrap();
+    assert_eq!(s.total_variants(), Some(MAX_VARIANTS));
+    let e = swept(MAX_VARIANTS / 2 + 1, &[("drag_scale", 2)]).unwrap_err();
+    assert_eq!(e.key(), "variants_per_point");
+    assert!(
+        e.to_string().ends_with(
+            "variants_per_point: 2 sweep points × 500000001 variants per point is more than \
+             1000000000 variants, the most one scenario may fly (a larger study is several \
+             runs with other seeds)"
+        ),
+        "{e}"
+    );
+    // --variants 10000000000 once asked for 40 GB of chunk ranges and aborted.
+    let e = s.with_overrides(None, Some(10_000_000_000)).unwrap_err();
+    assert_eq!(e.key(), "--variants");
+    assert!(
+        e.to_string()
+            .contains("× 10000000000 variants per point is more than"),
+        "{e}"
+    );
+    let e = swept(1, &[])
+        .unwrap()
+        .with_overrides(None, Some(u64::MAX))
+        .unwrap_err();
+    assert_eq!(e.key(), "--variants");
+}
+
+#[test]
+fn a_design_file_that_is_a_directory_is_named_as_one() {
+    let text = BASE.replace(
+        "file = \"../validation/designs/synthetic-54mm-three-fin.json\"",
+        "file = \"../validation/designs\"",
+    );
+    let e = Scenario::parse(&text, &path()).unwrap_err();
+    assert_eq!(e.key(), "design.file");
+    assert!(
+        e.to_string()
+            .ends_with("validation/designs is a directory, not a design file"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_scenario_or_sounding_that_never_ends_is_refused_at_its_limit() {
+    let e = Scenario::load(Path::new("/dev/zero")).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "/dev/zero: can't read it: it is larger than 4 MiB, the most hpr-mc reads for a scenario file"
+    );
+    let text = BASE.replace("wind_speed_m_s = 4.0", "sounding = \"/dev/zero\"");
+    let e = Scenario::parse(&text, &path()).unwrap_err();
+    assert_eq!(e.key(), "environment.sounding");
+    assert!(
+        e.to_string().ends_with(
+            "environment.sounding: cannot read /dev/zero: it is larger than 16 MiB, the most \
+             hpr-mc reads for a sounding"
+        ),
+        "{e}"
+    );
 }

@@ -207,6 +207,26 @@ impl Default for SimOptions {
     }
 }
 
+/// Most steps the input itself sets over a flight's time limit, 10,000,000 (some tens of
+/// seconds of one flight): RK4's `max_time_s / step_s`, and a sampler's
+/// `max_time_s × sampling_rate_hz` (each sample of the air brakes' controller or of a
+/// sampled parachute trigger ends a step). More would run for hours (`step_s = 1e-9` over
+/// 600 s: 6·10¹¹ steps), and is refused before the flight.
+pub const MAX_INPUT_STEPS: f64 = 1e7;
+
+/// The rule RK4's fixed step breaks, if it does: `max_time_s / step_s` steps above
+/// [`MAX_INPUT_STEPS`] (both positive and finite, checked apart).
+pub fn rk4_steps_rule(step_s: f64, max_time_s: f64) -> Option<String> {
+    let steps = max_time_s / step_s;
+    (steps > MAX_INPUT_STEPS).then(|| {
+        format!(
+            "max_time_s / step_s is {steps:.4e} steps, more than the {MAX_INPUT_STEPS:.0} a flight \
+             may take: give a step of at least {:e} s, or a shorter max_time_s (got {step_s})",
+            max_time_s / MAX_INPUT_STEPS
+        )
+    })
+}
+
 impl SimOptions {
     /// Check every number: the time limit, RK4's step, the adaptive tolerances (the same
     /// ranges as the integrators enforce, named by the fields a user sets).
@@ -222,7 +242,13 @@ impl SimOptions {
         };
         positive("max_time_s", self.max_time_s)?;
         match self.integrator {
-            Integrator::Rk4 { step_s } => positive("step_s", step_s),
+            Integrator::Rk4 { step_s } => {
+                positive("step_s", step_s)?;
+                match rk4_steps_rule(step_s, self.max_time_s) {
+                    Some(rule) => Err(format!("options: field \"step_s\": {rule}")),
+                    None => Ok(()),
+                }
+            }
             Integrator::Adaptive {
                 rtol,
                 atol_position_m,

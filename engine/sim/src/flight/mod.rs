@@ -15,7 +15,10 @@ pub mod model;
 pub mod output;
 
 pub use changes::Changes;
-pub use config::{AirModel, CanopyShape, Environment, Integrator, Parachute, Rail, SimOptions};
+pub use config::{
+    rk4_steps_rule, AirModel, CanopyShape, Environment, Integrator, Parachute, Rail, SimOptions,
+    MAX_INPUT_STEPS,
+};
 pub use model::FlightModel;
 pub use output::{Flight, Metrics, Observer, Phase, Sample, Warning, LARGE_ALPHA_DEG};
 
@@ -454,10 +457,28 @@ pub fn build_model(
     air: Arc<AirTable>,
 ) -> Result<FlightModel, SimError> {
     use crate::turbulence::MAX_TURBULENT_FLIGHT_S;
+    use config::MAX_INPUT_STEPS;
     if env.wind.turbulence_intensity() > 0.0 && options.max_time_s > MAX_TURBULENT_FLIGHT_S {
         return Err(SimError::Setup(format!(
             "a flight in a turbulent wind needs a time limit (max_time_s) of at most {MAX_TURBULENT_FLIGHT_S} s, its gusts drawn to it before it starts (got {} s)",
             options.max_time_s
+        )));
+    }
+    // Each sample of a sampler (the air brakes' controller, a sampled parachute trigger)
+    // ends a step: the fastest one's samples to the time limit are bounded.
+    let fastest_hz = parachutes
+        .iter()
+        .filter_map(|p| p.sampling_rate_hz)
+        .chain(design.air_brakes.map(|b| b.sampling_rate_hz))
+        .fold(0.0, f64::max);
+    if fastest_hz * options.max_time_s > MAX_INPUT_STEPS {
+        return Err(SimError::Setup(format!(
+            "a sampler read {fastest_hz} times a second to the time limit (max_time_s = {} s) \
+             takes {:.4e} samples, each ending a step, more than the {MAX_INPUT_STEPS:.0} a \
+             flight may take: give a time limit of at most {} s, or a lower sampling rate",
+            options.max_time_s,
+            fastest_hz * options.max_time_s,
+            MAX_INPUT_STEPS / fastest_hz
         )));
     }
     let mount = design.motor_mount.ok_or_else(|| {

@@ -91,9 +91,12 @@ pub struct StepControl {
     pub h_max: f64,
     /// First step, s; 0 (default) = Hairer's estimate from the derivative.
     pub h_initial: f64,
-    /// Most attempts (accepted and rejected steps) one stepper may make, ≥ 1. Default
-    /// 100,000, some 300 times a whole flight's steps at the default tolerances: a flight
-    /// whose steps collapse without quite underflowing (a chattering force) ends with
+    /// Most attempts (accepted and rejected steps) one stepper may make of its own choosing,
+    /// ≥ 1: the accepted steps that end on a stop time are not counted, since the input
+    /// set them (a thrust curve's samples, an air-brake controller's), so a stepper makes at
+    /// most `max_steps` attempts plus one per stop time it is given. Default 100,000, some
+    /// 300 times a whole flight's steps at the default tolerances: a flight whose steps
+    /// collapse without quite underflowing (a chattering force) ends with
     /// [`IntegratorError::TooManySteps`] instead of running for hours.
     pub max_steps: u64,
 }
@@ -169,6 +172,8 @@ pub struct Dopri54<const N: usize> {
     n_eval: u64,
     n_accepted: u64,
     n_rejected: u64,
+    /// Accepted steps that ended on their stop time (not counted against `max_steps`).
+    n_on_stop: u64,
     initialized: bool,
     /// The step in progress (see [`Dopri54::begin_step`]).
     cur: Attempt<N>,
@@ -214,6 +219,7 @@ impl<const N: usize> Dopri54<N> {
             n_eval: 0,
             n_accepted: 0,
             n_rejected: 0,
+            n_on_stop: 0,
             initialized: false,
             cur: Attempt {
                 t_stop: 0.0,
@@ -381,7 +387,7 @@ impl<const N: usize> Dopri54<N> {
         let (h, last) = clip_to_stop(t, a.h_proposal, a.t_stop);
         a.h = h;
         a.last = last;
-        if self.n_accepted + self.n_rejected >= c.max_steps {
+        if self.n_accepted + self.n_rejected - self.n_on_stop >= c.max_steps {
             return Err(IntegratorError::TooManySteps {
                 t,
                 steps: c.max_steps,
@@ -526,6 +532,7 @@ impl<const N: usize> Dopri54<N> {
             self.ln_err_prev = ln_err.max(LN_ERR_FLOOR);
             self.h_next = h_new;
             self.n_accepted += 1;
+            self.n_on_stop += u64::from(last);
             return Ok(Some(if last {
                 StepOutcome::ReachedStop
             } else {

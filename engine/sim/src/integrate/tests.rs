@@ -465,6 +465,40 @@ fn a_chattering_derivative_ends_at_the_step_limit_instead_of_running_on() {
 }
 
 #[test]
+fn steps_that_end_on_stop_times_do_not_count_against_the_step_limit() {
+    // y' = 1 stepped to 5,000 stop times 1e-4 s apart, with a limit of 1,000 attempts: every
+    // step ends on its stop (the input chose it), so all 5,000 are taken and y(0.5) = 0.5.
+    let f = |_t: f64, _y: &[f64; 1], dy: &mut [f64; 1]| dy[0] = 1.0;
+    let control = StepControl {
+        max_steps: 1_000,
+        ..StepControl::default()
+    };
+    let mut s = Dopri54::new(Tolerances::uniform(1e-8, 1e-8).unwrap(), control).unwrap();
+    s.init(f, 0.0, &[0.0]).unwrap();
+    for k in 1..=5_000 {
+        let stop = k as f64 * 1e-4;
+        while s.step(f, stop).expect("within the limit") != StepOutcome::ReachedStop {}
+    }
+    assert_eq!(s.n_accepted(), 5_000);
+    assert!((s.y()[0] - 0.5).abs() < 1e-12, "{}", s.y()[0]);
+    // Steps of its own choosing still count: one stop 1e9 s ahead of a stiff decay
+    // (y' = −1e6 y, steps held near 3e-6 s by stability) stops at the limit.
+    let stiff = |_t: f64, y: &[f64; 1], dy: &mut [f64; 1]| dy[0] = -1e6 * y[0];
+    let mut s = Dopri54::new(Tolerances::uniform(1e-8, 1e-8).unwrap(), control).unwrap();
+    s.init(stiff, 0.0, &[1.0]).unwrap();
+    let err = loop {
+        if let Err(e) = s.step(stiff, 1e9) {
+            break e;
+        }
+    };
+    assert!(
+        matches!(err, IntegratorError::TooManySteps { steps: 1_000, .. }),
+        "{err}"
+    );
+    assert_eq!(s.n_accepted() + s.n_rejected(), 1_000);
+}
+
+#[test]
 fn bad_tolerances_and_settings_are_typed_errors() {
     for rtol in [0.0, 1e-15, 0.2, f64::NAN, f64::INFINITY] {
         let e = Tolerances::<2>::uniform(rtol, 1e-6).unwrap_err();

@@ -201,3 +201,18 @@ fn a_flight_aims_its_brakes_at_another_target_and_one_without_brakes_is_refused(
         .to_string();
     assert!(e.contains("has no air brakes"), "{e}");
 }
+
+#[test]
+fn air_brakes_at_the_highest_sampling_rate_fly_to_their_target() {
+    // 10,000 samples a second (the most the design format allows), each a stop time: some
+    // 150,000 steps from burnout to apogee, once refused at the step limit of 100,000.
+    let m = fly(example(
+        Some(json!({"cd": 1.2, "reference_area_m2": 0.003,
+                    "target_apogee_m": 1500.0, "sampling_rate_hz": 10_000.0})),
+        None,
+    ));
+    let apogee = m.apogee_m.unwrap();
+    eprintln!("apogee {apogee:.6} m against the target 1500 m");
+    assert!((apogee - 1500.0).abs() < 1e-3, "{apogee}");
+    assert!(m.landing_time_s.is_some());
+}

@@ -20,6 +20,7 @@ mod exact;
 mod inputs;
 mod jet_damping;
 mod large_angles;
+mod limits;
 mod motor_model;
 mod noise_crosscheck;
 mod profile_crosscheck;

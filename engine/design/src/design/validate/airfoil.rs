@@ -36,7 +36,7 @@ impl Builder<'_> {
                         ))
                     }
                 };
-                let (file, text) = self.read_beside(name)?;
+                let (file, text) = self.read_beside(name, at, "airfoil.csv")?;
                 let (rows, lines) = two_columns(&text, &file, "angle,cl")?;
                 let bad = |line: usize, message: String| DesignError::Csv {
                     file: file.clone(),

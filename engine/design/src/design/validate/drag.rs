@@ -48,10 +48,10 @@ impl Builder<'_> {
         let (power_off, rasaero_on) = match (&d.power_off, &d.power_off_csv) {
             (Some(rows), _) => (self.table(rows, Origin::Inline("power_off"))?, None),
             (None, Some(csv)) => {
-                let off = self.csv(csv, Curve::PowerOff)?;
+                let off = self.csv(csv, "power_off_csv", Curve::PowerOff)?;
                 // A RASAero export holds both curves: its power-on one unless another is given.
                 let on = if off.1 {
-                    Some(self.csv(csv, Curve::PowerOn)?.0)
+                    Some(self.csv(csv, "power_off_csv", Curve::PowerOn)?.0)
                 } else {
                     None
                 };
@@ -66,7 +66,7 @@ impl Builder<'_> {
                 return Err(self.invalid(&at, Some("power_on_csv"), Rule::PowerOnTwice))
             }
             (Some(rows), None) => self.table(rows, Origin::Inline("power_on"))?,
-            (None, Some(csv)) => self.csv(csv, Curve::PowerOn)?.0,
+            (None, Some(csv)) => self.csv(csv, "power_on_csv", Curve::PowerOn)?.0,
             (None, None) => rasaero_on.unwrap_or_else(|| power_off.clone()),
         };
         Ok(DragSpec::Curves {
@@ -76,9 +76,14 @@ impl Builder<'_> {
     }
 
     /// A Cd(Mach) table from CSV file `name`, and whether the file is a RASAero export (then
-    /// `curve` chooses its column).
-    fn csv(&self, name: &str, curve: Curve) -> Result<(Vec<(f64, f64)>, bool), DesignError> {
-        let (file, text) = self.read_beside(name)?;
+    /// `curve` chooses its column); `field` is the drag's field that names it.
+    fn csv(
+        &self,
+        name: &str,
+        field: &str,
+        curve: Curve,
+    ) -> Result<(Vec<(f64, f64)>, bool), DesignError> {
+        let (file, text) = self.read_beside(name, &Location::Drag, field)?;
         if let Some(columns) = RasaeroColumns::of(&text, curve) {
             let (rows, lines) = columns.read(&text, &file)?;
             return Ok((self.table(&rows, Origin::Csv { file, lines })?, true));

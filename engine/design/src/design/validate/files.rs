@@ -6,7 +6,8 @@
 //! dependency for no gain in what is accepted.
 
 use super::Builder;
-use crate::error::DesignError;
+use crate::error::{DesignError, Location, Rule};
+use crate::limits::{read_text_limited, MAX_TABLE_FILE_BYTES};
 use std::path::{Path, PathBuf};
 
 impl Builder<'_> {
@@ -16,14 +17,28 @@ impl Builder<'_> {
         base.join(name)
     }
 
-    /// The file named `name` in the design, read: its name for errors and its text.
-    pub(super) fn read_beside(&self, name: &str) -> Result<(String, String), DesignError> {
+    /// The file named `name` by `field` of the design at `at`, read (at most
+    /// [`MAX_TABLE_FILE_BYTES`]): its name for errors and its text. A file that cannot be
+    /// read is the field's error, naming the file and why.
+    pub(super) fn read_beside(
+        &self,
+        name: &str,
+        at: &Location,
+        field: &str,
+    ) -> Result<(String, String), DesignError> {
         let path = self.path_beside(name);
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(&path).map_err(|source| DesignError::Io {
-            file: file.clone(),
-            source,
-        })?;
+        let text =
+            read_text_limited(&path, MAX_TABLE_FILE_BYTES, "a table (CSV)").map_err(|e| {
+                self.invalid(
+                    at,
+                    Some(field),
+                    Rule::FileUnreadable {
+                        file: file.as_str().into(),
+                        why: e.to_string().into(),
+                    },
+                )
+            })?;
         Ok((file, text))
     }
 }

@@ -90,7 +90,7 @@ fn norm(a: [f64; 2]) -> f64 {
 }
 
 /// The parent's axial extent, shoulders included, m aft of the nose tip.
-fn extent(c: &Component) -> (f64, f64) {
+pub(super) fn extent(c: &Component) -> (f64, f64) {
     match &c.kind {
         ComponentKind::NoseCone(n) => (
             c.x_top_m,
@@ -560,6 +560,17 @@ impl Builder<'_> {
         };
 
         let x_top = self.place(&at, &p, length, position)?;
+        // Nothing of a rocket lies ahead of its nose tip: fins, lugs and buttons there would
+        // put the center of pressure ahead of the rocket. OpenRocket keeps an internal part
+        // placed there (a mass it weighs), so its designs keep one too, with a warning.
+        if x_top < -FIT_TOLERANCE_M {
+            self.misfit(
+                &at,
+                Some("position"),
+                Rule::AheadOfNoseTip { top_m: x_top },
+                !rc.is_external(),
+            )?;
+        }
         let (parent_top, parent_bottom) = extent(&p);
         let overlap = (x_top + length).min(parent_bottom) - x_top.max(parent_top);
         if overlap <= 0.0 || overlap.is_nan() {

@@ -642,3 +642,34 @@ fn a_parachute_may_say_how_it_deploys_with_a_scenario_s_trigger() {
     assert!(matches!(rule, Rule::Negative { .. }));
     assert_eq!(field.as_deref(), Some("deploy.lag_s"));
 }
+
+#[test]
+fn a_design_file_with_a_byte_order_mark_loads_as_the_same_design() {
+    let dir = std::env::temp_dir().join(format!("hpr-bom-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("design.json");
+    let text = std::fs::read_to_string(example_path()).unwrap();
+    std::fs::write(&path, format!("\u{feff}{text}")).unwrap();
+    let with_mark = Design::load(&path).unwrap();
+    let without = Design::load(example_path()).unwrap();
+    assert_eq!(
+        format!("{:?}", with_mark.components),
+        format!("{:?}", without.components)
+    );
+    assert_eq!(with_mark.length_m, without.length_m);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_design_that_is_a_directory_or_never_ends_is_refused_saying_so() {
+    let e = Design::load(std::env::temp_dir()).unwrap_err().to_string();
+    assert!(
+        e.ends_with("cannot read it: it is a directory, not a design file"),
+        "{e}"
+    );
+    let e = Design::load("/dev/zero").unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "/dev/zero: cannot read it: it is larger than 64 MiB, the most hpr-mc reads for a design file"
+    );
+}

@@ -725,31 +725,44 @@ fn pad<O: Observer>(run: &mut Run<'_, O>) -> Result<(f64, [f64; N6]), SimError> 
         let i = model.instant(&run.starts, t);
         i.motor.thrust_n - i.mass.mass_kg * g0 * sin_inc
     };
+    // The curve's knots (interior ones only in `thrust_knots_s`) and its last sample, the
+    // burnout: a curve that ends above zero (it burns out there) is judged at its last
+    // sample by the instant just before it, where it still pushes.
     let mut knots: Vec<f64> = vec![0.0];
     knots.extend(
         model
             .thrust_knots_s
             .iter()
             .copied()
-            .filter(|&k| k > 0.0 && k <= model.burnout_s),
+            .filter(|&k| k > 0.0 && k < model.burnout_s),
     );
+    if model.burnout_s > 0.0 {
+        knots.push(model.burnout_s);
+    }
+    let before_burnout = |k: f64| {
+        if k == model.burnout_s {
+            k.next_down()
+        } else {
+            k
+        }
+    };
     let mut t_lift = None;
     for w in knots.windows(2) {
-        if excess(w[1]) > 0.0 {
+        let end = before_burnout(w[1]);
+        if excess(end) > 0.0 {
             t_lift = Some(if excess(w[0]) > 0.0 {
                 w[0]
             } else {
-                brent_root(excess, w[0], w[1], EVENT_TOL_S)
+                brent_root(excess, w[0], end, EVENT_TOL_S)
                     .map_err(|e| SimError::Setup(format!("liftoff: {e}")))?
             });
             break;
         }
     }
     let t_lift = t_lift.ok_or(SimError::NeverLeavesPad {
-        max_thrust_n: model
-            .thrust_knots_s
+        max_thrust_n: knots
             .iter()
-            .map(|&k| model.motor.eval(k).thrust_n)
+            .map(|&k| model.motor.eval(before_burnout(k)).thrust_n)
             .fold(0.0, f64::max),
         weight_n: model.instant(&run.starts, 0.0).mass.mass_kg * g0 * sin_inc,
     })?;

@@ -70,11 +70,22 @@ fn drag_csvs_are_read_relative_to_the_design_file() {
     };
     assert!(file.ends_with("bad.csv") && *line == 3, "{e}");
     assert!(message.contains("strictly increasing"), "{e}");
+    // A missing table is the fault of the field that names it: the error says which.
     v["drag"] = json!({"power_off_csv": "data/missing.csv"});
     let e = Design::from_json_str(&v.to_string(), Some(&design_path)).unwrap_err();
+    let text = e.to_string();
     assert!(
-        matches!(e, DesignError::Io { ref file, .. } if file.ends_with("missing.csv")),
+        matches!(
+            &e,
+            DesignError::Invalid { at: Location::Drag, field: Some(f), rule: Rule::FileUnreadable { file, .. }, .. }
+                if f == "power_off_csv" && file.ends_with("missing.csv")
+        ),
         "{e}"
+    );
+    assert!(
+        text.contains("drag: field \"power_off_csv\": names ")
+            && text.contains("missing.csv, which cannot be read"),
+        "{text}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -235,4 +246,30 @@ fn a_trapezoidal_fin_s_sweep_may_be_its_leading_edge_angle_as_rocketpy_gives_it(
     }));
     assert!(matches!(rule, Rule::OutOfRange { .. }), "{rule}");
     assert_eq!(field.as_deref(), Some("sweep_deg"));
+}
+
+#[test]
+fn a_table_that_never_ends_is_refused_at_its_limit_naming_the_field() {
+    for (field, drag) in [
+        ("power_off_csv", json!({"power_off_csv": "/dev/zero"})),
+        (
+            "power_on_csv",
+            json!({"power_off": [[0.0, 0.5], [1.0, 0.6]], "power_on_csv": "/dev/zero"}),
+        ),
+    ] {
+        let (rule, loc, f) = invalid(with(|v| v["drag"] = drag));
+        assert_eq!((loc, f.as_deref()), (Location::Drag, Some(field)));
+        assert_eq!(
+            rule,
+            Rule::FileUnreadable {
+                file: "/dev/zero".into(),
+                why: "it is larger than 16 MiB, the most hpr-mc reads for a table (CSV)".into()
+            }
+        );
+    }
+    let (rule, loc, f) = invalid(with(|v| {
+        at(v, FINS)["airfoil"] = json!({"csv": "/dev/zero", "angles": "degrees"});
+    }));
+    assert_eq!((loc, f.as_deref()), (comp("fins"), Some("airfoil.csv")));
+    assert!(matches!(rule, Rule::FileUnreadable { .. }), "{rule:?}");
 }

@@ -323,3 +323,52 @@ fn a_free_form_fin_set_is_its_outline_and_an_outline_that_is_not_one_is_refused_
     assert!(matches!(rule, Rule::Required { .. }));
     assert_eq!(field.as_deref(), Some("points_m"));
 }
+
+#[test]
+fn fins_that_reach_ahead_of_the_nose_tip_are_refused_in_either_geometry_check() {
+    // A 2 m root chord on the 0.9 m body, bottom-aligned at 1.15 m: its leading edge would
+    // be 0.85 m ahead of the tip (the center of pressure with it). Refused, not flown.
+    for checks in ["strict", "openrocket"] {
+        let r = with(|v| {
+            v["geometry_checks"] = json!(checks);
+            *at(v, &format!("{FINS}/root_chord_m")) = json!(2.0);
+        });
+        let (rule, loc, field) = invalid(r);
+        let Rule::AheadOfNoseTip { top_m } = rule else {
+            panic!("{checks}: {rule:?}")
+        };
+        assert!((top_m - (1.15 - 2.0)).abs() < 1e-12, "{checks}: {top_m}");
+        assert_eq!((loc, field.as_deref()), (comp("fins"), Some("position")));
+    }
+    // The chord that just reaches the tip (1.15 m) is allowed.
+    let d = with(|v| {
+        *at(v, &format!("{FINS}/root_chord_m")) = json!(1.15);
+        *at(v, &format!("{FINS}/tip_chord_m")) = json!(0.05);
+    })
+    .unwrap();
+    assert!(d.component("fins").unwrap().x_top_m.abs() < 1e-12);
+}
+
+#[test]
+fn an_internal_part_ahead_of_the_nose_tip_is_an_error_and_kept_with_a_warning_for_openrocket() {
+    // The 5 cm ballast from 2 cm ahead of the tip to 3 cm aft of it: partly ahead.
+    let ballast_ahead = |v: &mut Value| {
+        *at(v, &format!("{BODY}/children/5/position")) =
+            json!({"from": "nose_tip", "offset_m": -0.02});
+    };
+    let (rule, loc, _) = invalid(with(ballast_ahead));
+    assert_eq!(rule, Rule::AheadOfNoseTip { top_m: -0.02 });
+    assert_eq!(loc, comp("ballast"));
+    let d = with(|v| {
+        v["geometry_checks"] = json!("openrocket");
+        ballast_ahead(v);
+    })
+    .unwrap();
+    assert!(
+        d.warnings
+            .iter()
+            .any(|w| w.contains("ahead of the nose tip")),
+        "{:?}",
+        d.warnings
+    );
+}

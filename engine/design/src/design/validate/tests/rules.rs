@@ -235,3 +235,85 @@ fn air_brakes_take_their_area_from_the_rocket_unless_given_and_refuse_bad_number
         "{e}"
     );
 }
+
+#[test]
+fn a_part_further_outside_the_rocket_than_its_length_is_refused_even_where_openrocket_keeps_it() {
+    // The ballast 4294967296 m aft of the tip (a fuzzed OpenRocket offset): kept with a
+    // warning as outside its parent, it flew to an apogee of −1.2e9 m. Now refused.
+    // (Strict checks refuse it first as outside its parent.)
+    let (rule, loc, field) = invalid(with(|v| {
+        v["geometry_checks"] = json!("openrocket");
+        *at(v, "/stages/0/components/1/children/5/position") =
+            json!({"from": "nose_tip", "offset_m": 4294967296.0});
+    }));
+    assert_eq!(loc, Location::Component("ballast".into()));
+    assert_eq!(field.as_deref(), Some("position"));
+    assert!(
+        matches!(rule, Rule::OutsideRocket { top_m, length_m, .. }
+            if top_m == 4294967296.0 && (length_m - 1.15).abs() < 1e-12),
+        "{rule:?}"
+    );
+    // Past the tail, a rocket's length past it at most: kept where OpenRocket keeps it (a
+    // weight drawn past the tail), with its warning; a little further, refused.
+    let past = |offset_m: f64| {
+        with(|v| {
+            v["geometry_checks"] = json!("openrocket");
+            *at(v, "/stages/0/components/1/children/5/position") =
+                json!({"from": "nose_tip", "offset_m": offset_m});
+        })
+    };
+    // (The 5 cm ballast ends a rocket's length past the tail at 2.25 m.)
+    let kept = past(2.0 * 1.15 - 0.05).unwrap();
+    assert!(
+        kept.warnings[0].contains("lies entirely outside its parent"),
+        "{:?}",
+        kept.warnings
+    );
+    let (rule, ..) = invalid(past(2.0 * 1.15 - 0.05 + 1e-3));
+    assert!(matches!(rule, Rule::OutsideRocket { .. }), "{rule:?}");
+    // A part longer than the rocket by more than the rocket (a fuzzed 6 m inner tube in
+    // this 1.15 m rocket, its fore end at the tail's fore end): refused too, in either check.
+    for checks in ["strict", "openrocket"] {
+        let (rule, loc, _) = invalid(with(|v| {
+            v["geometry_checks"] = json!(checks);
+            *at(v, "/stages/0/components/1/children/1/length_m") = json!(6.0);
+            *at(v, "/stages/0/components/1/children/1/position") =
+                json!({"from": "top", "offset_m": 0.0});
+        }));
+        assert_eq!(loc, Location::Component("mmt".into()), "{checks}");
+        assert!(
+            matches!(rule, Rule::OutsideRocket { .. }),
+            "{checks}: {rule:?}"
+        );
+    }
+    // A fin swept 19.8 m (a fuzzed sweep, within the size limit): its tip reaches 19.8 m
+    // past the root, far past the tail: refused, the outline's reach named.
+    let (rule, loc, _) = invalid(with(|v| {
+        *at(v, "/stages/0/components/1/children/0/sweep_m") = json!(19.8);
+    }));
+    assert_eq!(loc, Location::Component("fins".into()));
+    assert!(
+        matches!(rule, Rule::OutsideRocket { top_m, bottom_m, .. }
+            if (top_m - 1.03).abs() < 1e-9 && (bottom_m - (1.03 + 19.8 + 0.05)).abs() < 1e-9),
+        "{rule:?}"
+    );
+}
+
+#[test]
+fn a_design_of_more_components_than_the_limit_is_refused_before_it_is_built() {
+    // 1,001 body tubes (a fuzzed .ork of 11,881 nose cones took a minute to weigh).
+    let r = with(|v| {
+        let tube = v["stages"][0]["components"][1].clone();
+        let comps = v["stages"][0]["components"].as_array_mut().unwrap();
+        comps.truncate(1);
+        for i in 0..1000 {
+            let mut t = tube.clone();
+            t["id"] = json!(format!("tube{i}"));
+            t["children"] = json!([]);
+            comps.push(t);
+        }
+    });
+    let (rule, loc, field) = invalid(r);
+    assert_eq!(rule, Rule::TooManyComponents { max: 1000 });
+    assert_eq!((loc, field.as_deref()), (Location::Design, Some("stages")));
+}
