@@ -132,6 +132,10 @@ pub enum Rule {
         file: Box<str>,
         why: Box<str>,
     },
+    /// A part whose dimensions give a mass, center or inertia that is not a number.
+    MassNotFinite {
+        mass_kg: f64,
+    },
     /// More components than a design may hold.
     TooManyComponents {
         max: usize,
@@ -250,6 +254,12 @@ impl fmt::Display for Rule {
             Rule::FileUnreadable { file, why } => {
                 write!(f, "names {file}, which cannot be read: {why}")
             }
+            Rule::MassNotFinite { mass_kg } => write!(
+                f,
+                "its dimensions give a mass ({mass_kg} kg), center of mass or inertia that is \
+                 not a finite number: a part must be large enough to weigh and small enough \
+                 to hold"
+            ),
             Rule::TooManyComponents { max } => write!(
                 f,
                 "the design holds more than {max} components (body components and parts), \

@@ -652,7 +652,8 @@ impl Builder<'_> {
                 })
             }
         };
-        Ok(Design {
+        let file = self.source.map(|p| p.display().to_string());
+        let design = Design {
             name: raw.name,
             source: self.source.map(Path::to_path_buf),
             default_motor: raw.motor,
@@ -666,7 +667,27 @@ impl Builder<'_> {
             openrocket_geometry: self.openrocket_geometry,
             warnings: self.warnings,
             air_brakes,
-        })
+        };
+        // Every part's mass, center and inertia, its overrides applied, must be numbers:
+        // dimensions that pass each rule alone can still be too small or too large together
+        // for arithmetic (a button 1e-157 m across weighs 1e-312 kg, and an override of its
+        // mass scales that by 1e309).
+        // The parts after the parts that hold them: the innermost at fault is named.
+        for (idx, c) in design.components.iter().enumerate().rev() {
+            let m = crate::mass::subtree(&design, idx);
+            let finite = m.mass_kg.is_finite()
+                && m.cg_m.iter().all(|x| x.is_finite())
+                && m.inertia_cg.iter().all(|x| x.is_finite());
+            if !finite {
+                return Err(DesignError::Invalid {
+                    file: file.unwrap_or_else(|| "<design>".to_owned()),
+                    at: Location::Component(c.id.clone()),
+                    field: None,
+                    rule: Rule::MassNotFinite { mass_kg: m.mass_kg },
+                });
+            }
+        }
+        Ok(design)
     }
 }
 
