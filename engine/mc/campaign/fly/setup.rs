@@ -372,6 +372,7 @@ impl Fixed<'_> {
             shift_travel_m: per(shifts, ShiftTravelM, |s, k| s.shifts[k][0]),
             shift_duration_s: per(shifts, ShiftDurationS, |s, k| s.shifts[k][1]),
             shift_trigger: per(shifts, ShiftTrigger, |s, k| s.shifts[k][2]),
+            ..Columns::default()
         }
     }
 }
