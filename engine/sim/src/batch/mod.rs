@@ -416,8 +416,16 @@ impl Batch {
             ("shift_trigger", &columns.shift_trigger, shifts),
             ("release_trigger", &columns.release_trigger, releases),
             ("release_cda_m2", &columns.release_cda_m2, releases),
-            ("release_chute_cds_m2", &columns.release_chute_cds_m2, releases),
-            ("release_chute_lag_s", &columns.release_chute_lag_s, releases),
+            (
+                "release_chute_cds_m2",
+                &columns.release_chute_cds_m2,
+                releases,
+            ),
+            (
+                "release_chute_lag_s",
+                &columns.release_chute_lag_s,
+                releases,
+            ),
         ];
         for (name, c, count) in nested {
             if !c.is_empty() && c.len() != count {

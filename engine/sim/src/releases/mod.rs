@@ -299,7 +299,11 @@ pub fn plan(
                 return number("parachute.cds_m2", "must be positive and finite", p.cds_m2);
             }
             if !(p.lag_s.is_finite() && p.lag_s >= 0.0) {
-                return number("parachute.lag_s", "must be finite and not negative", p.lag_s);
+                return number(
+                    "parachute.lag_s",
+                    "must be finite and not negative",
+                    p.lag_s,
+                );
             }
             if let PartTrigger::HeightDescending { height_m } = p.trigger {
                 if !(height_m.is_finite() && height_m > 0.0) {
@@ -432,7 +436,11 @@ pub fn plan(
     Ok(out)
 }
 
-fn check_trigger(index: usize, r: &Release, motor_delay_s: Option<f64>) -> Result<(), ReleaseRefusal> {
+fn check_trigger(
+    index: usize,
+    r: &Release,
+    motor_delay_s: Option<f64>,
+) -> Result<(), ReleaseRefusal> {
     let refuse = |rule: &str| ReleaseRefusal::Trigger {
         index,
         component: r.component.clone(),

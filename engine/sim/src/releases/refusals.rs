@@ -174,8 +174,14 @@ fn refusals_that_need_a_design_of_their_own() {
     }));
     let sled_moves = [MassShift::new(t5(), "sled", 0.1, 1.0)];
     let battery_moves = [MassShift::new(t5(), "battery", 0.05, 1.0)];
-    assert!(accepted(&v, &[], one("sled")), "the sled leaves with its battery");
-    assert!(accepted(&v, &[], one("battery")), "the battery leaves the sled");
+    assert!(
+        accepted(&v, &[], one("sled")),
+        "the sled leaves with its battery"
+    );
+    assert!(
+        accepted(&v, &[], one("battery")),
+        "the battery leaves the sled"
+    );
     assert!(
         accepted(&v, &sled_moves, one("sled")),
         "the sled moves, then leaves"
@@ -211,10 +217,11 @@ fn triggers_a_release_cannot_have_are_refused_in_its_own_words() {
     assert!(rule(refuse(&v, with(Trigger::Time { time_s: 0.0 })))
         .contains("at launch it is still on the pad"));
     assert!(rule(refuse(&v, with(Trigger::Time { time_s: -1.0 }))).contains("time_s"));
-    assert!(
-        rule(refuse(&v, with(Trigger::HeightDescending { height_m: 0.0 })))
-            .contains("would never leave")
-    );
+    assert!(rule(refuse(
+        &v,
+        with(Trigger::HeightDescending { height_m: 0.0 })
+    ))
+    .contains("would never leave"));
     assert!(rule(refuse(
         &v,
         with(Trigger::HeightDescending { height_m: f64::NAN })
@@ -232,7 +239,11 @@ fn triggers_a_release_cannot_have_are_refused_in_its_own_words() {
     eprintln!("refused: {r}");
     assert!(rule(r).contains("plugged"));
     assert!(motor_delay(&plugged, Some(6.0)).is_ok());
-    assert!(motor_delay(&with(Trigger::BurnoutPlusDelay { delay_s: Some(2.0) }), None).is_ok());
+    assert!(motor_delay(
+        &with(Trigger::BurnoutPlusDelay { delay_s: Some(2.0) }),
+        None
+    )
+    .is_ok());
     // Burnout itself cannot come on the pad (the motor burns to it).
     assert!(motor_delay(&with(Trigger::Burnout), None).is_ok());
 }
@@ -248,21 +259,20 @@ fn a_release_that_would_fire_on_the_rail_stops_the_flight_and_the_same_later_fli
     let early = sim
         .clone()
         .with_releases(vec![Release::new(
-            Trigger::Time {
-                time_s: 0.5 * exit,
-            },
+            Trigger::Time { time_s: 0.5 * exit },
             "ballast",
         )])
         .unwrap();
     let e = early.run(&mut ()).unwrap_err();
     eprintln!("flight stopped: {e}");
-    assert!(matches!(e, SimError::ReleaseBeforeRailExit { index: 0, .. }));
+    assert!(matches!(
+        e,
+        SimError::ReleaseBeforeRailExit { index: 0, .. }
+    ));
     assert!(e.to_string().contains("before the rocket leaves the rail"));
     let late = sim
         .with_releases(vec![Release::new(
-            Trigger::Time {
-                time_s: 1.5 * exit,
-            },
+            Trigger::Time { time_s: 1.5 * exit },
             "ballast",
         )])
         .unwrap();
@@ -288,7 +298,14 @@ fn a_part_is_not_released_while_its_shift_moves_it_nor_moved_once_released() {
     for t in [5.0 + 1e-9, 5.5, 6.0 - 1e-9] {
         let e = with(t).unwrap_err();
         assert!(
-            matches!(e, SimError::ReleaseDuringShift { index: 0, shift: 0, .. }),
+            matches!(
+                e,
+                SimError::ReleaseDuringShift {
+                    index: 0,
+                    shift: 0,
+                    ..
+                }
+            ),
             "{e}"
         );
     }
@@ -310,6 +327,10 @@ fn a_part_is_not_released_while_its_shift_moves_it_nor_moved_once_released() {
     // triggers fire in that order), so the part would leave moving.
     assert!(matches!(
         with(5.0).unwrap_err(),
-        SimError::ReleaseDuringShift { index: 0, shift: 0, .. }
+        SimError::ReleaseDuringShift {
+            index: 0,
+            shift: 0,
+            ..
+        }
     ));
 }

@@ -148,7 +148,10 @@ fn mass_properties_after_a_release_match_the_two_body_formula() {
         (after.cg_m.x - whole.cg_m.x, hand_rest - 0.6681),
         (drop, hand_drop),
     ] {
-        assert!((exact - hand).abs() < 2e-4, "{exact} against the hand's {hand}");
+        assert!(
+            (exact - hand).abs() < 2e-4,
+            "{exact} against the hand's {hand}"
+        );
     }
 }
 
@@ -181,7 +184,10 @@ fn a_release_jumps_the_static_margin_by_the_hand_calculation() {
     }
     eprintln!("static margin {before:.6} → {after:.6} cal: jump off the hand's {hand:.6} by {e_jump:.1e}; before off the whole's by {e_before:.1e}; {n} coast samples within {worst:.1e} cal");
     assert!(e_jump <= 1e-12, "{e_jump:e} (bound 1e-12)");
-    assert!(e_before <= 1e-12 && worst <= 1e-12, "{e_before:e} {worst:e}");
+    assert!(
+        e_before <= 1e-12 && worst <= 1e-12,
+        "{e_before:e} {worst:e}"
+    );
     assert!(n > 20);
     // 4.297 → 2.615 calibres: 0.0947 m over 0.0563 m.
     assert_eq!(
@@ -335,7 +341,10 @@ fn a_part_released_off_the_axis_keeps_both_momenta_in_free_space() {
         100.0 * hp.norm() / h0.norm(),
         100.0 * spin.norm() / h0.norm(),
     );
-    assert!(whole_vs_two.0 <= 1e-15 && whole_vs_two.1 <= 1e-15, "{whole_vs_two:?}");
+    assert!(
+        whole_vs_two.0 <= 1e-15 && whole_vs_two.1 <= 1e-15,
+        "{whole_vs_two:?}"
+    );
     assert!(ep <= 1e-12, "linear momentum {ep:e} (bound 1e-12)");
     assert!(eh <= 1e-12, "angular momentum {eh:e} (bound 1e-12)");
     assert!(part_drift <= 1e-12, "{part_drift:e}");
@@ -395,9 +404,9 @@ fn a_part_released_at_apogee_in_a_vacuum_falls_on_the_closed_form_parabola() {
     let hand = on_parabola(t0 + tau_land);
     let e_time = (part.landing_time_s.unwrap() - (t0 + tau_land)).abs();
     let e_point = (landing[0] - hand.x).hypot(landing[1] - hand.y);
-    let e_speed =
-        (part.landing_speed_m_s.unwrap() - (v0 + Vector3::new(0.0, 0.0, -g * tau_land)).norm())
-            .abs();
+    let e_speed = (part.landing_speed_m_s.unwrap()
+        - (v0 + Vector3::new(0.0, 0.0, -g * tau_land)).norm())
+    .abs();
     eprintln!(
         "released at {:.1} m moving {:.2} m/s sideways; {} samples within {worst:.1e} m of the parabola; landing {e_time:.1e} s, {e_point:.1e} m, {e_speed:.1e} m/s off",
         p0.z,
@@ -461,9 +470,9 @@ fn a_part_under_its_own_parachute_reaches_its_terminal_speed_at_the_ground() {
         keep_samples: false,
     };
     let sim = simulation(design(&reference_json()), env, options)
-    .with_releases(vec![Release::new(Trigger::Apogee, "ballast")
-        .with_parachute(PartChute::new(cds, PartTrigger::Release, 2.0))])
-    .unwrap();
+        .with_releases(vec![Release::new(Trigger::Apogee, "ballast")
+            .with_parachute(PartChute::new(cds, PartTrigger::Release, 2.0))])
+        .unwrap();
     let flight = sim.run(&mut ()).unwrap();
     let density_spread = [0.0, 500.0, 1000.0, 1500.0]
         .map(|h| (sim.model().air.at_msl(h).density_kg_m3 - rho).abs() / rho)
@@ -504,10 +513,7 @@ fn a_release_fires_at_its_trigger() {
             Release::new(Trigger::Apogee, "ballast"),
             Release::new(Trigger::HeightDescending { height_m: 200.0 }, "avionics"),
             Release::new(Trigger::Burnout, "weight_a"),
-            Release::new(
-                Trigger::BurnoutPlusDelay { delay_s: Some(2.0) },
-                "weight_b",
-            ),
+            Release::new(Trigger::BurnoutPlusDelay { delay_s: Some(2.0) }, "weight_b"),
         ])
         .unwrap();
     let flight = sim.run(&mut ()).unwrap();
@@ -530,7 +536,11 @@ fn a_release_fires_at_its_trigger() {
     assert_eq!(at(3).time_s, burnout + 2.0);
     // Each part landed, and the rocket weighs what is left.
     let end = flight.metrics.landing_time_s.unwrap();
-    let parts: f64 = flight.releases.iter().map(|r| r.part.as_ref().unwrap().mass_kg).sum();
+    let parts: f64 = flight
+        .releases
+        .iter()
+        .map(|r| r.part.as_ref().unwrap().mass_kg)
+        .sum();
     let whole = sim.mass_properties(&flight, burnout - 1e-9).mass_kg
         - sim.model().motor.eval(burnout - 1e-9).propellant_kg;
     assert!((sim.mass_properties(&flight, end).mass_kg - (whole - parts)).abs() < 1e-12);
@@ -611,11 +621,7 @@ fn a_part_released_under_the_rocket_s_canopy_leaves_from_its_center_and_lightens
         .unwrap();
     let flight = sim.run(&mut ()).unwrap();
     let ev = flight.event(EventKind::Release(0)).unwrap();
-    let s = flight
-        .samples
-        .iter()
-        .find(|s| s.t_s == ev.time_s)
-        .unwrap();
+    let s = flight.samples.iter().find(|s| s.t_s == ev.time_s).unwrap();
     assert_eq!(s.phase, Phase::Descent);
     let part = flight.releases[0].part.as_ref().unwrap();
     assert_eq!(part.start_position_m, s.position_m);
@@ -646,15 +652,16 @@ fn a_part_s_canopy_opens_at_its_own_apogee_or_height() {
             "id": "payload", "type": "mass_component", "mass_kg": 0.05, "length_m": 0.04, "radius_m": 0.02,
             "position": { "from": "nose_tip", "offset_m": 0.45 }
         }));
-    let sim = simulation(design(&v), Environment::default(), SimOptions::default())
-        .with_releases(vec![
-            Release::new(Trigger::Time { time_s: 5.0 }, "ballast")
-                .with_parachute(PartChute::new(0.2, PartTrigger::Apogee, 1.0)),
-            Release::new(Trigger::Time { time_s: 5.0 }, "payload").with_parachute(
-                PartChute::new(0.1, PartTrigger::HeightDescending { height_m: 150.0 }, 1.0),
-            ),
-        ])
-        .unwrap();
+    let sim =
+        simulation(design(&v), Environment::default(), SimOptions::default())
+            .with_releases(vec![
+                Release::new(Trigger::Time { time_s: 5.0 }, "ballast")
+                    .with_parachute(PartChute::new(0.2, PartTrigger::Apogee, 1.0)),
+                Release::new(Trigger::Time { time_s: 5.0 }, "payload").with_parachute(
+                    PartChute::new(0.1, PartTrigger::HeightDescending { height_m: 150.0 }, 1.0),
+                ),
+            ])
+            .unwrap();
     let flight = sim.run(&mut ()).unwrap();
     let a = flight.releases[0].part.as_ref().unwrap();
     let b = flight.releases[1].part.as_ref().unwrap();

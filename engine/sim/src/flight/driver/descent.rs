@@ -77,8 +77,7 @@ impl Descent {
         after: Option<usize>,
     ) -> Result<Option<Descent>, SimError> {
         let first = after.map_or(0, |j| j + 1);
-        let Some(j) = (first..run.releases.len()).find(|&j| run.releases[j].part.is_some())
-        else {
+        let Some(j) = (first..run.releases.len()).find(|&j| run.releases[j].part.is_some()) else {
             return Ok(None);
         };
         Descent::start_part(run, stepper, j).map(Some)

@@ -340,8 +340,8 @@ fn descend<'a, O: Observer>(
     let model = run.model;
     // The free flight's restart is behind it.
     run.released_now = false;
-    let mut s3: Stepper<N3> = Stepper::new(&model.options.integrator, atol3, rtol)
-        .map_err(|e| integ(t, e, "setup"))?;
+    let mut s3: Stepper<N3> =
+        Stepper::new(&model.options.integrator, atol3, rtol).map_err(|e| integ(t, e, "setup"))?;
     let descent = if let PhaseEnd::Deploy = end {
         // Descent: the center of mass as a point, with its velocity (including r′) kept.
         let (pos, vel) = cm_of(model, &run.starts, t, &y);

@@ -310,11 +310,7 @@ impl SixDof {
                 _ => {}
             }
         }
-        let here = if rail {
-            Here::Rail
-        } else {
-            Here::Free(&y_end)
-        };
+        let here = if rail { Here::Rail } else { Here::Free(&y_end) };
         if (found.is_some() || matches!(outcome, crate::integrate::StepOutcome::ReachedStop))
             && run.at_stop(t_end, alt, speed, here)?
         {
