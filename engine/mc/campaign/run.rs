@@ -12,7 +12,7 @@
 //! fingerprint, seed, variants per point, shard, chunk size), flies only the missing chunks,
 //! then merges. Without `resume` a rerun starts over. The parts are removed once merged.
 
-use super::fly::{fly_chunk, Prepared, Status, LANDING_XY};
+use super::fly::{fly_chunk, Prepared, Status};
 use super::parquet::{self as pq, RunMeta};
 use super::scenario::Scenario;
 use super::stats::{self, PointStats, Table};
@@ -264,11 +264,12 @@ fn finish(report: &mut RunReport, meta: &RunMeta, table: &Table) -> anyhow::Resu
         .iter()
         .map(|i| i.dispersion.is_some())
         .collect();
+    let landings: Vec<(usize, usize)> = p.landings.iter().map(|&(_, x, y)| (x, y)).collect();
     report.stats = stats::compute(
         table,
         p.plan.points(),
         &dispersed,
-        LANDING_XY,
+        &landings,
         &p.requirements,
     );
     // Statuses other than landed were counted from the variants file above.

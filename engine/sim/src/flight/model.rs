@@ -604,7 +604,7 @@ impl FlightModel {
     }
 
     /// [`FlightModel::descent_rates`] of a point of mass `mass_kg` (the rocket's
-    /// [`FlightModel::descent_mass_after`], or a released part's own).
+    /// [`FlightModel::descent_mass_less`] the parts that left, or a released part's own).
     #[inline]
     pub fn descent_rates_of(
         &self,
@@ -633,14 +633,10 @@ impl FlightModel {
         self.mass.fixed_mass_kg + propellant_kg
     }
 
-    /// The mass a descent carries at `t` once the releases of `starts` that have fired took
-    /// their parts (exactly the mass state's mass: the same sum in the same order).
+    /// The mass the parts released by `t` took away, kg (`None`: none has left), summed as
+    /// the mass state sums it ([`FlightModel::removed`]).
     #[inline]
-    pub fn descent_mass_after(&self, starts: &ShiftStarts, t: f64) -> f64 {
-        let m = self.descent_mass(t);
-        if self.releases.is_empty() {
-            return m;
-        }
+    pub fn removed_mass_kg(&self, starts: &ShiftStarts, t: f64) -> Option<f64> {
         let n = self.shifts.len();
         let mut gone: Option<f64> = None;
         for (j, part) in self.mass.released.iter().enumerate() {
@@ -648,7 +644,18 @@ impl FlightModel {
                 *gone.get_or_insert(0.0) += part.mass_kg;
             }
         }
-        gone.map_or(m, |g| m - g)
+        gone
+    }
+
+    /// The mass a descent carries at `t` once parts of `removed_kg` ([`FlightModel::removed_mass_kg`])
+    /// have left: exactly the mass state's mass (the same numbers in the same order).
+    #[inline(always)]
+    pub fn descent_mass_less(&self, t: f64, removed_kg: Option<f64>) -> f64 {
+        let m = self.descent_mass(t);
+        match removed_kg {
+            None => m,
+            Some(gone) => m - gone,
+        }
     }
 
     /// The center of mass's position and velocity (inertial) and a sample's figures at the end

@@ -11,8 +11,9 @@ use super::*;
 /// Whose descent it is.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Body {
-    /// The rocket, under its open canopies.
-    Rocket,
+    /// The rocket, under its open canopies, and the mass of the parts that have left it
+    /// ([`FlightModel::removed_mass_kg`], kept here: it changes only at a release).
+    Rocket { removed_kg: Option<f64> },
     /// Release `j`'s part: its own parachute where it stands (`None`: it has none), and
     /// whether it still climbs (its apogee ahead).
     Part {
@@ -20,6 +21,17 @@ pub(super) enum Body {
         chute: Option<Chute>,
         climbing: bool,
     },
+}
+
+impl Body {
+    /// The mass that descends at `t`.
+    #[inline(always)]
+    fn mass(self, model: &FlightModel, t: f64) -> f64 {
+        match self {
+            Body::Rocket { removed_kg } => model.descent_mass_less(t, removed_kg),
+            Body::Part { j, .. } => model.mass.released[j].mass_kg,
+        }
+    }
 }
 
 /// A descent between its steps: whose, and the drag in force.
@@ -49,8 +61,11 @@ impl Descent {
         let name = Phase::Descent.name();
         let canopies = run.canopies();
         let starts = run.starts;
+        let body = Body::Rocket {
+            removed_kg: model.removed_mass_kg(&starts, t0),
+        };
         let mut evals = 0u64;
-        each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.descent_rates_of(model.descent_mass_after(&starts, t), &canopies, t, y, dy); }, t0, y0)).map_err(|e| integ_at(t0, y0, e, name))?;
+        each!(stepper, s => s.init(|t, y, dy| { evals += 1; model.descent_rates_of(body.mass(model, t), &canopies, t, y, dy); }, t0, y0)).map_err(|e| integ_at(t0, y0, e, name))?;
         run.evaluations += evals;
         let mut dy = [0.0; N3];
         let aux = model.derivative_descent(&starts, &canopies, t0, y0, &mut dy);
@@ -63,10 +78,7 @@ impl Descent {
             [0.0; 3],
             &aux,
         );
-        Ok(Descent {
-            canopies,
-            body: Body::Rocket,
-        })
+        Ok(Descent { canopies, body })
     }
 
     /// The descent of the first released part after release `after` (from the first if
@@ -161,26 +173,12 @@ impl Descent {
     /// The mass that descends at `t`: the rocket's, without the parts that have left, or the
     /// part's own.
     #[inline(always)]
-    pub(super) fn mass<O: Observer>(&self, run: &Run<'_, O>, t: f64) -> f64 {
-        self.mass_fn(run.model, run.starts)(t)
-    }
-
-    /// [`Descent::mass`] as a function of the time, for a step (whose `starts` do not change
-    /// within it).
-    #[inline(always)]
-    pub(super) fn mass_fn<'m>(
-        &self,
-        model: &'m FlightModel,
-        starts: ShiftStarts,
-    ) -> impl Fn(f64) -> f64 + 'm {
-        let body = self.body;
-        move |t| match body {
-            Body::Rocket => model.descent_mass_after(&starts, t),
-            Body::Part { j, .. } => model.mass.released[j].mass_kg,
-        }
+    pub(super) fn mass(&self, model: &FlightModel, t: f64) -> f64 {
+        self.body.mass(model, t)
     }
 
     /// The stop time of the next step (which starts where the stepper is).
+    #[inline]
     pub(super) fn next_stop<O: Observer>(
         &self,
         run: &mut Run<'_, O>,
@@ -215,12 +213,11 @@ impl Descent {
     ) -> Result<Option<PhaseEnd>, SimError> {
         let model = run.model;
         let t_stop = self.next_stop(run, stepper);
-        let canopies = self.canopies;
-        let mass = self.mass_fn(model, run.starts);
+        let (canopies, body) = (self.canopies, self.body);
         let mut evals = 0u64;
         let outcome = stepper.checked_step(
             |t, y, dy| {
-                model.descent_rates_of(mass(t), &canopies, t, y, dy);
+                model.descent_rates_of(body.mass(model, t), &canopies, t, y, dy);
             },
             t_stop,
             Phase::Descent.name(),
@@ -313,7 +310,6 @@ impl Descent {
             &aux,
         );
         let (alt, speed) = (pos.z, vel.norm());
-        let here = Here::Point(pos, vel);
         if let Some((te, kind)) = found {
             match kind {
                 EventKind::Apogee => {
@@ -321,6 +317,7 @@ impl Descent {
                     run.metrics.apogee_m = Some(alt);
                     run.metrics.apogee_time_s = Some(te);
                     run.push_event(EventKind::Apogee, te, alt, speed);
+                    let here = Here::Point(pos, vel);
                     run.fire(te, alt, speed, here, |tr| matches!(tr, Trigger::Apogee))?;
                 }
                 EventKind::Landing => {
@@ -332,12 +329,12 @@ impl Descent {
                 }
                 EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
                 EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
-                EventKind::Release(j) => run.release(j, te, alt, speed, here)?,
+                EventKind::Release(j) => run.release(j, te, alt, speed, Here::Point(pos, vel))?,
                 _ => {}
             }
         }
         if found.is_some() || matches!(outcome, StepOutcome::ReachedStop) {
-            run.at_stop(t_end, alt, speed, here)?;
+            run.at_stop(t_end, alt, speed, Here::Point(pos, vel))?;
         }
         if t_end >= model.options.max_time_s {
             run.push_event(EventKind::TimeLimit, t_end, alt, speed);
@@ -345,16 +342,20 @@ impl Descent {
         }
         let new_canopies = run.canopies();
         let released = run.take_released();
+        if released {
+            self.body = Body::Rocket {
+                removed_kg: model.removed_mass_kg(&run.starts, t_end),
+            };
+        }
         if found.is_some()
             || released
             || new_canopies != self.canopies
             || matches!(outcome, StepOutcome::ReachedStop)
         {
             self.canopies = new_canopies;
-            let canopies = new_canopies;
-            let starts = run.starts;
+            let (canopies, body) = (new_canopies, self.body);
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.descent_rates_of(model.descent_mass_after(&starts, t), &canopies, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.descent_rates_of(body.mass(model, t), &canopies, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
         }
         Ok(None)
@@ -368,7 +369,7 @@ impl Descent {
         stepper: &mut Stepper<N3>,
     ) -> Result<Option<PhaseEnd>, SimError> {
         let after = match self.body {
-            Body::Rocket => None,
+            Body::Rocket { .. } => None,
             Body::Part { j, .. } => Some(j),
         };
         match Descent::next_part(run, stepper, after)? {

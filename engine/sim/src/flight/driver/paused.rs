@@ -403,7 +403,7 @@ impl<O: Observer> Descending<'_, O> {
     /// released part's).
     #[inline(always)]
     pub(crate) fn mass_at(&self, t: f64) -> f64 {
-        self.descent.mass(&self.run, t)
+        self.descent.mass(self.run.model, t)
     }
 
     /// The flight's record, once its descent has ended.
@@ -430,10 +430,10 @@ impl<'a, O: Observer> PausedPhase<'a, N3> for Descending<'a, O> {
         let t_stop = self.descent.next_stop(&mut self.run, &self.s3.stepper);
         let model = self.run.model;
         let canopies = self.descent.canopies();
-        let mass = self.descent.mass_fn(model, self.run.starts);
+        let descent = &self.descent;
         self.s3
             .begin(t_stop, &mut self.run.evaluations, |t, y, dy| {
-                model.descent_rates_of(mass(t), &canopies, t, y, dy);
+                model.descent_rates_of(descent.mass(model, t), &canopies, t, y, dy);
             })?;
         Ok(true)
     }
