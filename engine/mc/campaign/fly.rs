@@ -247,9 +247,13 @@ impl Prepared {
             let cda = r.cda_m2.unwrap_or_else(|| {
                 design
                     .component_index(&r.component)
-                    .map_or(f64::NAN, |idx| hpr_sim::releases::tumbling_cda_m2(&design, idx))
+                    .map_or(f64::NAN, |idx| {
+                        hpr_sim::releases::tumbling_cda_m2(&design, idx)
+                    })
             });
-            let (cds, lag) = r.parachute.map_or((f64::NAN, f64::NAN), |c| (c.cds_m2, c.lag_s));
+            let (cds, lag) = r
+                .parachute
+                .map_or((f64::NAN, f64::NAN), |c| (c.cds_m2, c.lag_s));
             releases.push([
                 trigger_nominal(&r.trigger, format!("releases[{i}].trigger"))?,
                 cda,

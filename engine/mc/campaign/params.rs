@@ -138,9 +138,7 @@ impl Param {
     /// Unit of the input's values ("1" for a pure number).
     pub fn unit(&self) -> &'static str {
         match self {
-            Param::ParachuteCdsM2(_) | Param::ReleaseCdaM2(_) | Param::ReleaseChuteCdsM2(_) => {
-                "m²"
-            }
+            Param::ParachuteCdsM2(_) | Param::ReleaseCdaM2(_) | Param::ReleaseChuteCdsM2(_) => "m²",
             Param::ParachuteLagS(_) | Param::ShiftDurationS(_) | Param::ReleaseChuteLagS(_) => "s",
             Param::ShiftTravelM(_) => "m",
             Param::ParachuteTrigger(_) | Param::ShiftTrigger(_) | Param::ReleaseTrigger(_) => "",

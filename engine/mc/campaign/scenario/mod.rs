@@ -798,7 +798,12 @@ impl Scenario {
                 return Err(bad(&key("name"), format!("two releases are named \"{name}\" (a release is named after its component unless it has a name); give each its own name")));
             }
             let cda_m2 = match r.cda_m2 {
-                Some(v) => Some(check_param(&bad, &key("cda_m2"), Param::ReleaseCdaM2(i), v)?),
+                Some(v) => Some(check_param(
+                    &bad,
+                    &key("cda_m2"),
+                    Param::ReleaseCdaM2(i),
+                    v,
+                )?),
                 None => None,
             };
             let parachute = match &r.parachute {
@@ -820,7 +825,12 @@ impl Scenario {
                         .check()
                         .map_err(|(field, rule)| bad(&k(field), rule.to_string()))?;
                     Some(PartChute {
-                        cds_m2: check_param(&bad, &k("cds_m2"), Param::ReleaseChuteCdsM2(i), c.cds_m2)?,
+                        cds_m2: check_param(
+                            &bad,
+                            &k("cds_m2"),
+                            Param::ReleaseChuteCdsM2(i),
+                            c.cds_m2,
+                        )?,
                         trigger,
                         lag_s: check_param(
                             &bad,

@@ -232,7 +232,9 @@ impl TryFrom<toml::Value> for RawPartTrigger {
                 let height_m = match &t["height_m"] {
                     toml::Value::Float(x) => *x,
                     toml::Value::Integer(i) => *i as f64,
-                    other => return Err(format!("trigger height_m: must be a number (got {other})")),
+                    other => {
+                        return Err(format!("trigger height_m: must be a number (got {other})"))
+                    }
                 };
                 Ok(RawPartTrigger(PartTrigger::HeightDescending { height_m }))
             }

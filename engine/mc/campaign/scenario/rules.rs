@@ -569,8 +569,16 @@ fn release_entries<T>(i: usize, r: RawReleaseParams<T>) -> PartEntries<T> {
     PartEntries {
         fixed: vec![
             ("cda_m2", Param::ReleaseCdaM2(i), r.cda_m2),
-            ("parachute_cds_m2", Param::ReleaseChuteCdsM2(i), r.parachute_cds_m2),
-            ("parachute_lag_s", Param::ReleaseChuteLagS(i), r.parachute_lag_s),
+            (
+                "parachute_cds_m2",
+                Param::ReleaseChuteCdsM2(i),
+                r.parachute_cds_m2,
+            ),
+            (
+                "parachute_lag_s",
+                Param::ReleaseChuteLagS(i),
+                r.parachute_lag_s,
+            ),
         ],
         trigger: vec![
             ("time_s", r.time_s),

@@ -254,7 +254,8 @@ fn subtree_contains(design: &Design, root: ComponentIdx, target: ComponentIdx) -
 }
 
 /// The tumbling estimate of a component's drag area, m²: [`TUMBLE_CD`] × its length × its
-/// outer diameter (for a part that holds others, its own envelope).
+/// outer diameter (for a part that holds others, its own envelope); NaN for a body component
+/// or an external part, which no release may drop.
 pub fn tumbling_cda_m2(design: &Design, idx: ComponentIdx) -> f64 {
     let c = &design.components[idx];
     let diameter = match &c.kind {
@@ -262,8 +263,8 @@ pub fn tumbling_cda_m2(design: &Design, idx: ComponentIdx) -> f64 {
         ComponentKind::Parachute(p) => 2.0 * p.packed.radius_m,
         ComponentKind::InnerTube(t) => t.outer_diameter_m,
         ComponentKind::CenteringRing(r) | ComponentKind::Bulkhead(r) => r.outer_diameter_m,
-        // Body and external parts are refused before this is asked.
-        _ => 0.0,
+        // Body and external parts are refused before a flight asks; they have no estimate.
+        _ => f64::NAN,
     };
     TUMBLE_CD * c.length_m * diameter
 }
