@@ -193,6 +193,9 @@ pub struct MassModelLanes<S> {
     pub part_c0_b: [V3<S>; MAX_MOVING_PARTS],
     /// How many of the parts any lane has.
     pub parts: usize,
+    /// Whether any lane's flight releases parts (read beside `parts`: a flight without
+    /// releases asks nothing more of them).
+    pub releases: bool,
 }
 
 impl MassModelLanes<f64> {
@@ -214,6 +217,7 @@ impl MassModelLanes<f64> {
             part_mass_kg,
             part_c0_b,
             parts: model.parts.len().min(MAX_MOVING_PARTS),
+            releases: !model.released.is_empty(),
         }
     }
 }
@@ -231,6 +235,7 @@ impl MassModelLanes<F64x4> {
             part_mass_kg: std::array::from_fn(|k| F64x4::from_fn(|i| m[i].part_mass_kg[k])),
             part_c0_b: std::array::from_fn(|k| pack_v3(m.map(|m| &m.part_c0_b[k]))),
             parts: m.iter().map(|m| m.parts).max().unwrap_or(0),
+            releases: m.iter().any(|m| m.releases),
         }
     }
 }
@@ -360,6 +365,8 @@ pub fn mass_state_lanes<S: Real>(model: &MassModelLanes<S>, x: &MassInputs<S>) -
         let with = i_rate.add(&M3::diag(dt, dt, da).scale(x.prop_rate_kg_s));
         i_rate = M3::select(has, &with, &i_rate);
     }
+    // The released parts, taken out whole (where their shifts left them: the moving parts'
+    // terms below put them there, and these take them out).
     if let Some(gone) = &x.removed {
         m = m - gone.mass_kg;
         s = s - gone.first_moment_b;

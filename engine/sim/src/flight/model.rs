@@ -373,7 +373,7 @@ impl FlightModel {
                 *acc.accel_m_s2.lane_mut(l) += c.accel_m_s2;
             }
         }
-        if !self.releases.is_empty() {
+        if self.mass_lanes.releases {
             let gone = self.removed(starts, t, |k| x.motions[k].delta_m.lane(l));
             x.set_removed(l, gone.as_ref());
         }

@@ -34,10 +34,12 @@ impl Body {
     }
 }
 
-/// A descent between its steps: whose, and the drag in force.
+/// A descent between its steps: whose, the drag in force, and its mass once it no longer
+/// changes (the motor out: `body.mass` at any later time, the same bits).
 pub(super) struct Descent {
     canopies: Canopies<f64>,
     body: Body,
+    mass_kg: Option<f64>,
 }
 
 /// What ends a part's step besides its stops.
@@ -78,7 +80,13 @@ impl Descent {
             [0.0; 3],
             &aux,
         );
-        Ok(Descent { canopies, body })
+        let mut d = Descent {
+            canopies,
+            body,
+            mass_kg: None,
+        };
+        d.settle_mass(model, t0);
+        Ok(d)
     }
 
     /// The descent of the first released part after release `after` (from the first if
@@ -131,6 +139,7 @@ impl Descent {
                 added_air_m3: 0.0,
             },
             body: Body::Part { j, chute, climbing },
+            mass_kg: Some(model.mass.released[j].mass_kg),
         };
         d.canopies = d.part_canopies(model);
         if chute == Some(Chute::Open) {
@@ -174,7 +183,16 @@ impl Descent {
     /// part's own.
     #[inline(always)]
     pub(super) fn mass(&self, model: &FlightModel, t: f64) -> f64 {
-        self.body.mass(model, t)
+        match self.mass_kg {
+            Some(m) => m,
+            None => self.body.mass(model, t),
+        }
+    }
+
+    /// Keep the mass from `t` on if it no longer changes (the motor is out; a part's never
+    /// does), or forget it.
+    fn settle_mass(&mut self, model: &FlightModel, t: f64) {
+        self.mass_kg = (t >= model.motor.burn_time_s()).then(|| self.body.mass(model, t));
     }
 
     /// The stop time of the next step (which starts where the stepper is).
@@ -213,11 +231,12 @@ impl Descent {
     ) -> Result<Option<PhaseEnd>, SimError> {
         let model = run.model;
         let t_stop = self.next_stop(run, stepper);
-        let (canopies, body) = (self.canopies, self.body);
+        let canopies = self.canopies;
+        let this = &*self;
         let mut evals = 0u64;
         let outcome = stepper.checked_step(
             |t, y, dy| {
-                model.descent_rates_of(body.mass(model, t), &canopies, t, y, dy);
+                model.descent_rates_of(this.mass(model, t), &canopies, t, y, dy);
             },
             t_stop,
             Phase::Descent.name(),
@@ -341,8 +360,9 @@ impl Descent {
             return self.after_body(run, stepper);
         }
         let new_canopies = run.canopies();
-        let released = run.take_released();
+        let released = run.released_now;
         if released {
+            run.released_now = false;
             self.body = Body::Rocket {
                 removed_kg: model.removed_mass_kg(&run.starts, t_end),
             };
@@ -353,9 +373,11 @@ impl Descent {
             || matches!(outcome, StepOutcome::ReachedStop)
         {
             self.canopies = new_canopies;
-            let (canopies, body) = (new_canopies, self.body);
+            self.settle_mass(model, t_end);
+            let canopies = new_canopies;
+            let this = &*self;
             let mut evals = 0u64;
-            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.descent_rates_of(body.mass(model, t), &canopies, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
+            each!(stepper, s => s.restart(|t, y, dy| { evals += 1; model.descent_rates_of(this.mass(model, t), &canopies, t, y, dy); }, t_end, &y_end)).map_err(|e| integ_at(t_end, &y_end, e, name))?;
             run.evaluations += evals;
         }
         Ok(None)

@@ -425,11 +425,6 @@ impl<'a, O: Observer> Run<'a, O> {
         Ok(())
     }
 
-    /// Whether a part left at the step's end (and forget it).
-    fn take_released(&mut self) -> bool {
-        std::mem::take(&mut self.released_now)
-    }
-
     /// Parachute `i`'s trigger condition became true at `t`: it fires now, or, sampled, at
     /// its next sample (a stop time, where [`Run::at_stop`] fires it); it opens `lag_s` after.
     fn trigger_chute(&mut self, i: usize, t: f64, altitude_m: f64, speed_m_s: f64) {

@@ -310,9 +310,13 @@ impl SixDof {
                 _ => {}
             }
         }
-        let here = if rail { Here::Rail } else { Here::Free(&y_end) };
         if (found.is_some() || matches!(outcome, crate::integrate::StepOutcome::ReachedStop))
-            && run.at_stop(t_end, alt, speed, here)?
+            && run.at_stop(
+                t_end,
+                alt,
+                speed,
+                if rail { Here::Rail } else { Here::Free(&y_end) },
+            )?
         {
             return Ok(Some((t_end, y_end, PhaseEnd::Deploy)));
         }
@@ -322,8 +326,8 @@ impl SixDof {
         }
         let braked = phase == Phase::Free && run.control_brakes(t_end, pos, vel, &ep.aux);
         // A part that left changes the derivative at once: the stepper starts again there.
-        let released = run.take_released();
-        if found.is_some() || braked || released {
+        if found.is_some() || braked || run.released_now {
+            run.released_now = false;
             let (starts, changes, brake) = (run.starts, run.starts_changed, run.brake_cd);
             let memo = &mut run.memo;
             let mut evals = 0u64;
