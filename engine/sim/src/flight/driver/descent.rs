@@ -185,8 +185,14 @@ impl Descent {
     pub(super) fn mass(&self, model: &FlightModel, t: f64) -> f64 {
         match self.mass_kg {
             Some(m) => m,
-            None => self.body.mass(model, t),
+            None => self.changing_mass(model, t),
         }
+    }
+
+    /// [`Descent::mass`] while it changes (the motor still burning), out of line.
+    #[inline(never)]
+    fn changing_mass(&self, model: &FlightModel, t: f64) -> f64 {
+        self.body.mass(model, t)
     }
 
     /// Keep the mass from `t` on if it no longer changes (the motor is out; a part's never
@@ -385,6 +391,7 @@ impl Descent {
 
     /// The descent that ended is over: on to the next released part's, or the end of them
     /// all.
+    #[inline(never)]
     fn after_body<O: Observer>(
         &mut self,
         run: &mut Run<'_, O>,
@@ -422,7 +429,9 @@ impl Descent {
     }
 
     /// [`Descent::after_step`] of a released part: its landing, its apogee and its
-    /// parachute's trigger located on the dense output, its canopy opened at its stop.
+    /// parachute's trigger located on the dense output, its canopy opened at its stop. Out of
+    /// line: the rocket's descent, which most lanes fly, stays small.
+    #[inline(never)]
     fn after_part_step<O: Observer>(
         &mut self,
         run: &mut Run<'_, O>,

@@ -348,6 +348,7 @@ impl<'a, O: Observer> Run<'a, O> {
     /// Release `j` fires at `t`, the rocket `here`: its part leaves with the velocity its
     /// material had (no impulse), the rocket flies on without it from `t` (its stepper
     /// restarts there), and the static margin just before and after is recorded.
+    #[inline(never)]
     fn release(
         &mut self,
         j: usize,
