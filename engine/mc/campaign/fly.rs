@@ -242,15 +242,13 @@ impl Prepared {
         }
         let mut releases = Vec::new();
         for (i, r) in scenario.releases.iter().enumerate() {
-            // The part's drag area: given, or the tumbling estimate of its component (NaN for
-            // a component the design lacks, which the simulator refuses by name).
-            let cda = r.cda_m2.unwrap_or_else(|| {
-                design
-                    .component_index(&r.component)
-                    .map_or(f64::NAN, |idx| {
-                        hpr_sim::releases::tumbling_cda_m2(&design, idx)
-                    })
-            });
+            // The part's drag area: the scenario's, the design's, or the tumbling estimate of
+            // its component (NaN for a component the design lacks, or one no release may
+            // drop, which the simulator refuses by name).
+            let cda = match design.component_index(&r.component) {
+                Some(idx) => hpr_sim::releases::release_cda_m2(&design, idx, r.cda_m2),
+                None => r.cda_m2.unwrap_or(f64::NAN),
+            };
             let (cds, lag) = r
                 .parachute
                 .map_or((f64::NAN, f64::NAN), |c| (c.cds_m2, c.lag_s));

@@ -246,8 +246,8 @@ impl Fixed<'_> {
                     .map(|(r, v)| Release {
                         trigger: with_trigger_value(&r.trigger, v[0]),
                         component: r.component.clone(),
-                        // The tumbling estimate when the scenario gives none (its nominal is
-                        // that estimate, NaN for a component the simulator then refuses).
+                        // The scenario's, the design's or the tumbling estimate (the nominal
+                        // is that; NaN for a component the simulator then refuses by name).
                         cda_m2: v[1].is_finite().then_some(v[1]),
                         parachute: r.parachute.map(|c| PartChute {
                             cds_m2: v[2],

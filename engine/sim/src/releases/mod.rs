@@ -84,8 +84,9 @@ pub struct Release {
     pub trigger: Trigger,
     /// Id of the internal component that leaves; everything inside it goes with it.
     pub component: String,
-    /// The part's drag area falling free (and before its parachute opens), m²; `None`: the
-    /// tumbling estimate [`TUMBLE_CD`] × its component's length × its diameter.
+    /// The part's drag area falling free (and before its parachute opens), m²; `None`: its
+    /// component's `released_cda_m2` in the design, or else the tumbling estimate
+    /// [`TUMBLE_CD`] × the component's length × its diameter.
     pub cda_m2: Option<f64>,
     /// Its own parachute, if it has one.
     pub parachute: Option<PartChute>,
@@ -239,7 +240,8 @@ pub struct ReleasePlan {
     /// For each release, the index of its part among the parts shifts move
     /// ([`ShiftPlan::parts`]), if shifts move it too.
     pub moving_part: Vec<Option<usize>>,
-    /// Each release's drag area falling free, m² (given, or the estimate).
+    /// Each release's drag area falling free, m² (the release's, the design's, or the
+    /// estimate: [`release_cda_m2`]).
     pub cda_m2: Vec<f64>,
 }
 
@@ -267,6 +269,14 @@ pub fn tumbling_cda_m2(design: &Design, idx: ComponentIdx) -> f64 {
         _ => f64::NAN,
     };
     TUMBLE_CD * c.length_m * diameter
+}
+
+/// The drag area a release of component `idx` flies with, m²: `given` (the release's own),
+/// else the design's `released_cda_m2` for the component, else the tumbling estimate.
+pub fn release_cda_m2(design: &Design, idx: ComponentIdx, given: Option<f64>) -> f64 {
+    given
+        .or(design.components[idx].released_cda_m2)
+        .unwrap_or_else(|| tumbling_cda_m2(design, idx))
 }
 
 /// Check every rule that can be checked before the flight. `shift_plan` holds the parts the
@@ -416,8 +426,7 @@ pub fn plan(
         out.parts.push(idx);
         out.moving_part
             .push(shift_plan.parts.iter().position(|&p| p == idx));
-        out.cda_m2
-            .push(r.cda_m2.unwrap_or_else(|| tumbling_cda_m2(design, idx)));
+        out.cda_m2.push(release_cda_m2(design, idx, r.cda_m2));
     }
     // A part inside a part another release drops (either order).
     for (index, &idx) in out.parts.iter().enumerate() {

@@ -691,3 +691,46 @@ fn a_part_s_canopy_opens_at_its_own_apogee_or_height() {
         b.landing_speed_m_s.unwrap()
     );
 }
+
+#[test]
+fn a_part_s_drag_area_comes_from_the_release_the_design_or_its_size() {
+    // The ballast: 50 mm long, 40 mm across, tumbling with 0.56 × 0.05 × 0.04 m².
+    let sim = |v: &serde_json::Value, release: Release| {
+        simulation(design(v), Environment::default(), SimOptions::default())
+            .with_releases(vec![release])
+            .unwrap()
+            .release_plan()
+            .cda_m2[0]
+    };
+    let plain = reference_json();
+    let estimate = sim(&plain, Release::new(Trigger::Apogee, "ballast"));
+    assert_eq!(estimate, super::TUMBLE_CD * 0.05 * 0.04);
+    let mut given = reference_json();
+    component_mut(&mut given, "ballast")["released_cda_m2"] = serde_json::json!(0.003);
+    assert_eq!(sim(&given, Release::new(Trigger::Apogee, "ballast")), 0.003);
+    assert_eq!(
+        sim(
+            &given,
+            Release::new(Trigger::Apogee, "ballast").with_cda(0.004)
+        ),
+        0.004,
+        "the release's own comes first"
+    );
+    // The design's field is an internal part's, positive and finite.
+    let mut bad = reference_json();
+    component_mut(&mut bad, "ballast")["released_cda_m2"] = serde_json::json!(-1.0);
+    let e = Design::from_json_str(&bad.to_string(), None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("released_cda_m2") && e.contains("ballast"),
+        "{e}"
+    );
+    let mut on_body = reference_json();
+    component_mut(&mut on_body, "body")["released_cda_m2"] = serde_json::json!(0.01);
+    let e = Design::from_json_str(&on_body.to_string(), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("released_cda_m2"), "{e}");
+    eprintln!("estimate {estimate:.5} m²; refused on a body tube: {e}");
+}
