@@ -734,3 +734,41 @@ fn a_part_s_drag_area_comes_from_the_release_the_design_or_its_size() {
     assert!(e.contains("released_cda_m2"), "{e}");
     eprintln!("estimate {estimate:.5} m²; refused on a body tube: {e}");
 }
+
+#[test]
+fn a_fixed_step_flight_flies_its_released_part_to_the_same_ground() {
+    // RK4 at 10 ms against the adaptive default: the part's own descent is stepped by the
+    // flight's integrator too, and lands where the adaptive one does.
+    let fly = |integrator: Integrator| {
+        let sim = simulation(
+            design(&reference_json()),
+            Environment {
+                wind: crate::wind::Wind::constant(5.0, 270.0).unwrap(),
+                ..Environment::default()
+            },
+            SimOptions {
+                integrator,
+                ..SimOptions::default()
+            },
+        )
+        .with_releases(vec![Release::new(Trigger::Apogee, "ballast")
+            .with_parachute(PartChute::new(0.3, PartTrigger::Release, 1.0))])
+        .unwrap();
+        let f = sim.run(&mut ()).unwrap();
+        let p = f.releases[0].part.clone().unwrap();
+        (
+            p.landing_time_s.unwrap(),
+            p.landing_position_m.unwrap(),
+            p.samples.len(),
+        )
+    };
+    let (t_a, [xa, ya], _) = fly(Integrator::DEFAULT);
+    let (t_f, [xf, yf], steps) = fly(Integrator::Rk4 { step_s: 0.01 });
+    let moved = (xa - xf).hypot(ya - yf);
+    eprintln!("adaptive lands at {t_a:.3} s, ({xa:.2}, {ya:.2}) m; RK4 at 10 ms ({steps} samples) {:.1e} s later, {moved:.1e} m away", t_f - t_a);
+    assert!(steps > 10_000, "RK4 steps the part's descent: {steps}");
+    assert!(
+        (t_a - t_f).abs() < 1e-3 && moved < 1e-2,
+        "{t_a} {t_f} {moved}"
+    );
+}
