@@ -16,7 +16,9 @@ Checks, with pyarrow, Polars and DuckDB (pip install pyarrow polars duckdb):
     from the landed rows equal to summary.parquet's to 1e-9 relative, and each count of
     requirements.parquet (variants meeting a requirement) recounted from the rows;
   * DuckDB: every shard part read as one table with a glob: each variant id once, the count
-    right, and (when there is an unsharded file too) the same rows.
+    right, and (when there is an unsharded file too) the same rows; each landing ellipse of
+    ellipses.parquet (the rocket's, and each released part's: body "release_<name>")
+    centered on the mean of its landed rows' landing points, its count theirs.
 
 Exits 0 when every check passes, 1 with a message naming the failed check otherwise.
 """
@@ -135,6 +137,26 @@ def check_requirements(variants_path, requirements_path):
     return r.height
 
 
+def check_ellipses(variants_path, ellipses_path):
+    """DuckDB: each body's 1-sigma ellipse centered on the mean landing point of the point's
+    landed rows that have one (the rocket's landing_x_m / landing_y_m, a released part's
+    release_<name>_landing_x_m / _y_m), over as many rows."""
+    con = duckdb.connect()
+    rows = con.execute(
+        f"SELECT point, body, count, center_x_m, center_y_m FROM read_parquet('{ellipses_path}') WHERE sigma = 1"
+    ).fetchall()
+    for point, body, count, cx, cy in rows:
+        prefix = "" if body == "rocket" else f"{body}_"
+        x, y = f"{prefix}landing_x_m", f"{prefix}landing_y_m"
+        n, mx, my = con.execute(
+            f"SELECT count(*), avg({x}), avg({y}) FROM read_parquet('{variants_path}') "
+            f"WHERE point = {point} AND status = 'landed' AND {x} IS NOT NULL AND {y} IS NOT NULL"
+        ).fetchone()
+        if n != count or not (math.isclose(mx, cx, rel_tol=1e-9, abs_tol=1e-9) and math.isclose(my, cy, rel_tol=1e-9, abs_tol=1e-9)):
+            fail(f"{ellipses_path}: point {point} {body}: {count} rows centered at ({cx}, {cy}); the rows give {n} at ({mx}, {my})")
+    return len(rows)
+
+
 def main():
     if len(sys.argv) != 2:
         print(__doc__, file=sys.stderr)
@@ -149,7 +171,8 @@ def main():
         kv, total = check_file(whole)
         checked = check_means(whole, os.path.join(d, "summary.parquet"))
         reqs = check_requirements(whole, os.path.join(d, "requirements.parquet"))
-        print(f"{whole}: {total} rows, schema and units ok, {checked} summary means match, {reqs} requirement counts match")
+        ellipses = check_ellipses(whole, os.path.join(d, "ellipses.parquet"))
+        print(f"{whole}: {total} rows, schema and units ok, {checked} summary means match, {reqs} requirement counts match, {ellipses} ellipses centered on their rows")
     if shards:
         ns = {os.path.basename(p).rsplit("-of-", 1)[1] for p in shards}
         if len(ns) != 1:

@@ -311,3 +311,58 @@ fn a_flag_s_number_out_of_range_is_refused_naming_the_flag() {
         assert!(out.stdout.is_empty());
     }
 }
+
+#[test]
+fn the_released_ballast_example_prints_the_page_s_table_to_every_digit() {
+    // docs/released-mass.md's worked example: the ballast dropped at 5 s, tumbling.
+    let kept = simulation();
+    let sim = kept
+        .clone()
+        .with_releases(vec![hpr_sim::Release::new(
+            Trigger::Time { time_s: 5.0 },
+            "ballast",
+        )])
+        .unwrap();
+    let flight = sim.run(&mut ()).unwrap();
+    let table: Vec<String> = [4.0, 5.0, 10.0]
+        .iter()
+        .map(|&t| {
+            let p = sim.mass_properties(&flight, t);
+            format!(
+                "{t:.2} {:.4} {:.4} {:.5} {:.6} {:.3}",
+                p.mass_kg,
+                p.cg_m.x,
+                p.transverse_inertia(),
+                p.inertia_cg[(0, 0)],
+                sim.static_margin_for(p.cg_m.x)
+            )
+        })
+        .collect();
+    assert_eq!(
+        table,
+        [
+            "4.00 0.8188 0.6681 0.09556 0.000406 4.297",
+            "5.00 0.6188 0.7629 0.07276 0.000366 2.615",
+            "10.00 0.6188 0.7629 0.07276 0.000366 2.615",
+        ]
+    );
+    let r = &flight.releases[0];
+    let part = r.part.as_ref().unwrap();
+    let [x, y] = part.landing_position_m.unwrap();
+    let figures = format!(
+        "{:.3} {:.1} {:.1} {:.5} {:.1} {:.1} {:.1} {:.1} {:.1}",
+        r.margin_after_cal.unwrap() - r.margin_before_cal.unwrap(),
+        flight.metrics.apogee_m.unwrap(),
+        kept.run(&mut ()).unwrap().metrics.apogee_m.unwrap(),
+        sim.release_plan().cda_m2[0],
+        part.start_position_m[2],
+        part.apogee_m,
+        part.landing_time_s.unwrap(),
+        x.hypot(y),
+        part.landing_speed_m_s.unwrap()
+    );
+    assert_eq!(
+        figures,
+        "-1.683 1667.9 1750.1 0.00112 1028.8 1391.7 41.2 0.0 53.9"
+    );
+}

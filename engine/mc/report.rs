@@ -293,6 +293,21 @@ pub fn flight_json(sim: &Simulation, f: &Flight) -> Value {
             "air_brakes_open_time_s": opt(m.air_brakes_open_time_s), "air_brakes_max_opening": opt(m.air_brakes_max_opening),
         },
         "warnings": f.warnings().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
+        "releases": f.releases.iter().zip(sim.releases()).map(|(r, spec)| {
+            let part = r.part.as_ref();
+            json!({
+                "component": spec.component,
+                "time_s": opt(r.time_s),
+                "margin_before_cal": opt(r.margin_before_cal), "margin_after_cal": opt(r.margin_after_cal),
+                "part_mass_kg": opt(part.map(|p| p.mass_kg)),
+                "part_apogee_m": opt(part.map(|p| p.apogee_m)),
+                "part_chute_open_time_s": opt(part.and_then(|p| p.chute_open_s)),
+                "part_landing_time_s": opt(part.and_then(|p| p.landing_time_s)),
+                "part_landing_x_m": opt(part.and_then(|p| p.landing_position_m).map(|p| p[0])),
+                "part_landing_y_m": opt(part.and_then(|p| p.landing_position_m).map(|p| p[1])),
+                "part_landing_speed_m_s": opt(part.and_then(|p| p.landing_speed_m_s)),
+            })
+        }).collect::<Vec<_>>(),
         "events": f.events.iter().map(|e| json!({"event": e.kind.name(), "time_s": e.time_s, "altitude_m": e.altitude_m, "speed_m_s": e.speed_m_s})).collect::<Vec<_>>(),
         "derivative_evaluations": f.derivative_evaluations,
         "steps": f.steps,
@@ -474,17 +489,42 @@ pub fn flight_text(sim: &Simulation, f: &Flight) -> String {
                 .map_or("—".to_string(), |u| format!("{:.1} %", 100.0 * u))
         );
     }
+    for (r, spec) in f.releases.iter().zip(sim.releases()) {
+        let Some((t, part)) = r.time_s.zip(r.part.as_ref()) else {
+            let _ = writeln!(s, "release             {}: never released", spec.component);
+            continue;
+        };
+        let _ = writeln!(
+            s,
+            "release             {} ({:.3} kg) at {t:.3} s, static margin {} → {}; it topped out at {:.1} m{} and landed {}",
+            spec.component,
+            part.mass_kg,
+            o(r.margin_before_cal, "cal", 3),
+            o(r.margin_after_cal, "cal", 3),
+            part.apogee_m,
+            part.chute_open_s
+                .map_or(String::new(), |c| format!(", its canopy open at {c:.2} s")),
+            match (part.landing_time_s, part.landing_position_m, part.landing_speed_m_s) {
+                (Some(lt), Some([x, y]), Some(v)) => format!(
+                    "at {v:.2} m/s at {lt:.2} s, {x:.1} m east and {y:.1} m north of the rail"
+                ),
+                _ => "— the time limit came first".to_string(),
+            }
+        );
+    }
     for w in f.warnings() {
         let _ = writeln!(s, "warning             {w}");
     }
     let _ = writeln!(s, "\nevents");
     for e in &f.events {
-        // The parachute's name, or the part a shift moves, beside its index.
+        // The parachute's name, or the part a shift moves or a release drops, beside its
+        // index.
         let name = match e.kind {
             EventKind::ParachuteTrigger(i) | EventKind::ParachuteDeploy(i) => {
                 sim.parachutes().get(i).map(|p| p.name.as_str())
             }
             EventKind::Shift(k) => sim.shifts().get(k).map(|m| m.component.as_str()),
+            EventKind::Release(j) => sim.releases().get(j).map(|r| r.component.as_str()),
             _ => None,
         };
         let label = match name {

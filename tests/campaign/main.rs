@@ -1,14 +1,15 @@
 //! Campaigns end to end on a tiny scenario (10 flights with loose tolerances): the Parquet
 //! files read back with the parquet crate's Arrow reader, determinism whatever the threads and
 //! shards, resumption of an interrupted run, and the exit codes of `hpr-mc`; winds scaled and
-//! turned (`wind`), the site (`site`), canopy shapes (`canopy`) and `fly --scenario` (`fly`) on a
-//! small windy scenario.
+//! turned (`wind`), the site (`site`), canopy shapes (`canopy`), releases (`releases`) and
+//! `fly --scenario` (`fly`) on a small windy scenario.
 
 mod brakes;
 mod canopy;
 mod fly;
 mod motor;
 mod outputs;
+mod releases;
 mod report;
 mod site;
 mod weather;
@@ -551,6 +552,7 @@ fn every_bundled_scenario_reads_and_sets_up_at_every_sweep_point() {
             "ballast_sweep",
             "bella_lui",
             "calisto",
+            "payload_drop",
             "sounding",
             "wind_study"
         ]

@@ -418,6 +418,20 @@ fn point_details(r: &RunReport) -> String {
                 num(e.major_axis_deg)
             );
         }
+        for (r, e) in p.scenario.releases.iter().zip(&st.release_ellipses) {
+            if let Some(e) = e {
+                let _ = writeln!(
+                    s,
+                    "  released {}'s landing ellipse (1 sigma): center {} m east, {} m north; semi-axes {} × {} m, major axis {}° from east",
+                    r.name,
+                    num(e.center_x_m),
+                    num(e.center_y_m),
+                    num(e.semi_major_m),
+                    num(e.semi_minor_m),
+                    num(e.major_axis_deg)
+                );
+            }
+        }
         let dispersed: Vec<&str> = p
             .scenario
             .inputs

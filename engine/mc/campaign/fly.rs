@@ -6,7 +6,7 @@
 //! [`VariantResult`] per variant, in order. Every swept or dispersed input of a variant is a
 //! column of the chunk (structure mass and center → the structure's deltas, ballast → the
 //! part mass, motor impulse and burn time → scales of the nominal curve, drag scale, site,
-//! wind, rail, and per parachute or shift its numbers), so one base flight, built once from
+//! wind, rail, and per parachute, shift or release its numbers), so one base flight, built once from
 //! the first sweep point, serves every sweep point: a lane is that base with its row applied
 //! in one rebuild of the light per-flight model, and the design's tables are never rebuilt.
 //! A variant that can't fly is a result too, never an error of the run: `refused` (a sampled
@@ -80,6 +80,20 @@ pub const FIXED_METRICS: [(&str, &str); 18] = [
 /// Indices of the landing point's east (x) and north (y) in the metrics.
 pub const LANDING_XY: (usize, usize) = (14, 15);
 
+/// The metrics of each release (`release_<name>_...`): when it fired, the static margin just
+/// before and after, and the released part's landing; a part with a parachute has
+/// `chute_open_time_s` besides.
+pub const PER_RELEASE: [(&str, &str); 8] = [
+    ("fire_time_s", "s"),
+    ("margin_before_cal", "cal"),
+    ("margin_after_cal", "cal"),
+    ("landing_time_s", "s"),
+    ("landing_x_m", "m"),
+    ("landing_y_m", "m"),
+    ("landing_distance_m", "m"),
+    ("landing_speed_m_s", "m/s"),
+];
+
 /// A scenario ready to fly: the design and motor loaded, the nominals resolved, the plan of
 /// the variants built, and every sweep point's nominal flight checked.
 #[derive(Debug, Clone)]
@@ -89,8 +103,13 @@ pub struct Prepared {
     /// The output metrics: [`FIXED_METRICS`], then per shift its start time and the static
     /// margin just before and just after its move, then per parachute its opening time and
     /// speed, then, for a design with air brakes, when they first opened and their widest
-    /// opening.
+    /// opening, then per release when it fired, the static margin just before and after, the
+    /// part's landing (time, east, north, distance, speed) and, for a part with a parachute,
+    /// when its canopy opened.
     pub metrics: Vec<Column>,
+    /// Each landing the statistics draw an ellipse of: the rocket's (`"rocket"`), then each
+    /// released part's (`"release_<name>"`), with the metrics' indices of its east and north.
+    pub landings: Vec<(String, usize, usize)>,
     /// The scenario's requirements, each with its metric's index in [`Prepared::metrics`],
     /// in the metrics' order.
     pub requirements: Vec<(usize, RequirementSpec)>,
@@ -221,6 +240,25 @@ impl Prepared {
                 trigger_nominal(&s.trigger, format!("shifts[{i}].trigger"))?,
             ]);
         }
+        let mut releases = Vec::new();
+        for (i, r) in scenario.releases.iter().enumerate() {
+            // The part's drag area: the scenario's, the design's, or the tumbling estimate of
+            // its component (NaN for a component the design lacks, or one no release may
+            // drop, which the simulator refuses by name).
+            let cda = match design.component_index(&r.component) {
+                Some(idx) => hpr_sim::releases::release_cda_m2(&design, idx, r.cda_m2),
+                None => r.cda_m2.unwrap_or(f64::NAN),
+            };
+            let (cds, lag) = r
+                .parachute
+                .map_or((f64::NAN, f64::NAN), |c| (c.cds_m2, c.lag_s));
+            releases.push([
+                trigger_nominal(&r.trigger, format!("releases[{i}].trigger"))?,
+                cda,
+                cds,
+                lag,
+            ]);
+        }
         // The site's air as the scenario gives it (the standard's at the site if it does not).
         let (_, temperature_k, pressure_pa) = scenario
             .environment
@@ -258,6 +296,7 @@ impl Prepared {
             ],
             parachutes,
             shifts,
+            releases,
             sensor_seed: 0,
         };
         let plan = Plan {
@@ -299,7 +338,30 @@ impl Prepared {
                         column("air_brakes_max_opening".into(), "1"),
                     ]
                 }))
+                .chain(scenario.releases.iter().flat_map(|r| {
+                    let chute = r.parachute.is_some().then_some(("chute_open_time_s", "s"));
+                    PER_RELEASE
+                        .into_iter()
+                        .chain(chute)
+                        .map(|(n, u)| column(format!("release_{}_{n}", r.name), u))
+                        .collect::<Vec<_>>()
+                }))
                 .collect();
+        let landings = std::iter::once(("rocket".to_string(), LANDING_XY.0, LANDING_XY.1))
+            .chain(scenario.releases.iter().map(|r| {
+                let at = |n: &str| {
+                    metrics
+                        .iter()
+                        .position(|c| c.name == format!("release_{}_{n}", r.name))
+                        .expect("the release's landing columns")
+                };
+                (
+                    format!("release_{}", r.name),
+                    at("landing_x_m"),
+                    at("landing_y_m"),
+                )
+            }))
+            .collect();
         let mut requirements = vec![];
         for r in &scenario.requirements {
             let Some(m) = metrics.iter().position(|c| c.name == r.metric) else {
@@ -344,15 +406,19 @@ impl Prepared {
             let refused = |r: String| refused_at(point_key, &r);
             match &batch {
                 None => {
-                    // A shift the simulator refuses is named by its own key.
+                    // A shift or a release the simulator refuses is named by its own key.
                     let base = fixed.simulation(&setup).map_err(|e| {
-                        let shift = match &e {
-                            SimError::Shift(r) => r.field(),
+                        let own = match &e {
+                            SimError::Shift(r) => r.field().map(|(i, f)| ("shifts", i, f)),
+                            SimError::Release(r) => {
+                                let (i, f) = r.field();
+                                Some(("releases", i, f))
+                            }
                             _ => None,
                         };
-                        match (shift, &e) {
-                            (Some((i, field)), _) => {
-                                refused_at(&format!("shifts[{i}].{field}"), &e)
+                        match (own, &e) {
+                            (Some((table, i, field)), _) => {
+                                refused_at(&format!("{table}[{i}].{field}"), &e)
                             }
                             // A motor that does not fit is the motor's fault, not the sweep's.
                             (None, SimError::MotorDoesNotFit(_)) => refused_at("motor.name", &e),
@@ -381,6 +447,7 @@ impl Prepared {
             scenario,
             plan,
             metrics,
+            landings,
             requirements,
             design,
             motor,
@@ -556,6 +623,23 @@ impl Prepared {
         }
         if self.design.air_brakes.is_some() {
             out.extend([m.air_brakes_open_time_s, m.air_brakes_max_opening]);
+        }
+        for (k, spec) in self.scenario.releases.iter().enumerate() {
+            let r = lane.releases.get(k).copied().unwrap_or_default();
+            let landing = r.landing_position_m;
+            out.extend([
+                r.time_s,
+                r.margin_before_cal,
+                r.margin_after_cal,
+                r.landing_time_s,
+                landing.map(|p| p[0]),
+                landing.map(|p| p[1]),
+                landing.map(|p| p[0].hypot(p[1])),
+                r.landing_speed_m_s,
+            ]);
+            if spec.parachute.is_some() {
+                out.push(r.chute_open_s);
+            }
         }
         let warnings = (!lane.warnings.is_empty()).then(|| {
             let w: Vec<String> = lane.warnings.iter().map(|w| w.to_string()).collect();

@@ -4,8 +4,8 @@
 
 use hpr_sim::atmosphere::{SITE_PRESSURE_RANGE_PA, SITE_TEMPERATURE_RANGE_K};
 
-/// One input of a flight that a scenario may sweep or disperse. Parachutes and shifts are
-/// numbered in the order the scenario lists them.
+/// One input of a flight that a scenario may sweep or disperse. Parachutes, shifts and
+/// releases are numbered in the order the scenario lists them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Param {
     /// Mass of the rocket without its motor, kg (nominal: the design's, ballast included).
@@ -55,6 +55,13 @@ pub enum Param {
     ShiftDurationS(usize),
     /// The number in the shift's trigger (its time, height or delay).
     ShiftTrigger(usize),
+    /// The number in the release's trigger (its time, height or delay).
+    ReleaseTrigger(usize),
+    /// The released part's drag area falling free, m².
+    ReleaseCdaM2(usize),
+    /// The released part's own parachute: its CdS, m², and its lag, s.
+    ReleaseChuteCdsM2(usize),
+    ReleaseChuteLagS(usize),
 }
 
 /// The global inputs, in their canonical order (the order of the output's columns and of the
@@ -131,10 +138,10 @@ impl Param {
     /// Unit of the input's values ("1" for a pure number).
     pub fn unit(&self) -> &'static str {
         match self {
-            Param::ParachuteCdsM2(_) => "m²",
-            Param::ParachuteLagS(_) | Param::ShiftDurationS(_) => "s",
+            Param::ParachuteCdsM2(_) | Param::ReleaseCdaM2(_) | Param::ReleaseChuteCdsM2(_) => "m²",
+            Param::ParachuteLagS(_) | Param::ShiftDurationS(_) | Param::ReleaseChuteLagS(_) => "s",
             Param::ShiftTravelM(_) => "m",
-            Param::ParachuteTrigger(_) | Param::ShiftTrigger(_) => "",
+            Param::ParachuteTrigger(_) | Param::ShiftTrigger(_) | Param::ReleaseTrigger(_) => "",
             p => GLOBAL.iter().find(|g| g.0 == *p).map_or("", |g| g.2),
         }
     }
@@ -174,6 +181,8 @@ impl Param {
             Param::ShiftDurationS(_) => Domain::AtLeast(0.01),
             Param::ParachuteTrigger(_) => Domain::NonNegative,
             Param::ShiftTrigger(_) => Domain::NonNegative,
+            Param::ReleaseTrigger(_) | Param::ReleaseChuteLagS(_) => Domain::NonNegative,
+            Param::ReleaseCdaM2(_) | Param::ReleaseChuteCdsM2(_) => Domain::Positive,
         }
     }
 
@@ -182,8 +191,8 @@ impl Param {
         GLOBAL.iter().find(|g| g.1 == key).map(|g| g.0)
     }
 
-    /// The key of a global input (`None` for parachute and shift inputs, whose key needs
-    /// their names: see `Scenario::key`).
+    /// The key of a global input (`None` for parachute, shift and release inputs, whose key
+    /// needs their names: see `Scenario::key`).
     pub fn global_key(&self) -> Option<&'static str> {
         GLOBAL.iter().find(|g| g.0 == *self).map(|g| g.1)
     }

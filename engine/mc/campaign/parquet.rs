@@ -484,7 +484,8 @@ pub fn summary_batch(
     Ok(RecordBatch::try_new(schema, cols)?)
 }
 
-/// ellipses.parquet: per sweep point and k = 1, 2, 3, the k σ landing ellipse.
+/// ellipses.parquet: per sweep point, per body that lands (`body`: `rocket`, then
+/// `release_<name>` for each released part) and k = 1, 2, 3, the k σ landing ellipse.
 pub fn ellipses_batch(
     p: &Prepared,
     meta: &RunMeta,
@@ -492,6 +493,7 @@ pub fn ellipses_batch(
 ) -> anyhow::Result<RecordBatch> {
     let mut fields = vec![field("point", DataType::UInt32, false, None)];
     fields.extend(sweep_fields(p));
+    fields.push(field("body", DataType::Utf8, false, None));
     fields.push(field("sigma", DataType::UInt8, false, None));
     fields.push(field("count", DataType::UInt64, false, None));
     for (f, u) in [
@@ -510,25 +512,33 @@ pub fn ellipses_batch(
         fields,
         meta.pairs().into_iter().collect(),
     ));
-    let rows: Vec<(usize, u8, super::stats::Ellipse)> = stats
+    let rows: Vec<(usize, &str, u8, super::stats::Ellipse)> = stats
         .iter()
-        .filter_map(|s| s.ellipse.map(|e| (s.point, e)))
-        .flat_map(|(pt, e)| (1..=3u8).map(move |k| (pt, k, e)))
+        .flat_map(|s| {
+            std::iter::once(&s.ellipse)
+                .chain(&s.release_ellipses)
+                .zip(&p.landings)
+                .filter_map(move |(e, (body, _, _))| e.map(|e| (s.point, body.as_str(), e)))
+        })
+        .flat_map(|(pt, body, e)| (1..=3u8).map(move |k| (pt, body, k, e)))
         .collect();
     let pts: Vec<usize> = rows.iter().map(|r| r.0).collect();
     let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(
         pts.iter().map(|&x| x as u32),
     ))];
     cols.extend(sweep_columns(p, &pts));
-    cols.push(Arc::new(UInt8Array::from_iter_values(
+    cols.push(Arc::new(StringArray::from_iter_values(
         rows.iter().map(|r| r.1),
     )));
+    cols.push(Arc::new(UInt8Array::from_iter_values(
+        rows.iter().map(|r| r.2),
+    )));
     cols.push(Arc::new(UInt64Array::from_iter_values(
-        rows.iter().map(|r| r.2.count),
+        rows.iter().map(|r| r.3.count),
     )));
     let f = |g: &dyn Fn(u8, &super::stats::Ellipse) -> f64| -> ArrayRef {
         Arc::new(Float64Array::from_iter_values(
-            rows.iter().map(|r| g(r.1, &r.2)),
+            rows.iter().map(|r| g(r.2, &r.3)),
         ))
     };
     cols.push(f(&|_, e| e.center_x_m));

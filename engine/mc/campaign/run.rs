@@ -20,7 +20,7 @@
 //! every row's inputs and metrics in memory); more are refused before anything is written,
 //! with the rule and the way round it (`--shard`).
 
-use super::fly::{fly_chunk, Prepared, Status, LANDING_XY};
+use super::fly::{fly_chunk, Prepared, Status};
 pub use super::outdir::Outputs;
 use super::outdir::{Holder, OutputDir};
 use super::parquet::{self as pq, RunMeta};
@@ -366,11 +366,12 @@ fn finish(
         .iter()
         .map(|i| i.dispersion.is_some())
         .collect();
+    let landings: Vec<(usize, usize)> = p.landings.iter().map(|&(_, x, y)| (x, y)).collect();
     report.stats = stats::compute(
         table,
         p.plan.points(),
         &dispersed,
-        LANDING_XY,
+        &landings,
         &p.requirements,
     );
     // Statuses other than landed were counted from the variants file above.

@@ -307,7 +307,10 @@ pub struct PointStats {
     pub failures: u64,
     /// Per metric.
     pub summaries: Vec<Option<Summary>>,
+    /// The rocket's landing ellipse.
     pub ellipse: Option<Ellipse>,
+    /// Each released part's landing ellipse, in the releases' order.
+    pub release_ellipses: Vec<Option<Ellipse>>,
     /// Per metric (fits on the dispersed inputs).
     pub sensitivity: Vec<Option<Sensitivity>>,
     /// Per requirement, in the order given.
@@ -315,13 +318,13 @@ pub struct PointStats {
 }
 
 /// Statistics of every sweep point. `dispersed[j]` says whether input j is dispersed;
-/// `landing` gives the metric indices of the landing x and y; `requirements` the metric index
-/// of each requirement and its bounds.
+/// `landings` gives the metric indices of the landing x and y, the rocket's and then each
+/// released part's; `requirements` the metric index of each requirement and its bounds.
 pub fn compute(
     table: &Table,
     points: usize,
     dispersed: &[bool],
-    landing: (usize, usize),
+    landings: &[(usize, usize)],
     requirements: &[(usize, RequirementSpec)],
 ) -> Vec<PointStats> {
     let mut rows_of: Vec<Vec<usize>> = vec![vec![]; points];
@@ -346,7 +349,14 @@ pub fn compute(
                     .iter()
                     .map(|m| summarize(m.iter().copied()))
                     .collect(),
-                ellipse: ellipse(&metric_cols[landing.0], &metric_cols[landing.1]),
+                ellipse: landings
+                    .first()
+                    .and_then(|&(x, y)| ellipse(&metric_cols[x], &metric_cols[y])),
+                release_ellipses: landings
+                    .iter()
+                    .skip(1)
+                    .map(|&(x, y)| ellipse(&metric_cols[x], &metric_cols[y]))
+                    .collect(),
                 sensitivity: metric_cols
                     .iter()
                     .map(|m| {
@@ -486,7 +496,7 @@ mod tests {
                 vec![0.0; 5],
             ],
         };
-        let st = compute(&table, 2, &[true], (1, 2), &[]);
+        let st = compute(&table, 2, &[true], &[(1, 2)], &[]);
         assert_eq!((st[0].variants, st[0].failures), (3, 1));
         assert_eq!(st[0].summaries[0].unwrap().mean, 15.0);
         assert_eq!(st[1].summaries[0].unwrap().mean, 2.0);
@@ -511,7 +521,7 @@ mod tests {
             (0, spec(None, Some(1.5))),
             (0, spec(Some(1.0), Some(2.0))),
         ];
-        let st = compute(&table, 2, &[], (0, 0), &reqs);
+        let st = compute(&table, 2, &[], &[(0, 0)], &reqs);
         let met = |p: usize| -> Vec<(u64, u64)> {
             st[p]
                 .requirements

@@ -17,6 +17,8 @@ pub enum EventKind {
     ParachuteDeploy(usize),
     /// Mass shift `index` (in the order given) started.
     Shift(usize),
+    /// Release `index` (in the order given) fired: its part left the rocket.
+    Release(usize),
     /// The center of mass reached the ground.
     Landing,
     /// The flight reached its time limit.
@@ -34,6 +36,7 @@ impl EventKind {
             EventKind::ParachuteTrigger(i) => format!("parachute_{i}_trigger"),
             EventKind::ParachuteDeploy(i) => format!("parachute_{i}_deploy"),
             EventKind::Shift(i) => format!("shift_{i}"),
+            EventKind::Release(i) => format!("release_{i}"),
             EventKind::Landing => "landing".into(),
             EventKind::TimeLimit => "time_limit".into(),
         }

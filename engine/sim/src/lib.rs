@@ -1,6 +1,6 @@
 //! `hpr_sim`: the flight. It owns the kernels (cycloid, mass properties at an instant,
 //! atmosphere, wind, aerodynamic loads, the one rigid-body derivative), the integrators and
-//! event location, triggers, parachutes, mass shifts, and the two drivers built on the same
+//! event location, triggers, parachutes, mass shifts, released masses, and the two drivers built on the same
 //! kernels: the single-flight [`Simulation`] and the structure-of-arrays batch engine.
 
 pub mod aero_loads;
@@ -15,6 +15,7 @@ pub mod gravity;
 pub mod integrate;
 pub mod lanes;
 pub mod massprops;
+pub mod releases;
 pub mod sensor;
 pub mod shifts;
 pub mod sounding;
@@ -28,6 +29,7 @@ pub use flight::{
     AirModel, CanopyShape, Environment, Flight, Integrator, Parachute, Rail, SimError, SimOptions,
     Simulation, Warning,
 };
+pub use releases::{PartChute, PartTrigger, Release};
 pub use sensor::SensorNoise;
 pub use shifts::MassShift;
 pub use trigger::Trigger;

@@ -18,7 +18,11 @@
 //! ```
 //!
 //! which are the rates of the center of mass and of the inertia (`docs/moving-mass.md`, "What
-//! changes") expanded. Pure, allocation-free, and written once
+//! changes") expanded. A part a release has dropped is taken
+//! out whole: its mass `m`, its first moment `m c` and its inertia about O, `I_own + m J(c)`
+//! (`c` its center where it left, `I_own` its inertia about that center), are subtracted
+//! from the rocket's: the two-body formula about O, exact; it changes none of the rates.
+//! Pure, allocation-free, and written once
 //! over [`Real`] ([`mass_state_lanes`]): the single flight evaluates it on one lane
 //! (`FlightModel::instant_computed_into`), the batch engine on four lanes at once for the
 //! lanes whose mass is changing (the motor burning or a part moving), lane by lane the same
@@ -41,6 +45,28 @@ pub struct MovingPart {
     pub c0_b: Vector3<f64>,
 }
 
+/// A part that a release drops, as the flight sees it (body axes about O).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReleasedMass {
+    pub mass_kg: f64,
+    /// Its center where the design puts it, body axes, m.
+    pub c0_b: Vector3<f64>,
+    /// Its inertia about its own center, body axes, kg·m².
+    pub inertia_cg_b: Matrix3<f64>,
+    /// Its index among [`MassModel::parts`] if shifts move it too (it leaves from where
+    /// they left it).
+    pub moving_part: Option<usize>,
+}
+
+impl ReleasedMass {
+    /// Its center, body axes, m, once its shifts have moved it `delta_m` aft.
+    #[inline]
+    pub fn center_b(&self, delta_m: f64) -> Vector3<f64> {
+        // Aft is −b3.
+        self.c0_b + Vector3::new(0.0, 0.0, -delta_m)
+    }
+}
+
 /// The split of the rocket's mass, built once before the flight.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MassModel {
@@ -58,6 +84,9 @@ pub struct MassModel {
     pub grains: Option<(Grains, usize)>,
     /// The parts that shifts move.
     pub parts: Vec<MovingPart>,
+    /// The parts that releases drop, in the releases' order (each counted in the fixed mass
+    /// above until it leaves).
+    pub released: Vec<ReleasedMass>,
 }
 
 /// The propellant's mass and its first two rates at one instant.
@@ -71,12 +100,15 @@ pub struct PropellantState {
 impl MassModel {
     /// Build from the rocket without its motor (`dry`), the motor's casing and its full
     /// propellant load, all in the station frame; `parts` are the moving parts' own
-    /// properties where the design puts them.
+    /// properties where the design puts them, `released` the parts releases drop (their own
+    /// properties where the design puts them, and their index among `parts` if shifts move
+    /// them too).
     pub fn new(
         dry: &MassProps,
         casing: &MassProps,
         propellant_full: &MassProps,
         parts: &[MassProps],
+        released: &[(MassProps, Option<usize>)],
     ) -> MassModel {
         let fixed = dry.combine(casing);
         let prop_o = propellant_full.inertia_about_tip();
@@ -99,7 +131,52 @@ impl MassModel {
                     c0_b: frames::station_to_body(&p.cg_m),
                 })
                 .collect(),
+            released: released
+                .iter()
+                .map(|(p, moving_part)| ReleasedMass {
+                    mass_kg: p.mass_kg,
+                    c0_b: frames::station_to_body(&p.cg_m),
+                    inertia_cg_b: frames::tensor_station_to_body(&p.inertia_cg),
+                    moving_part: *moving_part,
+                })
+                .collect(),
         }
+    }
+}
+
+/// What the released parts take out of the rocket at one instant, on lanes: their mass,
+/// first moment about O and inertia about O (body axes).
+#[derive(Debug, Clone, Copy)]
+pub struct Removed<S> {
+    pub mass_kg: S,
+    pub first_moment_b: V3<S>,
+    pub inertia_o_b: M3<S>,
+}
+
+impl Removed<f64> {
+    /// Nothing taken out.
+    pub const NONE: Removed<f64> = Removed {
+        mass_kg: 0.0,
+        first_moment_b: V3 {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        },
+        inertia_o_b: M3 { m: [[0.0; 3]; 3] },
+    };
+
+    /// `part` taken out as well, its center at `c_b` (body axes, m): the part's mass, `m c`
+    /// and `I_own + m J(c)` added to what is taken out (in the releases' order, so that both
+    /// drivers add the same numbers in the same order).
+    #[inline]
+    pub fn add(&mut self, part: &ReleasedMass, c_b: &Vector3<f64>) {
+        let m = part.mass_kg;
+        let c = V3::from_na(c_b);
+        self.mass_kg += m;
+        self.first_moment_b = self.first_moment_b + c.scale(m);
+        self.inertia_o_b = self
+            .inertia_o_b
+            .add(&M3::from_na(&part.inertia_cg_b).add(&M3::point_inertia(&c).scale(m)));
     }
 }
 
@@ -118,6 +195,9 @@ pub struct MassModelLanes<S> {
     pub part_c0_b: [V3<S>; MAX_MOVING_PARTS],
     /// How many of the parts any lane has.
     pub parts: usize,
+    /// Whether any lane's flight releases parts (read beside `parts`: a flight without
+    /// releases asks nothing more of them).
+    pub releases: bool,
 }
 
 impl MassModelLanes<f64> {
@@ -139,6 +219,7 @@ impl MassModelLanes<f64> {
             part_mass_kg,
             part_c0_b,
             parts: model.parts.len().min(MAX_MOVING_PARTS),
+            releases: !model.released.is_empty(),
         }
     }
 }
@@ -156,6 +237,7 @@ impl MassModelLanes<F64x4> {
             part_mass_kg: std::array::from_fn(|k| F64x4::from_fn(|i| m[i].part_mass_kg[k])),
             part_c0_b: std::array::from_fn(|k| pack_v3(m.map(|m| &m.part_c0_b[k]))),
             parts: m.iter().map(|m| m.parts).max().unwrap_or(0),
+            releases: m.iter().any(|m| m.releases),
         }
     }
 }
@@ -180,6 +262,9 @@ pub struct MassInputs<S: Real> {
     /// lane's does.
     pub grains: Option<(S::Mask, [S; 2], [S; 2])>,
     pub motions: [Motion<S>; MAX_MOVING_PARTS],
+    /// What the released parts take out, on every lane; `None` when no lane has lost a part
+    /// (a lane that has not, beside one that has, takes out zeros: the same numbers).
+    pub removed: Option<Removed<S>>,
 }
 
 impl<S: Real> MassInputs<S> {
@@ -198,6 +283,32 @@ impl<S: Real> MassInputs<S> {
             prop_accel_kg_s2: zero,
             grains: None,
             motions: [still; MAX_MOVING_PARTS],
+            removed: None,
+        }
+    }
+
+    /// Set lane `l`'s released parts: what they take out (`None`: no part has left that lane).
+    #[inline(always)]
+    pub fn set_removed(&mut self, l: usize, removed: Option<&Removed<f64>>) {
+        let r = match (removed, &self.removed) {
+            (Some(r), _) => r,
+            (None, Some(_)) => &Removed::NONE,
+            (None, None) => return,
+        };
+        let zero = S::splat(0.0);
+        let out = self.removed.get_or_insert(Removed {
+            mass_kg: zero,
+            first_moment_b: V3::new(zero, zero, zero),
+            inertia_o_b: M3::diag(zero, zero, zero),
+        });
+        *out.mass_kg.lane_mut(l) = r.mass_kg;
+        *out.first_moment_b.x.lane_mut(l) = r.first_moment_b.x;
+        *out.first_moment_b.y.lane_mut(l) = r.first_moment_b.y;
+        *out.first_moment_b.z.lane_mut(l) = r.first_moment_b.z;
+        for (row, src) in out.inertia_o_b.m.iter_mut().zip(&r.inertia_o_b.m) {
+            for (e, v) in row.iter_mut().zip(src) {
+                *e.lane_mut(l) = *v;
+            }
         }
     }
 
@@ -241,7 +352,7 @@ impl<S: Real> MassInputs<S> {
 #[inline(always)]
 pub fn mass_state_lanes<S: Real>(model: &MassModelLanes<S>, x: &MassInputs<S>) -> MassLanes<S> {
     let zero = S::splat(0.0);
-    let m = model.fixed_mass_kg + x.prop_mass_kg;
+    let mut m = model.fixed_mass_kg + x.prop_mass_kg;
     let cg = &model.propellant_cg_b;
     let mut s = model.fixed_first_moment_b + cg.scale(x.prop_mass_kg);
     let mut s_rate = cg.scale(x.prop_rate_kg_s);
@@ -255,6 +366,13 @@ pub fn mass_state_lanes<S: Real>(model: &MassModelLanes<S>, x: &MassInputs<S>) -
         i_o = M3::select(has, &with, &i_o);
         let with = i_rate.add(&M3::diag(dt, dt, da).scale(x.prop_rate_kg_s));
         i_rate = M3::select(has, &with, &i_rate);
+    }
+    // The released parts, taken out whole (where their shifts left them: the moving parts'
+    // terms below put them there, and these take them out).
+    if let Some(gone) = &x.removed {
+        m = m - gone.mass_kg;
+        s = s - gone.first_moment_b;
+        i_o = i_o.sub(&gone.inertia_o_b);
     }
     let mut h = V3::zero();
     let mut h_rate = V3::zero();

@@ -32,6 +32,7 @@ fn part(
         mass_spec: MassSpec::Mass(0.1),
         overrides: Overrides::default(),
         roughness_m: None,
+        released_cda_m2: None,
     }
 }
 

@@ -145,6 +145,9 @@ pub struct Component {
     /// The skin's own surface roughness for the drag estimate, m (nose cones, body tubes,
     /// transitions and fin sets only); `None`: the estimate's.
     pub roughness_m: Option<f64>,
+    /// An internal part's drag area once released in flight, m², if the design gives it
+    /// (`released_cda_m2`); `None`: a flight estimates it.
+    pub released_cda_m2: Option<f64>,
 }
 
 impl Component {

@@ -392,6 +392,10 @@ component_struct!(RawRailButton {
 });
 
 component_struct!(RawInnerTube {
+    /// Its drag area once released in flight, m² (a flight's release of it, falling free or
+    /// before its own canopy opens); absent: the flight's tumbling estimate.
+    #[serde(default)]
+    released_cda_m2: Option<f64>,
     length_m: f64,
     outer_diameter_m: f64,
     wall_thickness_m: f64,
@@ -411,6 +415,10 @@ component_struct!(RawInnerTube {
 });
 
 component_struct!(RawCenteringRing {
+    /// Its drag area once released in flight, m² (a flight's release of it, falling free or
+    /// before its own canopy opens); absent: the flight's tumbling estimate.
+    #[serde(default)]
+    released_cda_m2: Option<f64>,
     length_m: f64,
     outer_diameter_m: f64,
     inner_diameter_m: f64,
@@ -419,6 +427,10 @@ component_struct!(RawCenteringRing {
 });
 
 component_struct!(RawBulkhead {
+    /// Its drag area once released in flight, m² (a flight's release of it, falling free or
+    /// before its own canopy opens); absent: the flight's tumbling estimate.
+    #[serde(default)]
+    released_cda_m2: Option<f64>,
     length_m: f64,
     outer_diameter_m: f64,
     #[serde(default)]
@@ -426,6 +438,10 @@ component_struct!(RawBulkhead {
 });
 
 component_struct!(RawMassComponent {
+    /// Its drag area once released in flight, m² (a flight's release of it, falling free or
+    /// before its own canopy opens); absent: the flight's tumbling estimate.
+    #[serde(default)]
+    released_cda_m2: Option<f64>,
     length_m: f64,
     radius_m: f64,
     #[serde(default)]
@@ -440,6 +456,10 @@ component_struct!(RawMassComponent {
 });
 
 component_struct!(RawParachute {
+    /// Its drag area once released in flight, m² (a flight's release of it, falling free or
+    /// before its own canopy opens); absent: the flight's tumbling estimate.
+    #[serde(default)]
+    released_cda_m2: Option<f64>,
     length_m: f64,
     radius_m: f64,
     canopy_diameter_m: f64,
@@ -458,6 +478,10 @@ component_struct!(RawParachute {
 });
 
 component_struct!(RawShockCord {
+    /// Its drag area once released in flight, m² (a flight's release of it, falling free or
+    /// before its own canopy opens); absent: the flight's tumbling estimate.
+    #[serde(default)]
+    released_cda_m2: Option<f64>,
     length_m: f64,
     radius_m: f64,
     #[serde(default)]
@@ -547,6 +571,20 @@ impl RawComponent {
             RawComponent::BodyTube(c) => c.roughness_m,
             RawComponent::Transition(c) => c.roughness_m,
             RawComponent::FinSet(c) => c.roughness_m,
+            _ => None,
+        }
+    }
+
+    /// The drag area an internal part flies with once released, m², if the design gives it
+    /// (`None` for body and external components, which have no such field).
+    pub fn released_cda_m2(&self) -> Option<f64> {
+        match self {
+            RawComponent::InnerTube(c) => c.released_cda_m2,
+            RawComponent::CenteringRing(c) => c.released_cda_m2,
+            RawComponent::Bulkhead(c) => c.released_cda_m2,
+            RawComponent::MassComponent(c) => c.released_cda_m2,
+            RawComponent::Parachute(c) => c.released_cda_m2,
+            RawComponent::ShockCord(c) => c.released_cda_m2,
             _ => None,
         }
     }

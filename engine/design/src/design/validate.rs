@@ -557,6 +557,10 @@ impl Builder<'_> {
             Some(r) => Some(self.non_negative(at, "roughness_m", r)?),
             None => None,
         };
+        let released_cda_m2 = match raw.released_cda_m2() {
+            Some(a) => Some(self.positive(at, "released_cda_m2", a)?),
+            None => None,
+        };
         let idx = self.components.len();
         self.components.push(Component {
             id: common.id.to_owned(),
@@ -571,6 +575,7 @@ impl Builder<'_> {
             mass_spec,
             overrides,
             roughness_m,
+            released_cda_m2,
         });
         if let Some(p) = parent {
             self.components[p].children.push(idx);

@@ -8,7 +8,9 @@ use hpr_design::design::model::Design;
 use hpr_design::motor::{Motor, MotorOptions};
 use hpr_sim::batch::Columns;
 use hpr_sim::wind::Wind;
-use hpr_sim::{Environment, MassShift, Parachute, Rail, SimError, SimOptions, Simulation};
+use hpr_sim::{
+    Environment, MassShift, Parachute, PartChute, Rail, Release, SimError, SimOptions, Simulation,
+};
 
 /// Every flight's values, nominal or a variant's.
 #[derive(Debug, Clone, PartialEq)]
@@ -39,6 +41,9 @@ pub(super) struct Setup {
     pub(super) parachutes: Vec<[f64; 3]>,
     /// Per shift: travel, duration, trigger number (NaN if none).
     pub(super) shifts: Vec<[f64; 3]>,
+    /// Per release: trigger number (NaN if none), the part's drag area, its parachute's CdS
+    /// and lag (NaN without a parachute).
+    pub(super) releases: Vec<[f64; 4]>,
     /// The seed of the parachutes' barometer noise (the variant's own; 0 for the nominal).
     pub(super) sensor_seed: u64,
 }
@@ -72,6 +77,10 @@ impl Setup {
             Param::ShiftTravelM(i) => self.shifts[i][0],
             Param::ShiftDurationS(i) => self.shifts[i][1],
             Param::ShiftTrigger(i) => self.shifts[i][2],
+            Param::ReleaseTrigger(i) => self.releases[i][0],
+            Param::ReleaseCdaM2(i) => self.releases[i][1],
+            Param::ReleaseChuteCdsM2(i) => self.releases[i][2],
+            Param::ReleaseChuteLagS(i) => self.releases[i][3],
         }
     }
 
@@ -103,6 +112,10 @@ impl Setup {
             Param::ShiftTravelM(i) => &mut self.shifts[i][0],
             Param::ShiftDurationS(i) => &mut self.shifts[i][1],
             Param::ShiftTrigger(i) => &mut self.shifts[i][2],
+            Param::ReleaseTrigger(i) => &mut self.releases[i][0],
+            Param::ReleaseCdaM2(i) => &mut self.releases[i][1],
+            Param::ReleaseChuteCdsM2(i) => &mut self.releases[i][2],
+            Param::ReleaseChuteLagS(i) => &mut self.releases[i][3],
         };
         *slot = v;
     }
@@ -224,6 +237,27 @@ impl Fixed<'_> {
                     .collect();
                 c.shifts(shifts)?;
             }
+            if !self.scenario.releases.is_empty() {
+                let releases = self
+                    .scenario
+                    .releases
+                    .iter()
+                    .zip(&s.releases)
+                    .map(|(r, v)| Release {
+                        trigger: with_trigger_value(&r.trigger, v[0]),
+                        component: r.component.clone(),
+                        // The scenario's, the design's or the tumbling estimate (the nominal
+                        // is that; NaN for a component the simulator then refuses by name).
+                        cda_m2: v[1].is_finite().then_some(v[1]),
+                        parachute: r.parachute.map(|c| PartChute {
+                            cds_m2: v[2],
+                            lag_s: v[3],
+                            ..c
+                        }),
+                    })
+                    .collect();
+                c.releases(releases)?;
+            }
             c.options(SimOptions {
                 integrator: self.scenario.integrator,
                 max_time_s: self.scenario.max_time_s,
@@ -336,6 +370,7 @@ impl Fixed<'_> {
                 .collect::<Vec<_>>()
         };
         let (chutes, shifts) = (self.scenario.parachutes.len(), self.scenario.shifts.len());
+        let releases = self.scenario.releases.len();
         let noisy = self.scenario.has_noise();
         Columns {
             sensor_seed: if noisy {
@@ -372,6 +407,10 @@ impl Fixed<'_> {
             shift_travel_m: per(shifts, ShiftTravelM, |s, k| s.shifts[k][0]),
             shift_duration_s: per(shifts, ShiftDurationS, |s, k| s.shifts[k][1]),
             shift_trigger: per(shifts, ShiftTrigger, |s, k| s.shifts[k][2]),
+            release_trigger: per(releases, ReleaseTrigger, |s, k| s.releases[k][0]),
+            release_cda_m2: per(releases, ReleaseCdaM2, |s, k| s.releases[k][1]),
+            release_chute_cds_m2: per(releases, ReleaseChuteCdsM2, |s, k| s.releases[k][2]),
+            release_chute_lag_s: per(releases, ReleaseChuteLagS, |s, k| s.releases[k][3]),
         }
     }
 }

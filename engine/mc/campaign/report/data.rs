@@ -36,8 +36,18 @@ pub struct Requirement {
 }
 
 /// A row of ellipses.parquet.
+/// Whose landings an ellipse is of: the rocket's, or released part `k`'s (in the file's
+/// order of bodies after the rocket).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Body {
+    Rocket,
+    Released(usize),
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EllipseRow {
+    /// Whose landings: `rocket`, or `release_<name>` (a released part's).
+    pub body: Body,
     pub point: usize,
     pub sigma: u8,
     pub count: u64,
@@ -139,6 +149,8 @@ pub struct Run {
     pub metric_values: Vec<Vec<f64>>,
     pub summary: Vec<SummaryRow>,
     pub ellipses: Vec<EllipseRow>,
+    /// The released parts' body names in ellipses.parquet (`release_<name>`), in order.
+    pub released: Vec<String>,
     pub sensitivity: Vec<SensitivityRow>,
     pub requirements: Vec<Requirement>,
     pub series: Vec<Series>,
@@ -375,6 +387,11 @@ impl Run {
         }
         let p = &files.ellipses;
         for b in batches(p)? {
+            // Files without a `body` column hold the rocket's ellipses only.
+            let bodies = match b.column_by_name("body") {
+                Some(_) => strings(&b, "body", p)?,
+                None => vec![None; b.num_rows()],
+            };
             let pt = u32s(&b, "point", p)?;
             let sigma: &UInt8Array = col(&b, "sigma", p)?;
             let count = u64s(&b, "count", p)?;
@@ -387,7 +404,21 @@ impl Run {
                 f("major_axis_deg")?,
             );
             for r in 0..b.num_rows() {
+                let body = match bodies[r].as_deref() {
+                    None | Some("rocket") => Body::Rocket,
+                    Some(name) => {
+                        let k = match self.released.iter().position(|n| n == name) {
+                            Some(k) => k,
+                            None => {
+                                self.released.push(name.to_string());
+                                self.released.len() - 1
+                            }
+                        };
+                        Body::Released(k)
+                    }
+                };
                 self.ellipses.push(EllipseRow {
+                    body,
                     point: pt[r],
                     sigma: sigma.value(r),
                     count: count[r],

@@ -175,7 +175,7 @@ pub fn shapes(run: &Run, labels: &[String]) -> Vec<PointShapes> {
             let ellipses = run
                 .ellipses
                 .iter()
-                .filter(|e| e.point == pt)
+                .filter(|e| e.point == pt && e.body == super::data::Body::Rocket)
                 .map(|e| {
                     (
                         e.sigma,

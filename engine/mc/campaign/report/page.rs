@@ -4,7 +4,7 @@
 //! (landings, apogee, the flight's figures, margins and height against time, sensitivity,
 //! convergence) and the flights to look at, each with the command that flies it again.
 
-use super::data::{Run, Status};
+use super::data::{Body, Run, Status};
 use super::figures::series_bands;
 use super::figures::{self, short, unit_text, MapMarks, Row};
 use super::numbers::{binomial_upper, utc};
@@ -593,7 +593,11 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
                 ys.push(y);
             }
         }
-        let ellipses: Vec<_> = run.ellipses.iter().filter(|e| e.point == pt).collect();
+        let ellipses: Vec<_> = run
+            .ellipses
+            .iter()
+            .filter(|e| e.point == pt && e.body == Body::Rocket)
+            .collect();
         let recovery = run
             .requirement(pt, "landing_distance_m")
             .and_then(|r| r.max);
@@ -622,10 +626,31 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
                     pct(q.fraction)
                 )
             });
+            // The released parts land on their own: their 1σ ellipses, said in words.
+            let parts: String = run
+                .released
+                .iter()
+                .enumerate()
+                .filter_map(|(k, name)| {
+                    let e = run.ellipses.iter().find(|e| {
+                        e.point == pt && e.sigma == 1 && e.body == Body::Released(k)
+                    })?;
+                    Some(format!(
+                        " The released part <code>{}</code> lands on its own: its 1σ ellipse is centred {} m east, {} m north, semi-axes {} × {} m ({} landings; <code>ellipses.parquet</code>, body <code>{}</code>).",
+                        esc(name.strip_prefix("release_").unwrap_or(name)),
+                        short(e.center_x_m),
+                        short(e.center_y_m),
+                        short(e.semi_major_m),
+                        short(e.semi_minor_m),
+                        e.count,
+                        esc(name)
+                    ))
+                })
+                .collect();
             s.push_str(&figure(
                 Some(svg),
                 &format!(
-                    "Shown: {cloud}. Dashed grey circles about the mean landing point ({} m east, {} m north) hold 50, 90 and 99 % of the landings: R50 {} m, R90 {} m, R99 {} m.{ell}{rec}",
+                    "Shown: {cloud}, the rocket's. Dashed grey circles about the mean landing point ({} m east, {} m north) hold 50, 90 and 99 % of the landings: R50 {} m, R90 {} m, R99 {} m.{ell}{rec}{parts}",
                     short(mean.0),
                     short(mean.1),
                     short(r[0]),

@@ -21,7 +21,7 @@ use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
 use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
 use hpr_sim::turbulence::{MAX_TURBULENCE_INTENSITY, MAX_TURBULENT_FLIGHT_S};
 use hpr_sim::wind::{Wind, WindError, WindRow};
-use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
+use hpr_sim::{CanopyShape, Integrator, PartChute, PartTrigger, SensorNoise, Trigger};
 use raw::RawScenario;
 use rules::{
     canopy_shape, check_name, check_param, design_parachute, finite, inputs, integrator, noise,
@@ -221,6 +221,17 @@ pub struct ShiftSpec {
     pub trigger: Trigger,
 }
 
+/// `[[releases]]`: a part that leaves the rocket, what releases it, and how it falls (its
+/// own drag area, the tumbling estimate's if `None`, or its own parachute).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReleaseSpec {
+    pub name: String,
+    pub component: String,
+    pub trigger: Trigger,
+    pub cda_m2: Option<f64>,
+    pub parachute: Option<PartChute>,
+}
+
 /// An input the scenario sweeps, disperses, or both.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InputSpec {
@@ -283,11 +294,13 @@ pub struct Scenario {
     pub rail: RailSpec,
     pub parachutes: Vec<ParachuteSpec>,
     pub shifts: Vec<ShiftSpec>,
+    pub releases: Vec<ReleaseSpec>,
     pub integrator: Integrator,
     pub max_time_s: f64,
     /// Swept or dispersed inputs, in canonical order ([`Param`]'s: the globals, then every
     /// parachute's CdS, every parachute's lag, every parachute's trigger number, then every
-    /// shift's travel, duration and trigger number, parachutes and shifts in file order).
+    /// shift's travel, duration and trigger number, then every release's trigger number,
+    /// drag area, parachute CdS and lag, parachutes, shifts and releases in file order).
     pub inputs: Vec<InputSpec>,
     /// Variants per chunk (the unit of work, of resumption and of the part files).
     pub chunk_size: usize,
@@ -818,6 +831,67 @@ impl Scenario {
                 trigger: s.trigger.0,
             });
         }
+        let mut releases = Vec::new();
+        for (i, r) in raw.releases.iter().enumerate() {
+            let key = |f: &str| format!("releases[{i}].{f}");
+            let name = r.name.clone().unwrap_or_else(|| r.component.clone());
+            check_name(&bad, &key("name"), &name)?;
+            if releases.iter().any(|q: &ReleaseSpec| q.name == name) {
+                return Err(bad(&key("name"), format!("two releases are named \"{name}\" (a release is named after its component unless it has a name); give each its own name")));
+            }
+            let cda_m2 = match r.cda_m2 {
+                Some(v) => Some(check_param(
+                    &bad,
+                    &key("cda_m2"),
+                    Param::ReleaseCdaM2(i),
+                    v,
+                )?),
+                None => None,
+            };
+            let parachute = match &r.parachute {
+                None => None,
+                Some(c) => {
+                    let k = |f: &str| key(&format!("parachute.{f}"));
+                    let trigger = c.trigger.as_ref().map_or(PartTrigger::Release, |t| t.0);
+                    if let PartTrigger::HeightDescending { height_m } = trigger {
+                        if !(height_m.is_finite() && height_m > 0.0) {
+                            return Err(bad(&k("trigger.height_m"), format!("must be above the ground and finite, or the canopy never opens (got {height_m})")));
+                        }
+                    }
+                    let shape = CanopyShape {
+                        radius_m: c.radius_m,
+                        height_m: c.height_m,
+                        porosity: c.porosity.unwrap_or(CanopyShape::default().porosity),
+                    };
+                    shape
+                        .check()
+                        .map_err(|(field, rule)| bad(&k(field), rule.to_string()))?;
+                    Some(PartChute {
+                        cds_m2: check_param(
+                            &bad,
+                            &k("cds_m2"),
+                            Param::ReleaseChuteCdsM2(i),
+                            c.cds_m2,
+                        )?,
+                        trigger,
+                        lag_s: check_param(
+                            &bad,
+                            &k("lag_s"),
+                            Param::ReleaseChuteLagS(i),
+                            c.lag_s.unwrap_or(0.0),
+                        )?,
+                        canopy: shape,
+                    })
+                }
+            };
+            releases.push(ReleaseSpec {
+                name,
+                component: r.component.clone(),
+                trigger: r.trigger.0,
+                cda_m2,
+                parachute,
+            });
+        }
 
         let (integrator, max_time_s) = integrator(&bad, raw.integrator.take().unwrap_or_default())?;
         let run = raw.run.take().unwrap_or_default();
@@ -893,6 +967,7 @@ impl Scenario {
             rail,
             parachutes,
             shifts,
+            releases,
             integrator,
             max_time_s,
             inputs: vec![],
@@ -1035,6 +1110,18 @@ impl Scenario {
                 self.shifts[i].name,
                 trigger_field(&self.shifts[i].trigger).unwrap_or("trigger")
             ),
+            Param::ReleaseTrigger(i) => format!(
+                "releases.{}.{}",
+                self.releases[i].name,
+                trigger_field(&self.releases[i].trigger).unwrap_or("trigger")
+            ),
+            Param::ReleaseCdaM2(i) => format!("releases.{}.cda_m2", self.releases[i].name),
+            Param::ReleaseChuteCdsM2(i) => {
+                format!("releases.{}.parachute_cds_m2", self.releases[i].name)
+            }
+            Param::ReleaseChuteLagS(i) => {
+                format!("releases.{}.parachute_lag_s", self.releases[i].name)
+            }
             _ => unreachable!("global inputs have a global key"),
         }
     }
@@ -1046,6 +1133,8 @@ impl Scenario {
             format!("parachute_{}", rest.replace('.', "_"))
         } else if let Some(rest) = key.strip_prefix("shifts.") {
             format!("shift_{}", rest.replace('.', "_"))
+        } else if let Some(rest) = key.strip_prefix("releases.") {
+            format!("release_{}", rest.replace('.', "_"))
         } else {
             key
         }
@@ -1059,6 +1148,9 @@ impl Scenario {
             }
             Param::ShiftTrigger(i) => {
                 trigger_unit(trigger_field(&self.shifts[i].trigger).unwrap_or(""))
+            }
+            Param::ReleaseTrigger(i) => {
+                trigger_unit(trigger_field(&self.releases[i].trigger).unwrap_or(""))
             }
             _ => p.unit(),
         }

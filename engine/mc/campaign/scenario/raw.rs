@@ -2,7 +2,7 @@
 //! [`super`] reads them, turning them into the validated [`super::Scenario`].
 
 use hpr_design::DeployTrigger;
-use hpr_sim::Trigger;
+use hpr_sim::{PartTrigger, Trigger};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -23,6 +23,8 @@ pub(super) struct RawScenario {
     pub(super) parachutes: Vec<RawParachute>,
     #[serde(default)]
     pub(super) shifts: Vec<RawShift>,
+    #[serde(default)]
+    pub(super) releases: Vec<RawRelease>,
     pub(super) integrator: Option<RawIntegrator>,
     pub(super) sweep: Option<RawParams<Vec<f64>>>,
     pub(super) dispersions: Option<RawParams<RawDist>>,
@@ -189,6 +191,59 @@ pub(super) struct RawShift {
     pub(super) trigger: RawTrigger,
 }
 
+/// `[[releases]]`: a part that leaves the rocket, and how it falls.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawRelease {
+    /// Default: the component's id.
+    pub(super) name: Option<String>,
+    pub(super) component: String,
+    pub(super) trigger: RawTrigger,
+    /// The part's drag area falling free, m² (default: the tumbling estimate).
+    pub(super) cda_m2: Option<f64>,
+    pub(super) parachute: Option<RawReleaseChute>,
+}
+
+/// A released part's own parachute: `{ cds_m2 = 0.3, trigger = "release", lag_s = 2.0 }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawReleaseChute {
+    pub(super) cds_m2: f64,
+    /// `"release"` (the default), `"apogee"` (the part's own) or `{ height_m = 150.0 }`.
+    pub(super) trigger: Option<RawPartTrigger>,
+    pub(super) lag_s: Option<f64>,
+    pub(super) radius_m: Option<f64>,
+    pub(super) height_m: Option<f64>,
+    pub(super) porosity: Option<f64>,
+}
+
+/// What opens a released part's parachute, as the file writes it.
+#[derive(Deserialize)]
+#[serde(try_from = "toml::Value")]
+pub(super) struct RawPartTrigger(pub(super) PartTrigger);
+
+impl TryFrom<toml::Value> for RawPartTrigger {
+    type Error = String;
+    fn try_from(v: toml::Value) -> Result<Self, String> {
+        const FORMS: &str = "a released part's parachute opens at \"release\", at the part's own \"apogee\", or at { height_m = ... } on its way down";
+        match v {
+            toml::Value::String(s) if s == "release" => Ok(RawPartTrigger(PartTrigger::Release)),
+            toml::Value::String(s) if s == "apogee" => Ok(RawPartTrigger(PartTrigger::Apogee)),
+            toml::Value::Table(t) if t.len() == 1 && t.contains_key("height_m") => {
+                let height_m = match &t["height_m"] {
+                    toml::Value::Float(x) => *x,
+                    toml::Value::Integer(i) => *i as f64,
+                    other => {
+                        return Err(format!("trigger height_m: must be a number (got {other})"))
+                    }
+                };
+                Ok(RawPartTrigger(PartTrigger::HeightDescending { height_m }))
+            }
+            other => Err(format!("{FORMS} (got {other})")),
+        }
+    }
+}
+
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawIntegrator {
@@ -272,6 +327,8 @@ pub(super) struct RawParams<T> {
     pub(super) parachutes: BTreeMap<String, RawParachuteParams<T>>,
     #[serde(default = "BTreeMap::new")]
     pub(super) shifts: BTreeMap<String, RawShiftParams<T>>,
+    #[serde(default = "BTreeMap::new")]
+    pub(super) releases: BTreeMap<String, RawReleaseParams<T>>,
 }
 
 impl<T> RawParams<T> {
@@ -320,6 +377,17 @@ pub(super) struct RawShiftParams<T> {
     pub(super) time_s: Option<T>,
     pub(super) height_m: Option<T>,
     pub(super) delay_s: Option<T>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawReleaseParams<T> {
+    pub(super) time_s: Option<T>,
+    pub(super) height_m: Option<T>,
+    pub(super) delay_s: Option<T>,
+    pub(super) cda_m2: Option<T>,
+    pub(super) parachute_cds_m2: Option<T>,
+    pub(super) parachute_lag_s: Option<T>,
 }
 
 /// A distribution as the file writes it (see `docs/scenarios.md`).

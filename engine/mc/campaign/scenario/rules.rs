@@ -3,7 +3,7 @@
 
 use super::raw::{
     RawAirRow, RawDist, RawEnvironment, RawIntegrator, RawParachute, RawParachuteParams, RawParams,
-    RawRequirement, RawShiftParams, RawWindRow,
+    RawReleaseParams, RawRequirement, RawShiftParams, RawWindRow,
 };
 use super::{trigger_field, InputSpec, RequirementSpec, Scenario, ScenarioError};
 use crate::campaign::params::{Param, GLOBAL};
@@ -533,7 +533,7 @@ pub(super) fn integrator(bad: &Bad, r: RawIntegrator) -> Result<(Integrator, f64
     }
 }
 
-/// The entries of one parachute's or shift's table under `[sweep]` or `[dispersions]`:
+/// The entries of one parachute's, shift's or release's table under `[sweep]` or `[dispersions]`:
 /// (field, value), with the trigger fields separate.
 struct PartEntries<T> {
     fixed: Vec<(&'static str, Param, Option<T>)>,
@@ -568,6 +568,29 @@ fn shift_entries<T>(i: usize, s: RawShiftParams<T>) -> PartEntries<T> {
     }
 }
 
+fn release_entries<T>(i: usize, r: RawReleaseParams<T>) -> PartEntries<T> {
+    PartEntries {
+        fixed: vec![
+            ("cda_m2", Param::ReleaseCdaM2(i), r.cda_m2),
+            (
+                "parachute_cds_m2",
+                Param::ReleaseChuteCdsM2(i),
+                r.parachute_cds_m2,
+            ),
+            (
+                "parachute_lag_s",
+                Param::ReleaseChuteLagS(i),
+                r.parachute_lag_s,
+            ),
+        ],
+        trigger: vec![
+            ("time_s", r.time_s),
+            ("height_m", r.height_m),
+            ("delay_s", r.delay_s),
+        ],
+    }
+}
+
 /// Collect the swept and dispersed inputs, keyed by input, checking names and triggers.
 fn collect<T>(
     scenario: &Scenario,
@@ -582,7 +605,7 @@ fn collect<T>(
             out.insert(*p, v);
         }
     }
-    let parts: [PartNames; 2] = [
+    let parts: [PartNames; 3] = [
         (
             "parachutes",
             "parachute",
@@ -601,8 +624,17 @@ fn collect<T>(
                 .map(|s| (s.name.clone(), s.trigger))
                 .collect(),
         ),
+        (
+            "releases",
+            "release",
+            scenario
+                .releases
+                .iter()
+                .map(|r| (r.name.clone(), r.trigger))
+                .collect(),
+        ),
     ];
-    let mut tables: [Vec<(String, PartEntries<T>)>; 2] = [vec![], vec![]];
+    let mut tables: [Vec<(String, PartEntries<T>)>; 3] = [vec![], vec![], vec![]];
     for (name, p) in std::mem::take(&mut raw.parachutes) {
         let i = index_of(bad, section, &parts[0], &name)?;
         tables[0].push((name, parachute_entries(i, p)));
@@ -611,6 +643,10 @@ fn collect<T>(
         let i = index_of(bad, section, &parts[1], &name)?;
         tables[1].push((name, shift_entries(i, s)));
     }
+    for (name, r) in std::mem::take(&mut raw.releases) {
+        let i = index_of(bad, section, &parts[2], &name)?;
+        tables[2].push((name, release_entries(i, r)));
+    }
     for (k, entries) in tables.into_iter().enumerate() {
         let (plural, singular, names) = &parts[k];
         for (name, e) in entries {
@@ -618,10 +654,18 @@ fn collect<T>(
                 .iter()
                 .position(|n| n.0 == name)
                 .expect("checked by index_of");
-            for (_, p, v) in e.fixed {
-                if let Some(v) = v {
-                    out.insert(p, v);
+            for (field, p, v) in e.fixed {
+                let Some(v) = v else { continue };
+                // A released part's parachute numbers need the parachute.
+                if let Param::ReleaseChuteCdsM2(r) | Param::ReleaseChuteLagS(r) = p {
+                    if scenario.releases[r].parachute.is_none() {
+                        return Err(bad(
+                            &format!("{section}.{plural}.{name}.{field}"),
+                            "the release's part has no parachute (give its [[releases]] a parachute, or vary its cda_m2)".into(),
+                        ));
+                    }
                 }
+                out.insert(p, v);
             }
             for (field, v) in e.trigger {
                 let Some(v) = v else { continue };
@@ -633,10 +677,10 @@ fn collect<T>(
                     None => return Err(bad(&key, format!("the {singular}'s trigger is {trigger}, which has no number to sweep or disperse"))),
                 }
                 out.insert(
-                    if k == 0 {
-                        Param::ParachuteTrigger(i)
-                    } else {
-                        Param::ShiftTrigger(i)
+                    match k {
+                        0 => Param::ParachuteTrigger(i),
+                        1 => Param::ShiftTrigger(i),
+                        _ => Param::ReleaseTrigger(i),
                     },
                     v,
                 );
@@ -767,7 +811,7 @@ pub(super) fn inputs(
                 return Err(bad(
                     &format!("dispersions.{}", ia.key),
                     format!(
-                        "its random stream collides with that of {}; rename a parachute or a shift",
+                        "its random stream collides with that of {}; rename a parachute, a shift or a release",
                         ib.key
                     ),
                 ));

@@ -538,7 +538,8 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
     });
 }
 
-/// One descent attempt of the lanes of `group`: the point-mass descent on four lanes.
+/// One descent attempt of the lanes of `group`: the point-mass descent on four lanes (a
+/// rocket under canopy or a released part on its way down, each lane its own mass and drag).
 #[inline(always)]
 fn step_descents<'a>(
     group: &mut [Lane<'a>],
@@ -575,7 +576,7 @@ fn step_descents<'a>(
                     continue;
                 }
                 let d = Descending::of(&mut group[slots.lane[l]]);
-                mass.0[l] = models[l].descent_mass(slots.t[l]);
+                mass.0[l] = d.mass_at(slots.t[l]);
                 if gusty {
                     gust.0[l] = models[l].gust(slots.t[l]);
                 }

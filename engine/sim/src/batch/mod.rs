@@ -5,10 +5,12 @@
 //! **One physics.** A lane is the base [`Simulation`] with one variant's inputs applied:
 //! everything that depends on the design alone (shape integrals, aerodynamic tables, the air
 //! table) is shared by `Arc` and never rebuilt; the lane's own light model (motor tables, mass
-//! split, rail, wind, parachutes, shifts) is built once from its row of the columns (all of
-//! the row's changes, one rebuild: [`Simulation::with_changes`]). The lane then flies through
-//! the single flight's own driver: pad, rail, events, triggers, shifts, canopies and descent
-//! are the very same code, and so are the kernels.
+//! split, rail, wind, parachutes, shifts, releases) is built once from its row of the columns
+//! (all of the row's changes, one rebuild: [`Simulation::with_changes`]). The lane then flies
+//! through the single flight's own driver: pad, rail, events, triggers, shifts, releases,
+//! canopies and descent are the very same code, and so are the kernels. A released part's
+//! flight to the ground is the lane's last descent (after the rocket's own), stepped in the
+//! descent groups beside the other lanes' descents with its own mass and drag.
 //!
 //! **Lanes side by side.** Up to [`LANES_IN_FLIGHT`] rows of a chunk fly at once, and a lane
 //! that lands is replaced by the next row. Their free flights and their descents (all but the
@@ -138,6 +140,13 @@ pub struct Columns {
     pub shift_duration_s: Vec<Vec<f64>>,
     /// The number in a shift's trigger (its time, height or delay).
     pub shift_trigger: Vec<Vec<f64>>,
+    /// The number in a release's trigger (its time, height or delay).
+    pub release_trigger: Vec<Vec<f64>>,
+    /// A released part's drag area falling free, m².
+    pub release_cda_m2: Vec<Vec<f64>>,
+    /// A released part's own parachute: its CdS, m², and its lag, s.
+    pub release_chute_cds_m2: Vec<Vec<f64>>,
+    pub release_chute_lag_s: Vec<Vec<f64>>,
     /// The seed of the parachutes' sensor noise ([`Simulation::with_sensor_seed`]).
     pub sensor_seed: Vec<u64>,
 }
@@ -184,6 +193,9 @@ pub struct LaneResult {
     pub shifts: Vec<ShiftOutcome>,
     /// Per parachute: its opening time and speed.
     pub parachutes: Vec<ParachuteOutcome>,
+    /// Per release: when its part left, the static margin just before and after, and where,
+    /// when and how fast the part landed.
+    pub releases: Vec<ReleaseOutcome>,
     /// What the flight's figures hide (empty where the flight did not happen).
     pub warnings: Vec<Warning>,
     pub derivative_evaluations: u64,
@@ -198,6 +210,36 @@ pub struct ParachuteOutcome {
     pub deploy_time_s: Option<f64>,
     /// Speed of the center of mass as the canopy opened, m/s.
     pub deploy_speed_m_s: Option<f64>,
+}
+
+/// What one release did in a lane (`None` where it did not happen).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ReleaseOutcome {
+    pub time_s: Option<f64>,
+    pub margin_before_cal: Option<f64>,
+    pub margin_after_cal: Option<f64>,
+    /// The part's landing: time, s, point east and north of the rail's foot, m, speed, m/s.
+    pub landing_time_s: Option<f64>,
+    pub landing_position_m: Option<[f64; 2]>,
+    pub landing_speed_m_s: Option<f64>,
+    /// When the part's own parachute opened, s.
+    pub chute_open_s: Option<f64>,
+}
+
+impl ReleaseOutcome {
+    /// What release `record` of a flight did.
+    pub fn of(record: &crate::flight::ReleaseRecord) -> ReleaseOutcome {
+        let part = record.part.as_ref();
+        ReleaseOutcome {
+            time_s: record.time_s,
+            margin_before_cal: record.margin_before_cal,
+            margin_after_cal: record.margin_after_cal,
+            landing_time_s: part.and_then(|p| p.landing_time_s),
+            landing_position_m: part.and_then(|p| p.landing_position_m),
+            landing_speed_m_s: part.and_then(|p| p.landing_speed_m_s),
+            chute_open_s: part.and_then(|p| p.chute_open_s),
+        }
+    }
 }
 
 /// What one shift did in a lane.
@@ -245,6 +287,10 @@ impl Columns {
             shift_travel_m: nested(&self.shift_travel_m),
             shift_duration_s: nested(&self.shift_duration_s),
             shift_trigger: nested(&self.shift_trigger),
+            release_trigger: nested(&self.release_trigger),
+            release_cda_m2: nested(&self.release_cda_m2),
+            release_chute_cds_m2: nested(&self.release_chute_cds_m2),
+            release_chute_lag_s: nested(&self.release_chute_lag_s),
             sensor_seed: {
                 let end = rows.end.min(self.sensor_seed.len());
                 self.sensor_seed[rows.start.min(end)..end].to_vec()
@@ -382,6 +428,7 @@ impl Batch {
             }
         }
         let (chutes, shifts) = (self.base.parachutes().len(), self.base.shifts().len());
+        let releases = self.base.releases().len();
         let nested = [
             ("chute_cds_m2", &columns.chute_cds_m2, chutes),
             ("chute_lag_s", &columns.chute_lag_s, chutes),
@@ -389,6 +436,18 @@ impl Batch {
             ("shift_travel_m", &columns.shift_travel_m, shifts),
             ("shift_duration_s", &columns.shift_duration_s, shifts),
             ("shift_trigger", &columns.shift_trigger, shifts),
+            ("release_trigger", &columns.release_trigger, releases),
+            ("release_cda_m2", &columns.release_cda_m2, releases),
+            (
+                "release_chute_cds_m2",
+                &columns.release_chute_cds_m2,
+                releases,
+            ),
+            (
+                "release_chute_lag_s",
+                &columns.release_chute_lag_s,
+                releases,
+            ),
         ];
         for (name, c, count) in nested {
             if !c.is_empty() && c.len() != count {
@@ -579,6 +638,32 @@ impl Batch {
             if changed {
                 ch.shifts(shifts)?;
             }
+            let mut releases = base.releases().to_vec();
+            let mut changed = false;
+            for (k, r) in releases.iter_mut().enumerate() {
+                if let Some(v) = nested(&c.release_trigger, k) {
+                    r.trigger = with_number(r.trigger, v)
+                        .map_err(|e| setup(format!("release {k}: {e}")))?;
+                    changed = true;
+                }
+                if let Some(v) = nested(&c.release_cda_m2, k) {
+                    r.cda_m2 = Some(v);
+                    changed = true;
+                }
+                let cds = nested(&c.release_chute_cds_m2, k);
+                let lag = nested(&c.release_chute_lag_s, k);
+                if cds.is_some() || lag.is_some() {
+                    let chute = r.parachute.as_mut().ok_or_else(|| {
+                        setup(format!("release {k}: its part has no parachute to vary"))
+                    })?;
+                    chute.cds_m2 = cds.unwrap_or(chute.cds_m2);
+                    chute.lag_s = lag.unwrap_or(chute.lag_s);
+                    changed = true;
+                }
+            }
+            if changed {
+                ch.releases(releases)?;
+            }
             Ok(())
         });
         let sim = changed.map_err(|e| e.to_string())?;
@@ -596,6 +681,7 @@ impl Batch {
             end_s: 0.0,
             shifts: vec![ShiftOutcome::default(); self.base.shifts().len()],
             parachutes: vec![ParachuteOutcome::default(); self.base.parachutes().len()],
+            releases: vec![ReleaseOutcome::default(); self.base.releases().len()],
             warnings: Vec::new(),
             derivative_evaluations: 0,
             samples: Vec::new(),
@@ -640,6 +726,7 @@ impl Batch {
                 }
             })
             .collect();
+        let releases = flight.releases.iter().map(ReleaseOutcome::of).collect();
         let (status, error) = if flight.metrics.landing_time_s.is_some() {
             (Status::Landed, None)
         } else if flight.event(EventKind::TimeLimit).is_some() {
@@ -665,6 +752,7 @@ impl Batch {
             end_s: end,
             shifts,
             parachutes,
+            releases,
             warnings: flight.warnings(),
             derivative_evaluations: flight.derivative_evaluations,
             samples,

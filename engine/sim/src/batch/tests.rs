@@ -13,6 +13,7 @@ use hpr_design::Design;
 mod air;
 mod kernels;
 mod noise;
+mod releases;
 mod turbulence;
 
 const REFERENCE: &str = concat!(

@@ -6,11 +6,13 @@
 //! shifts) and would otherwise rebuild the model once per input. The checks live here, once,
 //! so that a change made either way is refused for the same reason with the same words.
 //! None of the checks reads a field another change sets (they read the design and the motor,
-//! which no change touches), so the order of the changes never changes a verdict.
+//! which no change touches), so the order of the changes never changes a verdict; the
+//! releases' rules, which read the shifts, are checked by the rebuild, after every change.
 
 use super::{MassAdjustment, Parachute, Rail, SimError, SimOptions, Simulation};
 use crate::atmosphere::AirTable;
 use crate::flight::{model, Environment};
+use crate::releases::Release;
 use crate::shifts::{self, MassShift};
 use crate::trigger::Trigger;
 use hpr_design::motor::MotorOptions;
@@ -119,6 +121,21 @@ impl Changes<'_> {
         }
         self.sim.shifts = shifts;
         self.sim.plan = plan;
+        Ok(())
+    }
+
+    /// See [`Simulation::with_releases`]. The releases' rules, which read the shifts, are
+    /// checked when the flight is rebuilt, after every change (so that the order of the
+    /// changes still never changes a verdict).
+    pub fn releases(&mut self, releases: Vec<Release>) -> Result<(), SimError> {
+        if releases.len() > model::MAX_RELEASES {
+            return Err(SimError::Setup(format!(
+                "at most {} releases in one flight (got {})",
+                model::MAX_RELEASES,
+                releases.len()
+            )));
+        }
+        self.sim.releases = releases;
         Ok(())
     }
 

@@ -20,13 +20,17 @@ pub use config::{
     MAX_INPUT_STEPS,
 };
 pub use model::FlightModel;
-pub use output::{Flight, Metrics, Observer, Phase, Sample, Warning, LARGE_ALPHA_DEG};
+pub use output::{
+    Flight, Metrics, Observer, PartFlight, PartSample, Phase, ReleaseRecord, Sample, Warning,
+    LARGE_ALPHA_DEG,
+};
 
 use crate::aero_loads::{AeroTables, SurfaceTable};
 use crate::atmosphere::{AirTable, Atmosphere};
 use crate::eom::{self, Nozzle};
 use crate::integrate::IntegratorError;
 use crate::massprops::MassModel;
+use crate::releases::{Release, ReleasePlan, ReleaseRefusal};
 use crate::shifts::{MassShift, ShiftPlan, ShiftRefusal};
 use hpr_design::aero::{AeroModel, MachTable};
 use hpr_design::design::model::Design;
@@ -41,6 +45,8 @@ pub enum SimError {
     Setup(String),
     #[error(transparent)]
     Shift(#[from] ShiftRefusal),
+    #[error(transparent)]
+    Release(#[from] ReleaseRefusal),
     #[error("motor: {0}")]
     Motor(#[from] hpr_design::motor::MotorError),
     /// The motor is wider than its mount or longer than the room it has (the design's words).
@@ -52,6 +58,23 @@ pub enum SimError {
     NeverLeavesPad { max_thrust_n: f64, weight_n: f64 },
     #[error("shift {index} would start at t = {time_s:.4} s, before the rocket leaves the rail; the rail has no stop at its foot, so a part thrown toward the tail on the pad could push the rocket up the rail and leave it hanging there; time the shift from the burnout or the apogee instead")]
     ShiftBeforeRailExit { index: usize, time_s: f64 },
+    #[error("release {index} would fire at t = {time_s:.4} s, before the rocket leaves the rail; a part dropped on the rail would fall through the airframe's guides, which the flight does not model; time the release from the burnout or the apogee instead")]
+    ReleaseBeforeRailExit { index: usize, time_s: f64 },
+    #[error("release {index} fires at t = {time_s:.4} s while shift {shift} is still moving its part (from {start_s:.4} s for {duration_s} s); a part leaves from rest in the airframe: time the release after the move ends")]
+    ReleaseDuringShift {
+        index: usize,
+        shift: usize,
+        time_s: f64,
+        start_s: f64,
+        duration_s: f64,
+    },
+    #[error("shift {index} would start at t = {time_s:.4} s, after release {release} dropped its part at {released_s:.4} s; there is nothing left to move")]
+    ShiftAfterRelease {
+        index: usize,
+        release: usize,
+        time_s: f64,
+        released_s: f64,
+    },
     #[error("the flight went non-finite at t = {time_s} s; state {state}")]
     NonFinite { time_s: f64, state: String },
     #[error("integration failed in the {phase} phase at t = {time_s} s: {source}")]
@@ -74,6 +97,8 @@ pub struct Simulation {
     parachutes: Vec<Parachute>,
     shifts: Vec<MassShift>,
     plan: ShiftPlan,
+    releases: Vec<Release>,
+    release_plan: ReleasePlan,
     options: SimOptions,
     drag_scale: f64,
     mass_adjustment: MassAdjustment,
@@ -91,10 +116,11 @@ pub struct Simulation {
 /// `delta_mass_kg` (inertia scaled in proportion) and its center of mass moves by
 /// `delta_cg_m` (positive aft). Used for dispersions of mass and center of mass.
 ///
-/// The parts that shifts move stay where the design puts them (on their holders, where the
-/// shifts' travel is measured from): the change is made by the rest of the structure
-/// ([`MassAdjustment::apply_holding`]), so that the flight's split of the mass into what is
-/// fixed and what moves describes one body whose inertia is never negative.
+/// The parts that shifts move or releases drop stay where the design puts them (on their
+/// holders, where the shifts' travel is measured from, and what a release takes out): the
+/// change is made by the rest of the structure ([`MassAdjustment::apply_holding`]), so that
+/// the flight's split of the mass into what is fixed, what moves and what leaves describes
+/// one body whose inertia is never negative, before and after a part leaves.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MassAdjustment {
     pub delta_mass_kg: f64,
@@ -119,7 +145,7 @@ impl MassAdjustment {
     }
 
     /// Apply to the structure `dry` (station frame) that holds `held`, the parts that shifts
-    /// move, each where the design puts it. The result has [`MassAdjustment::apply`]'s mass
+    /// move or releases drop, each where the design puts it. The result has [`MassAdjustment::apply`]'s mass
     /// and center of mass, bit for bit, but the change is made by the rest of the structure
     /// alone, which gains the mass (its inertia scaled in proportion) and moves rigidly as far
     /// as the whole's center must move; the held parts keep their places. Moving the whole
@@ -195,6 +221,8 @@ impl Simulation {
             &[],
             &[],
             &plan,
+            &[],
+            &ReleasePlan::default(),
             &SimOptions::default(),
             1.0,
             &MassAdjustment::default(),
@@ -212,6 +240,8 @@ impl Simulation {
             parachutes: vec![],
             shifts: vec![],
             plan,
+            releases: vec![],
+            release_plan: ReleasePlan::default(),
             options: SimOptions::default(),
             drag_scale: 1.0,
             mass_adjustment: MassAdjustment::default(),
@@ -224,6 +254,26 @@ impl Simulation {
     }
 
     fn rebuild(mut self) -> Result<Simulation, SimError> {
+        // The releases' rules read the shifts' parts: checked here, after every change, so
+        // that the order of the changes never changes a verdict.
+        if self.releases.len() + self.shifts.len() > model::MAX_SHIFTS {
+            return Err(SimError::Setup(format!(
+                "at most {} shifts and releases together in one flight (got {} shifts and {} releases)",
+                model::MAX_SHIFTS,
+                self.shifts.len(),
+                self.releases.len()
+            )));
+        }
+        self.release_plan = if self.releases.is_empty() {
+            ReleasePlan::default()
+        } else {
+            crate::releases::plan(
+                &self.design,
+                &self.releases,
+                &self.plan,
+                self.motor.delays_s.first().copied(),
+            )?
+        };
         let air = air_table(&self.env, Some(&self.model.air))?;
         self.model = build_model(
             &self.design,
@@ -234,6 +284,8 @@ impl Simulation {
             &self.parachutes,
             &self.shifts,
             &self.plan,
+            &self.releases,
+            &self.release_plan,
             &self.options,
             self.drag_scale,
             &self.mass_adjustment,
@@ -258,6 +310,13 @@ impl Simulation {
     /// checked before the flight is checked here, and a refusal names the rule it broke.
     pub fn with_shifts(self, shifts: Vec<MassShift>) -> Result<Simulation, SimError> {
         self.with_changes(|c| c.shifts(shifts))
+    }
+
+    /// Releases: parts that leave the rocket in flight and fall on their own. Every rule
+    /// that can be checked before the flight is checked here (with the shifts already set:
+    /// set the shifts first), and a refusal names the rule it broke.
+    pub fn with_releases(self, releases: Vec<Release>) -> Result<Simulation, SimError> {
+        self.with_changes(|c| c.releases(releases))
     }
 
     /// The seed of the noise the parachutes' flight computers read (those given a
@@ -342,6 +401,13 @@ impl Simulation {
     pub fn shifts(&self) -> &[MassShift] {
         &self.shifts
     }
+    pub fn releases(&self) -> &[Release] {
+        &self.releases
+    }
+    /// Each release's part (component index), and its drag area falling free, m².
+    pub fn release_plan(&self) -> &ReleasePlan {
+        &self.release_plan
+    }
 
     /// Fly. The observer sees every sample and event as it happens (`&mut ()` sees nothing).
     pub fn run<O: Observer>(&self, observer: &mut O) -> Result<Flight, SimError> {
@@ -376,15 +442,10 @@ impl Simulation {
     }
 
     /// The rocket's mass, center of mass (m aft of the tip) and inertia about that center at
-    /// time `t_s` of `flight`, in the design's station frame.
+    /// time `t_s` of `flight`, in the design's station frame. At a release's own instant the
+    /// part has left (what remains).
     pub fn mass_properties(&self, flight: &Flight, t_s: f64) -> MassProps {
-        let mut starts = [f64::INFINITY; model::MAX_SHIFTS];
-        for (k, s) in flight.shift_starts_s.iter().enumerate() {
-            if let Some(s) = s {
-                starts[k] = *s;
-            }
-        }
-        crate::massprops::to_station(&self.model.instant(&starts, t_s).mass)
+        crate::massprops::to_station(&self.model.instant(&flight.starts(), t_s).mass)
     }
 }
 
@@ -449,6 +510,8 @@ pub fn build_model(
     parachutes: &[Parachute],
     shifts: &[MassShift],
     plan: &ShiftPlan,
+    releases: &[Release],
+    release_plan: &ReleasePlan,
     options: &SimOptions,
     drag_scale: f64,
     adjustment: &MassAdjustment,
@@ -510,15 +573,30 @@ pub fn build_model(
         let k = scale_of(idx).unwrap_or(1.0);
         dry = dry.combine(&mass::subtree(design, idx).scaled(k - 1.0));
     }
-    let parts: Vec<MassProps> = plan
+    let part_props = |idx: usize| mass::subtree(design, idx).scaled(scale_of(idx).unwrap_or(1.0));
+    let parts: Vec<MassProps> = plan.parts.iter().map(|&idx| part_props(idx)).collect();
+    let released: Vec<(MassProps, Option<usize>)> = release_plan
         .parts
         .iter()
-        .map(|&idx| mass::subtree(design, idx).scaled(scale_of(idx).unwrap_or(1.0)))
+        .zip(&release_plan.moving_part)
+        .map(|(&idx, &moving)| (part_props(idx), moving))
+        .collect();
+    // The parts that move or leave keep their places when the structure's mass changes (a
+    // part both moved and released once).
+    let held: Vec<MassProps> = parts
+        .iter()
+        .copied()
+        .chain(
+            released
+                .iter()
+                .filter(|(_, moving)| moving.is_none())
+                .map(|(p, _)| *p),
+        )
         .collect();
     let dry = adjustment
-        .apply_holding(&dry, &parts)
+        .apply_holding(&dry, &held)
         .map_err(SimError::Setup)?;
-    let mut mass_model = MassModel::new(&dry, &casing, &propellant, &parts);
+    let mut mass_model = MassModel::new(&dry, &casing, &propellant, &parts, &released);
     mass_model.grains = motor_tables.grains().map(|g| (*g, motor_tables.motors()));
     let fixed_cg_m = dry.combine(&casing).cg_m.x;
     let nozzle = Nozzle::at(
@@ -559,6 +637,7 @@ pub fn build_model(
             })
             .collect(),
         shifts: model::shift_specs(shifts, plan),
+        releases: model::release_specs(releases, release_plan),
         options: *options,
         burnout_s: burnout,
         motor_delay_s: motor.delays_s.first().copied(),

@@ -11,7 +11,10 @@ use crate::eom::{self, MassLanes, MassState, Nozzle, NozzleLanes, N3, N6};
 use crate::frames;
 use crate::integrate::roots::brent_root_bracketed;
 use crate::lanes::{F64x4, Real, V3};
-use crate::massprops::{mass_state_lanes, MassInputs, MassModel, MassModelLanes, PropellantState};
+use crate::massprops::{
+    mass_state_lanes, MassInputs, MassModel, MassModelLanes, PropellantState, Removed,
+};
+use crate::releases::{PartChute, Release, ReleasePlan};
 use crate::shifts::{MassShift, ShiftPlan};
 use crate::trigger::Trigger;
 use crate::turbulence::Gusts;
@@ -35,6 +38,20 @@ pub struct ShiftSpec {
     pub trigger: Trigger,
     pub travel_m: f64,
     pub duration_s: f64,
+}
+
+/// Most releases in one flight.
+pub const MAX_RELEASES: usize = 8;
+
+/// A release as the flight runs it (the part's mass properties are the mass model's
+/// [`crate::massprops::ReleasedMass`] of the same index).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReleaseSpec {
+    pub trigger: Trigger,
+    /// The part's drag area falling free, m².
+    pub cda_m2: f64,
+    /// Its own parachute, and the air its open canopy carries, m³.
+    pub parachute: Option<(PartChute, f64)>,
 }
 
 /// The rail as the flight needs it.
@@ -76,6 +93,9 @@ pub struct FlightModel {
     /// order, computed once ([`eom::CanopyShape::added_air_volume_m3`]).
     pub canopies: Vec<eom::Canopies<f64>>,
     pub shifts: Vec<ShiftSpec>,
+    /// The releases, in the order given; release `j`'s time is `starts[shifts.len() + j]`
+    /// ([`ShiftStarts`]).
+    pub releases: Vec<ReleaseSpec>,
     pub options: SimOptions,
     /// Motor's burnout time (last thrust point), s.
     pub burnout_s: f64,
@@ -87,8 +107,9 @@ pub struct FlightModel {
     pub ref_diameter_m: f64,
     pub cp_mach0_m: f64,
     /// The mass state while nothing changes the mass (motor out, no part moving), one per
-    /// set of started shifts (bit `k` of the index: shift `k` has started, and so has
-    /// ended), for flights with at most [`SETTLED_MAX_SHIFTS`] shifts; built once by
+    /// set of started shifts and fired releases (bit `k` of the index: shift `k` has started,
+    /// and so has ended; bit `shifts.len() + j`: release `j` has fired), for flights with at
+    /// most [`SETTLED_MAX_SHIFTS`] shifts and releases together; built once by
     /// [`FlightModel::with_settled_states`]. Empty: always compute.
     pub settled: Vec<MassState>,
     /// The seed of the flight's noise: its parachutes' sensor noise ([`crate::sensor`]) and
@@ -188,12 +209,15 @@ impl BrakeModel {
     }
 }
 
-/// Most shifts for which [`FlightModel::settled`] is tabulated (2⁴ = 16 states).
+/// Most shifts and releases together for which [`FlightModel::settled`] is tabulated
+/// (2⁴ = 16 states).
 pub const SETTLED_MAX_SHIFTS: usize = 4;
 
-/// Start times of each shift (infinite until its trigger fires).
+/// Start times of each shift, then fire times of each release (infinite until its trigger
+/// fires): a shift moves its part for `t > start`, a release has taken its part out for
+/// `t ≥ its time`, so that the step that restarts at a release flies without the part.
 pub type ShiftStarts = [f64; MAX_SHIFTS];
-/// Most shifts in one flight.
+/// Most shifts and releases together in one flight.
 pub const MAX_SHIFTS: usize = 16;
 
 /// Everything at one instant that depends on time alone (and on which shifts have started).
@@ -284,9 +308,15 @@ impl FlightModel {
     pub fn settled_state(&self, starts: &ShiftStarts, t: f64) -> Option<&MassState> {
         if !self.settled.is_empty() && self.mass_settled(starts, t) {
             let mut set = 0;
-            for (k, &start) in starts.iter().enumerate().take(self.shifts.len()) {
+            let n = self.shifts.len();
+            for (k, &start) in starts.iter().enumerate().take(n) {
                 if t > start {
                     set |= 1 << k;
+                }
+            }
+            for j in 0..self.releases.len() {
+                if t >= starts[n + j] {
+                    set |= 1 << (n + j);
                 }
             }
             return Some(&self.settled[set]);
@@ -343,14 +373,53 @@ impl FlightModel {
                 *acc.accel_m_s2.lane_mut(l) += c.accel_m_s2;
             }
         }
+        if self.mass_lanes.releases {
+            let gone = self.removed(starts, t, |k| x.motions[k].delta_m.lane(l));
+            x.set_removed(l, gone.as_ref());
+        }
         motor
+    }
+
+    /// How far its shifts have moved moving part `part` by `t`, m (0 for `None`): the sum
+    /// [`FlightModel::mass_inputs_into`] makes, in the same order.
+    pub fn part_delta_m(&self, starts: &ShiftStarts, t: f64, part: Option<usize>) -> f64 {
+        let Some(p) = part else {
+            return 0.0;
+        };
+        let mut delta = 0.0;
+        for (k, s) in self.shifts.iter().enumerate() {
+            if s.part == p && t > starts[k] {
+                delta += cycloid::evaluate(t, starts[k], s.duration_s, s.travel_m).delta_m;
+            }
+        }
+        delta
+    }
+
+    /// What the parts released by `t` take out of the rocket (`None`: none has left), given
+    /// how far its shifts have moved moving part `k`, `delta_m(k)`.
+    #[inline]
+    pub fn removed(
+        &self,
+        starts: &ShiftStarts,
+        t: f64,
+        delta_m: impl Fn(usize) -> f64,
+    ) -> Option<Removed<f64>> {
+        let n = self.shifts.len();
+        let mut out: Option<Removed<f64>> = None;
+        for (j, part) in self.mass.released.iter().enumerate() {
+            if t >= starts[n + j] {
+                let c = part.center_b(part.moving_part.map_or(0.0, &delta_m));
+                out.get_or_insert(Removed::NONE).add(part, &c);
+            }
+        }
+        out
     }
 
     /// Tabulate [`FlightModel::settled`]: for every set of started shifts, the mass state
     /// once the motor is out and those shifts have ended (the same at every such instant:
     /// the motor's state is then all zeros and each part rests at the end of its travel).
     pub fn with_settled_states(mut self) -> FlightModel {
-        let n = self.shifts.len();
+        let n = self.shifts.len() + self.releases.len();
         self.settled = Vec::new();
         if n > SETTLED_MAX_SHIFTS {
             return self;
@@ -485,7 +554,8 @@ impl FlightModel {
         dy[6..].iter_mut().for_each(|d| *d = 0.0);
     }
 
-    /// Descent under the open `canopies`: the center of mass as a point.
+    /// Descent under the open `canopies`: the center of mass as a point (its mass the mass
+    /// state's at `starts`).
     #[inline]
     pub fn derivative_descent(
         &self,
@@ -502,7 +572,7 @@ impl FlightModel {
                 (ms.mass_kg, ms.r_cm.z)
             }
         };
-        let (at, speed_of_sound_m_s) = self.descent_rates(canopies, t, y, dy);
+        let (at, speed_of_sound_m_s) = self.descent_rates_of(mass_kg, canopies, t, y, dy);
         let rel = Vector3::new(y[3], y[4], y[5]) - at.wind_n.to_na();
         let a = Vector3::new(dy[3], dy[4], dy[5] + at.g);
         FlightAux {
@@ -518,10 +588,10 @@ impl FlightModel {
 }
 
 impl FlightModel {
-    /// The descent's derivative alone, as the integrator calls it: the mass is the structure's
-    /// plus the propellant left (exactly the mass state's mass; its center and inertia do not
-    /// enter the point-mass descent). Returns the surroundings it used and the speed of
-    /// sound there.
+    /// The descent's derivative alone, as the integrator calls it, for the rocket with every
+    /// part on board: the mass is the structure's plus the propellant left (exactly the mass
+    /// state's mass; its center and inertia do not enter the point-mass descent). Returns the
+    /// surroundings it used and the speed of sound there.
     #[inline]
     pub fn descent_rates(
         &self,
@@ -530,13 +600,27 @@ impl FlightModel {
         y: &[f64; N3],
         dy: &mut [f64; N3],
     ) -> (eom::Surroundings<f64>, f64) {
+        self.descent_rates_of(self.descent_mass(t), canopies, t, y, dy)
+    }
+
+    /// [`FlightModel::descent_rates`] of a point of mass `mass_kg` (the rocket's
+    /// [`FlightModel::descent_mass_less`] the parts that left, or a released part's own).
+    #[inline]
+    pub fn descent_rates_of(
+        &self,
+        mass_kg: f64,
+        canopies: &eom::Canopies<f64>,
+        t: f64,
+        y: &[f64; N3],
+        dy: &mut [f64; N3],
+    ) -> (eom::Surroundings<f64>, f64) {
         let (at, speed_of_sound_m_s) = kernels::descent_surroundings(self, y[2], self.gust_at(t));
-        eom::descent_derivative(y, self.descent_mass(t), canopies, &at, dy);
+        eom::descent_derivative(y, mass_kg, canopies, &at, dy);
         (at, speed_of_sound_m_s)
     }
 
-    /// The mass a descent carries at `t`: the structure's plus the propellant left (exactly
-    /// the mass state's mass).
+    /// The mass a descent carries at `t` with every part on board: the structure's plus the
+    /// propellant left (exactly the mass state's mass).
     #[inline]
     pub fn descent_mass(&self, t: f64) -> f64 {
         // After burnout (nearly every descent) the motor's state is known without a call:
@@ -547,6 +631,31 @@ impl FlightModel {
             self.motor.eval(t).propellant_kg
         };
         self.mass.fixed_mass_kg + propellant_kg
+    }
+
+    /// The mass the parts released by `t` took away, kg (`None`: none has left), summed as
+    /// the mass state sums it ([`FlightModel::removed`]).
+    #[inline]
+    pub fn removed_mass_kg(&self, starts: &ShiftStarts, t: f64) -> Option<f64> {
+        let n = self.shifts.len();
+        let mut gone: Option<f64> = None;
+        for (j, part) in self.mass.released.iter().enumerate() {
+            if t >= starts[n + j] {
+                *gone.get_or_insert(0.0) += part.mass_kg;
+            }
+        }
+        gone
+    }
+
+    /// The mass a descent carries at `t` once parts of `removed_kg` ([`FlightModel::removed_mass_kg`])
+    /// have left: exactly the mass state's mass (the same numbers in the same order).
+    #[inline(always)]
+    pub fn descent_mass_less(&self, t: f64, removed_kg: Option<f64>) -> f64 {
+        let m = self.descent_mass(t);
+        match removed_kg {
+            None => m,
+            Some(gone) => m - gone,
+        }
     }
 
     /// The center of mass's position and velocity (inertial) and a sample's figures at the end
@@ -677,6 +786,21 @@ pub fn rail_geometry(
         travel_to_exit_m: travel,
         o_start_n: direction_n * aft_m,
     })
+}
+
+/// The releases as the model runs them.
+pub fn release_specs(releases: &[Release], plan: &ReleasePlan) -> Vec<ReleaseSpec> {
+    releases
+        .iter()
+        .zip(&plan.cda_m2)
+        .map(|(r, &cda_m2)| ReleaseSpec {
+            trigger: r.trigger,
+            cda_m2,
+            parachute: r
+                .parachute
+                .map(|p| (p, p.canopy.added_air_volume_m3(p.cds_m2))),
+        })
+        .collect()
 }
 
 /// Group shifts for the model.

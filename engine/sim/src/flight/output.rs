@@ -108,13 +108,77 @@ pub struct Flight {
     pub metrics: Metrics,
     /// Start time of each shift, s (in the order given; `None` if its trigger never fired).
     pub shift_starts_s: Vec<Option<f64>>,
+    /// What each release did (in the order given): when its part left, the static margin
+    /// just before and after, and the part's own flight to the ground.
+    pub releases: Vec<ReleaseRecord>,
     /// Derivative evaluations (a measure of cost).
     pub derivative_evaluations: u64,
     /// Accepted integration steps.
     pub steps: u64,
 }
 
+/// What one release did in a flight.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ReleaseRecord {
+    /// When the part left, s (`None`: its trigger never fired).
+    pub time_s: Option<f64>,
+    /// The rocket's static margin just before and just after the part left, calibres (the
+    /// center of pressure at Mach 0 does not move; the center of mass jumps).
+    pub margin_before_cal: Option<f64>,
+    pub margin_after_cal: Option<f64>,
+    /// The part's own flight from the release to the ground.
+    pub part: Option<PartFlight>,
+}
+
+/// A released part's flight: a point of its own mass under its own drag or parachute.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PartFlight {
+    pub mass_kg: f64,
+    /// Its center where it left and the velocity its material had then (the airframe's at
+    /// that point), launch frame, m and m/s.
+    pub start_position_m: [f64; 3],
+    pub start_velocity_m_s: [f64; 3],
+    /// Its highest point above the ground, m (its start, for a part that leaves on the way
+    /// down).
+    pub apogee_m: f64,
+    /// When its own parachute opened, s (`None`: it has none, or it never opened).
+    pub chute_open_s: Option<f64>,
+    /// Where, when and how fast it reached the ground (`None`: the flight's time limit came
+    /// first).
+    pub landing_time_s: Option<f64>,
+    /// East and north of the rail's foot, m.
+    pub landing_position_m: Option<[f64; 2]>,
+    pub landing_speed_m_s: Option<f64>,
+    /// Its path, one sample per step (when the flight keeps samples).
+    pub samples: Vec<PartSample>,
+}
+
+/// One sample of a released part's flight, at the end of an accepted step or at an event.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PartSample {
+    pub t_s: f64,
+    /// Its center, launch frame (east, north, up from the rail's foot), m.
+    pub position_m: [f64; 3],
+    pub velocity_m_s: [f64; 3],
+}
+
 impl Flight {
+    /// Each shift's start time, then each release's time (infinite where it never came), as
+    /// the flight's model reads them ([`crate::flight::model::ShiftStarts`]).
+    pub fn starts(&self) -> crate::flight::model::ShiftStarts {
+        let mut starts = [f64::INFINITY; crate::flight::model::MAX_SHIFTS];
+        let times = self
+            .shift_starts_s
+            .iter()
+            .chain(self.releases.iter().map(|r| &r.time_s));
+        for (s, t) in starts.iter_mut().zip(times) {
+            if let Some(t) = t {
+                *s = *t;
+            }
+        }
+        starts
+    }
+
     /// The first event of `kind`.
     pub fn event(&self, kind: EventKind) -> Option<&Event> {
         self.events.iter().find(|e| e.kind == kind)

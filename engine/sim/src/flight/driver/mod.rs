@@ -7,7 +7,9 @@ use super::config::Integrator;
 use super::model::{
     EndFigures, FlightAux, FlightModel, InstantMemo, ModelLanes, ShiftStarts, MAX_SHIFTS,
 };
-use super::output::{Flight, Metrics, Observer, Phase, Sample};
+use super::output::{
+    Flight, Metrics, Observer, PartFlight, PartSample, Phase, ReleaseRecord, Sample,
+};
 use super::SimError;
 use crate::eom::{self, Canopies, MassLanes, N3, N6};
 use crate::events::{Event, EventKind};
@@ -16,6 +18,7 @@ use crate::integrate::{
     brent_root, brent_root_bracketed, locate_event, Crossing, DenseStepper, Dopri54,
     IntegratorError, Rk4, StepOutcome, Tolerances,
 };
+use crate::releases::{PartChute, PartTrigger};
 use crate::sensor::NoiseProcess;
 use crate::shifts::STOPS_PER_SHIFT;
 use crate::trigger::Trigger;
@@ -185,6 +188,10 @@ struct Run<'a, O: Observer> {
     /// The air brakes' drag coefficient as they stand, on the reference area (0: closed),
     /// held from one controller sample to the next.
     brake_cd: f64,
+    /// What each release did (its part's flight is filled in once the part has flown).
+    releases: Vec<ReleaseRecord>,
+    /// A part left at the step's end: the derivative jumps there, so the stepper restarts.
+    released_now: bool,
     /// The controller's next sample, s (infinite without brakes; burnout, then every period).
     brake_next_s: f64,
 }
@@ -237,6 +244,17 @@ enum Chute {
         fires_s: f64,
     },
     Open,
+}
+
+/// Where the rocket is when a trigger fires: what a released part leaves from.
+#[derive(Clone, Copy)]
+pub(crate) enum Here<'y> {
+    /// On the rail, where nothing may leave.
+    Rail,
+    /// In free flight, the 6-DOF state.
+    Free(&'y [f64; N6]),
+    /// Under canopy, the center of mass as a point (position, velocity).
+    Point(Vector3<f64>, Vector3<f64>),
 }
 
 /// Pending stop times, latest first (the next one is at the end); NaN is never a stop.
@@ -303,6 +321,20 @@ impl<'a, O: Observer> Run<'a, O> {
                 time_s: t,
             });
         }
+        let model = self.model;
+        let part = model.shifts[k].part;
+        let n = model.shifts.len();
+        for (j, r) in model.mass.released.iter().enumerate() {
+            let released_s = self.starts[n + j];
+            if r.moving_part == Some(part) && released_s <= t {
+                return Err(SimError::ShiftAfterRelease {
+                    index: k,
+                    release: j,
+                    time_s: t,
+                    released_s,
+                });
+            }
+        }
         self.starts[k] = t;
         self.starts_changed += 1;
         let d = self.model.shifts[k].duration_s;
@@ -310,6 +342,87 @@ impl<'a, O: Observer> Run<'a, O> {
             self.stops.push(t + d * i as f64 / STOPS_PER_SHIFT as f64);
         }
         self.push_event(EventKind::Shift(k), t, altitude_m, speed_m_s);
+        Ok(())
+    }
+
+    /// Release `j` fires at `t`, the rocket `here`: its part leaves with the velocity its
+    /// material had (no impulse), the rocket flies on without it from `t` (its stepper
+    /// restarts there), and the static margin just before and after is recorded.
+    #[inline(never)]
+    fn release(
+        &mut self,
+        j: usize,
+        t: f64,
+        altitude_m: f64,
+        speed_m_s: f64,
+        here: Here<'_>,
+    ) -> Result<(), SimError> {
+        let model = self.model;
+        let y = match here {
+            Here::Rail => {
+                return Err(SimError::ReleaseBeforeRailExit {
+                    index: j,
+                    time_s: t,
+                })
+            }
+            _ if !self.rail_exit_done => {
+                return Err(SimError::ReleaseBeforeRailExit {
+                    index: j,
+                    time_s: t,
+                })
+            }
+            here => here,
+        };
+        let part = model.mass.released[j];
+        // A part leaves from rest in the airframe: not while a shift moves it.
+        if let Some(p) = part.moving_part {
+            for (k, sh) in model.shifts.iter().enumerate() {
+                let start = self.starts[k];
+                // Started (at `t` itself, too: it moves from now) and not yet ended, as the
+                // mass model judges an end.
+                if sh.part == p && start <= t && (t - start) / sh.duration_s < 1.0 {
+                    return Err(SimError::ReleaseDuringShift {
+                        index: j,
+                        shift: k,
+                        time_s: t,
+                        start_s: start,
+                        duration_s: sh.duration_s,
+                    });
+                }
+            }
+        }
+        let n = model.shifts.len();
+        let before = model.static_margin(&model.instant(&self.starts, t).mass);
+        let (pos, vel) = match y {
+            Here::Free(y) => {
+                let c = part.center_b(model.part_delta_m(&self.starts, t, part.moving_part));
+                let r = frames::body_to_inertial(&[y[6], y[7], y[8], y[9]]);
+                let w = Vector3::new(y[10], y[11], y[12]);
+                (
+                    Vector3::new(y[0], y[1], y[2]) + r * c,
+                    Vector3::new(y[3], y[4], y[5]) + r * w.cross(&c),
+                )
+            }
+            Here::Point(pos, vel) => (pos, vel),
+            Here::Rail => unreachable!("refused above"),
+        };
+        self.starts[n + j] = t;
+        self.starts_changed += 1;
+        self.released_now = true;
+        let after = model.static_margin(&model.instant(&self.starts, t).mass);
+        self.releases[j] = ReleaseRecord {
+            time_s: Some(t),
+            margin_before_cal: Some(before),
+            margin_after_cal: Some(after),
+            part: Some(PartFlight {
+                mass_kg: part.mass_kg,
+                start_position_m: [pos.x, pos.y, pos.z],
+                start_velocity_m_s: [vel.x, vel.y, vel.z],
+                apogee_m: pos.z,
+                ..PartFlight::default()
+            }),
+        };
+        self.push_event(EventKind::Release(j), t, altitude_m, speed_m_s);
         Ok(())
     }
 
@@ -328,12 +441,14 @@ impl<'a, O: Observer> Run<'a, O> {
         self.stops.push(fires_s + lag);
     }
 
-    /// Fire every trigger of kind `matches` that has not fired yet, at `t`.
+    /// Fire every trigger of kind `matches` that has not fired yet, at `t`, the rocket `here`
+    /// (parachutes, then shifts, then releases).
     fn fire(
         &mut self,
         t: f64,
         altitude_m: f64,
         speed_m_s: f64,
+        here: Here<'_>,
         matches: impl Fn(&Trigger) -> bool,
     ) -> Result<(), SimError> {
         for i in 0..self.model.parachutes.len() {
@@ -341,17 +456,29 @@ impl<'a, O: Observer> Run<'a, O> {
                 self.trigger_chute(i, t, altitude_m, speed_m_s);
             }
         }
-        for k in 0..self.model.shifts.len() {
+        let n = self.model.shifts.len();
+        for k in 0..n {
             if self.starts[k].is_infinite() && matches(&self.model.shifts[k].trigger) {
                 self.start_shift(k, t, altitude_m, speed_m_s)?;
+            }
+        }
+        for j in 0..self.model.releases.len() {
+            if self.starts[n + j].is_infinite() && matches(&self.model.releases[j].trigger) {
+                self.release(j, t, altitude_m, speed_m_s, here)?;
             }
         }
         Ok(())
     }
 
-    /// Handle what happens exactly at a stop time `t`: burnout, timed triggers, canopies.
-    /// Returns true when a canopy opened (the phase must end).
-    fn at_stop(&mut self, t: f64, altitude_m: f64, speed_m_s: f64) -> Result<bool, SimError> {
+    /// Handle what happens exactly at a stop time `t`, the rocket `here`: burnout, timed
+    /// triggers, canopies. Returns true when a canopy opened (the phase must end).
+    fn at_stop(
+        &mut self,
+        t: f64,
+        altitude_m: f64,
+        speed_m_s: f64,
+        here: Here<'_>,
+    ) -> Result<bool, SimError> {
         let m = self.model;
         if !self.burnout_done && t >= m.burnout_s {
             self.burnout_done = true;
@@ -361,7 +488,7 @@ impl<'a, O: Observer> Run<'a, O> {
             self.push_event(EventKind::Burnout, m.burnout_s, altitude_m, speed_m_s);
         }
         let (burnout, delay) = (m.burnout_s, m.motor_delay_s);
-        self.fire(t, altitude_m, speed_m_s, |tr| {
+        self.fire(t, altitude_m, speed_m_s, here, |tr| {
             tr.fixed_time(burnout, delay).is_some_and(|ft| ft <= t)
         })?;
         // Sampled triggers that fire here, then the canopies that open here.

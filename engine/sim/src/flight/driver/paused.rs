@@ -215,7 +215,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
 ) -> Result<Progress<'a, O>, SimError> {
     let n_chutes = model.parachutes.len();
     let mut stops = Stops(Vec::with_capacity(
-        64 + STOPS_PER_SHIFT * model.shifts.len() + 2 * n_chutes,
+        64 + STOPS_PER_SHIFT * model.shifts.len() + 2 * n_chutes + model.releases.len(),
     ));
     for &k in &model.thrust_knots_s {
         stops.push(k);
@@ -226,6 +226,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         .iter()
         .map(|p| p.trigger)
         .chain(model.shifts.iter().map(|s| s.trigger))
+        .chain(model.releases.iter().map(|r| r.trigger))
     {
         if let Some(t) = tr.fixed_time(model.burnout_s, model.motor_delay_s) {
             stops.push(t);
@@ -251,6 +252,8 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         max_climb_m_s: 0.0,
         steepest: None,
         brake_cd: 0.0,
+        releases: vec![ReleaseRecord::default(); model.releases.len()],
+        released_now: false,
         brake_next_s: if model.air_brakes.is_some() {
             model.burnout_s
         } else {
@@ -335,20 +338,28 @@ fn descend<'a, O: Observer>(
     (t, y, end): (f64, [f64; N6], PhaseEnd),
 ) -> Result<AfterFree<'a, O>, SimError> {
     let model = run.model;
-    if let PhaseEnd::Deploy = end {
+    // The free flight's restart is behind it.
+    run.released_now = false;
+    let mut s3: Stepper<N3> =
+        Stepper::new(&model.options.integrator, atol3, rtol).map_err(|e| integ(t, e, "setup"))?;
+    let descent = if let PhaseEnd::Deploy = end {
         // Descent: the center of mass as a point, with its velocity (including r′) kept.
         let (pos, vel) = cm_of(model, &run.starts, t, &y);
         let y3 = [pos.x, pos.y, pos.z, vel.x, vel.y, vel.z];
-        let mut s3: Stepper<N3> = Stepper::new(&model.options.integrator, atol3, rtol)
-            .map_err(|e| integ(t, e, "setup"))?;
-        let descent = Descent::start(&mut run, &mut s3, t, &y3)?;
-        return Ok(AfterFree::Descending(Box::new(Descending {
-            run,
-            s3: LaneStepper::new(s3, Phase::Descent, t),
-            descent,
-        })));
-    }
-    Ok(AfterFree::Done(record(run)))
+        Descent::start(&mut run, &mut s3, t, &y3)?
+    } else {
+        // Landed or out of time without a canopy: the parts that left fly next, if any.
+        match Descent::next_part(&mut run, &mut s3, None)? {
+            Some(d) => d,
+            None => return Ok(AfterFree::Done(record(run))),
+        }
+    };
+    let t0 = each!(&s3, s => s.t());
+    Ok(AfterFree::Descending(Box::new(Descending {
+        run,
+        s3: LaneStepper::new(s3, Phase::Descent, t0),
+        descent,
+    })))
 }
 
 /// The flight's record.
@@ -366,6 +377,7 @@ fn record<O: Observer>(run: Run<'_, O>) -> Flight {
             .iter()
             .map(|&s| s.is_finite().then_some(s))
             .collect(),
+        releases: run.releases,
         derivative_evaluations: run.evaluations,
         steps: run.steps,
     }
@@ -381,10 +393,17 @@ pub(crate) struct Descending<'a, O: Observer> {
 }
 
 impl<O: Observer> Descending<'_, O> {
-    /// The canopies in force.
+    /// The drag in force (the rocket's open canopies, or a released part's own drag).
     #[inline(always)]
     pub(crate) fn canopies(&self) -> Canopies<f64> {
         self.descent.canopies()
+    }
+
+    /// The mass that descends at `t` (the rocket's without the parts that left, or a
+    /// released part's).
+    #[inline(always)]
+    pub(crate) fn mass_at(&self, t: f64) -> f64 {
+        self.descent.mass(self.run.model, t)
     }
 
     /// The flight's record, once its descent has ended.
@@ -408,12 +427,13 @@ impl<'a, O: Observer> PausedPhase<'a, N3> for Descending<'a, O> {
         if !self.s3.on_lanes() {
             return Ok(false);
         }
-        let t_stop = Descent::next_stop(&mut self.run, &self.s3.stepper);
+        let t_stop = self.descent.next_stop(&mut self.run, &self.s3.stepper);
         let model = self.run.model;
         let canopies = self.descent.canopies();
+        let descent = &self.descent;
         self.s3
             .begin(t_stop, &mut self.run.evaluations, |t, y, dy| {
-                model.descent_rates(&canopies, t, y, dy);
+                model.descent_rates_of(descent.mass(model, t), &canopies, t, y, dy);
             })?;
         Ok(true)
     }

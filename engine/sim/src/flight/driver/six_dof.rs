@@ -203,6 +203,14 @@ impl SixDof {
                     events.push((EventKind::Shift(k), G::Height(height_m)));
                 }
             }
+            let n = model.shifts.len();
+            for (j, r) in model.releases.iter().enumerate() {
+                if let (Trigger::HeightDescending { height_m }, true) =
+                    (r.trigger, starts[n + j].is_infinite())
+                {
+                    events.push((EventKind::Release(j), G::Height(height_m)));
+                }
+            }
         }
         // Earliest crossing in the step: rail travel rises through zero, the rest fall.
         let mut found: Option<(f64, EventKind)> = None;
@@ -285,7 +293,9 @@ impl SixDof {
                     run.metrics.apogee_m = Some(alt);
                     run.metrics.apogee_time_s = Some(te);
                     run.push_event(EventKind::Apogee, te, alt, speed);
-                    run.fire(te, alt, speed, |tr| matches!(tr, Trigger::Apogee))?;
+                    run.fire(te, alt, speed, Here::Free(&y_end), |tr| {
+                        matches!(tr, Trigger::Apogee)
+                    })?;
                 }
                 EventKind::Landing => {
                     land(run, te, pos, vel);
@@ -296,11 +306,17 @@ impl SixDof {
                 }
                 EventKind::ParachuteTrigger(i) => run.trigger_chute(i, te, alt, speed),
                 EventKind::Shift(k) => run.start_shift(k, te, alt, speed)?,
+                EventKind::Release(j) => run.release(j, te, alt, speed, Here::Free(&y_end))?,
                 _ => {}
             }
         }
         if (found.is_some() || matches!(outcome, crate::integrate::StepOutcome::ReachedStop))
-            && run.at_stop(t_end, alt, speed)?
+            && run.at_stop(
+                t_end,
+                alt,
+                speed,
+                if rail { Here::Rail } else { Here::Free(&y_end) },
+            )?
         {
             return Ok(Some((t_end, y_end, PhaseEnd::Deploy)));
         }
@@ -309,7 +325,9 @@ impl SixDof {
             return Ok(Some((t_end, y_end, PhaseEnd::TimeLimit)));
         }
         let braked = phase == Phase::Free && run.control_brakes(t_end, pos, vel, &ep.aux);
-        if found.is_some() || braked {
+        // A part that left changes the derivative at once: the stepper starts again there.
+        if found.is_some() || braked || run.released_now {
+            run.released_now = false;
             let (starts, changes, brake) = (run.starts, run.starts_changed, run.brake_cd);
             let memo = &mut run.memo;
             let mut evals = 0u64;
