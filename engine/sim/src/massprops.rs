@@ -29,13 +29,17 @@
 //! IEEE operations.
 
 use crate::eom::{MassLanes, MassState};
-use crate::flight::model::MAX_MOVING_PARTS;
 use crate::lanes::{any, pack_m3, pack_v3, F64x4, Real, M3, V3};
 use hpr_design::mass::MassProps;
 use hpr_design::motor::Grains;
 use nalgebra::{Matrix3, Vector3};
 
 use crate::frames;
+
+/// Most parts that shifts may move in one flight. The kernel keeps their masses, centers and
+/// motions in arrays of this size so that it allocates nothing; the flight's set-up refuses a
+/// plan with more (`Simulation::with_changes`).
+pub const MAX_MOVING_PARTS: usize = 8;
 
 /// A part that one or more shifts move, as the flight sees it (body axes about O).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -201,7 +205,7 @@ pub struct MassModelLanes<S> {
 }
 
 impl MassModelLanes<f64> {
-    /// One model's numbers (at most [`MAX_MOVING_PARTS`] parts: the flight model's rule).
+    /// One model's numbers (at most [`MAX_MOVING_PARTS`] parts: the set-up's rule).
     #[inline]
     pub fn of(model: &MassModel) -> MassModelLanes<f64> {
         let mut part_mass_kg = [0.0; MAX_MOVING_PARTS];

@@ -27,9 +27,9 @@ pub use kernels::{
     ModelLanes,
 };
 
-/// Most parts that shifts may move in one flight (the kernel keeps their motions in a fixed
-/// array so that it allocates nothing).
-pub const MAX_MOVING_PARTS: usize = 8;
+/// Most parts that shifts may move in one flight: the mass kernel's fixed arrays, whose size
+/// the flight's set-up checks against.
+pub use crate::massprops::MAX_MOVING_PARTS;
 
 /// A shift as the flight runs it.
 #[derive(Debug, Clone, Copy, PartialEq)]
