@@ -155,6 +155,22 @@ impl Component {
     pub fn x_bottom_m(&self) -> f64 {
         self.x_top_m + self.length_m
     }
+    /// The axial extent a child part may occupy, (fore, aft) m aft of the nose tip: the
+    /// component's own length, plus its shoulders for a nose cone or a transition. The design's
+    /// placement rules and a shift's travel limits both measure against it.
+    pub fn holder_extent_m(&self) -> (f64, f64) {
+        match &self.kind {
+            ComponentKind::NoseCone(n) => (
+                self.x_top_m,
+                self.x_bottom_m() + n.shoulder.map_or(0.0, |s| s.length_m),
+            ),
+            ComponentKind::Transition(t) => (
+                self.x_top_m - t.fore_shoulder.map_or(0.0, |s| s.length_m),
+                self.x_bottom_m() + t.aft_shoulder.map_or(0.0, |s| s.length_m),
+            ),
+            _ => (self.x_top_m, self.x_bottom_m()),
+        }
+    }
     /// True for nose cones, body tubes and transitions (the airframe's outer shell).
     pub fn is_body(&self) -> bool {
         matches!(

@@ -157,7 +157,7 @@ impl Design {
             .components
             .iter()
             .filter(|c| c.is_body())
-            .map(parts::extent)
+            .map(Component::holder_extent_m)
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (t, u)| {
                 (a.min(t), b.max(u))
             });

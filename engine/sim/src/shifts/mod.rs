@@ -155,23 +155,6 @@ pub struct ShiftPlan {
     pub part_of_shift: Vec<usize>,
 }
 
-/// The axial extent a part may occupy inside `holder`: the holder's own length, plus its
-/// shoulders for a nose cone or a transition.
-fn holder_extent(design: &Design, holder: ComponentIdx) -> (f64, f64) {
-    let c = &design.components[holder];
-    match &c.kind {
-        ComponentKind::NoseCone(n) => (
-            c.x_top_m,
-            c.x_bottom_m() + n.shoulder.map_or(0.0, |s| s.length_m),
-        ),
-        ComponentKind::Transition(t) => (
-            c.x_top_m - t.fore_shoulder.map_or(0.0, |s| s.length_m),
-            c.x_bottom_m() + t.aft_shoulder.map_or(0.0, |s| s.length_m),
-        ),
-        _ => (c.x_top_m, c.x_bottom_m()),
-    }
-}
-
 fn ancestors(design: &Design, idx: ComponentIdx) -> impl Iterator<Item = ComponentIdx> + '_ {
     std::iter::successors(design.components[idx].parent, move |&p| {
         design.components[p].parent
@@ -304,7 +287,7 @@ pub fn plan(
         let holder = c
             .parent
             .expect("internal parts always have a parent (validated design)");
-        let (h_top, h_bottom) = holder_extent(design, holder);
+        let (h_top, h_bottom) = design.components[holder].holder_extent_m();
         // A part already reaching outside its holder may go as far as it already reaches.
         let aft_limit = h_bottom.max(c.x_bottom_m()) - c.x_bottom_m();
         let fore_limit = c.x_top_m - h_top.min(c.x_top_m);

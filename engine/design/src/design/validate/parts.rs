@@ -89,21 +89,6 @@ fn norm(a: [f64; 2]) -> f64 {
     a[0].hypot(a[1])
 }
 
-/// The parent's axial extent, shoulders included, m aft of the nose tip.
-pub(super) fn extent(c: &Component) -> (f64, f64) {
-    match &c.kind {
-        ComponentKind::NoseCone(n) => (
-            c.x_top_m,
-            c.x_bottom_m() + n.shoulder.map_or(0.0, |s| s.length_m),
-        ),
-        ComponentKind::Transition(t) => (
-            c.x_top_m - t.fore_shoulder.map_or(0.0, |s| s.length_m),
-            c.x_bottom_m() + t.aft_shoulder.map_or(0.0, |s| s.length_m),
-        ),
-        _ => (c.x_top_m, c.x_bottom_m()),
-    }
-}
-
 /// The largest inner radius of a component that holds parts (a filled nose or transition
 /// counts as its outer radius: a weight may be set into it).
 fn inner_radius(c: &Component) -> f64 {
@@ -571,7 +556,7 @@ impl Builder<'_> {
                 !rc.is_external(),
             )?;
         }
-        let (parent_top, parent_bottom) = extent(&p);
+        let (parent_top, parent_bottom) = p.holder_extent_m();
         let overlap = (x_top + length).min(parent_bottom) - x_top.max(parent_top);
         if overlap <= 0.0 || overlap.is_nan() {
             self.misfit(
