@@ -5,12 +5,14 @@
 //! reads (reference diameter, length, rail guides, motor mount, cluster offsets) and refuses
 //! anything that would make the mass or aerodynamics meaningless, with a [`DesignError`]
 //! naming the file, the component, the field and the rule. The body components are in
-//! `bodies`, the parts inside and outside them in `parts`, the drag curves in `drag`.
+//! `bodies`, the parts inside and outside them in `parts` (a fin set's own fields in
+//! `fins`), the drag curves in `drag`.
 
 mod airfoil;
 mod bodies;
 mod drag;
 mod files;
+mod fins;
 mod parts;
 
 #[cfg(test)]
