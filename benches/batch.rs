@@ -43,7 +43,7 @@ fn peak_rss_kib() -> u64 {
 
 fn measure(n: usize, compare: bool) {
     let design = design();
-    let batch = fleet::batch(&design);
+    let batch = fleet::batch();
     let pool = |threads| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -116,7 +116,7 @@ fn once(how: &str, n: usize) {
         .build()
         .unwrap();
     let sum: f64 = pool.install(|| match how {
-        "batch" => fly_batch(&fleet::batch(&design), n),
+        "batch" => fly_batch(&fleet::batch(), n),
         _ => (0..n).map(|i| from_scratch(&design, i)).sum(),
     });
     println!("{how}: {n} variants, apogees sum to {sum:.6} m");

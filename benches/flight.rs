@@ -5,23 +5,16 @@
 //! Run: `cargo bench --bench flight -- --warm-up-time 1 --measurement-time 5`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use hpr_design::Design;
 use hpr_mc::cli::parachutes_for;
-use hpr_sim::flight::{Environment, Rail, SimOptions, Simulation};
+use hpr_sim::flight::Simulation;
+use hpr_sim::reference;
 use std::hint::black_box;
-use std::path::Path;
 
 fn setup() -> Simulation {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("validation/designs/synthetic-54mm-three-fin.json");
-    let design = Design::load(&path).expect("the reference design");
-    let motor = hpr_design::motor::find("Cesaroni_I175").expect("bundled motor");
-    let chutes = parachutes_for(&design, None, None, Some(300.0), Some(1.0));
+    let sim = reference::simulation();
+    let chutes = parachutes_for(sim.design(), None, None, Some(300.0), Some(1.0));
     assert_eq!(chutes.len(), 2, "drogue and main");
-    Simulation::new(design, motor, Environment::default(), Rail::default())
-        .and_then(|s| s.with_parachutes(chutes))
-        .and_then(|s| s.with_options(SimOptions::default()))
-        .expect("set up")
+    sim.with_parachutes(chutes).expect("set up")
 }
 
 fn flight(c: &mut Criterion) {

@@ -24,7 +24,7 @@ fn pool(threads: usize) -> rayon::ThreadPool {
 
 fn whole_flights(c: &mut Criterion) {
     let design = fleet::design();
-    let batch = fleet::batch(&design);
+    let batch = fleet::batch();
     let (one, two) = (pool(1), pool(2));
     let mut g = c.benchmark_group("whole_flights");
     g.sample_size(10).warm_up_time(Duration::from_secs(1));

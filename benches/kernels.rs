@@ -7,39 +7,25 @@
 //! `cargo bench --bench kernels`
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use hpr_design::{motor, Design};
 use hpr_sim::atmosphere::{AirModel, AirTable};
 use hpr_sim::batch::eval_four;
 use hpr_sim::cycloid;
 use hpr_sim::eom::{pack_mass, MassLanes};
 use hpr_sim::flight::model::FourModels;
 use hpr_sim::flight::model::MAX_SHIFTS;
-use hpr_sim::flight::{Environment, Rail, Simulation};
+use hpr_sim::flight::Simulation;
 use hpr_sim::lanes::{F64x4, Real};
-use hpr_sim::{MassShift, Trigger};
+use hpr_sim::reference;
 use std::hint::black_box;
 
-const REFERENCE: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/validation/designs/synthetic-54mm-three-fin.json"
-);
 const LANES: usize = 1024;
 
+/// The reference rocket with its ballast moving from 1 s, during the burn: the mass kernel
+/// evaluates the motor and the moving part together.
 fn simulation() -> Simulation {
-    Simulation::new(
-        Design::load(REFERENCE).unwrap(),
-        motor::find("Cesaroni_I175").unwrap(),
-        Environment::default(),
-        Rail::default(),
-    )
-    .unwrap()
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 1.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
-    .unwrap()
+    reference::simulation()
+        .with_shifts(vec![reference::ballast_shift(1.0)])
+        .unwrap()
 }
 
 fn kernels(c: &mut Criterion) {

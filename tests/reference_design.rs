@@ -1,9 +1,8 @@
 //! The reference design against the moving-mass worked example, digit for digit as
 //! `docs/moving-mass.md` ("The worked example") prints it, and `hpr-mc inspect` on it.
 
-use hpr_design::{motor, Design};
 use hpr_sim::flight::{Environment, Rail, Simulation};
-use hpr_sim::{MassShift, Trigger};
+use hpr_sim::{reference, Trigger};
 
 const REFERENCE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
@@ -24,28 +23,10 @@ fn hpr_mc(args: &[&str]) -> String {
     String::from_utf8(out.stdout).unwrap()
 }
 
-fn simulation() -> Simulation {
-    Simulation::new(
-        Design::load(REFERENCE).unwrap(),
-        motor::find("Cesaroni_I175").unwrap(),
-        Environment::default(),
-        Rail::default(),
-    )
-    .unwrap()
-}
-
 #[test]
 fn the_moving_ballast_example_prints_the_specification_s_table_to_every_digit() {
-    let still = simulation();
-    let sim = still
-        .clone()
-        .with_shifts(vec![MassShift::new(
-            Trigger::Time { time_s: 5.0 },
-            "ballast",
-            0.3,
-            1.0,
-        )])
-        .unwrap();
+    let still = reference::simulation();
+    let sim = reference::worked_example();
     let flight = sim.run(&mut ()).unwrap();
     let table: Vec<String> = [4.0, 5.25, 5.5, 5.75, 7.0]
         .iter()
@@ -182,8 +163,8 @@ fn fly_flies_on_the_turning_earth_of_its_latitude_with_the_ellipsoid_s_gravity()
         ..Environment::default()
     };
     let by_hand = Simulation::new(
-        Design::load(REFERENCE).unwrap(),
-        motor::find("Cesaroni_I175").unwrap(),
+        reference::design(),
+        reference::motor(),
         env,
         Rail::default(),
     )
@@ -315,7 +296,7 @@ fn a_flag_s_number_out_of_range_is_refused_naming_the_flag() {
 #[test]
 fn the_released_ballast_example_prints_the_page_s_table_to_every_digit() {
     // docs/released-mass.md's worked example: the ballast dropped at 5 s, tumbling.
-    let kept = simulation();
+    let kept = reference::simulation();
     let sim = kept
         .clone()
         .with_releases(vec![hpr_sim::Release::new(

@@ -10,13 +10,9 @@ use hpr_design::motor::{self, MotorOptions};
 use hpr_design::Design;
 use hpr_sim::batch::{Batch, Columns};
 use hpr_sim::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
+use hpr_sim::reference;
 use hpr_sim::wind::Wind;
 use hpr_sim::{MassShift, Trigger};
-
-pub const REFERENCE: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/validation/designs/synthetic-54mm-three-fin.json"
-);
 
 pub struct Rng(u64);
 impl Rng {
@@ -73,23 +69,12 @@ pub fn columns_of(rows: std::ops::Range<usize>) -> Columns {
     c
 }
 
-pub fn base(design: &Design) -> Simulation {
-    Simulation::new(
-        design.clone(),
-        motor::find("Cesaroni_I175").unwrap(),
-        Environment::default(),
-        Rail::default(),
-    )
-    .unwrap()
-    .with_parachutes(chutes())
-    .unwrap()
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 5.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
-    .unwrap()
+/// The fleet's base flight: the reference rocket with its ballast moving
+/// ([`reference::worked_example`]) under the drogue and the main.
+pub fn base() -> Simulation {
+    reference::worked_example()
+        .with_parachutes(chutes())
+        .unwrap()
 }
 
 /// What a user without the batch engine writes: a Simulation per variant, flown in a rayon loop.
@@ -140,14 +125,14 @@ pub fn from_scratch(design: &Design, i: usize) -> f64 {
     }
 }
 
-/// The reference design, loaded.
+/// The reference design, which each variant set up from scratch clones.
 pub fn design() -> Design {
-    Design::load(REFERENCE).unwrap()
+    reference::design()
 }
 
 /// The batch of the fleet's base flight, moving the ballast.
-pub fn batch(design: &Design) -> Batch {
-    Batch::new(base(design), Some("ballast")).unwrap()
+pub fn batch() -> Batch {
+    Batch::new(base(), Some(reference::BALLAST)).unwrap()
 }
 
 /// Flies variants `0..n` through `batch` (chunks of 16 lanes, 64 variants per chunk of

@@ -1,7 +1,8 @@
 //! `hpr_sim`: the flight. It owns the kernels (cycloid, mass properties at an instant,
 //! atmosphere, wind, aerodynamic loads, the one rigid-body derivative), the integrators and
 //! event location, triggers, parachutes, mass shifts, released masses, and the two drivers built on the same
-//! kernels: the single-flight [`Simulation`] and the structure-of-arrays batch engine.
+//! kernels: the single-flight [`Simulation`] and the structure-of-arrays batch engine; and the
+//! reference rocket the worked examples, benchmarks and tests fly ([`reference`]).
 
 pub mod aero_loads;
 pub mod atmosphere;
@@ -15,6 +16,7 @@ pub mod gravity;
 pub mod integrate;
 pub mod lanes;
 pub mod massprops;
+pub mod reference;
 pub mod releases;
 pub mod sensor;
 pub mod shifts;

@@ -1,9 +1,10 @@
 //! Every refusal of a release has a test that checks which rule fired, before the flight and
 //! in it.
 
-use super::tests::{component_mut, design, reference_json, simulation};
 use super::{plan, PartChute, PartTrigger, Release, ReleaseRefusal};
-use crate::flight::{Environment, SimError, SimOptions};
+use crate::flight::SimError;
+use crate::reference;
+use crate::reference::testing::{component_mut, design, reference_json};
 use crate::shifts::{self, ShiftPlan};
 use crate::{MassShift, Trigger};
 use serde_json::json;
@@ -250,11 +251,7 @@ fn triggers_a_release_cannot_have_are_refused_in_its_own_words() {
 
 #[test]
 fn a_release_that_would_fire_on_the_rail_stops_the_flight_and_the_same_later_flies() {
-    let sim = simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    );
+    let sim = reference::simulation();
     let exit = sim.run(&mut ()).unwrap().metrics.rail_exit_time_s.unwrap();
     let early = sim
         .clone()
@@ -281,13 +278,9 @@ fn a_release_that_would_fire_on_the_rail_stops_the_flight_and_the_same_later_fli
 
 #[test]
 fn a_part_is_not_released_while_its_shift_moves_it_nor_moved_once_released() {
-    let sim = simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_shifts(vec![MassShift::new(t5(), "ballast", 0.3, 1.0)])
-    .unwrap();
+    let sim = reference::simulation()
+        .with_shifts(vec![MassShift::new(t5(), "ballast", 0.3, 1.0)])
+        .unwrap();
     let with = |t: f64| {
         sim.clone()
             .with_releases(vec![Release::new(Trigger::Time { time_s: t }, "ballast")])

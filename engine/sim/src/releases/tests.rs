@@ -10,61 +10,20 @@ use crate::events::EventKind;
 use crate::flight::{Environment, Integrator, Parachute, Phase, Rail, SimOptions, Simulation};
 use crate::frames;
 use crate::gravity::Gravity;
-use crate::{MassShift, PartChute, PartTrigger, Release, Trigger};
+use crate::{PartChute, PartTrigger, Release, Trigger};
 use hpr_design::mass::{self, point_inertia};
 use hpr_design::{motor, Design};
 use nalgebra::Vector3;
 
-pub(super) const REFERENCE: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../validation/designs/synthetic-54mm-three-fin.json"
-);
-
-/// The reference design's JSON, for tests that change it.
-pub(super) fn reference_json() -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(REFERENCE).unwrap()).unwrap()
-}
-
-/// Find a component by id anywhere in a design's JSON.
-pub(super) fn component_mut<'a>(
-    v: &'a mut serde_json::Value,
-    id: &str,
-) -> &'a mut serde_json::Value {
-    fn walk<'a>(v: &'a mut serde_json::Value, id: &str) -> Option<&'a mut serde_json::Value> {
-        if v.get("id").and_then(|i| i.as_str()) == Some(id) && v.get("type").is_some() {
-            return Some(v);
-        }
-        match v {
-            serde_json::Value::Object(m) => m.values_mut().find_map(|c| walk(c, id)),
-            serde_json::Value::Array(a) => a.iter_mut().find_map(|c| walk(c, id)),
-            _ => None,
-        }
-    }
-    walk(v, id).unwrap_or_else(|| panic!("no component {id}"))
-}
-
-pub(super) fn design(v: &serde_json::Value) -> Design {
-    Design::from_json_str(&v.to_string(), None).unwrap()
-}
-
-pub(super) fn simulation(design: Design, env: Environment, options: SimOptions) -> Simulation {
-    let m = motor::find("Cesaroni_I175").unwrap();
-    Simulation::new(design, m, env, Rail::default())
-        .unwrap()
-        .with_options(options)
-        .unwrap()
-}
+use crate::reference::testing::{component_mut, design, reference_json, simulation};
+use crate::reference::{self, ballast_shift};
 
 /// The worked example: the reference design on its I175 drops its 200 g ballast at 5 s (the
 /// burn ends at 2.5 s), in still standard air.
 fn dropped_at_5_s() -> Simulation {
-    simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_releases(vec![Release::new(Trigger::Time { time_s: 5.0 }, "ballast")])
-    .unwrap()
+    reference::simulation()
+        .with_releases(vec![Release::new(Trigger::Time { time_s: 5.0 }, "ballast")])
+        .unwrap()
 }
 
 fn tight(max_time_s: f64) -> SimOptions {
@@ -555,20 +514,11 @@ fn a_release_fires_at_its_trigger() {
 fn a_part_moved_then_released_leaves_from_where_its_move_left_it() {
     // The ballast slides 0.3 m aft over 1 s from 5 s, and leaves at 7 s: what remains is the
     // whole less the ballast where it ended, and the part leaves from there.
-    let sim = simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 5.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
-    .unwrap()
-    .with_releases(vec![Release::new(Trigger::Time { time_s: 7.0 }, "ballast")])
-    .unwrap();
+    let sim = reference::simulation()
+        .with_shifts(vec![ballast_shift(5.0)])
+        .unwrap()
+        .with_releases(vec![Release::new(Trigger::Time { time_s: 7.0 }, "ballast")])
+        .unwrap();
     let flight = sim.run(&mut ()).unwrap();
     let moved = sim.mass_properties(&flight, 6.5);
     let after = sim.mass_properties(&flight, 7.5);
@@ -603,13 +553,9 @@ fn a_part_released_under_the_rocket_s_canopy_leaves_from_its_center_and_lightens
     // and the part leaves from the rocket's center with its velocity (the descent knows no
     // attitude: the rocket is a point there).
     let base = || {
-        simulation(
-            design(&reference_json()),
-            Environment::default(),
-            SimOptions::default(),
-        )
-        .with_parachutes(vec![Parachute::new("drogue", 0.1, Trigger::Apogee, 1.0)])
-        .unwrap()
+        reference::simulation()
+            .with_parachutes(vec![Parachute::new("drogue", 0.1, Trigger::Apogee, 1.0)])
+            .unwrap()
     };
     let kept = base().run(&mut ()).unwrap();
     let sim = base()

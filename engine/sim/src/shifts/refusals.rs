@@ -1,9 +1,9 @@
 //! Every refusal `docs/moving-mass.md` lists ("What is refused, and why") has a test that checks
 //! which rule fired.
 
-use super::tests::{component_mut, design, reference_json, simulation};
 use super::{plan, ShiftRefusal};
 use crate::flight::{Environment, SimError, SimOptions};
+use crate::reference::testing::{component_mut, design, reference_json, simulation};
 use crate::{MassShift, Trigger};
 use serde_json::json;
 

@@ -5,72 +5,15 @@ use crate::cycloid;
 use crate::eom::{self, N6};
 use crate::events::EventKind;
 use crate::flight::model::MAX_SHIFTS;
-use crate::flight::{
-    Environment, Flight, Integrator, Parachute, Phase, Rail, SimOptions, Simulation,
-};
+use crate::flight::{Environment, Flight, Integrator, Parachute, Phase, SimOptions, Simulation};
 use crate::frames;
 use crate::gravity::Gravity;
 use crate::{MassShift, Trigger};
 use hpr_design::mass::point_inertia;
-use hpr_design::{motor, Design};
 use nalgebra::{Matrix3, Vector3};
 
-pub(super) const REFERENCE: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../validation/designs/synthetic-54mm-three-fin.json"
-);
-
-/// The reference design's JSON, for tests that change it.
-pub(super) fn reference_json() -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(REFERENCE).unwrap()).unwrap()
-}
-
-/// Find a component by id anywhere in a design's JSON.
-pub(super) fn component_mut<'a>(
-    v: &'a mut serde_json::Value,
-    id: &str,
-) -> &'a mut serde_json::Value {
-    fn walk<'a>(v: &'a mut serde_json::Value, id: &str) -> Option<&'a mut serde_json::Value> {
-        if v.get("id").and_then(|i| i.as_str()) == Some(id) && v.get("type").is_some() {
-            return Some(v);
-        }
-        match v {
-            serde_json::Value::Object(m) => m.values_mut().find_map(|c| walk(c, id)),
-            serde_json::Value::Array(a) => a.iter_mut().find_map(|c| walk(c, id)),
-            _ => None,
-        }
-    }
-    walk(v, id).unwrap_or_else(|| panic!("no component {id}"))
-}
-
-pub(super) fn design(v: &serde_json::Value) -> Design {
-    Design::from_json_str(&v.to_string(), None).unwrap()
-}
-
-pub(super) fn simulation(design: Design, env: Environment, options: SimOptions) -> Simulation {
-    let m = motor::find("Cesaroni_I175").unwrap();
-    Simulation::new(design, m, env, Rail::default())
-        .unwrap()
-        .with_options(options)
-        .unwrap()
-}
-
-/// The worked example of `docs/moving-mass.md`: the reference design on its I175, the 200 g ballast
-/// slid 0.3 m aft over 1 s from t = 5 s, in still standard air.
-fn worked_example() -> Simulation {
-    simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 5.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
-    .unwrap()
-}
+use crate::reference::testing::{component_mut, design, reference_json, simulation};
+use crate::reference::{self, ballast_shift, worked_example};
 
 fn tight() -> SimOptions {
     SimOptions {
@@ -390,12 +333,7 @@ fn a_canopy_that_opens_while_the_ballast_moves_keeps_the_center_s_velocity() {
             ..tight()
         },
     )
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 5.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
+    .with_shifts(vec![ballast_shift(5.0)])
     .unwrap()
     .with_parachutes(vec![Parachute::new(
         "drogue",
@@ -472,21 +410,17 @@ fn a_shift_the_flight_starts_gets_its_stops_too() {
 
 #[test]
 fn a_shift_starts_at_apogee_or_at_its_height_on_the_way_down() {
-    let sim = simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_shifts(vec![
-        MassShift::new(Trigger::Apogee, "ballast", 0.1, 0.5),
-        MassShift::new(
-            Trigger::HeightDescending { height_m: 200.0 },
-            "ballast",
-            0.1,
-            0.5,
-        ),
-    ])
-    .unwrap();
+    let sim = reference::simulation()
+        .with_shifts(vec![
+            MassShift::new(Trigger::Apogee, "ballast", 0.1, 0.5),
+            MassShift::new(
+                Trigger::HeightDescending { height_m: 200.0 },
+                "ballast",
+                0.1,
+                0.5,
+            ),
+        ])
+        .unwrap();
     let flight = sim.run(&mut ()).unwrap();
     let apogee = flight.event(EventKind::Apogee).unwrap();
     let s0 = flight.event(EventKind::Shift(0)).unwrap();
@@ -503,21 +437,17 @@ fn a_shift_starts_at_apogee_or_at_its_height_on_the_way_down() {
 
 #[test]
 fn a_shift_starts_at_burnout_or_its_delay_after() {
-    let sim = simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_shifts(vec![
-        MassShift::new(Trigger::Burnout, "ballast", 0.1, 0.5),
-        MassShift::new(
-            Trigger::BurnoutPlusDelay { delay_s: Some(2.0) },
-            "ballast",
-            0.1,
-            0.5,
-        ),
-    ])
-    .unwrap();
+    let sim = reference::simulation()
+        .with_shifts(vec![
+            MassShift::new(Trigger::Burnout, "ballast", 0.1, 0.5),
+            MassShift::new(
+                Trigger::BurnoutPlusDelay { delay_s: Some(2.0) },
+                "ballast",
+                0.1,
+                0.5,
+            ),
+        ])
+        .unwrap();
     let flight = sim.run(&mut ()).unwrap();
     let burnout = sim.model().burnout_s;
     let burnout_event = flight.event(EventKind::Burnout).unwrap().time_s;
@@ -538,18 +468,9 @@ fn a_shift_starts_at_burnout_or_its_delay_after() {
 #[test]
 fn the_instant_memo_gives_the_model_s_instant_and_never_one_held_for_other_starts() {
     use crate::flight::model::InstantMemo;
-    let sim = simulation(
-        design(&reference_json()),
-        Environment::default(),
-        SimOptions::default(),
-    )
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 1.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
-    .unwrap();
+    let sim = reference::simulation()
+        .with_shifts(vec![ballast_shift(1.0)])
+        .unwrap();
     let model = sim.model();
     let idle = [f64::INFINITY; MAX_SHIFTS];
     let mut moving = idle;
