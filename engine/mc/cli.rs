@@ -386,15 +386,8 @@ pub fn load(design: &PathBuf, motor: &Option<String>) -> Result<(Design, Motor)>
         })?,
     };
     let m = motor::find(&name).map_err(|e| anyhow!("{e}"))?;
-    motor_notes(&m);
+    report::motor_notes(&m);
     Ok((d, m))
-}
-
-/// What the motor's reader mended in its file (nothing for a clean file), on standard error.
-pub fn motor_notes(m: &Motor) {
-    for note in &m.notes {
-        eprintln!("note: motor {}: {note}", m.source);
-    }
 }
 
 /// A rail long enough for any design (for commands that do not fly).

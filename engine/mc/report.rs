@@ -1,5 +1,7 @@
 //! What the commands print: text tables for people and JSON for scripts, from the same
-//! figures; and the trajectory files (CSV or Parquet) of `fly`.
+//! figures; the notes a motor's reader left; and the trajectory files (CSV or Parquet) of
+//! `fly`. The command line and the campaign's run both print through it, and it calls
+//! neither.
 
 use crate::campaign::parquet::field;
 use anyhow::{bail, Result};
@@ -10,6 +12,13 @@ use serde_json::{json, Value};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::sync::Arc;
+
+/// What the motor's reader mended in its file (nothing for a clean file), on standard error.
+pub fn motor_notes(m: &hpr_design::motor::Motor) {
+    for note in &m.notes {
+        eprintln!("note: motor {}: {note}", m.source);
+    }
+}
 
 /// The figures `inspect` reports.
 pub struct Inspection {

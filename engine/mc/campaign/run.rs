@@ -110,7 +110,7 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
     let started = Instant::now();
     let prepared = prepare(scenario, cfg)?;
     if !cfg.quiet {
-        crate::cli::motor_notes(prepared.motor());
+        crate::report::motor_notes(prepared.motor());
     }
     let shard = cfg.shard.unwrap_or(Shard::ALL);
     let dir = cfg
