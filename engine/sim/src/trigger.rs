@@ -1,9 +1,10 @@
-//! Triggers: when a parachute opens or a mass shift starts. Both use this one type, so a shift
-//! can start on anything that opens a parachute (apogee, a height on the way down, a time after
-//! launch, burnout, burnout plus a delay), and the flight driver judges both alike: a trigger
-//! with a time known before the flight ([`Trigger::fixed_time`]) is a stop time, apogee and a
-//! height are events located on the step's dense output, and one call fires every parachute and
-//! shift that a moment triggers.
+//! Triggers: when a parachute opens, a mass shift starts or a part is released. All three use
+//! this one type, so a shift or a release can start on anything that opens a parachute
+//! (apogee, a height on the way down, a time after launch, burnout, burnout plus a delay), and
+//! the flight driver judges them alike: a trigger with a time known before the flight
+//! ([`Trigger::fixed_time`]) is a stop time, apogee and a height are events located on the
+//! step's dense output, and one call fires every parachute, shift and release that a moment
+//! triggers.
 
 use std::fmt;
 
