@@ -31,8 +31,9 @@ pub fn emit(text: &str) -> Result<()> {
 pub struct InspectArgs {
     /// The design (JSON, or an OpenRocket .ork).
     pub design: PathBuf,
-    /// Motor: a file path, a bundled file stem (Cesaroni_I175) or a designation. Defaults to
-    /// the design's own motor.
+    /// Motor: a file path (.eng or .rse; FILE#NAME or FILE#K picks one motor of a file that
+    /// holds several), a bundled file stem (Cesaroni_I175), a designation (411-I175-WH-14A)
+    /// or a common name (I175). Defaults to the design's own motor.
     #[arg(long)]
     pub motor: Option<String>,
     #[command(flatten)]
@@ -181,8 +182,10 @@ impl MotorMasses {
     }
 }
 
-/// `fly`'s exit codes, as `fly --help` shows them.
-pub const FLY_EXIT_CODES: &str = "Exit codes: 0 the flight landed; 1 it did not (it never left the rail, or was still flying at its time limit: 600 s, a scenario's integrator.max_time_s), said on standard error; 2 bad input or an error that stopped the flight.";
+/// `fly`'s exit codes, as `fly --help` shows them, and where its flags are grouped.
+pub const FLY_EXIT_CODES: &str = "Exit codes: 0 the flight landed; 1 it did not (it never left the rail, or was still flying at its time limit: 600 s, a scenario's integrator.max_time_s), said on standard error; 2 bad input or an error that stopped the flight.
+
+The flags grouped by purpose, and the trajectory file's columns: docs/command-line.md.";
 
 #[derive(clap::Args, Debug, Clone)]
 #[command(after_help = FLY_EXIT_CODES)]
@@ -222,7 +225,9 @@ pub struct FlyArgs {
     /// margins, angle of attack, thrust and mass against time, side profile, ground track.
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
-    /// Motor (see `inspect --motor`).
+    /// Motor: a file path (.eng or .rse; FILE#NAME or FILE#K picks one motor of a file that
+    /// holds several), a bundled file stem (Cesaroni_I175), a designation (411-I175-WH-14A)
+    /// or a common name (I175). Defaults to the design's own motor.
     #[arg(long)]
     pub motor: Option<String>,
     #[command(flatten)]
@@ -230,7 +235,10 @@ pub struct FlyArgs {
     /// Print JSON instead of tables.
     #[arg(long)]
     pub json: bool,
-    /// Write the samples to FILE.csv or FILE.parquet.
+    /// Write the samples to FILE.csv or FILE.parquet: one row per step, its phase, time,
+    /// position (x east, y north of the rail's foot), velocity, speed, Mach, dynamic
+    /// pressure, angle of attack, acceleration, thrust, mass, center of mass, margins and
+    /// attitude quaternion (the columns: docs/command-line.md).
     #[arg(long, value_name = "FILE")]
     pub trajectory: Option<PathBuf>,
     /// Rail length, m.
