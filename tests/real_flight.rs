@@ -422,3 +422,29 @@ fn bella_lui_with_its_drag_estimated_from_its_geometry_is_within_rocketpy_s_apog
     // The estimate is a different drag: the flight is not the table's.
     assert!((apogee - figures(&nominal()).apogee_m).abs() > 1.0);
 }
+
+/// A design's own motor file is found beside the design, wherever the command is run from:
+/// `inspect` of the Bella Lui design, run from the system's temporary folder, says exactly
+/// what it says when the same motor file is given by its full path.
+#[test]
+fn a_design_s_own_motor_file_is_found_beside_the_design_from_any_working_directory() {
+    let design = repo("validation/designs/bella-lui.json");
+    let motor = repo("validation/real-flights/bella-lui/AeroTech_K828FJ.eng");
+    let run = |extra: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_hpr-mc"))
+            .current_dir(std::env::temp_dir())
+            .args(["inspect", design.to_str().unwrap(), "--json"])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let own = run(&[]);
+    assert!(own.contains("K828"), "{own}");
+    assert_eq!(own, run(&["--motor", motor.to_str().unwrap()]));
+}

@@ -9,7 +9,7 @@ use hpr_design::{Design, MAX_SAMPLING_RATE_HZ};
 use hpr_sim::flight::{Environment, Parachute, Rail, SimOptions, Simulation};
 use hpr_sim::trigger::Trigger;
 use hpr_sim::turbulence::MAX_TURBULENCE_INTENSITY;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 pub use crate::campaign::cli::{run, RunArgs, RunCommand};
@@ -386,16 +386,38 @@ pub fn load(design: &PathBuf, motor: &Option<String>) -> Result<(Design, Motor)>
     }
     let name = match motor {
         Some(m) => m.clone(),
-        None => d.default_motor.clone().ok_or_else(|| {
-            anyhow!(
-                "{}: the design names no motor (field \"motor\"); give --motor",
-                design.display()
-            )
-        })?,
+        None => beside(
+            design,
+            &d.default_motor.clone().ok_or_else(|| {
+                anyhow!(
+                    "{}: the design names no motor (field \"motor\"); give --motor",
+                    design.display()
+                )
+            })?,
+        ),
     };
     let m = motor::find(&name).map_err(|e| anyhow!("{e}"))?;
     report::motor_notes(&m);
     Ok((d, m))
+}
+
+/// A design's own motor as `motor::find` takes it: a relative file path (with or without a
+/// `#NAME` or `#K` after it) is the design file's neighbour, as a scenario's motor is the
+/// scenario's; a designation or a path that is no file beside the design is kept as written.
+fn beside(design: &Path, motor: &str) -> String {
+    let (file, choice) = match motor.split_once('#') {
+        Some((file, choice)) => (file, Some(choice)),
+        None => (motor, None),
+    };
+    let dir = design.parent().unwrap_or(Path::new(""));
+    let path = dir.join(file);
+    if file.is_empty() || Path::new(file).is_absolute() || !path.is_file() {
+        return motor.to_owned();
+    }
+    match choice {
+        Some(choice) => format!("{}#{choice}", path.display()),
+        None => path.display().to_string(),
+    }
 }
 
 /// A rail long enough for any design (for commands that do not fly).
