@@ -21,7 +21,9 @@
 //!   summary, exit codes.
 
 pub mod cli;
+pub mod digest;
 pub mod fly;
+pub mod gather;
 pub mod outdir;
 pub mod params;
 pub mod parquet;
