@@ -13,17 +13,22 @@
 //!
 //! The digest is a pure function of the values in the order added (no randomness), so a run
 //! and its resumption give the same bits. Its rank error has no worst-case bound; on the
-//! distributions of its tests (normal, skewed, bimodal, uniform, sorted and reversed input,
-//! heavy ties) and of the bundled scenarios it stays within [`RANK_ERROR`] of the count at
-//! p1 to p99, where the exact percentile's own sampling scatter over 100,000 values is
-//! about 0.07 % (p50) to 0.03 % (p1).
+//! distributions of its tests (normal, skewed, bimodal, uniform, sorted and reversed input)
+//! it stays within [`RANK_ERROR`] of the count at p1 to p99 ([`RANK_ERROR_TIES`] for values
+//! with heavy ties), where the sampling scatter of an exact percentile of 100,000 flights is,
+//! in rank, √(q(1 − q)/n): 0.16 % of the count at p50, 0.03 % at p1.
 
 /// δ, the digest's compression: at most about this many centroids.
 pub const COMPRESSION: f64 = 500.0;
 
-/// The rank error the digest keeps to (a fraction of the values' count) on its tests' and
-/// the bundled scenarios' distributions, at the percentiles written (p1 to p99).
+/// The rank error the digest keeps to (a fraction of the values' count) on its tests'
+/// continuous distributions, at the percentiles written (p1 to p99).
 pub const RANK_ERROR: f64 = 5e-4;
+
+/// The same for values with heavy ties (a few distinct values, each a few percent of the
+/// count), where a centroid can hold two neighbouring values and a percentile fall between
+/// them.
+pub const RANK_ERROR_TIES: f64 = 1e-3;
 
 /// Values held before they are merged into the centroids.
 const BUFFER: usize = 512;
@@ -287,11 +292,19 @@ mod tests {
             values.iter().for_each(|&x| d.add(x));
             let mut sorted = values.clone();
             sorted.sort_by(f64::total_cmp);
+            let mut case: f64 = 0.0;
             for q in [0.01, 0.05, 0.25, 0.5, 0.75, 0.95, 0.99] {
                 let e = rank_error(&sorted, q, d.quantile(q));
-                worst = worst.max(e);
-                assert!(e <= RANK_ERROR, "{name} q = {q}: rank error {e}");
+                case = case.max(e);
+                let bound = if *name == "ties" {
+                    RANK_ERROR_TIES
+                } else {
+                    RANK_ERROR
+                };
+                assert!(e <= bound, "{name} q = {q}: rank error {e}");
             }
+            eprintln!("{name}: worst rank error {case:.2e}");
+            worst = worst.max(case);
             assert_eq!(d.quantile(0.0), sorted[0], "{name}");
             assert_eq!(d.quantile(1.0), sorted[n - 1], "{name}");
             let c = d.centroids();

@@ -680,7 +680,9 @@ mod tests {
                 let (fa, fb) = (fa.as_ref().unwrap(), fb.as_ref().unwrap());
                 assert_eq!(fa.count, fb.count);
                 assert!(close(fa.r2, fb.r2, 1e-9), "{} {}", fa.r2, fb.r2);
-                for k in 0..3 {
+                // One coefficient per dispersed input (the first and the third).
+                assert_eq!((fa.coefficients.len(), fb.coefficients.len()), (2, 2));
+                for k in 0..2 {
                     match (fa.coefficients[k], fb.coefficients[k]) {
                         (None, None) => {}
                         (Some(x), Some(y)) => assert!(close(x, y, 1e-9), "{x} {y}"),
@@ -692,14 +694,14 @@ mod tests {
                 }
             }
         }
-        // The fit found the law the rows were made with: 200 per unit of the first input.
+        // The fit found the law the rows were made with: 200 per unit of the first input,
+        // −0.5 per unit of the third (the noise, 3 × uniform(−½, ½), moves them by about 1 %).
         let fit = b[0].sensitivity[0].as_ref().unwrap();
         assert!(
             (fit.coefficients[0].unwrap() - 200.0).abs() < 2.0,
             "{fit:?}"
         );
-        assert!((fit.coefficients[2].unwrap() + 0.5).abs() < 0.05, "{fit:?}");
-        assert_eq!(fit.coefficients[1], None);
+        assert!((fit.coefficients[1].unwrap() + 0.5).abs() < 0.01, "{fit:?}");
         assert_eq!(
             (exact.rows, exact.landed, exact.failed),
             (streamed.rows, streamed.landed, streamed.failed)
