@@ -347,6 +347,67 @@ fn columns(b: &RecordBatch) -> Vec<std::sync::Arc<dyn Array>> {
 }
 
 #[test]
+fn a_shard_without_variants_writes_an_empty_variants_file() {
+    // 10 variants in 16 shards: shard 12 has none.
+    let (dir, file) = setup(&tiny(5));
+    let r = run_campaign(
+        &file,
+        &RunConfig {
+            shard: Some(Shard { k: 12, n: 16 }),
+            no_report: true,
+            ..config(&dir.path().join("out"))
+        },
+    )
+    .unwrap();
+    assert!(r.complete);
+    assert_eq!((r.variants, r.parts, r.landed), (0, 0, 0));
+    assert_eq!(read(&r.outputs.variants).num_rows(), 0);
+}
+
+#[test]
+fn the_thread_count_changes_no_byte_of_the_files_and_the_chunk_size_no_number() {
+    // 10 variants in parts of 4, chunks of 4 (tiny's) or of 1, on 1, 2 or 3 threads.
+    let (dir, file) = setup(&tiny(5));
+    let run = |file: &Path, threads: usize, name: &str| {
+        run_campaign(
+            file,
+            &RunConfig {
+                threads: Some(threads),
+                part_rows: Some(4),
+                ..config(&dir.path().join(name))
+            },
+        )
+        .unwrap()
+    };
+    let one = run(&file, 1, "one");
+    let three = run(&file, 3, "three");
+    for (a, b) in one
+        .outputs
+        .finished()
+        .iter()
+        .zip(three.outputs.finished())
+        .filter(|(a, _)| a.extension().is_some_and(|e| e == "parquet"))
+    {
+        assert!(
+            std::fs::read(a).unwrap() == std::fs::read(b).unwrap(),
+            "{} differs between 1 and 3 threads",
+            a.file_name().unwrap().to_string_lossy()
+        );
+    }
+    // Chunks of 1 (another scenario text: its metadata differs, not its numbers).
+    let ones = dir.path().join("chunks-of-1.toml");
+    std::fs::write(&ones, tiny(5).replace("chunk_size = 4", "chunk_size = 1")).unwrap();
+    let small = run(&ones, 2, "small");
+    for (a, b) in [
+        (&one.outputs.variants, &small.outputs.variants),
+        (&one.outputs.summary, &small.outputs.summary),
+        (&one.outputs.sensitivity, &small.outputs.sensitivity),
+    ] {
+        assert_eq!(columns(&read(a)), columns(&read(b)), "{}", a.display());
+    }
+}
+
+#[test]
 fn one_thread_or_two_give_the_same_rows_and_the_shards_together_are_the_whole_run() {
     let (dir, file) = setup(&tiny(5));
     let whole = run_campaign(&file, &config(&dir.path().join("one"))).unwrap();

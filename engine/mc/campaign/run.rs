@@ -337,12 +337,24 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
             let writer = writers[k].as_ref().and_then(|w| w.as_deref());
             check_part(&paths[k], k, &id, writer, range.end - range.start)?;
         }
-        pq::concat_atomic(
-            &out.variants,
-            &held.temporary(&out.variants),
-            &paths,
-            &meta.pairs(),
-        )?;
+        if paths.is_empty() {
+            // A shard without variants (more shards than variants): an empty file.
+            pq::write_atomic(
+                &out.variants,
+                &held.temporary(&out.variants),
+                &schema,
+                &meta.pairs(),
+                row_group_rows,
+                |_| Ok(()),
+            )?;
+        } else {
+            pq::concat_atomic(
+                &out.variants,
+                &held.temporary(&out.variants),
+                &paths,
+                &meta.pairs(),
+            )?;
+        }
         timings.merge = merging.elapsed();
         finish(&mut report, &meta, &mut gather, &held, &mut timings)?;
         std::fs::remove_dir_all(&report.outputs.parts)
@@ -913,6 +925,24 @@ mod tests {
         })
         .unwrap();
         path
+    }
+
+    #[test]
+    fn parts_hold_at_least_16384_rows_in_whole_row_groups_and_a_run_has_at_most_256() {
+        assert_eq!(part_rows(20_000, 8192), 16_384);
+        // A million variants: 62 parts (the last of 576 rows), not 31,250 chunks.
+        assert_eq!(part_rows(1_000_000, 8192), 16_384);
+        assert_eq!(1_000_000u64.div_ceil(16_384), 62);
+        // Ten million, the most one process flies: 40,960 rows a part, 245 parts.
+        assert_eq!(part_rows(10_000_000, 8192), 40_960);
+        assert_eq!(10_000_000u64.div_ceil(40_960), 245);
+        for count in [1, 1000, 4_194_304, 4_194_305, 9_999_999, 10_000_000] {
+            for rg in [1, 7, 8192, 100_000] {
+                let rows = part_rows(count, rg);
+                assert!(count.div_ceil(rows) <= MAX_PARTS, "{count} {rg}");
+                assert!(rows >= PART_ROWS && rows % rg as u64 == 0, "{count} {rg}");
+            }
+        }
     }
 
     #[test]
