@@ -13,13 +13,14 @@
 //!
 //! The digest is a pure function of the values in the order added (no randomness), so a run
 //! and its resumption give the same bits. Its rank error has no worst-case bound; on the
-//! distributions of its tests (normal, skewed, bimodal, uniform, sorted and reversed input)
+//! distributions of its tests (normal, skewed, bimodal, uniform, sorted and reversed input;
+//! 3,000 to 200,000 values)
 //! it stays within [`RANK_ERROR`] of the count at p1 to p99 ([`RANK_ERROR_TIES`] for values
 //! with heavy ties), where the sampling scatter of an exact percentile of 100,000 flights is,
 //! in rank, √(q(1 − q)/n): 0.16 % of the count at p50, 0.03 % at p1.
 
 /// δ, the digest's compression: at most about this many centroids.
-pub const COMPRESSION: f64 = 500.0;
+pub const COMPRESSION: f64 = 2000.0;
 
 /// The rank error the digest keeps to (a fraction of the values' count) on its tests'
 /// continuous distributions, at the percentiles written (p1 to p99).
@@ -311,6 +312,32 @@ mod tests {
             assert!(c <= COMPRESSION as usize, "{name}: {c} centroids");
         }
         eprintln!("worst rank error {worst:.2e}");
+    }
+
+    #[test]
+    fn a_digest_of_a_few_thousand_values_keeps_its_stated_rank_error() {
+        // A sweep point of a run just past the exact size holds a few thousand values, where
+        // a centroid holds the most values for its width in rank.
+        let mut worst: f64 = 0.0;
+        for seed in 0..20 {
+            for n in [3_000, 5_000, 12_000, 30_000] {
+                let mut u = Uniform(100 + seed);
+                let values: Vec<f64> = (0..n).map(|_| 17.0 + 2.5 * u.normal()).collect();
+                let mut d = Digest::new();
+                values.iter().for_each(|&x| d.add(x));
+                let mut sorted = values.clone();
+                sorted.sort_by(f64::total_cmp);
+                for q in [0.01, 0.05, 0.5, 0.95, 0.99] {
+                    let e = rank_error(&sorted, q, d.quantile(q));
+                    worst = worst.max(e);
+                    assert!(
+                        e <= RANK_ERROR,
+                        "n = {n}, seed {seed}, q = {q}: rank error {e}"
+                    );
+                }
+            }
+        }
+        eprintln!("a few thousand values: worst rank error {worst:.2e}");
     }
 
     #[test]

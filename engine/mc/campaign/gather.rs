@@ -16,7 +16,8 @@
 //!   (the sums and cross-products of the dispersed inputs and each metric, taken about the
 //!   point's first landed row, then centred and solved as the normal equations of the
 //!   standardized inputs); the requirements and statuses are counts either way. Memory is
-//!   then per sweep point and metric, not per row: about 20 kB per point and metric.
+//!   then per sweep point and metric, not per row: at most about 40 kB per point and metric
+//!   (the digest's 2,000 centroids and its buffer).
 //!
 //! The rows arrive in variant order whatever the threads, and a resumed run replays its kept
 //! parts in the same order, so every figure is the same bits whether the run was flown in
