@@ -851,3 +851,63 @@ fn each_requirement_s_count_is_the_rows_that_meet_it_whatever_their_status() {
     );
     assert!(!min.is_null(0) && max.is_null(0), "apogee_m has a min only");
 }
+
+#[test]
+fn timings_name_every_phase_and_their_seconds_add_up_to_the_run() {
+    let (dir, file) = setup(&tiny(5));
+    let out = dir.path().join("out");
+    let (code, stdout, stderr) = hpr_mc(&[
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--timings",
+    ]);
+    assert!(code <= 1, "{stderr}");
+    let seconds = |name: &str| -> f64 {
+        let line = stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with(name))
+            .unwrap_or_else(|| panic!("no line {name}: {stdout}"));
+        line[name.len() + line.find(name).unwrap()..]
+            .split_whitespace()
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let total: f64 = stdout
+        .lines()
+        .find_map(|l| l.split("share of the run's ").nth(1))
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    let top = [
+        "scenario and tables",
+        "flying the variants",
+        "variants file (parts copied)",
+        "statistics and their files",
+        "trajectories",
+        "report and maps",
+        "other",
+    ];
+    let sum: f64 = top.iter().map(|n| seconds(n)).sum();
+    // Each printed to the millisecond: seven roundings of at most 0.5 ms.
+    assert!(
+        (sum - total).abs() <= 0.0036,
+        "{sum} against {total}: {stdout}"
+    );
+    for name in [
+        "sampling",
+        "flights",
+        "rows (Arrow)",
+        "Parquet parts",
+        "statistics gathered",
+        "waiting for flights",
+    ] {
+        assert!(seconds(name) >= 0.0, "{name}");
+    }
+    assert!(seconds("flights") > 0.0, "{stdout}");
+    assert!(stdout.contains("10 flights in "), "{stdout}");
+}
