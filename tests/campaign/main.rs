@@ -347,6 +347,67 @@ fn columns(b: &RecordBatch) -> Vec<std::sync::Arc<dyn Array>> {
 }
 
 #[test]
+fn a_shard_without_variants_writes_an_empty_variants_file() {
+    // 10 variants in 16 shards: shard 12 has none.
+    let (dir, file) = setup(&tiny(5));
+    let r = run_campaign(
+        &file,
+        &RunConfig {
+            shard: Some(Shard { k: 12, n: 16 }),
+            no_report: true,
+            ..config(&dir.path().join("out"))
+        },
+    )
+    .unwrap();
+    assert!(r.complete);
+    assert_eq!((r.variants, r.parts, r.landed), (0, 0, 0));
+    assert_eq!(read(&r.outputs.variants).num_rows(), 0);
+}
+
+#[test]
+fn the_thread_count_changes_no_byte_of_the_files_and_the_chunk_size_no_number() {
+    // 10 variants in parts of 4, chunks of 4 (tiny's) or of 1, on 1, 2 or 3 threads.
+    let (dir, file) = setup(&tiny(5));
+    let run = |file: &Path, threads: usize, name: &str| {
+        run_campaign(
+            file,
+            &RunConfig {
+                threads: Some(threads),
+                part_rows: Some(4),
+                ..config(&dir.path().join(name))
+            },
+        )
+        .unwrap()
+    };
+    let one = run(&file, 1, "one");
+    let three = run(&file, 3, "three");
+    for (a, b) in one
+        .outputs
+        .finished()
+        .iter()
+        .zip(three.outputs.finished())
+        .filter(|(a, _)| a.extension().is_some_and(|e| e == "parquet"))
+    {
+        assert!(
+            std::fs::read(a).unwrap() == std::fs::read(b).unwrap(),
+            "{} differs between 1 and 3 threads",
+            a.file_name().unwrap().to_string_lossy()
+        );
+    }
+    // Chunks of 1 (another scenario text: its metadata differs, not its numbers).
+    let ones = dir.path().join("chunks-of-1.toml");
+    std::fs::write(&ones, tiny(5).replace("chunk_size = 4", "chunk_size = 1")).unwrap();
+    let small = run(&ones, 2, "small");
+    for (a, b) in [
+        (&one.outputs.variants, &small.outputs.variants),
+        (&one.outputs.summary, &small.outputs.summary),
+        (&one.outputs.sensitivity, &small.outputs.sensitivity),
+    ] {
+        assert_eq!(columns(&read(a)), columns(&read(b)), "{}", a.display());
+    }
+}
+
+#[test]
 fn one_thread_or_two_give_the_same_rows_and_the_shards_together_are_the_whole_run() {
     let (dir, file) = setup(&tiny(5));
     let whole = run_campaign(&file, &config(&dir.path().join("one"))).unwrap();
@@ -389,65 +450,96 @@ fn one_thread_or_two_give_the_same_rows_and_the_shards_together_are_the_whole_ru
 }
 
 #[test]
-fn an_interrupted_run_resumes_flying_only_the_missing_chunks() {
+fn an_interrupted_run_resumes_flying_only_the_missing_parts_to_the_same_bytes() {
     let (dir, file) = setup(&tiny(5));
-    let reference = run_campaign(&file, &config(&dir.path().join("reference"))).unwrap();
+    // Parts of 4 rows: 10 variants in 3 parts.
+    let parts_of_4 = |out: &Path| RunConfig {
+        part_rows: Some(4),
+        ..config(out)
+    };
+    let reference = run_campaign(&file, &parts_of_4(&dir.path().join("reference"))).unwrap();
+    assert_eq!((reference.parts, reference.parts_flown), (3, 3));
     let out = dir.path().join("out");
-    // Fly one chunk of three, then stop as Ctrl-C would; leave a half-written part too.
+    // Write one part of three, then stop as Ctrl-C would; leave a half-written part too.
     let first = run_campaign(
         &file,
         &RunConfig {
-            max_chunks: Some(1),
-            ..config(&out)
+            max_parts: Some(1),
+            ..parts_of_4(&out)
         },
     )
     .unwrap();
     assert!(!first.complete);
-    assert_eq!(first.chunks_flown, 1);
+    assert_eq!(first.parts_flown, 1);
     assert!(
         !first.outputs.variants.exists(),
-        "no variants file before every chunk is done"
+        "no variants file before every part is done"
     );
     let parts = out.join("parts/variants");
-    std::fs::write(parts.join("chunk-00000002.parquet.tmp"), b"half a file").unwrap();
+    std::fs::write(parts.join("part-000002.parquet.tmp"), b"half a file").unwrap();
     let done: Vec<String> = std::fs::read_dir(&parts)
         .unwrap()
         .map(|e| e.unwrap().file_name().into_string().unwrap())
         .collect();
     assert!(
-        done.contains(&"chunk-00000000.parquet".to_string()),
+        done.contains(&"part-000000.parquet".to_string()),
         "{done:?}"
     );
 
-    // A resume with another seed refuses the parts.
+    // A resume with another seed refuses the parts, and so does one cut into other parts.
     let e = run_campaign(
         &file,
         &RunConfig {
             resume: true,
             seed: Some(3),
-            ..config(&out)
+            ..parts_of_4(&out)
         },
     )
     .unwrap_err();
     assert!(e.to_string().contains("hpr_mc.seed"), "{e}");
+    let e = run_campaign(
+        &file,
+        &RunConfig {
+            resume: true,
+            part_rows: Some(5),
+            ..config(&out)
+        },
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("(its hpr_mc.part_rows is 4, this run's is 5)"),
+        "{e}"
+    );
 
     let second = run_campaign(
         &file,
         &RunConfig {
             resume: true,
-            ..config(&out)
+            ..parts_of_4(&out)
         },
     )
     .unwrap();
     assert!(second.complete);
-    assert_eq!((second.chunks_kept, second.chunks_flown), (1, 2));
-    assert_eq!(
-        columns(&read(&second.outputs.variants)),
-        columns(&read(&reference.outputs.variants))
-    );
+    assert_eq!((second.parts_kept, second.parts_flown), (1, 2));
+    // Every file the uninterrupted run wrote, byte for byte (the report too, but for the
+    // time it names).
+    for (a, b) in second
+        .outputs
+        .finished()
+        .iter()
+        .zip(reference.outputs.finished())
+        .filter(|(a, _)| a.extension().is_some_and(|e| e == "parquet"))
+    {
+        assert!(
+            std::fs::read(a).unwrap() == std::fs::read(b).unwrap(),
+            "{} differs from the uninterrupted run's",
+            a.display()
+        );
+    }
     assert!(
         !out.join("parts").exists(),
-        "the parts are removed once merged"
+        "the parts are removed once copied"
     );
 
     // Resuming a finished run flies nothing and writes the same summary.
@@ -455,14 +547,14 @@ fn an_interrupted_run_resumes_flying_only_the_missing_chunks() {
         &file,
         &RunConfig {
             resume: true,
-            ..config(&out)
+            ..parts_of_4(&out)
         },
     )
     .unwrap();
-    assert_eq!((third.chunks_kept, third.chunks_flown), (0, 0));
+    assert_eq!((third.parts_kept, third.parts_flown), (0, 0));
     assert_eq!(
-        columns(&read(&third.outputs.summary)),
-        columns(&read(&reference.outputs.summary))
+        std::fs::read(&third.outputs.summary).unwrap(),
+        std::fs::read(&reference.outputs.summary).unwrap()
     );
 }
 
@@ -758,4 +850,64 @@ fn each_requirement_s_count_is_the_rows_that_meet_it_whatever_their_status() {
         "some variant without a value, counted as not meeting"
     );
     assert!(!min.is_null(0) && max.is_null(0), "apogee_m has a min only");
+}
+
+#[test]
+fn timings_name_every_phase_and_their_seconds_add_up_to_the_run() {
+    let (dir, file) = setup(&tiny(5));
+    let out = dir.path().join("out");
+    let (code, stdout, stderr) = hpr_mc(&[
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--timings",
+    ]);
+    assert!(code <= 1, "{stderr}");
+    let seconds = |name: &str| -> f64 {
+        let line = stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with(name))
+            .unwrap_or_else(|| panic!("no line {name}: {stdout}"));
+        line[name.len() + line.find(name).unwrap()..]
+            .split_whitespace()
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let total: f64 = stdout
+        .lines()
+        .find_map(|l| l.split("share of the run's ").nth(1))
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    let top = [
+        "scenario and tables",
+        "flying the variants",
+        "variants file (parts copied)",
+        "statistics and their files",
+        "trajectories",
+        "report and maps",
+        "other",
+    ];
+    let sum: f64 = top.iter().map(|n| seconds(n)).sum();
+    // Each printed to the millisecond: seven roundings of at most 0.5 ms.
+    assert!(
+        (sum - total).abs() <= 0.0036,
+        "{sum} against {total}: {stdout}"
+    );
+    for name in [
+        "sampling",
+        "flights",
+        "rows (Arrow)",
+        "Parquet parts",
+        "statistics gathered",
+        "waiting for flights",
+    ] {
+        assert!(seconds(name) >= 0.0, "{name}");
+    }
+    assert!(seconds("flights") > 0.0, "{stdout}");
+    assert!(stdout.contains("10 flights in "), "{stdout}");
 }

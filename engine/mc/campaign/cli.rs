@@ -36,9 +36,17 @@ pub struct RunArgs {
     /// Run only the variants with id % N == K, written to *-shard-K-of-N.parquet.
     #[arg(long, value_name = "K/N", value_parser = Shard::parse)]
     pub shard: Option<Shard>,
-    /// Keep the complete chunks of an interrupted run and fly only the missing ones.
+    /// Keep the complete parts of an interrupted run and fly only the missing ones.
     #[arg(long)]
     pub resume: bool,
+    /// Print where the run's time went, phase by phase (scenario and tables, sampling,
+    /// flights, Parquet, statistics, report).
+    #[arg(long)]
+    pub timings: bool,
+    /// Rows per part file (the unit a run keeps on disk and --resume keeps); by default at
+    /// least 16,384, at most 256 parts a run. For tests of --resume.
+    #[arg(long, value_name = "ROWS", hide = true)]
+    pub part_rows: Option<u64>,
     /// Write no report (report.html and the landing maps) at the end.
     #[arg(long)]
     pub no_report: bool,
@@ -86,7 +94,8 @@ impl RunArgs {
             quiet: self.quiet,
             shard: self.shard,
             resume: self.resume,
-            max_chunks: None,
+            max_parts: None,
+            part_rows: self.part_rows,
             no_report: self.no_report,
         }
     }
@@ -96,6 +105,9 @@ impl RunArgs {
 pub fn run(scenario: &Path, args: &RunArgs) -> anyhow::Result<ExitCode> {
     let report = run_campaign(scenario, &args.config())?;
     crate::cli::emit(&summary_text(&report, args.verbose))?;
+    if args.timings {
+        crate::cli::emit(&timings_text(&report))?;
+    }
     let failures = report.failures();
     if failures > 0 {
         eprintln!(
@@ -109,6 +121,78 @@ pub fn run(scenario: &Path, args: &RunArgs) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Where the run's time went (`--timings`): each phase's wall time on the main thread, the
+/// workers' thread-seconds for the phases they share, and the flights per second.
+pub fn timings_text(r: &RunReport) -> String {
+    use std::fmt::Write;
+    let t = &r.timings;
+    let s = |d: std::time::Duration| d.as_secs_f64();
+    let total = s(t.total).max(1e-9);
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "\ntimings ({} worker threads; wall seconds and share of the run's {:.3} s):",
+        t.threads, total
+    );
+    let mut line = |name: &str, d: f64, note: &str| {
+        let _ = writeln!(
+            out,
+            "  {name:<28} {d:>8.3} s {:>5.1} %  {note}",
+            100.0 * d / total
+        );
+    };
+    line("scenario and tables", s(t.prepare), "");
+    line(
+        "flying the variants",
+        s(t.flying_wall),
+        "(wall: sampling, flights, rows, parts, statistics' gathering)",
+    );
+    let threads = t.threads.max(1) as f64;
+    let busy = s(t.flying_wall) * threads;
+    let mut worker = |name: &str, d: f64| {
+        let _ = writeln!(
+            out,
+            "    {name:<26} {d:>8.3} thread-s {:>5.1} % of the workers' time",
+            100.0 * d / busy.max(1e-9)
+        );
+    };
+    worker("sampling", s(t.sampling));
+    worker("flights", s(t.flights));
+    worker("rows (Arrow)", s(t.rows));
+    let mut main = |name: &str, d: f64| {
+        let _ = writeln!(
+            out,
+            "    {name:<26} {d:>8.3} s (main thread, while the workers fly)",
+        );
+    };
+    main("Parquet parts", s(t.parquet));
+    main("statistics gathered", s(t.gather));
+    main("waiting for flights", s(t.waiting));
+    let mut line = |name: &str, d: f64| {
+        let _ = writeln!(out, "  {name:<28} {d:>8.3} s {:>5.1} %", 100.0 * d / total);
+    };
+    line("variants file (parts copied)", s(t.merge));
+    line("statistics and their files", s(t.statistics));
+    line("trajectories", s(t.trajectories));
+    line("report and maps", s(t.report));
+    let rest = total
+        - s(t.prepare)
+        - s(t.flying_wall)
+        - s(t.merge)
+        - s(t.statistics)
+        - s(t.trajectories)
+        - s(t.report);
+    line("other", rest.max(0.0));
+    let _ = writeln!(
+        out,
+        "  {} flights in {:.3} s: {:.0} flights/s end to end",
+        r.variants,
+        total,
+        r.variants as f64 / total
+    );
+    out
 }
 
 /// A number in 9 characters with about 5 significant digits.
@@ -167,8 +251,8 @@ pub fn summary_text(r: &RunReport, verbose: bool) -> String {
     if !r.complete {
         let _ = writeln!(
             s,
-            "stopped after {} chunks; rerun with --resume to finish",
-            r.chunks_flown
+            "stopped after {} parts; rerun with --resume to finish",
+            r.parts_flown
         );
         return s;
     }

@@ -12,16 +12,21 @@
 //!   of one base flight ([`fly::fly_chunk`]).
 //! - [`stats`]: percentiles, landing ellipses, sensitivity (faer), the share of variants meeting
 //!   each requirement (Wilson interval).
-//! - [`parquet`]: the output files, written atomically and streamed by row groups.
+//! - [`gather`]: the statistics gathered as the rows pass, exact up to a stated size, then
+//!   streamed ([`digest`]: the t-digest of streamed percentiles).
+//! - [`parquet`]: the output files, written atomically and streamed by row groups; parts
+//!   copied into one file undecoded.
 //! - [`trajectories`]: the time series of a few variants per point, flown again alone.
 //! - [`report`]: `report.html` and the landing maps, drawn from the files a run wrote.
 //! - [`outdir`]: the output directory: one run per output set (a lock), temporary names of
 //!   the run's own, a clean start without `--resume`.
-//! - [`run`]: the loop (rayon, shards, resume, progress) and [`cli`]: arguments, printed
-//!   summary, exit codes.
+//! - [`run`]: the loop (worker threads, parts, shards, resume, progress, timings) and [`cli`]:
+//!   arguments, printed summary, `--timings`, exit codes.
 
 pub mod cli;
+pub mod digest;
 pub mod fly;
+pub mod gather;
 pub mod outdir;
 pub mod params;
 pub mod parquet;

@@ -2,8 +2,8 @@
 //! earlier run left there.
 //!
 //! A run writes one *output set*: `variants.parquet`, `summary.parquet`, `ellipses.parquet`,
-//! `sensitivity.parquet`, `requirements.parquet` and its chunks' parts under
-//! `parts/variants/` (a shard K of N: the same names with `-shard-K-of-N`, so that the shards
+//! `sensitivity.parquet`, `requirements.parquet` and, until the variants file is written,
+//! its parts under `parts/variants/` (a shard K of N: the same names with `-shard-K-of-N`, so that the shards
 //! of a run share a directory). This module owns the rules that keep two runs from mixing
 //! their files:
 //!
@@ -24,9 +24,11 @@
 //!   sits beside its own; other sets (other shards) are left alone. Leftover temporary files
 //!   of the set are removed by every run.
 //! - **Parts of this run only.** Each part carries the run's identity (scenario fingerprint,
-//!   seed, variants per point, points, shard, chunk size; `hpr_mc.*` metadata) and the id of
-//!   the run that flew it (`hpr_mc.run_id`); the merge checks every part's identity, chunk,
-//!   writer, row count and variant ids against what this run flew or kept (see `run`).
+//!   seed, variants per point, points, shard, chunk size, rows per part; `hpr_mc.*`
+//!   metadata), its number (`hpr_mc.part`) and the id of the run that wrote it
+//!   (`hpr_mc.run_id`); before the parts are copied into the variants file, every part's
+//!   identity, number, writer and row count is checked against what this run wrote or kept,
+//!   and a kept part's variant ids as it is read back (see `run`).
 
 use super::variants::Shard;
 use anyhow::{bail, Context};
@@ -81,9 +83,9 @@ impl Outputs {
         }
     }
 
-    /// The part file of chunk `chunk`.
-    pub fn part(&self, chunk: usize) -> PathBuf {
-        self.parts.join(format!("chunk-{chunk:08}.parquet"))
+    /// The file of part `k` (a checkpoint of the variants' rows, see `run`).
+    pub fn part(&self, k: usize) -> PathBuf {
+        self.parts.join(format!("part-{k:06}.parquet"))
     }
 
     /// The set's finished files (not the parts).

@@ -11,9 +11,10 @@
 //! metadata, the hpr-mc version, the scenario's text, its fingerprint and the seed (keys
 //! `hpr_mc.*`), so a file says how to make it again.
 
-use super::fly::{Prepared, Status, VariantResult};
+use super::fly::{Prepared, Status, VariantResult, WARNINGS};
+use super::gather::{Gather, Row};
 use super::scenario::RequirementSpec;
-use super::stats::{Compliance, PointStats, Table};
+use super::stats::{Compliance, PointStats};
 use super::variants::{Shard, Variant};
 use anyhow::{bail, Context};
 use arrow::array::{
@@ -316,6 +317,26 @@ pub fn write_atomic_with(
     }
 }
 
+/// An Arrow writer on a new file at `tmp` (zstd level 3, row groups of `row_group_rows`)
+/// carrying `pairs`; the caller syncs and renames it when complete, as [`write_atomic`].
+pub fn open_writer(
+    tmp: &Path,
+    schema: &SchemaRef,
+    pairs: &[(String, String)],
+    row_group_rows: usize,
+) -> anyhow::Result<ArrowWriter<File>> {
+    let file = File::create(tmp).with_context(|| format!("can't create {}", tmp.display()))?;
+    let props = WriterProperties::builder()
+        .set_compression(Compression::ZSTD(ZstdLevel::try_new(3)?))
+        .set_max_row_group_row_count(Some(row_group_rows.max(1)))
+        .build();
+    let mut w = ArrowWriter::try_new(file, schema.clone(), Some(props))?;
+    for (k, v) in pairs {
+        w.append_key_value_metadata(KeyValue::new(k.clone(), v.clone()));
+    }
+    Ok(w)
+}
+
 /// The key-value metadata of a Parquet file.
 pub fn read_pairs(path: &Path) -> anyhow::Result<HashMap<String, String>> {
     let file = File::open(path).with_context(|| format!("can't open {}", path.display()))?;
@@ -358,8 +379,10 @@ fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> anyhow::Result<&'a Floa
         .with_context(|| format!("no Float64 column {name}"))
 }
 
-/// Add the rows of a variants batch to the statistics' table.
-pub fn accumulate(p: &Prepared, table: &mut Table, batch: &RecordBatch) -> anyhow::Result<()> {
+/// Hand the rows of a variants batch, in order, to the statistics ([`Gather`]): the same
+/// rows whether the batch was just flown or read back from a kept part (Parquet keeps every
+/// double's bits), so a resumed run's statistics are the uninterrupted run's.
+pub fn gather(p: &Prepared, g: &mut Gather, batch: &RecordBatch) -> anyhow::Result<()> {
     let point = batch
         .column_by_name("point")
         .and_then(|c| c.as_any().downcast_ref::<UInt32Array>())
@@ -368,19 +391,163 @@ pub fn accumulate(p: &Prepared, table: &mut Table, batch: &RecordBatch) -> anyho
         .column_by_name("status")
         .and_then(|c| c.as_any().downcast_ref::<StringArray>())
         .context("no string column status")?;
-    table.point.extend(point.values().iter().copied());
-    table
-        .landed
-        .extend((0..status.len()).map(|r| status.value(r) == Status::Landed.name()));
-    for (j, input) in p.scenario.inputs.iter().enumerate() {
-        table.inputs[j].extend(f64_column(batch, &input.column)?.values().iter().copied());
-    }
-    for (m, metric) in p.metrics.iter().enumerate() {
-        let c = f64_column(batch, &metric.name)?;
-        table.metrics[m]
-            .extend((0..c.len()).map(|r| if c.is_null(r) { f64::NAN } else { c.value(r) }));
+    let warned: Vec<&BooleanArray> = hpr_sim::Warning::KEYS
+        .iter()
+        .map(|k| {
+            let name = format!("warning_{k}");
+            batch
+                .column_by_name(&name)
+                .and_then(|c| c.as_any().downcast_ref::<BooleanArray>())
+                .with_context(|| format!("no true/false column {name}"))
+        })
+        .collect::<anyhow::Result<_>>()?;
+    let inputs: Vec<&Float64Array> = p
+        .scenario
+        .inputs
+        .iter()
+        .map(|i| f64_column(batch, &i.column))
+        .collect::<anyhow::Result<_>>()?;
+    let metrics: Vec<&Float64Array> = p
+        .metrics
+        .iter()
+        .map(|m| f64_column(batch, &m.name))
+        .collect::<anyhow::Result<_>>()?;
+    let statuses = [
+        Status::Landed,
+        Status::TimeLimit,
+        Status::Refused,
+        Status::Failed,
+    ];
+    let mut ins = vec![0.0; inputs.len()];
+    let mut ms = vec![0.0; metrics.len()];
+    let mut w = [false; WARNINGS];
+    for r in 0..batch.num_rows() {
+        let name = status.value(r);
+        let Some(&st) = statuses.iter().find(|s| s.name() == name) else {
+            bail!("row {r}: unknown status {name:?}");
+        };
+        for (x, c) in ins.iter_mut().zip(&inputs) {
+            *x = c.value(r);
+        }
+        for (x, c) in ms.iter_mut().zip(&metrics) {
+            *x = if c.is_null(r) { f64::NAN } else { c.value(r) };
+        }
+        let flown = warned.iter().all(|c| c.is_valid(r));
+        for (x, c) in w.iter_mut().zip(&warned) {
+            *x = c.is_valid(r) && c.value(r);
+        }
+        g.push(Row {
+            point: point.value(r) as usize,
+            status: st,
+            warned: flown.then_some(&w),
+            inputs: &ins,
+            metrics: &ms,
+        });
     }
     Ok(())
+}
+
+/// Write the Parquet files `parts`, in order, as one file at `path` (through `tmp`, renamed
+/// when complete, as [`write_atomic`]): their row groups copied as they are, compressed
+/// bytes and all, nothing decoded. The file carries `pairs` and the parts' Arrow schema;
+/// every part must have the first one's columns.
+pub fn concat_atomic(
+    path: &Path,
+    tmp: &Path,
+    parts: &[std::path::PathBuf],
+    pairs: &[(String, String)],
+) -> anyhow::Result<()> {
+    use parquet::column::writer::ColumnCloseResult;
+    use parquet::file::metadata::{PageIndexPolicy, ParquetMetaDataReader};
+    use parquet::file::writer::SerializedFileWriter;
+    let result = (|| -> anyhow::Result<()> {
+        let mut writer: Option<SerializedFileWriter<File>> = None;
+        let mut schema = None;
+        for part in parts {
+            let input =
+                File::open(part).with_context(|| format!("can't open {}", part.display()))?;
+            let meta = ParquetMetaDataReader::new()
+                .with_page_index_policy(PageIndexPolicy::Optional)
+                .parse_and_finish(&input)
+                .with_context(|| format!("{} is not a readable Parquet file", part.display()))?;
+            let fm = meta.file_metadata();
+            match &schema {
+                None => {
+                    schema = Some(fm.schema_descr_ptr());
+                    let file = File::create(tmp)
+                        .with_context(|| format!("can't create {}", tmp.display()))?;
+                    let props = Arc::new(
+                        WriterProperties::builder()
+                            .set_compression(Compression::ZSTD(ZstdLevel::try_new(3)?))
+                            .build(),
+                    );
+                    let mut w = SerializedFileWriter::new(
+                        file,
+                        fm.schema_descr().root_schema_ptr(),
+                        props,
+                    )?;
+                    for (k, v) in pairs {
+                        w.append_key_value_metadata(KeyValue::new(k.clone(), v.clone()));
+                    }
+                    // The Arrow schema (field metadata: the units) as the parts carry it.
+                    let arrow_schema = fm
+                        .key_value_metadata()
+                        .and_then(|kv| kv.iter().find(|kv| kv.key == "ARROW:schema"))
+                        .cloned();
+                    if let Some(kv) = arrow_schema {
+                        w.append_key_value_metadata(kv);
+                    }
+                    writer = Some(w);
+                }
+                Some(s) => {
+                    if s.root_schema() != fm.schema_descr().root_schema() {
+                        bail!("{} has other columns than the first part", part.display());
+                    }
+                }
+            }
+            let w = writer.as_mut().expect("created with the first part");
+            let (column_index, offset_index) = (meta.column_index(), meta.offset_index());
+            for (g, rg) in meta.row_groups().iter().enumerate() {
+                let mut out = w.next_row_group()?;
+                for (c, column) in rg.columns().iter().enumerate() {
+                    out.append_column(
+                        &input,
+                        ColumnCloseResult {
+                            bytes_written: column.compressed_size() as _,
+                            rows_written: rg.num_rows() as _,
+                            metadata: column.clone(),
+                            bloom_filter: None,
+                            column_index: column_index
+                                .and_then(|x| x.get(g))
+                                .and_then(|x| x.get(c))
+                                .cloned(),
+                            offset_index: offset_index
+                                .and_then(|x| x.get(g))
+                                .and_then(|x| x.get(c))
+                                .cloned(),
+                        },
+                    )?;
+                }
+                out.close()?;
+            }
+        }
+        let Some(w) = writer else {
+            bail!("no parts to write");
+        };
+        let file = w.into_inner()?;
+        file.sync_all()?;
+        Ok(())
+    })();
+    match result {
+        Ok(()) => std::fs::rename(tmp, path).or_else(|e| {
+            let _ = std::fs::remove_file(tmp);
+            Err(e).with_context(|| format!("can't rename {} to {}", tmp.display(), path.display()))
+        }),
+        Err(e) => {
+            let _ = std::fs::remove_file(tmp);
+            Err(e.context(format!("writing {}", path.display())))
+        }
+    }
 }
 
 /// Check that a variants file's columns are this scenario's (a resumed or reread file).

@@ -1,37 +1,56 @@
-//! The campaign loop: a shard's variants cut into chunks, the chunks flown on a local rayon
-//! pool, each chunk written to its own part file, and, once every chunk is there, the parts
-//! merged into the variants file and the statistics computed and written.
+//! The campaign loop: a shard's variants cut into parts (the unit of checkpoint) and each
+//! part into chunks (the unit of work), the chunks flown by worker threads and their rows
+//! handed on in variant order to this thread, which gathers the statistics as the rows pass
+//! ([`super::gather`]) and appends them, a row group at a time, to the part's file. Once every
+//! part is there, the parts' row groups are copied as they are into the variants file (nothing
+//! decoded) and the statistics written.
 //!
 //! Determinism: a variant's values depend only on (seed, id) and each flight is sequential,
 //! so the rows are the same whatever the thread count, the chunk size or the shards; the
-//! merged file lists them in id order.
+//! parts and the variants file list them in id order, and the statistics see them in that
+//! order.
 //!
-//! Interruption and `--resume`: a chunk's part (`parts/variants[-shard-K-of-N]/chunk-NNNNNNNN.parquet`)
+//! Parts: a part holds [`PART_ROWS`] rows or more, enough that a run keeps at most
+//! [`MAX_PARTS`] of them whatever its size (a multiple of the row group, so the variants
+//! file's row groups are the scenario's `row_group_rows` whether the run was cut or not).
+//! Chunks stay small (the scenario's `chunk_size`: lanes of one phase stay in step) and never
+//! straddle two parts.
+//!
+//! Interruption and `--resume`: a part (`parts/variants[-shard-K-of-N]/part-NNNNNN.parquet`)
 //! is written under a temporary name and renamed when complete, as every file is. A rerun
 //! with `resume` keeps the complete parts whose metadata shows the same run (scenario
-//! fingerprint, seed, variants per point, shard, chunk size), flies only the missing chunks,
-//! then merges. Without `resume` a rerun starts over. The parts are removed once merged.
+//! fingerprint, seed, variants per point, shard, chunk size, part size), reads them back in
+//! their turn for the statistics, flies only the missing parts, then writes the variants file.
+//! The resumed run's files are the uninterrupted run's, byte for byte. Without `resume` a rerun
+//! starts over. The parts are removed once copied.
 //!
 //! The output directory (its lock, the run's temporary names, the clean start) is
-//! [`super::outdir`]'s; the merge here checks that every part it reads is the chunk this run
-//! flew or kept: same run identity, chunk, writer, rows and variant ids.
+//! [`super::outdir`]'s; the copy here checks that every part it takes is the part this run
+//! flew or kept: same run identity, part, writer and rows (a kept part's variant ids too).
 //!
-//! Size: one process flies at most [`MAX_VARIANTS_PER_RUN`] variants (its statistics hold
-//! every row's inputs and metrics in memory); more are refused before anything is written,
-//! with the rule and the way round it (`--shard`).
+//! Size: one process flies at most [`MAX_VARIANTS_PER_RUN`] variants (the report reads every
+//! row of the variants file back); more are refused before anything is written, with the rule
+//! and the way round it (`--shard`).
 
-use super::fly::{fly_chunk, Prepared, Status};
+use super::fly::{fly_chunk, Prepared};
+use super::gather::{Gather, Percentiles};
 pub use super::outdir::Outputs;
 use super::outdir::{Holder, OutputDir};
 use super::parquet::{self as pq, RunMeta};
 use super::scenario::Scenario;
-use super::stats::{self, PointStats, Table};
+use super::stats::PointStats;
 use super::variants::{chunks, Shard, Variant};
 use anyhow::{bail, Context};
+use arrow::record_batch::RecordBatch;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rayon::prelude::*;
+use parquet::arrow::ArrowWriter;
+use std::collections::BTreeMap;
+use std::fs::File;
 use std::io::IsTerminal;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 /// How to run a scenario.
@@ -49,19 +68,73 @@ pub struct RunConfig {
     pub quiet: bool,
     /// Which shard to run (default: all).
     pub shard: Option<Shard>,
-    /// Keep the complete chunks of an interrupted run and fly only the missing ones.
+    /// Keep the complete parts of an interrupted run and fly only the missing ones.
     pub resume: bool,
-    /// Fly at most this many chunks, then stop without merging, as an interruption would
-    /// (for tests of `resume`).
-    pub max_chunks: Option<usize>,
+    /// Write at most this many parts, then stop without writing the variants file, as an
+    /// interruption would (for tests of `resume`).
+    pub max_parts: Option<usize>,
+    /// Rows per part in place of [`part_rows`]'s (for tests of `resume` on small runs).
+    pub part_rows: Option<u64>,
     /// Skip the report (`report.html` and the landing maps) at the end (`--no-report`).
     pub no_report: bool,
 }
 
 /// Most variants one process flies (its shard's, or the whole run's): 10,000,000. Its
-/// statistics hold each row's inputs and metrics in memory (8 bytes each: about 0.4 kB a
-/// row for the bundled scenarios, 4 GB at the limit); a larger run is split with `--shard`.
+/// statistics are bounded ([`super::gather`]), but the report reads every row of the
+/// variants file back (about 0.4 kB a row for the bundled scenarios); a larger run is split
+/// with `--shard`.
 pub const MAX_VARIANTS_PER_RUN: u64 = 10_000_000;
+
+/// The fewest rows a part holds (but a run's last, or a run smaller than this): a few
+/// seconds of flights on a small machine.
+pub const PART_ROWS: u64 = 16_384;
+
+/// The most parts a run keeps: past `PART_ROWS × MAX_PARTS` rows, parts grow.
+pub const MAX_PARTS: u64 = 256;
+
+/// Rows per part for a run of `count` variants written in row groups of `row_group_rows`:
+/// at least [`PART_ROWS`], enough for at most [`MAX_PARTS`] parts, rounded up to whole row
+/// groups.
+pub fn part_rows(count: u64, row_group_rows: usize) -> u64 {
+    let rg = row_group_rows.max(1) as u64;
+    PART_ROWS.max(count.div_ceil(MAX_PARTS)).div_ceil(rg) * rg
+}
+
+/// Where a run's time went. The flights' phases (sampling, flights, rows) are summed over
+/// the worker threads (thread-seconds); the others run on the main thread, while the
+/// workers fly (parts, statistics of the rows) or after them.
+#[derive(Debug, Clone, Default)]
+pub struct Timings {
+    /// Worker threads.
+    pub threads: usize,
+    /// Reading the scenario, the design and the motor; building the tables.
+    pub prepare: Duration,
+    /// Drawing the variants' inputs (thread-seconds).
+    pub sampling: Duration,
+    /// Flying them (thread-seconds).
+    pub flights: Duration,
+    /// Turning the results into Arrow rows (thread-seconds).
+    pub rows: Duration,
+    /// From the first flight to the last part written (wall).
+    pub flying_wall: Duration,
+    /// Encoding, compressing and writing the parts (main thread, while the workers fly).
+    pub parquet: Duration,
+    /// Gathering the statistics as the rows pass (main thread, while the workers fly) and
+    /// reading back the parts a resumed run kept.
+    pub gather: Duration,
+    /// The main thread waiting for the next chunk's rows.
+    pub waiting: Duration,
+    /// Copying the parts into the variants file.
+    pub merge: Duration,
+    /// Computing the statistics and writing their four files.
+    pub statistics: Duration,
+    /// Flying the few variants of trajectories.parquet again and writing it.
+    pub trajectories: Duration,
+    /// The report and the landing maps.
+    pub report: Duration,
+    /// The whole run.
+    pub total: Duration,
+}
 
 /// What a run did.
 #[derive(Debug)]
@@ -71,10 +144,12 @@ pub struct RunReport {
     pub shard: Shard,
     /// Variants in this shard.
     pub variants: u64,
-    /// Chunks flown by this run, and chunks kept from an earlier one.
-    pub chunks_flown: usize,
-    pub chunks_kept: usize,
-    /// Whether every chunk is done and the files merged (false only with `max_chunks`).
+    /// Rows per part, parts written by this run and parts kept from an earlier one.
+    pub part_rows: u64,
+    pub parts: usize,
+    pub parts_flown: usize,
+    pub parts_kept: usize,
+    /// Whether every part is done and the files written (false only with `max_parts`).
     pub complete: bool,
     /// Variants per status: landed, time limit, refused, failed.
     pub landed: u64,
@@ -85,11 +160,14 @@ pub struct RunReport {
     /// occurred, in the order of [`hpr_sim::Warning::KEYS`].
     pub warned: Vec<(String, u64)>,
     pub stats: Vec<PointStats>,
+    /// How the percentiles were found (exact, or from a digest past the size held).
+    pub percentiles: Percentiles,
     /// Variants whose time series trajectories.parquet holds.
     pub trajectories: u64,
     /// What the report wrote (None with `no_report`, or before the run is complete).
     pub report: Option<crate::campaign::report::Written>,
     pub elapsed: Duration,
+    pub timings: Timings,
 }
 
 impl RunReport {
@@ -105,10 +183,15 @@ pub fn prepare(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<Prepared> {
     Ok(Prepared::new(s)?)
 }
 
-/// Run a scenario: fly what is missing, merge, compute and write the statistics.
+/// Run a scenario: fly what is missing, write the parts and the variants file, and the
+/// statistics gathered on the way.
 pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunReport> {
     let started = Instant::now();
     let prepared = prepare(scenario, cfg)?;
+    let mut timings = Timings {
+        prepare: started.elapsed(),
+        ..Timings::default()
+    };
     if !cfg.quiet {
         crate::report::motor_notes(prepared.motor());
     }
@@ -117,30 +200,25 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         .out
         .clone()
         .unwrap_or_else(|| Path::new("results").join(&prepared.scenario.name));
-    let meta = RunMeta::of(&prepared, shard);
-    let schema = pq::variants_schema(&prepared, &meta);
     let total = prepared.plan.total();
     let count = shard.count(total);
     if count > MAX_VARIANTS_PER_RUN {
         bail!(
             "{}: {count} variants in one run is more than {MAX_VARIANTS_PER_RUN}, the most one \
-             process flies (its statistics hold every row in memory); split the run with \
+             process flies (its report reads every row back); split the run with \
              --shard K/N, N at least {}",
             prepared.scenario.file.display(),
             total.div_ceil(MAX_VARIANTS_PER_RUN)
         );
     }
-    let (inputs_n, metrics_n) = (prepared.scenario.inputs.len(), prepared.metrics.len());
-    // The statistics' room, asked before anything is flown or written.
-    let mut table = Table::with_room(inputs_n, metrics_n, count as usize).map_err(|_| {
-        anyhow::anyhow!(
-            "{}: the statistics of {count} variants need {:.1} GB of memory, which this \
-             machine does not give; split the run with --shard K/N",
-            prepared.scenario.file.display(),
-            count as f64 * Table::bytes_per_row(inputs_n, metrics_n) as f64 / 1e9
-        )
-    })?;
-    let chunk_list = chunks(count, prepared.scenario.chunk_size);
+    let row_group_rows = prepared.scenario.row_group_rows;
+    let part_rows = cfg
+        .part_rows
+        .unwrap_or_else(|| part_rows(count, row_group_rows))
+        .max(1);
+    let meta = RunMeta::of(&prepared, shard);
+    let schema = pq::variants_schema(&prepared, &meta);
+    let part_list = chunks(count, part_rows as usize);
     let held = OutputDir::open(
         &dir,
         shard,
@@ -151,14 +229,21 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         },
     )?;
     let outputs = held.outputs.clone();
+    let threads = cfg
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .max(1);
+    timings.threads = threads;
 
     let mut report = RunReport {
         prepared,
         outputs,
         shard,
         variants: count,
-        chunks_flown: 0,
-        chunks_kept: 0,
+        part_rows,
+        parts: part_list.len(),
+        parts_flown: 0,
+        parts_kept: 0,
         complete: false,
         landed: 0,
         time_limit: 0,
@@ -166,17 +251,30 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         failed: 0,
         warned: Vec::new(),
         stats: vec![],
+        percentiles: Percentiles::Exact,
         trajectories: 0,
         report: None,
         elapsed: Duration::ZERO,
+        timings: Timings::default(),
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(cfg.threads.unwrap_or(0))
-        .build()
-        .context("can't start the worker threads")?;
-    let (p, out) = (&report.prepared, &report.outputs);
+    let p = &report.prepared;
+    let out = &report.outputs;
+    let dispersed: Vec<bool> = p
+        .scenario
+        .inputs
+        .iter()
+        .map(|i| i.dispersion.is_some())
+        .collect();
+    let landings: Vec<(usize, usize)> = p.landings.iter().map(|&(_, x, y)| (x, y)).collect();
+    let mut gather = Gather::new(
+        p.plan.points(),
+        &dispersed,
+        p.metrics.len(),
+        &landings,
+        &p.requirements,
+    );
 
-    // A resumed run whose merged file is already there only recomputes the statistics.
+    // A resumed run whose variants file is already there only recomputes the statistics.
     let finished = cfg.resume
         && out.variants.is_file()
         && pq::read_pairs(&out.variants)
@@ -184,90 +282,100 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
             .unwrap_or(false)
         && pq::row_count(&out.variants)? == count;
     if !finished {
-        // Per chunk, the writer of its part: a kept part's, or this run's once flown.
-        let mut writers = scan_parts(out, &meta, &chunk_list, cfg.resume)?;
-        report.chunks_kept = writers.iter().filter(|d| d.is_some()).count();
-        let mut missing: Vec<usize> = (0..chunk_list.len())
-            .filter(|&c| writers[c].is_none())
+        let id = PartId {
+            meta: &meta,
+            part_rows,
+        };
+        // Per part, the writer of its file: a kept part's, or this run's once written.
+        let mut writers = scan_parts(out, &id, &part_list, cfg.resume)?;
+        report.parts_kept = writers.iter().filter(|d| d.is_some()).count();
+        let mut missing: Vec<usize> = (0..part_list.len())
+            .filter(|&k| writers[k].is_none())
             .collect();
-        if let Some(m) = cfg.max_chunks {
+        if let Some(m) = cfg.max_parts {
             missing.truncate(m);
         }
         let flights_left: u64 = missing
             .iter()
-            .map(|&c| chunk_list[c].end - chunk_list[c].start)
+            .map(|&k| part_list[k].end - part_list[k].start)
             .sum();
         let bar = progress(flights_left, cfg.quiet);
-        pool.install(|| {
-            missing.par_iter().try_for_each(|&c| -> anyhow::Result<()> {
-                let variants: Vec<Variant> = chunk_list[c]
-                    .clone()
-                    .map(|q| p.plan.variant(shard.id(q)))
-                    .collect();
-                let results = fly_chunk(p, &variants);
-                let batch = pq::variants_batch(p, &schema, &variants, &results)?;
-                let mut pairs = meta.pairs();
-                pairs.push(("hpr_mc.chunk".into(), c.to_string()));
-                pairs.push((RUN_ID.into(), held.run_id.clone()));
-                let part = out.part(c);
-                pq::write_atomic(
-                    &part,
-                    &held.temporary(&part),
-                    &schema,
-                    &pairs,
-                    p.scenario.row_group_rows,
-                    |w| Ok(w.write(&batch)?),
-                )?;
-                bar.inc(variants.len() as u64);
-                Ok(())
-            })
-        })?;
+        let flying = Instant::now();
+        let written = fly_parts(
+            p,
+            &Flow {
+                shard,
+                schema: &schema,
+                parts: &part_list,
+                missing: &missing,
+                kept: &writers,
+                id: &id,
+                held: &held,
+                threads,
+                bar: &bar,
+            },
+            &mut gather,
+            &mut timings,
+        )?;
+        timings.flying_wall = flying.elapsed();
         bar.finish_and_clear();
-        report.chunks_flown = missing.len();
-        for &c in &missing {
-            writers[c] = Some(Some(held.run_id.clone()));
+        report.parts_flown = written.len();
+        for &k in &written {
+            writers[k] = Some(Some(held.run_id.clone()));
         }
-        if report.chunks_kept + report.chunks_flown < chunk_list.len() {
+        if report.parts_kept + report.parts_flown < part_list.len() {
             report.elapsed = started.elapsed();
+            timings.total = report.elapsed;
+            report.timings = timings;
             return Ok(report);
         }
-        // Merge the parts, in order, into the variants file, reading the statistics' table;
-        // each part must be the chunk this run flew or kept, row for row.
-        pq::write_atomic(
-            &out.variants,
-            &held.temporary(&out.variants),
-            &schema,
-            &meta.pairs(),
-            p.scenario.row_group_rows,
-            |w| {
-                for (c, range) in chunk_list.iter().enumerate() {
-                    let path = out.part(c);
-                    let writer = writers[c].as_ref().and_then(|w| w.as_deref());
-                    check_part(&path, c, &meta, writer, range.end - range.start)?;
-                    let mut q = range.start;
-                    for batch in pq::read_batches(&path)? {
-                        let batch = batch?;
-                        check_ids(&path, &batch, shard, &mut q)?;
-                        pq::accumulate(p, &mut table, &batch)?;
-                        w.write(&batch)?;
-                    }
-                }
-                Ok(())
-            },
-        )?;
-        finish(&mut report, &meta, &table, &held)?;
+        // Every part is there: each must be the part this run wrote or kept; their row
+        // groups, copied in order, are the variants file.
+        let merging = Instant::now();
+        let paths: Vec<PathBuf> = (0..part_list.len()).map(|k| out.part(k)).collect();
+        for (k, range) in part_list.iter().enumerate() {
+            let writer = writers[k].as_ref().and_then(|w| w.as_deref());
+            check_part(&paths[k], k, &id, writer, range.end - range.start)?;
+        }
+        if paths.is_empty() {
+            // A shard without variants (more shards than variants): an empty file.
+            pq::write_atomic(
+                &out.variants,
+                &held.temporary(&out.variants),
+                &schema,
+                &meta.pairs(),
+                row_group_rows,
+                |_| Ok(()),
+            )?;
+        } else {
+            pq::concat_atomic(
+                &out.variants,
+                &held.temporary(&out.variants),
+                &paths,
+                &meta.pairs(),
+            )?;
+        }
+        timings.merge = merging.elapsed();
+        finish(&mut report, &meta, &mut gather, &held, &mut timings)?;
         std::fs::remove_dir_all(&report.outputs.parts)
             .with_context(|| format!("can't remove {}", report.outputs.parts.display()))?;
         let _ = std::fs::remove_dir(report.outputs.dir.join("parts"));
     } else {
+        let reading = Instant::now();
         pq::check_schema(&out.variants, &schema)?;
         for batch in pq::read_batches(&out.variants)? {
-            pq::accumulate(p, &mut table, &batch?)?;
+            pq::gather(p, &mut gather, &batch?)?;
         }
+        timings.gather = reading.elapsed();
         let _ = std::fs::remove_dir_all(&out.parts);
         let _ = std::fs::remove_dir(out.dir.join("parts"));
-        finish(&mut report, &meta, &table, &held)?;
+        finish(&mut report, &meta, &mut gather, &held, &mut timings)?;
     }
+    let flying = Instant::now();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .context("can't start the worker threads")?;
     report.trajectories = pool.install(|| {
         super::trajectories::write(
             &report.prepared,
@@ -277,34 +385,322 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
             &meta.pairs(),
         )
     })?;
+    timings.trajectories = flying.elapsed();
     report.complete = true;
     if !cfg.no_report {
+        let drawing = Instant::now();
         report.report = Some(super::report::write_files(&report.outputs)?);
+        timings.report = drawing.elapsed();
     }
     report.elapsed = started.elapsed();
+    timings.total = report.elapsed;
+    report.timings = timings;
     Ok(report)
 }
 
-/// The metadata key of the run that wrote a part.
-const RUN_ID: &str = "hpr_mc.run_id";
+/// What the parts of a run are: the run's identity and the rows a part holds.
+struct PartId<'a> {
+    meta: &'a RunMeta,
+    part_rows: u64,
+}
 
-/// Check that the part at `path` is chunk `c` of this run, written by `writer` (the run id
-/// in its metadata, `None` for a part of a version that wrote none), with `rows` rows: else
-/// the directory was changed under the run, and the merge stops rather than mix runs.
+impl PartId<'_> {
+    /// The metadata of part `k`, written by run `run_id`.
+    fn pairs(&self, k: usize, run_id: &str) -> Vec<(String, String)> {
+        let mut pairs = self.meta.pairs();
+        pairs.push((PART.into(), k.to_string()));
+        pairs.push((PART_ROWS_KEY.into(), self.part_rows.to_string()));
+        pairs.push((RUN_ID.into(), run_id.into()));
+        pairs
+    }
+
+    /// Why a part's metadata shows another run or another cut (None if this run's).
+    fn mismatch(&self, kv: &std::collections::HashMap<String, String>) -> Option<String> {
+        self.meta.mismatch(kv).or_else(|| {
+            let want = self.part_rows.to_string();
+            match kv.get(PART_ROWS_KEY) {
+                Some(w) if *w == want => None,
+                Some(w) => Some(format!("its {PART_ROWS_KEY} is {w}, this run's is {want}")),
+                None => Some(format!("it has no {PART_ROWS_KEY}")),
+            }
+        })
+    }
+}
+
+/// What the flying of a run's missing parts needs.
+struct Flow<'a> {
+    shard: Shard,
+    schema: &'a arrow::datatypes::SchemaRef,
+    parts: &'a [Range<u64>],
+    /// The parts to fly, in order.
+    missing: &'a [usize],
+    /// Per part, whether it is kept (`Some`).
+    kept: &'a [Option<Option<String>>],
+    id: &'a PartId<'a>,
+    held: &'a OutputDir,
+    threads: usize,
+    bar: &'a ProgressBar,
+}
+
+/// Chunks a worker may fly ahead of the one the main thread waits for, per thread.
+const WINDOW_PER_THREAD: usize = 8;
+
+/// One chunk's rows, or why there are none, and the worker's time on it.
+type Done = (usize, anyhow::Result<RecordBatch>, [Duration; 3]);
+
+/// Fly the missing parts: `threads` workers fly their chunks (in order, at most a window
+/// ahead), this thread takes the rows in variant order, kept parts' rows read back in their
+/// turn, gathers the statistics and writes each missing part. Returns the parts written
+/// (a prefix of `missing`: all of them unless an error stops the run).
+fn fly_parts(
+    p: &Prepared,
+    f: &Flow,
+    gather: &mut Gather,
+    timings: &mut Timings,
+) -> anyhow::Result<Vec<usize>> {
+    // The chunks of the missing parts, in order: (part, variants of the shard).
+    let work: Vec<(usize, Range<u64>)> = f
+        .missing
+        .iter()
+        .flat_map(|&k| {
+            let r = f.parts[k].clone();
+            chunks(r.end - r.start, p.scenario.chunk_size)
+                .into_iter()
+                .map(move |c| (k, r.start + c.start..r.start + c.end))
+        })
+        .collect();
+    let next = AtomicUsize::new(0);
+    let stop = AtomicBool::new(false);
+    // The chunks the main thread has taken, and a bell for workers waiting on it.
+    let taken = (Mutex::new(0usize), Condvar::new());
+    let window = WINDOW_PER_THREAD * f.threads;
+    let (tx, rx) = std::sync::mpsc::channel::<Done>();
+    std::thread::scope(|s| -> anyhow::Result<Vec<usize>> {
+        for _ in 0..f.threads.min(work.len()) {
+            let tx = tx.clone();
+            let (work, next, stop, taken) = (&work, &next, &stop, &taken);
+            s.spawn(move || loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                if i >= work.len() || stop.load(Ordering::Relaxed) {
+                    return;
+                }
+                {
+                    let mut t = taken.0.lock().unwrap_or_else(|e| e.into_inner());
+                    while i >= *t + window && !stop.load(Ordering::Relaxed) {
+                        t = taken.1.wait(t).unwrap_or_else(|e| e.into_inner());
+                    }
+                }
+                let t0 = Instant::now();
+                let variants: Vec<Variant> = work[i]
+                    .1
+                    .clone()
+                    .map(|q| p.plan.variant(f.shard.id(q)))
+                    .collect();
+                let t1 = Instant::now();
+                let results = fly_chunk(p, &variants);
+                let t2 = Instant::now();
+                let batch = pq::variants_batch(p, f.schema, &variants, &results);
+                let t3 = Instant::now();
+                if tx.send((i, batch, [t1 - t0, t2 - t1, t3 - t2])).is_err() {
+                    return;
+                }
+            });
+        }
+        drop(tx);
+        let result = (|| -> anyhow::Result<Vec<usize>> {
+            let mut pending: BTreeMap<usize, anyhow::Result<RecordBatch>> = BTreeMap::new();
+            let mut i = 0;
+            let mut written = Vec::new();
+            for (k, range) in f.parts.iter().enumerate() {
+                if let Some(writer) = &f.kept[k] {
+                    // A kept part: its rows read back in their turn, for the statistics.
+                    let t = Instant::now();
+                    let path = f.held.outputs.part(k);
+                    check_part(&path, k, f.id, writer.as_deref(), range.end - range.start)?;
+                    let mut q = range.start;
+                    for batch in pq::read_batches(&path)? {
+                        let batch = batch?;
+                        check_ids(&path, &batch, f.shard, &mut q)?;
+                        pq::gather(p, gather, &batch)?;
+                    }
+                    timings.gather += t.elapsed();
+                    continue;
+                }
+                if !f.missing.contains(&k) {
+                    // Past the parts this run was to write (`max_parts`).
+                    break;
+                }
+                let path = f.held.outputs.part(k);
+                let mut part = PartWriter::create(
+                    &path,
+                    f.held.temporary(&path),
+                    f.schema,
+                    &f.id.pairs(k, &f.held.run_id),
+                    p.scenario.row_group_rows,
+                )?;
+                while i < work.len() && work[i].0 == k {
+                    let t = Instant::now();
+                    let batch = loop {
+                        if let Some(b) = pending.remove(&i) {
+                            break b;
+                        }
+                        let (j, b, spent) = rx
+                            .recv()
+                            .context("a worker thread stopped before its chunk was flown")?;
+                        timings.sampling += spent[0];
+                        timings.flights += spent[1];
+                        timings.rows += spent[2];
+                        pending.insert(j, b);
+                    }?;
+                    timings.waiting += t.elapsed();
+                    i += 1;
+                    *taken.0.lock().unwrap_or_else(|e| e.into_inner()) = i;
+                    taken.1.notify_all();
+                    let t = Instant::now();
+                    pq::gather(p, gather, &batch)?;
+                    let t2 = Instant::now();
+                    timings.gather += t2 - t;
+                    part.push(batch)?;
+                    timings.parquet += t2.elapsed();
+                    f.bar.inc(work[i - 1].1.end - work[i - 1].1.start);
+                }
+                let t = Instant::now();
+                part.finish()?;
+                timings.parquet += t.elapsed();
+                written.push(k);
+            }
+            Ok(written)
+        })();
+        if result.is_err() {
+            stop.store(true, Ordering::Relaxed);
+            taken.1.notify_all();
+        }
+        drop(rx);
+        result
+    })
+}
+
+/// A part being written: its rows appended a row group at a time (the same batches whatever
+/// the chunk size, so the same bytes), under its temporary name until it is complete.
+struct PartWriter {
+    path: PathBuf,
+    tmp: PathBuf,
+    writer: Option<ArrowWriter<File>>,
+    pending: Vec<RecordBatch>,
+    rows: usize,
+    row_group_rows: usize,
+}
+
+impl PartWriter {
+    fn create(
+        path: &Path,
+        tmp: PathBuf,
+        schema: &arrow::datatypes::SchemaRef,
+        pairs: &[(String, String)],
+        row_group_rows: usize,
+    ) -> anyhow::Result<PartWriter> {
+        let writer = pq::open_writer(&tmp, schema, pairs, row_group_rows)?;
+        Ok(PartWriter {
+            path: path.to_path_buf(),
+            tmp,
+            writer: Some(writer),
+            pending: Vec::new(),
+            rows: 0,
+            row_group_rows: row_group_rows.max(1),
+        })
+    }
+
+    fn push(&mut self, batch: RecordBatch) -> anyhow::Result<()> {
+        self.rows += batch.num_rows();
+        self.pending.push(batch);
+        if self.rows >= self.row_group_rows {
+            self.flush()?;
+        }
+        Ok(())
+    }
+
+    /// Write the pending rows' whole row groups (all of them when finishing).
+    fn flush(&mut self) -> anyhow::Result<()> {
+        let schema = self.pending[0].schema();
+        let all = arrow::compute::concat_batches(&schema, &self.pending)?;
+        self.pending.clear();
+        let w = self.writer.as_mut().expect("open until finished");
+        let whole = all.num_rows() / self.row_group_rows * self.row_group_rows;
+        let mut at = 0;
+        while at < whole {
+            w.write(&all.slice(at, self.row_group_rows))?;
+            at += self.row_group_rows;
+        }
+        self.rows = all.num_rows() - whole;
+        if self.rows > 0 {
+            self.pending.push(all.slice(whole, self.rows));
+        }
+        Ok(())
+    }
+
+    fn finish(mut self) -> anyhow::Result<()> {
+        let result = (|| -> anyhow::Result<()> {
+            if self.rows > 0 {
+                let schema = self.pending[0].schema();
+                let rest = arrow::compute::concat_batches(&schema, &self.pending)?;
+                self.pending.clear();
+                self.writer
+                    .as_mut()
+                    .expect("open until finished")
+                    .write(&rest)?;
+            }
+            let file = self
+                .writer
+                .take()
+                .expect("open until finished")
+                .into_inner()?;
+            file.sync_all()?;
+            std::fs::rename(&self.tmp, &self.path).with_context(|| {
+                format!(
+                    "can't rename {} to {}",
+                    self.tmp.display(),
+                    self.path.display()
+                )
+            })
+        })();
+        if result.is_err() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+        result.with_context(|| format!("writing {}", self.path.display()))
+    }
+}
+
+impl Drop for PartWriter {
+    /// A part left unfinished (an error, or the run stopped) leaves no temporary file.
+    fn drop(&mut self) {
+        if self.writer.is_some() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}
+
+/// The metadata keys of a part: the run that wrote it, its number and the rows a part holds.
+const RUN_ID: &str = "hpr_mc.run_id";
+const PART: &str = "hpr_mc.part";
+const PART_ROWS_KEY: &str = "hpr_mc.part_rows";
+
+/// Check that the part at `path` is part `k` of this run, written by `writer` (the run id
+/// in its metadata), with `rows` rows: else the directory was changed under the run, and the
+/// run stops rather than mix runs.
 fn check_part(
     path: &Path,
-    c: usize,
-    meta: &RunMeta,
+    k: usize,
+    id: &PartId,
     writer: Option<&str>,
     rows: u64,
 ) -> anyhow::Result<()> {
     let kv = pq::read_pairs(path)?;
-    let why = if let Some(why) = meta.mismatch(&kv) {
+    let why = if let Some(why) = id.mismatch(&kv) {
         Some(why)
-    } else if kv.get("hpr_mc.chunk") != Some(&c.to_string()) {
+    } else if kv.get(PART) != Some(&k.to_string()) {
         Some(format!(
-            "its hpr_mc.chunk is {}",
-            kv.get("hpr_mc.chunk").map_or("missing", |s| s.as_str())
+            "its {PART} is {}",
+            kv.get(PART).map_or("missing", |s| s.as_str())
         ))
     } else if kv.get(RUN_ID).map(String::as_str) != writer {
         Some(format!(
@@ -314,13 +710,13 @@ fn check_part(
         ))
     } else {
         let got = pq::row_count(path)?;
-        (got != rows).then(|| format!("it holds {got} rows, the chunk {rows}"))
+        (got != rows).then(|| format!("it holds {got} rows, the part {rows}"))
     };
     match why {
         None => Ok(()),
         Some(why) => bail!(
-            "{} is not chunk {c} of this run ({why}): something else wrote into the output \
-             directory during the run; nothing was merged, run again",
+            "{} is not part {k} of this run ({why}): something else wrote into the output \
+             directory during the run; the variants file was not written, run again",
             path.display()
         ),
     }
@@ -341,7 +737,7 @@ fn check_ids(
     for id in ids.values().iter() {
         if *id != shard.id(*q) {
             bail!(
-                "{} holds variant {id} where this run's variant {} belongs; nothing was merged, run again",
+                "{} holds variant {id} where this run's variant {} belongs; the variants file was not written, run again",
                 path.display(),
                 shard.id(*q)
             );
@@ -351,41 +747,50 @@ fn check_ids(
     Ok(())
 }
 
-/// Count the statuses, compute and write the statistics.
+/// Take the statistics gathered from the rows and write their four files.
 fn finish(
     report: &mut RunReport,
     meta: &RunMeta,
-    table: &Table,
+    gather: &mut Gather,
     held: &OutputDir,
+    timings: &mut Timings,
 ) -> anyhow::Result<()> {
-    count_outcomes(report)?;
-    let p = &report.prepared;
-    let dispersed: Vec<bool> = p
-        .scenario
-        .inputs
-        .iter()
-        .map(|i| i.dispersion.is_some())
-        .collect();
-    let landings: Vec<(usize, usize)> = p.landings.iter().map(|&(_, x, y)| (x, y)).collect();
-    report.stats = stats::compute(
-        table,
-        p.plan.points(),
-        &dispersed,
-        &landings,
-        &p.requirements,
+    let t = Instant::now();
+    report.stats = gather.finish();
+    report.percentiles = gather.percentiles();
+    (
+        report.landed,
+        report.time_limit,
+        report.refused,
+        report.failed,
+    ) = (
+        gather.landed,
+        gather.time_limit,
+        gather.refused,
+        gather.failed,
     );
-    // Statuses other than landed were counted from the variants file above.
-    report.landed = table.landed.iter().filter(|l| **l).count() as u64;
+    report.warned = hpr_sim::Warning::KEYS
+        .iter()
+        .zip(gather.warned)
+        .filter(|(_, n)| *n > 0)
+        .map(|(k, n)| (k.to_string(), n))
+        .collect();
+    let p = &report.prepared;
     let out = &report.outputs;
     let pairs = meta.pairs();
     let rg = p.scenario.row_group_rows;
+    let mut summary_pairs = pairs.clone();
+    summary_pairs.push((
+        "hpr_mc.percentiles".into(),
+        report.percentiles.describe(gather.exact_rows()),
+    ));
     let summary = pq::summary_batch(p, meta, &report.stats)?;
     let tmp = |path: &Path| held.temporary(path);
     pq::write_atomic(
         &out.summary,
         &tmp(&out.summary),
         &summary.schema(),
-        &pairs,
+        &summary_pairs,
         rg,
         |w| Ok(w.write(&summary)?),
     )?;
@@ -416,71 +821,21 @@ fn finish(
         rg,
         |w| Ok(w.write(&reqs)?),
     )?;
+    timings.statistics = t.elapsed();
     Ok(())
 }
 
-/// Count, from the run's variants file, the variants that reached the time limit, were
-/// refused or failed, and those with each kind of warning.
-fn count_outcomes(report: &mut RunReport) -> anyhow::Result<()> {
-    let path = report.outputs.variants.clone();
-    let (mut t, mut r, mut f) = (0, 0, 0);
-    let mut warned = [0u64; hpr_sim::Warning::KEYS.len()];
-    let column = |batch: &arrow::record_batch::RecordBatch, name: &str| {
-        batch
-            .column_by_name(name)
-            .cloned()
-            .with_context(|| format!("{} has no column {name}", path.display()))
-    };
-    let strings = |batch: &arrow::record_batch::RecordBatch, name: &str| {
-        column(batch, name)?
-            .as_any()
-            .downcast_ref::<arrow::array::StringArray>()
-            .cloned()
-            .with_context(|| format!("{}: column {name} is not text", path.display()))
-    };
-    for batch in pq::read_batches(&path)? {
-        let batch = batch?;
-        let status = strings(&batch, "status")?;
-        for (k, key) in hpr_sim::Warning::KEYS.iter().enumerate() {
-            let name = format!("warning_{key}");
-            let flags = column(&batch, &name)?;
-            let flags = flags
-                .as_any()
-                .downcast_ref::<arrow::array::BooleanArray>()
-                .with_context(|| format!("{}: column {name} is not true/false", path.display()))?;
-            warned[k] += flags.true_count() as u64;
-        }
-        for s in status.iter().flatten() {
-            if s == Status::TimeLimit.name() {
-                t += 1;
-            } else if s == Status::Refused.name() {
-                r += 1;
-            } else if s == Status::Failed.name() {
-                f += 1;
-            }
-        }
-    }
-    (report.time_limit, report.refused, report.failed) = (t, r, f);
-    report.warned = hpr_sim::Warning::KEYS
-        .iter()
-        .zip(warned)
-        .filter(|(_, n)| *n > 0)
-        .map(|(k, n)| (k.to_string(), n))
-        .collect();
-    Ok(())
-}
-
-/// Per chunk, the writer of its complete part kept from an earlier run (`Some(run id)`, the
+/// Per part, the writer of its complete file kept from an earlier run (`Some(run id)`, the
 /// id `None` for a part that names none), or `None` to fly it. Only with `resume` are parts
 /// kept; without it the output directory has removed them already ([`OutputDir::open`]).
-/// Leftover temporary files are removed.
+/// Leftover temporary files, and files of another cut, are removed.
 fn scan_parts(
     out: &Outputs,
-    meta: &RunMeta,
-    chunk_list: &[std::ops::Range<u64>],
+    id: &PartId,
+    part_list: &[Range<u64>],
     resume: bool,
 ) -> anyhow::Result<Vec<Option<Option<String>>>> {
-    let mut done = vec![None; chunk_list.len()];
+    let mut done = vec![None; part_list.len()];
     for entry in std::fs::read_dir(&out.parts)
         .with_context(|| format!("can't read {}", out.parts.display()))?
     {
@@ -490,23 +845,21 @@ fn scan_parts(
             .and_then(|n| n.to_str())
             .unwrap_or("")
             .to_string();
-        let chunk = name
-            .strip_prefix("chunk-")
+        let part = name
+            .strip_prefix("part-")
             .and_then(|r| r.strip_suffix(".parquet"))
             .and_then(|n| n.parse::<usize>().ok());
-        match chunk {
-            Some(c) if resume => {
+        match part {
+            Some(k) if resume => {
                 let kv = pq::read_pairs(&path)?;
-                if let Some(why) = meta.mismatch(&kv) {
+                if let Some(why) = id.mismatch(&kv) {
                     bail!("{} is a part of another run ({why}); to start over, run without --resume, or remove {}", path.display(), out.parts.display());
                 }
-                let expected = chunk_list.get(c).map(|r| r.end - r.start);
-                if kv.get("hpr_mc.chunk") != Some(&c.to_string())
-                    || expected != Some(pq::row_count(&path)?)
-                {
-                    bail!("{} does not hold chunk {c} of this run; to start over, run without --resume, or remove {}", path.display(), out.parts.display());
+                let expected = part_list.get(k).map(|r| r.end - r.start);
+                if kv.get(PART) != Some(&k.to_string()) || expected != Some(pq::row_count(&path)?) {
+                    bail!("{} does not hold part {k} of this run; to start over, run without --resume, or remove {}", path.display(), out.parts.display());
                 }
-                done[c] = Some(kv.get(RUN_ID).cloned());
+                done[k] = Some(kv.get(RUN_ID).cloned());
             }
             _ => std::fs::remove_file(&path)
                 .with_context(|| format!("can't remove {}", path.display()))?,
@@ -553,7 +906,7 @@ mod tests {
         }
     }
 
-    /// A part of `ids` written as run `writer` of the run `meta`, chunk `c`.
+    /// Part `c` of `ids` written as run `writer` of the run `meta`, parts of 2 rows.
     fn part(dir: &Path, meta: &RunMeta, c: usize, writer: &str, ids: &[u64]) -> PathBuf {
         let schema = Arc::new(Schema::new(vec![Field::new(
             "variant_id",
@@ -565,9 +918,7 @@ mod tests {
             vec![Arc::new(UInt64Array::from(ids.to_vec()))],
         )
         .unwrap();
-        let mut pairs = meta.pairs();
-        pairs.push(("hpr_mc.chunk".into(), c.to_string()));
-        pairs.push((RUN_ID.into(), writer.into()));
+        let pairs = PartId { meta, part_rows: 2 }.pairs(c, writer);
         let path = dir.join(format!("chunk-{c}-{}-{writer}-{ids:?}.parquet", meta.seed));
         pq::write_atomic(&path, &dir.join("tmp"), &schema, &pairs, 100, |w| {
             Ok(w.write(&batch)?)
@@ -577,29 +928,51 @@ mod tests {
     }
 
     #[test]
-    fn the_merge_takes_only_a_part_of_this_run_s_chunk_writer_rows_and_ids() {
+    fn parts_hold_at_least_16384_rows_in_whole_row_groups_and_a_run_has_at_most_256() {
+        assert_eq!(part_rows(20_000, 8192), 16_384);
+        // A million variants: 62 parts (the last of 576 rows), not 31,250 chunks.
+        assert_eq!(part_rows(1_000_000, 8192), 16_384);
+        assert_eq!(1_000_000u64.div_ceil(16_384), 62);
+        // Ten million, the most one process flies: 40,960 rows a part, 245 parts.
+        assert_eq!(part_rows(10_000_000, 8192), 40_960);
+        assert_eq!(10_000_000u64.div_ceil(40_960), 245);
+        for count in [1, 1000, 4_194_304, 4_194_305, 9_999_999, 10_000_000] {
+            for rg in [1, 7, 8192, 100_000] {
+                let rows = part_rows(count, rg);
+                assert!(count.div_ceil(rows) <= MAX_PARTS, "{count} {rg}");
+                assert!(rows >= PART_ROWS && rows % rg as u64 == 0, "{count} {rg}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_copy_takes_only_a_part_of_this_run_s_cut_number_writer_rows_and_ids() {
         let dir = tempfile::tempdir().unwrap();
         let d = dir.path();
         let m = meta(5);
-        // Shard 1 of 2, chunks of 2: chunk 1 holds the shard's variants 2 and 3, ids 5 and 7.
+        let id = PartId {
+            meta: &m,
+            part_rows: 2,
+        };
+        // Shard 1 of 2, parts of 2: part 1 holds the shard's variants 2 and 3, ids 5 and 7.
         let good = part(d, &m, 1, "me", &[5, 7]);
-        check_part(&good, 1, &m, Some("me"), 2).unwrap();
+        check_part(&good, 1, &id, Some("me"), 2).unwrap();
         let mut q = 2;
         for b in pq::read_batches(&good).unwrap() {
             check_ids(&good, &b.unwrap(), m.shard, &mut q).unwrap();
         }
         assert_eq!(q, 4);
         let refusal = |path: &Path, c: usize, writer: &str, rows: u64| {
-            check_part(path, c, &m, Some(writer), rows)
+            check_part(path, c, &id, Some(writer), rows)
                 .unwrap_err()
                 .to_string()
         };
-        // Another seed's part under this chunk's name (what two runs into one directory made).
+        // Another seed's part under this part's name (what two runs into one directory made).
         let other = part(d, &meta(7), 1, "me", &[5, 7]);
         let e = refusal(&other, 1, "me", 2);
         assert!(
-            e.contains("is not chunk 1 of this run (its hpr_mc.seed is 7, this run's is 5)")
-                && e.contains("nothing was merged"),
+            e.contains("is not part 1 of this run (its hpr_mc.seed is 7, this run's is 5)")
+                && e.contains("the variants file was not written"),
             "{e}"
         );
         let e = refusal(&good, 1, "another", 2);
@@ -608,9 +981,21 @@ mod tests {
             "{e}"
         );
         let e = refusal(&good, 0, "me", 2);
-        assert!(e.contains("(its hpr_mc.chunk is 1)"), "{e}");
+        assert!(e.contains("(its hpr_mc.part is 1)"), "{e}");
         let e = refusal(&good, 1, "me", 3);
-        assert!(e.contains("(it holds 2 rows, the chunk 3)"), "{e}");
+        assert!(e.contains("(it holds 2 rows, the part 3)"), "{e}");
+        // The same run cut into parts of another size.
+        let cut = PartId {
+            meta: &m,
+            part_rows: 4,
+        };
+        let e = check_part(&good, 1, &cut, Some("me"), 2)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("(its hpr_mc.part_rows is 2, this run's is 4)"),
+            "{e}"
+        );
         // The right metadata over other rows: the ids give it away.
         let wrong = part(d, &m, 1, "me", &[5, 9]);
         let mut q = 2;
