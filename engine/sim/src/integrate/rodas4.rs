@@ -295,38 +295,81 @@ impl<const N: usize> Rodas4<N> {
         };
         (100.0 * h0).min(h1).min(self.control.h_max)
     }
+}
 
-    /// `J = ∂f/∂y` and `∂f/∂t` at `(t, y)` by forward differences (the time's increment kept
-    /// inside the step toward `t_stop`).
-    fn jacobian<F>(&mut self, f: &mut F, t_stop: f64) -> ([[f64; N]; N], [f64; N])
-    where
-        F: FnMut(f64, &[f64; N], &mut [f64; N]),
-    {
-        let mut jac = [[0.0; N]; N];
-        let mut moved = self.y;
-        let mut fj = [0.0; N];
-        for j in 0..N {
-            let (yj, d) = increment(self.y[j]);
-            moved[j] = yj;
-            f(self.t, &moved, &mut fj);
-            moved[j] = self.y[j];
-            for i in 0..N {
-                jac[i][j] = (fj[i] - self.dy[i]) / d;
-            }
-        }
-        let (mut tt, mut dt) = increment(self.t);
-        if tt >= t_stop {
-            tt = self.t + 0.5 * (t_stop - self.t);
-            dt = tt - self.t;
-        }
-        let mut ft = [0.0; N];
-        f(tt, &self.y, &mut fj);
-        for i in 0..N {
-            ft[i] = (fj[i] - self.dy[i]) / dt;
-        }
-        self.n_eval += N as u64 + 1;
-        (jac, ft)
+/// Column `j` of `J = ∂f/∂y` at `(t, y)`, where `f(t, y) = f0`, by a forward difference
+/// (one evaluation of `f`).
+pub fn difference_column<F, const N: usize>(
+    f: &mut F,
+    t: f64,
+    y: &[f64; N],
+    f0: &[f64; N],
+    j: usize,
+) -> [f64; N]
+where
+    F: FnMut(f64, &[f64; N], &mut [f64; N]),
+{
+    let mut moved = *y;
+    let (yj, d) = increment(y[j]);
+    moved[j] = yj;
+    let mut fj = [0.0; N];
+    f(t, &moved, &mut fj);
+    let mut col = [0.0; N];
+    for i in 0..N {
+        col[i] = (fj[i] - f0[i]) / d;
     }
+    col
+}
+
+/// `∂f/∂t` at `(t, y)`, where `f(t, y) = f0`, by a difference (one evaluation of `f`):
+/// forward in time, inside a step toward `t_stop`, or backward when the step ends sooner (a
+/// sliver step onto a stop time, whose `h dᵢ ∂f/∂t` terms are then negligible anyway).
+pub fn time_difference<F, const N: usize>(
+    f: &mut F,
+    t: f64,
+    y: &[f64; N],
+    f0: &[f64; N],
+    t_stop: f64,
+) -> [f64; N]
+where
+    F: FnMut(f64, &[f64; N], &mut [f64; N]),
+{
+    let (mut tt, mut dt) = increment(t);
+    if tt >= t_stop {
+        tt = t - dt;
+        dt = tt - t;
+    }
+    let mut ft = [0.0; N];
+    f(tt, y, &mut ft);
+    for i in 0..N {
+        ft[i] = (ft[i] - f0[i]) / dt;
+    }
+    ft
+}
+
+/// `J` and `∂f/∂t` at `(t, y)` (where `f(t, y) = f0`) by differences alone: `N + 1`
+/// evaluations of `f`, the count returned. What [`DenseStepper::step`] takes; a caller
+/// that knows part of `J` in closed form gives [`Rodas4::step_with`] its own.
+pub fn difference_jacobian<F, const N: usize>(
+    f: &mut F,
+    t: f64,
+    y: &[f64; N],
+    f0: &[f64; N],
+    t_stop: f64,
+    jac: &mut [[f64; N]; N],
+    ft: &mut [f64; N],
+) -> u64
+where
+    F: FnMut(f64, &[f64; N], &mut [f64; N]),
+{
+    for j in 0..N {
+        let col = difference_column(f, t, y, f0, j);
+        for i in 0..N {
+            jac[i][j] = col[i];
+        }
+    }
+    *ft = time_difference(f, t, y, f0, t_stop);
+    N as u64 + 1
 }
 
 impl<const N: usize> DenseStepper<N> for Rodas4<N> {
@@ -346,9 +389,94 @@ impl<const N: usize> DenseStepper<N> for Rodas4<N> {
         self.set_state(&mut f, t, y)
     }
 
-    fn step<F>(&mut self, mut f: F, t_stop: f64) -> Result<StepOutcome, IntegratorError>
+    fn step<F>(&mut self, f: F, t_stop: f64) -> Result<StepOutcome, IntegratorError>
     where
         F: FnMut(f64, &[f64; N], &mut [f64; N]),
+    {
+        let mut f = f;
+        self.step_inner(&mut f, difference_jacobian, t_stop)
+    }
+
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    fn y(&self) -> &[f64; N] {
+        &self.y
+    }
+
+    fn y_prev(&self) -> &[f64; N] {
+        &self.y_prev
+    }
+
+    fn dy(&self) -> &[f64; N] {
+        &self.dy
+    }
+
+    fn dense(&self, t_between: f64) -> [f64; N] {
+        let mut out = [0.0; N];
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.dense_component(t_between, i);
+        }
+        out
+    }
+
+    fn dense_component(&self, t_between: f64, i: usize) -> f64 {
+        if t_between == self.t {
+            return self.y[i];
+        }
+        if t_between == self.t_prev {
+            return self.y_prev[i];
+        }
+        let s = (t_between - self.t_prev) / (self.t - self.t_prev);
+        let s1 = 1.0 - s;
+        s1 * self.y_prev[i] + s * (self.y[i] + s1 * (self.cont[0][i] + s * self.cont[1][i]))
+    }
+
+    fn n_eval(&self) -> u64 {
+        self.n_eval
+    }
+}
+
+impl<const N: usize> Rodas4<N> {
+    /// [`DenseStepper::step`] with the Jacobian and `∂f/∂t` given by `jacobian(t, y, f0,
+    /// t_stop, jac, ft)` (at `(t, y)`, where `f(t, y) = f0`, once a step; it returns the
+    /// evaluations of the derivative it made, added to [`DenseStepper::n_eval`]): what a
+    /// caller knows in closed form, with differences ([`difference_column`],
+    /// [`time_difference`]) for the rest.
+    pub fn step_with<F, J>(
+        &mut self,
+        mut f: F,
+        mut jacobian: J,
+        t_stop: f64,
+    ) -> Result<StepOutcome, IntegratorError>
+    where
+        F: FnMut(f64, &[f64; N], &mut [f64; N]),
+        J: FnMut(f64, &[f64; N], &[f64; N], f64, &mut [[f64; N]; N], &mut [f64; N]) -> u64,
+    {
+        self.step_inner(
+            &mut f,
+            |_: &mut F, t, y: &[f64; N], f0: &[f64; N], t_stop, jac: &mut [[f64; N]; N], ft: &mut [f64; N]| {
+                jacobian(t, y, f0, t_stop, jac, ft)
+            },
+            t_stop,
+        )
+    }
+
+    /// The step, the Jacobian's function handed the derivative.
+    fn step_inner<F, J>(
+        &mut self,
+        f: &mut F,
+        mut jacobian: J,
+        t_stop: f64,
+    ) -> Result<StepOutcome, IntegratorError>
+    where
+        F: FnMut(f64, &[f64; N], &mut [f64; N]),
+        J: FnMut(&mut F, f64, &[f64; N], &[f64; N], f64, &mut [[f64; N]; N], &mut [f64; N]) -> u64,
     {
         if !self.initialized {
             return Err(IntegratorError::NotInitialized);
@@ -360,9 +488,10 @@ impl<const N: usize> DenseStepper<N> for Rodas4<N> {
         let mut h = if self.h_next > 0.0 {
             self.h_next
         } else {
-            self.initial_step(&mut f, t_stop)
+            self.initial_step(f, t_stop)
         };
-        let (jac, ft) = self.jacobian(&mut f, t_stop);
+        let (mut jac, mut ft) = ([[0.0; N]; N], [0.0; N]);
+        self.n_eval += jacobian(f, self.t, &self.y, &self.dy, t_stop, &mut jac, &mut ft);
         let (t, y0, f0) = (self.t, self.y, self.dy);
         let mut rejected = false;
         loop {
@@ -385,7 +514,7 @@ impl<const N: usize> DenseStepper<N> for Rodas4<N> {
             }
             let t_end = if last { t_stop } else { t + h };
             let attempt = match Factored::new(&jac, 1.0 / (GAMMA * h)) {
-                Some(w) => Some(self.attempt(&mut f, &w, t, t_end, h, &y0, &f0, &ft)),
+                Some(w) => Some(self.attempt(f, &w, t, t_end, h, &y0, &f0, &ft)),
                 None => None,
             };
             let err = match &attempt {
@@ -436,50 +565,6 @@ impl<const N: usize> DenseStepper<N> for Rodas4<N> {
                 fac.clamp(c.min_factor, 1.0)
             };
         }
-    }
-
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn t_prev(&self) -> f64 {
-        self.t_prev
-    }
-
-    fn y(&self) -> &[f64; N] {
-        &self.y
-    }
-
-    fn y_prev(&self) -> &[f64; N] {
-        &self.y_prev
-    }
-
-    fn dy(&self) -> &[f64; N] {
-        &self.dy
-    }
-
-    fn dense(&self, t_between: f64) -> [f64; N] {
-        let mut out = [0.0; N];
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.dense_component(t_between, i);
-        }
-        out
-    }
-
-    fn dense_component(&self, t_between: f64, i: usize) -> f64 {
-        if t_between == self.t {
-            return self.y[i];
-        }
-        if t_between == self.t_prev {
-            return self.y_prev[i];
-        }
-        let s = (t_between - self.t_prev) / (self.t - self.t_prev);
-        let s1 = 1.0 - s;
-        s1 * self.y_prev[i] + s * (self.y[i] + s1 * (self.cont[0][i] + s * self.cont[1][i]))
-    }
-
-    fn n_eval(&self) -> u64 {
-        self.n_eval
     }
 }
 

@@ -7,6 +7,7 @@
 //! [`Descent::after_step`].
 
 use super::*;
+use crate::integrate::rodas4;
 
 /// Whose descent it is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -239,10 +240,17 @@ impl Descent {
         let t_stop = self.next_stop(run, stepper);
         let canopies = self.canopies;
         let this = &*self;
+        let rates = |t: f64, y: &[f64; N3], dy: &mut [f64; N3]| {
+            model.descent_rates_of(this.mass(model, t), &canopies, t, y, dy);
+        };
+        // What changes with time but for the state: the gusts' factor, the mass while the
+        // motor burns.
+        let timed = model.gusts.is_some() || self.mass_kg.is_none();
         let mut evals = 0u64;
-        let outcome = stepper.checked_step(
-            |t, y, dy| {
-                model.descent_rates_of(this.mass(model, t), &canopies, t, y, dy);
+        let outcome = stepper.checked_step_with(
+            rates,
+            |t, y, f0, t_stop, jac, ft| {
+                this.jacobian(model, &rates, timed, t, y, f0, t_stop, jac, ft)
             },
             t_stop,
             Phase::Descent.name(),
@@ -250,6 +258,47 @@ impl Descent {
         )?;
         run.evaluations += evals;
         self.after_step(run, stepper, outcome)
+    }
+
+    /// The Jacobian of the descent's derivative `rates` at `(t, y)` (where it is `f0`) and
+    /// its rate of change with time, for RODAS4: `ẋ = v` and the acceleration's `∂v̇/∂v` in
+    /// closed form ([`FlightModel::descent_velocity_jacobian`]), its `∂v̇/∂z` (the air, the
+    /// wind and gravity change with height) and, if anything but the state changes it
+    /// (`timed`), `∂f/∂t` by differences. Returns the derivative's evaluations.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn jacobian(
+        &self,
+        model: &FlightModel,
+        rates: &impl Fn(f64, &[f64; N3], &mut [f64; N3]),
+        timed: bool,
+        t: f64,
+        y: &[f64; N3],
+        f0: &[f64; N3],
+        t_stop: f64,
+        jac: &mut [[f64; N3]; N3],
+        ft: &mut [f64; N3],
+    ) -> u64 {
+        let mut f = |t: f64, y: &[f64; N3], dy: &mut [f64; N3]| rates(t, y, dy);
+        *jac = [[0.0; N3]; N3];
+        for i in 0..3 {
+            jac[i][3 + i] = 1.0;
+        }
+        let jv = model.descent_velocity_jacobian(self.mass(model, t), &self.canopies, t, y);
+        for i in 0..3 {
+            jac[3 + i][3..].copy_from_slice(&jv[i]);
+        }
+        let dz = rodas4::difference_column(&mut f, t, y, f0, 2);
+        for i in 3..N3 {
+            jac[i][2] = dz[i];
+        }
+        if timed {
+            *ft = rodas4::time_difference(&mut f, t, y, f0, t_stop);
+            2
+        } else {
+            *ft = [0.0; N3];
+            1
+        }
     }
 
     /// After a step that ended with `outcome`: events in the step (located on the dense
