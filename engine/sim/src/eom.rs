@@ -687,7 +687,10 @@ mod tests {
             for i in 0..3 {
                 let diff = (fu[3 + i] - fd[3 + i]) / (2.0 * d);
                 let got = jac[i][j];
-                assert!((got - diff).abs() < 1e-9, "dv{i}/dv{j}: {got} against {diff}");
+                assert!(
+                    (got - diff).abs() < 1e-9,
+                    "dv{i}/dv{j}: {got} against {diff}"
+                );
             }
         }
         // At rest in the air the drag's part vanishes; Coriolis's stays.

@@ -13,8 +13,7 @@ use super::memo::{FreeMemo, Held, SlotModels};
 use crate::eom::{pack_mass, MassLanes, N3, N6};
 use crate::flight::driver::{Descending, Paused, PausedPhase, PhaseEnd, StepEnd, Verdict};
 use crate::flight::model::{
-    derivative_6dof_lanes, end_point_lanes, CenterLanes, FlightModel,
-    FourModels,
+    derivative_6dof_lanes, end_point_lanes, CenterLanes, FlightModel, FourModels,
 };
 use crate::flight::{SimError, Simulation};
 use crate::integrate::dopri54::{self, arithmetic};

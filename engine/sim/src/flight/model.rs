@@ -23,8 +23,7 @@ use nalgebra::Vector3;
 
 mod kernels;
 pub use kernels::{
-    derivative_6dof_lanes, end_point_lanes, CenterLanes, EndLanes, FourModels,
-    ModelLanes,
+    derivative_6dof_lanes, end_point_lanes, CenterLanes, EndLanes, FourModels, ModelLanes,
 };
 
 /// Most parts that shifts may move in one flight (the kernel keeps their motions in a fixed

@@ -17,11 +17,14 @@
 //! output over the step is `y(θ) = (1 − θ) y₀ + θ (y₁ + (1 − θ)(q₁ + θ q₂))` with `q₁`, `q₂`
 //! fixed combinations of `k₁..k₅`, exact at both ends.
 //!
-//! The Jacobian and `∂f/∂t` are taken by forward differences from the derivative alone
-//! (`N + 1` more evaluations a step, none for a rejected attempt, which reuses them): the
-//! derivative stays the one closure every stepper takes, and a Rosenbrock method needs `J`
-//! only to within its differences' error (`√ε` relative), which is far below any tolerance
-//! this crate accepts. `W` is factored by Gaussian elimination with partial pivoting.
+//! The Jacobian and `∂f/∂t` are taken once a step (a rejected attempt reuses them): given by
+//! the caller ([`Rodas4::step_with`], what it knows in closed form and differences of the
+//! rest), or, through [`DenseStepper::step`], by forward differences of the derivative
+//! alone ([`difference_jacobian`], `N + 1` more evaluations). The method's order needs `J`
+//! itself; differences carry an error near `√ε` of it, which moves a step by far less than
+//! its tolerance but does tie the result to that rounding (a caller that wants two inputs
+//! equal to rounding to fly equal to rounding gives `J` in closed form). `W` is factored by
+//! Gaussian elimination with partial pivoting.
 //!
 //! Error norm and control: the norm is [`super::dopri54`]'s (`atol_i + rtol·max(|y₀ᵢ|, |y₁ᵢ|)`
 //! scales each component of `k₆`); the step grows or shrinks by
@@ -460,9 +463,13 @@ impl<const N: usize> Rodas4<N> {
     {
         self.step_inner(
             &mut f,
-            |_: &mut F, t, y: &[f64; N], f0: &[f64; N], t_stop, jac: &mut [[f64; N]; N], ft: &mut [f64; N]| {
-                jacobian(t, y, f0, t_stop, jac, ft)
-            },
+            |_: &mut F,
+             t,
+             y: &[f64; N],
+             f0: &[f64; N],
+             t_stop,
+             jac: &mut [[f64; N]; N],
+             ft: &mut [f64; N]| { jacobian(t, y, f0, t_stop, jac, ft) },
             t_stop,
         )
     }

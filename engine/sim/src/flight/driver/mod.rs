@@ -160,7 +160,11 @@ impl<const N: usize> Stepper<N> {
     /// drag relaxes to its terminal velocity at a rate `2g/v` that would hold an explicit
     /// method's step at its stability limit; see `descent.rs`), or the fixed-step RK4 asked
     /// for.
-    fn descent(integrator: &Integrator, atol: [f64; N], rtol: f64) -> Result<Self, IntegratorError> {
+    fn descent(
+        integrator: &Integrator,
+        atol: [f64; N],
+        rtol: f64,
+    ) -> Result<Self, IntegratorError> {
         Ok(match *integrator {
             Integrator::Adaptive { .. } => Stepper::Stiff(Box::new(Rodas4::with_tolerances(
                 Tolerances::new(rtol, atol)?,
