@@ -267,8 +267,9 @@ fn a_trajectory_file_of_another_kind_is_refused_before_the_flight_and_nothing_is
         "{}",
         &text[..80]
     );
-    // The flight takes about 490 steps, a sample each.
-    assert!(text.lines().count() > 400, "{} lines", text.lines().count());
+    // The flight takes about 300 steps, a sample each (302 lines with the header; some 490
+    // when Dormand–Prince stepped the descent too, before RODAS4 took it over).
+    assert!(text.lines().count() > 250, "{} lines", text.lines().count());
 }
 
 #[test]

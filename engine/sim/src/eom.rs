@@ -535,6 +535,40 @@ pub fn descent_derivative<S: Real>(
     }
 }
 
+/// The Jacobian of [`descent_derivative`]'s acceleration with respect to the velocity,
+/// `∂v̇/∂v`, the air, wind and gravity where they are: the drag's `−c (|u| I + u uᵀ / |u|)`
+/// (`u = v − w`, `c = ½ ρ CdS / (m + m_a)`; the zero matrix in a point at rest in the air)
+/// and the Coriolis term's `−2 [Ω]×`. What a stiff descent's integrator factors (RODAS4).
+pub fn descent_velocity_jacobian(
+    y: &[f64; N3],
+    mass_kg: f64,
+    canopies: &Canopies<f64>,
+    at: &Surroundings<f64>,
+) -> [[f64; 3]; 3] {
+    let w = &at.wind_n;
+    let u = [y[3] - w.x, y[4] - w.y, y[5] - w.z];
+    let speed = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+    let c = 0.5 * at.rho * canopies.cds_m2 / (mass_kg + at.rho * canopies.added_air_m3);
+    let mut jac = [[0.0; 3]; 3];
+    if speed > 0.0 {
+        for i in 0..3 {
+            for j in 0..3 {
+                let along = u[i] * u[j] / speed;
+                jac[i][j] = -c * (if i == j { speed + along } else { along });
+            }
+        }
+    }
+    if let Some(o) = &at.earth_rate_n {
+        let skew = [[0.0, -o.z, o.y], [o.z, 0.0, -o.x], [-o.y, o.x, 0.0]];
+        for i in 0..3 {
+            for j in 0..3 {
+                jac[i][j] -= 2.0 * skew[i][j];
+            }
+        }
+    }
+    jac
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -621,5 +655,48 @@ mod tests {
         assert!((dy[5] - (drag(v[2]) - m * g) / (m + m_a)).abs() < 1e-12);
         // 7.18028 m³ × 1.1 kg/m³ = 7.8983 kg of air, half the rocket's mass.
         assert!((m_a - 7.898_310).abs() < 1e-6, "{m_a}");
+    }
+
+    #[test]
+    fn the_descent_s_velocity_jacobian_is_the_derivative_s_by_central_differences() {
+        // 16 kg under 10 m², a 4 m/s wind, at 45° north (the Coriolis term), drifting and
+        // falling: each column against (f(v + δ) − f(v − δ)) / 2δ, δ = 1e-5 m/s, whose
+        // truncation (δ² f‴ / 6, f‴ ≈ c / |u| ≈ 0.02) and rounding (ε |f| / δ ≈ 1e-11) stay
+        // below 1e-9.
+        let omega = crate::gravity::earth_rate_n(45.0);
+        let at = Surroundings {
+            rho: 1.1,
+            g: 9.8,
+            wind_n: V3::new(4.0, -1.0, 0.0),
+            earth_rate_n: Some(V3::new(omega[0], omega[1], omega[2])),
+        };
+        let canopies = Canopies {
+            cds_m2: 10.0,
+            added_air_m3: CanopyShape::default().added_air_volume_m3(10.0),
+        };
+        let y = [3.0, 2.0, 400.0, 1.5, 0.5, -7.0];
+        let jac = descent_velocity_jacobian(&y, 16.0, &canopies, &at);
+        let d = 1e-5;
+        for j in 0..3 {
+            let (mut up, mut down) = (y, y);
+            up[3 + j] += d;
+            down[3 + j] -= d;
+            let (mut fu, mut fd) = ([0.0; N3], [0.0; N3]);
+            descent_derivative(&up, 16.0, &canopies, &at, &mut fu);
+            descent_derivative(&down, 16.0, &canopies, &at, &mut fd);
+            for i in 0..3 {
+                let diff = (fu[3 + i] - fd[3 + i]) / (2.0 * d);
+                let got = jac[i][j];
+                assert!(
+                    (got - diff).abs() < 1e-9,
+                    "dv{i}/dv{j}: {got} against {diff}"
+                );
+            }
+        }
+        // At rest in the air the drag's part vanishes; Coriolis's stays.
+        let still = [0.0, 0.0, 100.0, 4.0, -1.0, 0.0];
+        let jac = descent_velocity_jacobian(&still, 16.0, &canopies, &at);
+        assert_eq!(jac[0][0], 0.0);
+        assert_eq!(jac[0][1], 2.0 * omega[2]);
     }
 }

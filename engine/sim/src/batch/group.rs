@@ -1,18 +1,19 @@
-//! Groups of four lanes stepped together. The four lanes' Dormand–Prince steps are held side
-//! by side as structure of arrays ([`Steps`]): every stage is one stage combination and one
-//! kernel call on [`F64x4`] lanes (the 6-DOF kernel in free flight, the point-mass descent
-//! under canopy), compiled for AVX2 where the processor has it. Each lane keeps its own time,
-//! step, stops and error control, judged and ended by its own flight ([`OnLanes`]); the
-//! kernels do lane by lane the IEEE operations of the single flight, so the lanes are bit for
-//! bit single flights.
+//! Groups of four lanes stepped together. In free flight the four lanes' Dormand–Prince steps
+//! are held side by side as structure of arrays ([`Steps`]): every stage is one stage
+//! combination and one call of the 6-DOF kernel on [`F64x4`] lanes, compiled for AVX2 where
+//! the processor has it. Each lane keeps its own time, step, stops and error control, judged
+//! and ended by its own flight ([`OnLanes`]); the kernel does lane by lane the IEEE
+//! operations of the single flight, so the lanes are bit for bit single flights. Under canopy
+//! (the rocket's descent and released parts') each lane of a descent group takes its own
+//! RODAS4 step, the single flight's code itself: a dozen steps a descent, each with its own
+//! Jacobian and factored matrix, leave too little to share across lanes to pay for packing.
 
 use super::guarded;
-use super::memo::{DescentMemo, FreeMemo, Held, SlotModels};
-use crate::eom::{pack_mass, Canopies, MassLanes, N3, N6};
+use super::memo::{FreeMemo, Held, SlotModels};
+use crate::eom::{pack_mass, MassLanes, N3, N6};
 use crate::flight::driver::{Descending, Paused, PausedPhase, PhaseEnd, StepEnd, Verdict};
 use crate::flight::model::{
-    derivative_6dof_lanes, descent_rates_lanes, end_point_lanes, CenterLanes, FlightModel,
-    FourModels,
+    derivative_6dof_lanes, end_point_lanes, CenterLanes, FlightModel, FourModels,
 };
 use crate::flight::{SimError, Simulation};
 use crate::integrate::dopri54::{self, arithmetic};
@@ -98,16 +99,7 @@ pub(super) fn step_group<'a>(group: &mut [Lane<'a>], scratch: &mut Scratch<'a>, 
     let descent = matches!(group.first().map(|l| &l.flying), Some(Flying::Descent(_)));
     let stepped = guarded(|| {
         if descent {
-            with_avx2(
-                #[inline(always)]
-                || {
-                    step_descents(
-                        group,
-                        &mut scratch.descent,
-                        &mut scratch.descent_memo[index],
-                    )
-                },
-            )
+            step_descents(group)
         } else {
             with_avx2(
                 #[inline(always)]
@@ -170,18 +162,14 @@ impl<const N: usize> Steps<N> {
 /// next step of the group at the same place.
 pub(super) struct Scratch<'a> {
     free: Steps<N6>,
-    descent: Steps<N3>,
     free_memo: [Option<FreeMemo<'a>>; LANES_IN_FLIGHT / 4],
-    descent_memo: [Option<DescentMemo<'a>>; LANES_IN_FLIGHT / 4],
 }
 
 impl<'a> Scratch<'a> {
     pub(super) fn new() -> Box<Scratch<'a>> {
         Box::new(Scratch {
             free: Steps::new(),
-            descent: Steps::new(),
             free_memo: std::array::from_fn(|_| None),
-            descent_memo: std::array::from_fn(|_| None),
         })
     }
 }
@@ -538,78 +526,17 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
     });
 }
 
-/// One descent attempt of the lanes of `group`: the point-mass descent on four lanes (a
-/// rocket under canopy or a released part on its way down, each lane its own mass and drag).
-#[inline(always)]
-fn step_descents<'a>(
-    group: &mut [Lane<'a>],
-    st: &mut Steps<N3>,
-    memo: &mut Option<DescentMemo<'a>>,
-) {
-    let mut mass = F64x4::splat(1.0);
-    let mut gust = F64x4::splat(1.0);
-    let gusty = group.iter().any(|l| match &l.flying {
-        Flying::Descent(d) => d.model().gusts.is_some(),
-        _ => false,
-    });
-    let mut canopies = Canopies {
-        cds_m2: F64x4::splat(0.0),
-        added_air_m3: F64x4::splat(0.0),
-    };
-    let mut filled = [false; 4];
-    let outcomes = step_on_lanes::<N3, Descending<'_, ()>>(
-        group,
-        st,
-        #[inline(always)]
-        |group, slots, ys, dy| {
-            // The slots' models and, if they share their tables, the four-lane view of them:
-            // kept from the group's last step while its slots hold the same lanes.
-            let rows = SlotModels::rows(group, slots);
-            if !matches!(memo, Some(m) if m.rows == rows) {
-                *memo = Some(SlotModels::of::<N3, Descending<'_, ()>>(group, slots));
-            }
-            let Some(DescentMemo { models, four, .. }) = memo.as_ref() else {
-                return;
-            };
-            for l in 0..4 {
-                if !slots.wants(l, filled[l]) {
-                    continue;
-                }
-                let d = Descending::of(&mut group[slots.lane[l]]);
-                mass.0[l] = d.mass_at(slots.t[l]);
-                if gusty {
-                    gust.0[l] = models[l].gust(slots.t[l]);
-                }
-                let c = d.canopies();
-                canopies.cds_m2.0[l] = c.cds_m2;
-                canopies.added_air_m3.0[l] = c.added_air_m3;
-                filled[l] = true;
-            }
-            match four {
-                Some(four) => {
-                    descent_rates_lanes(four, gusty.then_some(gust), mass, &canopies, ys, dy)
-                }
-                None => {
-                    for (l, model) in models.iter().enumerate().take(group.len()) {
-                        if !slots.active[l] {
-                            continue;
-                        }
-                        let mut d = [0.0; N3];
-                        let one = Canopies {
-                            cds_m2: canopies.cds_m2.0[l],
-                            added_air_m3: canopies.added_air_m3.0[l],
-                        };
-                        let (g, m) = (gusty.then_some(gust.0[l]), mass.0[l]);
-                        descent_rates_lanes(*model, g, m, &one, &lane_of(ys, l), &mut d);
-                        for k in 0..N3 {
-                            dy[k].0[l] = d[k];
-                        }
-                    }
-                }
-            }
-        },
-    );
-    end_steps::<N3, Descending<'_, ()>>(group, &outcomes, |p, o, _| p.end_step(o));
+/// One descent step of each lane of `group`, each lane alone: a descent is stepped by
+/// RODAS4, whose steps (few, and each with a Jacobian and a factored matrix of its own
+/// lane) are the single flight's own code, so each lane is its single flight bit for bit.
+fn step_descents(group: &mut [Lane<'_>]) {
+    for lane in group.iter_mut() {
+        match Descending::of(lane).step() {
+            Ok(Some(end)) => lane.end = Some(Descending::lane_end(end)),
+            Ok(None) => {}
+            Err(e) => lane.end = Some(LaneEnd::Error(e)),
+        }
+    }
 }
 
 /// `f` (a group's step, inlined into it) compiled for AVX2 where the processor has it: the

@@ -1,23 +1,19 @@
 //! What a group of four lanes keeps from one step to its next while its slots hold the same
-//! lanes (the chunk sorts its lanes stably, so most do): the slots' models and four-lane view,
-//! and in free flight their mass states and thrusts as the slots hold them.
+//! lanes (the chunk sorts its lanes stably, so most do): the slots' four-lane view of their
+//! models, their mass states and thrusts as the slots hold them.
 
 use super::group::{slot_models, Lane, OnLanes, Slots};
 use crate::eom::MassLanes;
-use crate::flight::model::{FlightModel, FourModels};
+use crate::flight::model::FourModels;
 use crate::lanes::F64x4;
 use crate::massprops::{MassInputs, MassModelLanes};
 
-/// The lanes a group's slots hold (the chunk's rows), their models and, if they share their
-/// tables, the four-lane view of them: kept while the slots hold the same lanes. A descent
-/// group keeps only this.
+/// The lanes a group's slots hold (the chunk's rows) and, if they share their tables, the
+/// four-lane view of their models: kept while the slots hold the same lanes.
 pub(super) struct SlotModels<'a> {
     pub(super) rows: [usize; 4],
-    pub(super) models: [&'a FlightModel; 4],
     pub(super) four: Option<FourModels<'a>>,
 }
-
-pub(super) type DescentMemo<'a> = SlotModels<'a>;
 
 impl<'a> SlotModels<'a> {
     /// The chunk's rows in the slots of `group` this stage.
@@ -35,7 +31,6 @@ impl<'a> SlotModels<'a> {
         let models = slot_models::<N, P>(group, slots);
         SlotModels {
             rows: Self::rows(group, slots),
-            models,
             four: FourModels::new(models),
         }
     }

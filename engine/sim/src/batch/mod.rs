@@ -13,19 +13,18 @@
 //! descent groups beside the other lanes' descents with its own mass and drag.
 //!
 //! **Lanes side by side.** Up to [`LANES_IN_FLIGHT`] rows of a chunk fly at once, and a lane
-//! that lands is replaced by the next row. Their free flights and their descents (all but the
-//! pad and the rail) are stepped four lanes of the same phase at a time: each lane keeps its
-//! own time, step size, stop times and error control (its own Dormand–Prince stepper, which
-//! judges and commits its attempts), the four lanes' attempts are held as structure of
-//! arrays, and every stage is one stage combination and *one* evaluation of the generic
-//! kernel (6-DOF, or the descent's) on [`F64x4`](crate::lanes::F64x4) lanes (AVX2
+//! that lands is replaced by the next row. Their free flights are stepped four lanes at a
+//! time: each lane keeps its own time, step size, stop times and error control (its own
+//! Dormand–Prince stepper, which judges and commits its attempts), the four lanes' attempts
+//! are held as structure of arrays, and every stage is one stage combination and *one*
+//! evaluation of the generic 6-DOF kernel on [`F64x4`](crate::lanes::F64x4) lanes (AVX2
 //! registers where the processor has them, [`eval_four`]). Each group step is one attempt
 //! per lane: a lane whose attempt is rejected tries again, smaller, at the next group step,
 //! beside the other lanes' new steps. A slot without a lane repeats another lane's input
 //! and is ignored. Each round the chunk orders its lanes before grouping them: free flights
 //! whose mass is changing (motor burning, a part moving) first, whose mass states a group then
 //! computes on four lanes too ([`crate::massprops::mass_state_lanes`]), then the other free
-//! flights, then descents; a free-flight group whose slots hold the same lanes as at its last
+//! flights, then descents (each of which takes its own RODAS4 step, the single flight's); a free-flight group whose slots hold the same lanes as at its last
 //! step takes up what it packed then (model, mass states, thrusts). The four attempts' stage
 //! times and their step-size controllers' logarithm and factors are computed side by side too,
 //! by the stepper's own functions written over lanes ([`crate::integrate::dopri54::stage_time`],
@@ -763,12 +762,11 @@ impl Batch {
     /// their results in row order. Errs (flying nothing) if the columns' shapes are wrong.
     ///
     /// Up to [`LANES_IN_FLIGHT`] rows fly at once; each lane's pad, rail, events and step
-    /// ends run as in a single flight, and the free-flight and descent steps of four lanes of
-    /// the same phase are taken together: every stage of their Dormand–Prince steps is one
-    /// evaluation of a kernel on four lanes
-    /// ([`derivative_6dof_lanes`](crate::flight::model::derivative_6dof_lanes) on
-    /// [`F64x4`](crate::lanes::F64x4), or the descent's). A lane that lands is replaced by the
-    /// next row.
+    /// ends run as in a single flight, and the free-flight steps of four lanes are taken
+    /// together: every stage of their Dormand–Prince steps is one evaluation of the kernel on
+    /// four lanes ([`derivative_6dof_lanes`](crate::flight::model::derivative_6dof_lanes) on
+    /// [`F64x4`](crate::lanes::F64x4)); each lane under canopy takes its own RODAS4 step. A
+    /// lane that lands is replaced by the next row.
     pub fn fly_chunk(&self, columns: &Columns, first: usize) -> Result<Vec<LaneResult>, String> {
         self.check(columns)?;
         let n = columns.len;

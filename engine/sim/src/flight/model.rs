@@ -23,8 +23,7 @@ use nalgebra::Vector3;
 
 mod kernels;
 pub use kernels::{
-    derivative_6dof_lanes, descent_rates_lanes, end_point_lanes, CenterLanes, EndLanes, FourModels,
-    ModelLanes,
+    derivative_6dof_lanes, end_point_lanes, CenterLanes, EndLanes, FourModels, ModelLanes,
 };
 
 /// Most parts that shifts may move in one flight: the mass kernel's fixed arrays, whose size
@@ -617,6 +616,21 @@ impl FlightModel {
         let (at, speed_of_sound_m_s) = kernels::descent_surroundings(self, y[2], self.gust_at(t));
         eom::descent_derivative(y, mass_kg, canopies, &at, dy);
         (at, speed_of_sound_m_s)
+    }
+
+    /// The descent's `∂v̇/∂v` at `(t, y)` for a point of mass `mass_kg` under `canopies`, in
+    /// the surroundings [`FlightModel::descent_rates_of`] reads
+    /// ([`eom::descent_velocity_jacobian`]).
+    #[inline]
+    pub fn descent_velocity_jacobian(
+        &self,
+        mass_kg: f64,
+        canopies: &eom::Canopies<f64>,
+        t: f64,
+        y: &[f64; N3],
+    ) -> [[f64; 3]; 3] {
+        let (at, _) = kernels::descent_surroundings(self, y[2], self.gust_at(t));
+        eom::descent_velocity_jacobian(y, mass_kg, canopies, &at)
     }
 
     /// The mass a descent carries at `t` with every part on board: the structure's plus the

@@ -9,9 +9,12 @@
 //!
 //! - [`Dopri54`]: Dormand–Prince 5(4), adaptive, FSAL, with the 4th-order continuous extension.
 //! - [`Rk4`]: classic fixed-step Runge–Kutta 4, cubic-Hermite dense output.
+//! - [`Rodas4`]: RODAS4, a Rosenbrock method of order 4(3), L-stable, with its dense output:
+//!   for a stiff phase (the descent under canopy), whose steps an explicit method would keep
+//!   at its stability limit.
 //! - [`roots`]: Brent's bracketing root finder, event location on the dense output.
 //!
-//! Both steppers implement [`DenseStepper`]. A step never crosses the `t_stop` given to
+//! Every stepper implements [`DenseStepper`]. A step never crosses the `t_stop` given to
 //! [`DenseStepper::step`]: the step that would cross it is shortened to land on it exactly
 //! (`t == t_stop` bit for bit) and reports [`StepOutcome::ReachedStop`]. Drivers put motor
 //! ignition/burnout, table breakpoints and output times there so no step straddles a
@@ -24,6 +27,7 @@
 
 pub mod dopri54;
 pub mod rk4;
+pub mod rodas4;
 pub mod roots;
 
 #[cfg(test)]
@@ -31,6 +35,7 @@ mod tests;
 
 pub use dopri54::{Dopri54, StepControl};
 pub use rk4::Rk4;
+pub use rodas4::Rodas4;
 pub use roots::{
     brent_root, brent_root_bracketed, locate_event, locate_maximum, Crossing, RootError,
     DEFAULT_TIME_TOL_S,

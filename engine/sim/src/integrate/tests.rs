@@ -5,6 +5,7 @@ use super::*;
 use std::f64::consts::PI;
 
 mod lanes;
+mod rodas4;
 
 fn decay(_t: f64, y: &[f64; 1], dy: &mut [f64; 1]) {
     dy[0] = -y[0];

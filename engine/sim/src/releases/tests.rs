@@ -414,9 +414,9 @@ fn a_part_under_its_own_parachute_reaches_its_terminal_speed_at_the_ground() {
     };
     let g = env.gravity.at(0.0);
     let cds = 0.3;
-    // Under a canopy the step settles at the stability limit, where the error control holds
-    // the speed within about its velocity tolerance of the terminal speed (1e-4 m/s by
-    // default, 4e-5 of it here): tolerances of 1e-10 hold it within the bound.
+    // On the steady descent the error control holds the speed within about its velocity
+    // tolerance of the terminal speed (1e-4 m/s by default, 4e-5 of it here): tolerances of
+    // 1e-10 hold it within the bound.
     let options = SimOptions {
         integrator: Integrator::Adaptive {
             rtol: 1e-10,

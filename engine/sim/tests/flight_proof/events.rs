@@ -124,7 +124,10 @@ fn two_open_canopies_drag_and_carry_air_as_one_canopy_of_their_summed_cds_and_ai
     // after apogee: CdS 0.3 and 0.7 m², each a default hemisphere of radius
     // R_k = √(CdS_k / (1.4 π)). Each drags and carries its own air, so the pair flies as one
     // canopy of CdS 1.0 m² whose hemisphere holds both airs: R³ = R_1³ + R_2³. The two
-    // flights differ only in the rounding of the sums (tolerance: 1e-9 relative).
+    // flights differ only in the rounding of the sums, which may tip one of the descent's
+    // few long steps (RODAS4's) to another size, so they agree to the integrator's
+    // tolerance rather than to rounding: 1e-8 relative (measured 3.6e-9 in time, 3.8e-9 of
+    // the drift in position).
     let fly = |chutes: Vec<Parachute>| reference_flight_in_wind(6.0, 200.0, chutes).metrics;
     let r = |cds: f64| (cds / (1.4 * std::f64::consts::PI)).sqrt();
     let pair = fly(vec![
@@ -147,11 +150,11 @@ fn two_open_canopies_drag_and_carry_air_as_one_canopy_of_their_summed_cds_and_ai
         summed.landing_time_s.unwrap(),
         summed.landing_position_m.unwrap(),
     );
-    assert!((t - t1).abs() <= 1e-9 * t, "{t} s against {t1} s");
+    assert!((t - t1).abs() <= 1e-8 * t, "{t} s against {t1} s");
     let drift = xy[0].hypot(xy[1]);
     for k in 0..2 {
         assert!(
-            (xy[k] - xy1[k]).abs() <= 1e-9 * drift,
+            (xy[k] - xy1[k]).abs() <= 1e-8 * drift,
             "{xy:?} against {xy1:?}"
         );
     }

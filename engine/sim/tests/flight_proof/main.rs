@@ -14,6 +14,7 @@ mod clusters;
 mod common;
 mod coriolis;
 mod crosscheck;
+mod descent;
 mod drag;
 mod events;
 mod exact;

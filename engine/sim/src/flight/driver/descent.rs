@@ -1,12 +1,36 @@
 //! The descents: the rocket under canopy (the center of mass as a point with the canopies'
 //! drag) and, once the rocket's flight is over, each released part's own flight to the
 //! ground (a point of the part's mass under its own drag or parachute), one step at a time.
-//! The single flight steps them with their own derivative ([`Descent::step`]); the batch
-//! engine steps four lanes' descents together, rocket and parts alike (the same kernel, each
-//! lane its own mass and drag), and hands each lane's step to the same
-//! [`Descent::after_step`].
+//! Both drivers step them with this code: the single flight, and each lane of the batch
+//! engine's descent groups, which calls [`Descent::step`] lane by lane (bit for bit the
+//! single flight, since it is the single flight's step).
+//!
+//! # The method: RODAS4, a Rosenbrock method
+//!
+//! Under a canopy the velocity relaxes to the wind-relative terminal velocity at the rate
+//! of the drag's Jacobian: `λ = 2g/v_t / (1 + m_a/m)` along the relative velocity and half
+//! that across it (about 3/s under a main, 0.5 to 1/s under a drogue). An explicit method's
+//! step cannot pass `|hλ| ≈ 3.3` (Dormand–Prince's stability limit on the real axis) however
+//! smooth the descent, and that is where its steps used to settle: a third of a flight's
+//! steps. The trajectory itself is smooth: once the canopy has opened, the velocity follows
+//! the terminal velocity of the air and wind at the height, which change over hundreds of
+//! metres. So the descent is stepped by RODAS4 ([`crate::integrate::Rodas4`]): L-stable (the
+//! relaxation is damped whatever `hλ`), order 4 (the opening's transient is followed at the
+//! tolerances' accuracy in few steps), stiffly accurate, with an error estimate and a dense
+//! output of order 3 on which the events are found by Brent's method to 1e-12 s as before.
+//! Its Jacobian is cheap and mostly closed-form: `ẋ = v`, the acceleration's `∂v̇/∂v`
+//! ([`crate::eom::descent_velocity_jacobian`]: the drag's and Coriolis's), and by differences
+//! only `∂v̇/∂z` (the air, the wind and gravity change with height) and, with gusts or while
+//! the motor still burns, `∂f/∂t`: one or two more evaluations a step.
+//!
+//! Not chosen: an exponential step (the relaxation's rate is a 3×3 matrix that changes with
+//! the relative velocity, and the weight and the wind's shear are not linear in the state),
+//! and a closed form between the wind table's rows (quadratic drag with a wind at an angle
+//! to gravity has none in three dimensions, and the air's density changes within a row).
+//! Fixed-step RK4, when the options ask for it, steps the descent too.
 
 use super::*;
+use crate::integrate::rodas4;
 
 /// Whose descent it is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -239,10 +263,17 @@ impl Descent {
         let t_stop = self.next_stop(run, stepper);
         let canopies = self.canopies;
         let this = &*self;
+        let rates = |t: f64, y: &[f64; N3], dy: &mut [f64; N3]| {
+            model.descent_rates_of(this.mass(model, t), &canopies, t, y, dy);
+        };
+        // What changes with time but for the state: the gusts' factor, the mass while the
+        // motor burns.
+        let timed = model.gusts.is_some() || self.mass_kg.is_none();
         let mut evals = 0u64;
-        let outcome = stepper.checked_step(
-            |t, y, dy| {
-                model.descent_rates_of(this.mass(model, t), &canopies, t, y, dy);
+        let outcome = stepper.checked_step_with(
+            rates,
+            |t, y, f0, t_stop, jac, ft| {
+                this.jacobian(model, &rates, timed, t, y, f0, t_stop, jac, ft)
             },
             t_stop,
             Phase::Descent.name(),
@@ -250,6 +281,47 @@ impl Descent {
         )?;
         run.evaluations += evals;
         self.after_step(run, stepper, outcome)
+    }
+
+    /// The Jacobian of the descent's derivative `rates` at `(t, y)` (where it is `f0`) and
+    /// its rate of change with time, for RODAS4: `ẋ = v` and the acceleration's `∂v̇/∂v` in
+    /// closed form ([`FlightModel::descent_velocity_jacobian`]), its `∂v̇/∂z` (the air, the
+    /// wind and gravity change with height) and, if anything but the state changes it
+    /// (`timed`), `∂f/∂t` by differences. Returns the derivative's evaluations.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn jacobian(
+        &self,
+        model: &FlightModel,
+        rates: &impl Fn(f64, &[f64; N3], &mut [f64; N3]),
+        timed: bool,
+        t: f64,
+        y: &[f64; N3],
+        f0: &[f64; N3],
+        t_stop: f64,
+        jac: &mut [[f64; N3]; N3],
+        ft: &mut [f64; N3],
+    ) -> u64 {
+        let mut f = |t: f64, y: &[f64; N3], dy: &mut [f64; N3]| rates(t, y, dy);
+        *jac = [[0.0; N3]; N3];
+        for i in 0..3 {
+            jac[i][3 + i] = 1.0;
+        }
+        let jv = model.descent_velocity_jacobian(self.mass(model, t), &self.canopies, t, y);
+        for i in 0..3 {
+            jac[3 + i][3..].copy_from_slice(&jv[i]);
+        }
+        let dz = rodas4::difference_column(&mut f, t, y, f0, 2);
+        for i in 3..N3 {
+            jac[i][2] = dz[i];
+        }
+        if timed {
+            *ft = rodas4::time_difference(&mut f, t, y, f0, t_stop);
+            2
+        } else {
+            *ft = [0.0; N3];
+            1
+        }
     }
 
     /// After a step that ended with `outcome`: events in the step (located on the dense

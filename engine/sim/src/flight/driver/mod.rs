@@ -16,7 +16,7 @@ use crate::events::{Event, EventKind};
 use crate::frames;
 use crate::integrate::{
     brent_root, brent_root_bracketed, locate_event, Crossing, DenseStepper, Dopri54,
-    IntegratorError, Rk4, StepOutcome, Tolerances,
+    IntegratorError, Rk4, Rodas4, StepOutcome, Tolerances,
 };
 use crate::releases::{PartChute, PartTrigger};
 use crate::sensor::NoiseProcess;
@@ -27,10 +27,13 @@ use nalgebra::Vector3;
 /// Time tolerance of every event, s.
 const EVENT_TOL_S: f64 = 1e-12;
 
-/// Either integrator, by value (no trait object).
+/// The integrator of a phase, by value (no trait object): Dormand–Prince for the rail and
+/// the free flight, RODAS4 for the descents ([`Stepper::descent`]), or fixed-step RK4 for
+/// every phase when the options ask for it.
 enum Stepper<const N: usize> {
     Adaptive(Box<Dopri54<N>>),
     Fixed(Box<Rk4<N>>),
+    Stiff(Box<Rodas4<N>>),
 }
 
 macro_rules! each {
@@ -38,6 +41,7 @@ macro_rules! each {
         match $s {
             Stepper::Adaptive($x) => $e,
             Stepper::Fixed($x) => $e,
+            Stepper::Stiff($x) => $e,
         }
     };
 }
@@ -112,9 +116,57 @@ impl<const N: usize> Stepper<N> {
         Ok(outcome)
     }
 
+    /// [`Stepper::checked_step`] with the Jacobian RODAS4 factors given by `jacobian` (see
+    /// [`Rodas4::step_with`]; its evaluations of the derivative counted in `evals` too); the
+    /// other steppers step as `checked_step` does.
+    fn checked_step_with(
+        &mut self,
+        mut f: impl FnMut(f64, &[f64; N], &mut [f64; N]),
+        jacobian: impl FnMut(f64, &[f64; N], &[f64; N], f64, &mut [[f64; N]; N], &mut [f64; N]) -> u64,
+        t_stop: f64,
+        what: &str,
+        evals: &mut u64,
+    ) -> Result<crate::integrate::StepOutcome, SimError> {
+        let Stepper::Stiff(r) = self else {
+            return self.checked_step(f, t_stop, what, evals);
+        };
+        let mut watch = Watch::new(r.t());
+        let before = r.n_eval();
+        let outcome = r
+            .step_with(
+                |t, y, dy| {
+                    f(t, y, dy);
+                    watch.observe(t, y, dy);
+                },
+                jacobian,
+                t_stop,
+            )
+            .map_err(|e| watch.error(e, r.y(), what))?;
+        *evals += r.n_eval() - before;
+        watch.check_end(r.t(), r.y())?;
+        Ok(outcome)
+    }
+
     fn new(integrator: &Integrator, atol: [f64; N], rtol: f64) -> Result<Self, IntegratorError> {
         Ok(match *integrator {
             Integrator::Adaptive { .. } => Stepper::Adaptive(Box::new(Dopri54::with_tolerances(
+                Tolerances::new(rtol, atol)?,
+            ))),
+            Integrator::Rk4 { step_s } => Stepper::Fixed(Box::new(Rk4::new(step_s)?)),
+        })
+    }
+
+    /// The descents' stepper: RODAS4 at the adaptive integrator's tolerances (a point under
+    /// drag relaxes to its terminal velocity at a rate `2g/v` that would hold an explicit
+    /// method's step at its stability limit; see `descent.rs`), or the fixed-step RK4 asked
+    /// for.
+    fn descent(
+        integrator: &Integrator,
+        atol: [f64; N],
+        rtol: f64,
+    ) -> Result<Self, IntegratorError> {
+        Ok(match *integrator {
+            Integrator::Adaptive { .. } => Stepper::Stiff(Box::new(Rodas4::with_tolerances(
                 Tolerances::new(rtol, atol)?,
             ))),
             Integrator::Rk4 { step_s } => Stepper::Fixed(Box::new(Rk4::new(step_s)?)),

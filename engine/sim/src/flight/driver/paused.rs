@@ -80,7 +80,7 @@ impl<const N: usize> LaneStepper<N> {
     pub(crate) fn dopri(&self) -> &Dopri54<N> {
         match &self.stepper {
             Stepper::Adaptive(d) => d,
-            Stepper::Fixed(_) => unreachable!("only an adaptive flight is stepped on lanes"),
+            _ => unreachable!("only Dormand–Prince steps are taken on lanes"),
         }
     }
 
@@ -340,8 +340,8 @@ fn descend<'a, O: Observer>(
     let model = run.model;
     // The free flight's restart is behind it.
     run.released_now = false;
-    let mut s3: Stepper<N3> =
-        Stepper::new(&model.options.integrator, atol3, rtol).map_err(|e| integ(t, e, "setup"))?;
+    let mut s3: Stepper<N3> = Stepper::descent(&model.options.integrator, atol3, rtol)
+        .map_err(|e| integ(t, e, "setup"))?;
     let descent = if let PhaseEnd::Deploy = end {
         // Descent: the center of mass as a point, with its velocity (including r′) kept.
         let (pos, vel) = cm_of(model, &run.starts, t, &y);
@@ -393,19 +393,6 @@ pub(crate) struct Descending<'a, O: Observer> {
 }
 
 impl<O: Observer> Descending<'_, O> {
-    /// The drag in force (the rocket's open canopies, or a released part's own drag).
-    #[inline(always)]
-    pub(crate) fn canopies(&self) -> Canopies<f64> {
-        self.descent.canopies()
-    }
-
-    /// The mass that descends at `t` (the rocket's without the parts that left, or a
-    /// released part's).
-    #[inline(always)]
-    pub(crate) fn mass_at(&self, t: f64) -> f64 {
-        self.descent.mass(self.run.model, t)
-    }
-
     /// The flight's record, once its descent has ended.
     pub(crate) fn finish(self) -> Flight {
         record(self.run)

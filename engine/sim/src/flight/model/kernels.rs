@@ -206,21 +206,6 @@ pub(crate) fn gusted<S: Real>(w: V3<S>, gust: Option<S>) -> V3<S> {
     }
 }
 
-/// The descent's derivative on lanes, given each lane's mass ([`FlightModel::descent_mass`])
-/// and canopies: what [`FlightModel::descent_rates`] computes, four lanes at once.
-#[inline(always)]
-pub fn descent_rates_lanes<S: Real, L: ModelLanes<S>>(
-    lanes: &L,
-    gust: Option<S>,
-    mass_kg: S,
-    canopies: &eom::Canopies<S>,
-    y: &[S; N3],
-    dy: &mut [S; N3],
-) {
-    let (at, _) = descent_surroundings(lanes, y[2], gust);
-    eom::descent_derivative(y, mass_kg, canopies, &at, dy);
-}
-
 /// What a descending point feels at height `h_agl_m` above the site, and the speed of sound
 /// there, on lanes.
 #[inline(always)]
