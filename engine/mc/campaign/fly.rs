@@ -20,10 +20,11 @@ mod setup;
 use super::params::Param;
 use super::scenario::{trigger_value, RequirementSpec, Scenario, ScenarioError};
 use super::variants::{Plan, PlanInput, Variant};
+use hpr_design::design::dimension::DesignSource;
 use hpr_design::design::model::Design;
 use hpr_design::mass;
 use hpr_design::motor::{self, Motor, MotorError, MotorTables};
-use hpr_sim::batch::{Batch, BatchWeather, LaneResult};
+use hpr_sim::batch::{Batch, BatchDesigns, BatchWeather, LaneResult};
 use hpr_sim::{SimError, SimOptions, Simulation, Trigger};
 use setup::{Fixed, Setup};
 
@@ -115,6 +116,8 @@ pub struct Prepared {
     pub requirements: Vec<(usize, RequirementSpec)>,
     design: Design,
     motor: Motor,
+    /// The motors a sweep flies (empty without a sweep of motors).
+    motors: Vec<Motor>,
     nominal: Setup,
     /// The flight at the first sweep point's centers; every lane is it with its row applied.
     batch: Batch,
@@ -132,32 +135,73 @@ impl Prepared {
         };
         let design =
             Design::load(&scenario.design_file).map_err(|e| bad("design.file", e.to_string()))?;
-        let mut motor =
-            motor::find(&scenario.motor).map_err(|e| bad("motor.name", e.to_string()))?;
-        if let Some(t) = scenario.motor_burn_time_s {
-            motor = motor
-                .cut_at(t)
-                .map_err(|e| bad("motor.burn_time_s", e.to_string()))?;
+        // A motor as the scenario names it (`name_key`: where), with its options.
+        let load_motor = |name: &str, name_key: &str| -> Result<Motor, ScenarioError> {
+            let mut motor = motor::find(name).map_err(|e| bad(name_key, e.to_string()))?;
+            if let Some(t) = scenario.motor_burn_time_s {
+                motor = motor
+                    .cut_at(t)
+                    .map_err(|e| bad("motor.burn_time_s", e.to_string()))?;
+            }
+            if let Some(d) = scenario.motor_diameter_m {
+                motor = motor
+                    .with_diameter(d)
+                    .map_err(|e| bad("motor.diameter_m", e.to_string()))?;
+            }
+            // The motor's own numbers against the motor (a center within its length).
+            if let Err(e) = MotorTables::new(&motor, &scenario.motor_options) {
+                let key = match &e {
+                    // The scenario's key of a motor option's field: `chamber_m (radius)` is
+                    // `chamber.radius_m`, `dry_inertia_kg_m2 (axial)` the pair's key.
+                    MotorError::InvalidOption { field, .. } => match *field {
+                        "chamber_m" => "motor.chamber".to_owned(),
+                        "chamber_m (radius)" => "motor.chamber.radius_m".to_owned(),
+                        "chamber_m (height)" => "motor.chamber.height_m".to_owned(),
+                        f => format!("motor.{}", f.split(' ').next().unwrap_or(f)),
+                    },
+                    _ => name_key.to_owned(),
+                };
+                return Err(bad(&key, e.to_string()));
+            }
+            Ok(motor)
+        };
+        let motor = load_motor(&scenario.motor, "motor.name")?;
+        let motors = scenario
+            .motors
+            .iter()
+            .enumerate()
+            .map(|(j, m)| load_motor(m, &format!("sweep.motor[{j}]")))
+            .collect::<Result<Vec<Motor>, _>>()?;
+        if !motors.is_empty() {
+            // The impulse and burn time are a motor's: scaled against which, with several?
+            if let Some(i) = scenario
+                .inputs
+                .iter()
+                .find(|i| matches!(i.param, Param::MotorImpulseNs | Param::MotorBurnTimeS))
+            {
+                return Err(bad(&i.key_path(), "the motor is swept: its impulse and burn time are each motor's own (vary them with a motor of its own, not with a sweep of motors)".into()));
+            }
         }
-        if let Some(d) = scenario.motor_diameter_m {
-            motor = motor
-                .with_diameter(d)
-                .map_err(|e| bad("motor.diameter_m", e.to_string()))?;
-        }
-        // The motor's own numbers against the motor (a center within its length).
-        if let Err(e) = MotorTables::new(&motor, &scenario.motor_options) {
-            let key = match &e {
-                // The scenario's key of a motor option's field: `chamber_m (radius)` is
-                // `chamber.radius_m`, `dry_inertia_kg_m2 (axial)` the pair's key.
-                MotorError::InvalidOption { field, .. } => match *field {
-                    "chamber_m" => "motor.chamber".to_owned(),
-                    "chamber_m (radius)" => "motor.chamber.radius_m".to_owned(),
-                    "chamber_m (height)" => "motor.chamber.height_m".to_owned(),
-                    f => format!("motor.{}", f.split(' ').next().unwrap_or(f)),
-                },
-                _ => "motor.name".to_owned(),
-            };
-            return Err(bad(&key, e.to_string()));
+        // The design's dimensions the scenario varies, each from the design as written.
+        let source = if scenario.dimensions.is_empty() {
+            None
+        } else {
+            let (source, _) = DesignSource::load(&scenario.design_file)
+                .map_err(|e| bad("design.file", e.to_string()))?;
+            Some(source)
+        };
+        let mut dimensions = Vec::new();
+        for (k, dim) in scenario.dimensions.iter().enumerate() {
+            let source = source.as_ref().expect("loaded for the dimensions");
+            let value = source.value(dim).map_err(|r| {
+                let key = scenario
+                    .inputs
+                    .iter()
+                    .find(|i| i.param == Param::Design(k))
+                    .map_or("design".into(), |i| i.key_path());
+                bad(&key, r)
+            })?;
+            dimensions.push(value);
         }
 
         if let Some(i) = scenario
@@ -264,41 +308,50 @@ impl Prepared {
             .environment
             .air
             .site_values(scenario.environment.elevation_m);
-        let nominal = Setup {
-            structure_mass_kg: dry.mass_kg,
-            structure_cg_m: dry.cg_m.x,
-            ballast_kg: ballast.map_or(f64::NAN, |idx| mass::component_own(&design, idx).mass_kg),
-            impulse_ns: motor.total_impulse_ns(),
-            burn_time_s: motor.burn_time_s(),
-            drag_scale: 1.0,
-            brake_target_m: design.air_brakes.map_or(f64::NAN, |b| b.target_apogee_m),
-            elevation_m: scenario.environment.elevation_m,
-            temperature_k,
-            pressure_pa,
-            launch_time_h: match &scenario.environment.weather {
-                Some(_) => 0.0,
-                None => f64::NAN,
-            },
-            weather_member: scenario
-                .environment
-                .weather
-                .as_ref()
-                .map_or(f64::NAN, |w| w.member),
-            wind_speed_m_s: scenario.environment.wind_speed_m_s,
-            wind_from_deg: scenario.environment.wind_from_deg,
-            wind_scale: 1.0,
-            wind_rotation_deg: 0.0,
-            wind_turbulence_intensity: scenario.environment.wind_turbulence_intensity,
-            rail: [
-                scenario.rail.length_m,
-                scenario.rail.inclination_deg,
-                scenario.rail.heading_deg,
-            ],
+        let weather = scenario.environment.weather.as_ref();
+        let mut nominal = Setup {
+            globals: [f64::NAN; hpr_sim::inputs::GLOBAL_COUNT],
             parachutes,
             shifts,
             releases,
+            design: dimensions,
             sensor_seed: 0,
         };
+        // Each input's nominal: the design's, the motor's or the scenario's (NaN for one the
+        // flight does not have).
+        for (p, v) in [
+            (Param::StructureMassKg, dry.mass_kg),
+            (Param::StructureCgM, dry.cg_m.x),
+            (
+                Param::BallastKg,
+                ballast.map_or(f64::NAN, |idx| mass::component_own(&design, idx).mass_kg),
+            ),
+            (Param::MotorImpulseNs, motor.total_impulse_ns()),
+            (Param::MotorBurnTimeS, motor.burn_time_s()),
+            (Param::DragScale, 1.0),
+            (Param::ElevationM, scenario.environment.elevation_m),
+            (Param::TemperatureK, temperature_k),
+            (Param::PressurePa, pressure_pa),
+            (Param::WindSpeedMS, scenario.environment.wind_speed_m_s),
+            (Param::WindFromDeg, scenario.environment.wind_from_deg),
+            (Param::WindScale, 1.0),
+            (Param::WindRotationDeg, 0.0),
+            (
+                Param::WindTurbulenceIntensity,
+                scenario.environment.wind_turbulence_intensity,
+            ),
+            (Param::RailLengthM, scenario.rail.length_m),
+            (Param::RailInclinationDeg, scenario.rail.inclination_deg),
+            (Param::RailHeadingDeg, scenario.rail.heading_deg),
+            (
+                Param::AirBrakesTargetM,
+                design.air_brakes.map_or(f64::NAN, |b| b.target_apogee_m),
+            ),
+            (Param::LaunchTimeH, weather.map_or(f64::NAN, |_| 0.0)),
+            (Param::WeatherMember, weather.map_or(f64::NAN, |w| w.member)),
+        ] {
+            nominal.set(p, v);
+        }
         let plan = Plan {
             seed: scenario.seed,
             variants_per_point: scenario.variants_per_point,
@@ -388,6 +441,51 @@ impl Prepared {
         // Every sweep point's nominal flight must set up, and a dispersion relative to its
         // center needs a center that is not zero. The first point's flight is the base of
         // every lane; the others are checked as lanes of it.
+        // Every swept motor fits the design's mount (as written: a dimension that moves the
+        // mount is judged flight by flight).
+        for (j, m) in motors.iter().enumerate() {
+            design
+                .motor_fits(m.diameter_m, m.length_m)
+                .map_err(|e| bad(&format!("sweep.motor[{j}]"), e.to_string()))?;
+        }
+        // The designs of the sweep points, built once each before the run (unless a dimension
+        // is dispersed: then every variant's design is its own, built for its lane).
+        let designs = source.map(|source| {
+            let dims: Vec<usize> = (0..scenario.dimensions.len()).collect();
+            let mut designs = BatchDesigns::new(source, scenario.dimensions.clone());
+            let dispersed = scenario
+                .inputs
+                .iter()
+                .any(|i| matches!(i.param, Param::Design(_)) && i.dispersion.is_some());
+            if !dispersed {
+                for point in 0..plan.points() {
+                    let centers = plan.centers(point);
+                    let values: Vec<(usize, f64)> = dims
+                        .iter()
+                        .map(|&k| {
+                            let j = scenario
+                                .inputs
+                                .iter()
+                                .position(|i| i.param == Param::Design(k))
+                                .expect("every dimension is an input");
+                            (k, centers[j])
+                        })
+                        .collect();
+                    // A point whose design breaks a rule: its variants are refused, each
+                    // naming the rule.
+                    let _ = designs.keep(&values);
+                }
+            }
+            designs
+        });
+        let designs = designs.map(std::sync::Arc::new);
+        // Whether a sweep point's design breaks a rule (its variants are refused rows).
+        let refused_design = |setup: &Setup| -> bool {
+            designs.as_ref().is_some_and(|d| {
+                let values: Vec<(usize, f64)> = setup.design.iter().copied().enumerate().collect();
+                d.design(&values).is_err()
+            })
+        };
         let mut batch: Option<Batch> = None;
         for point in 0..plan.points() {
             let centers = plan.centers(point);
@@ -435,9 +533,19 @@ impl Prepared {
                             elevation_m: scenario.environment.elevation_m,
                         });
                     }
+                    b = b.with_motors(motors.clone());
+                    if let Some(d) = &designs {
+                        b = b.with_designs(d.clone());
+                    }
                     batch = Some(b);
                 }
-                Some(b) => {
+                Some(_) => {}
+            }
+            // The base is the first point's flight with the design and the motor as written:
+            // every point with a motor or a design of its own is checked as a lane of it.
+            let changes_base = !motors.is_empty() || designs.is_some();
+            if let Some(b) = batch.as_ref().filter(|_| point > 0 || changes_base) {
+                if !refused_design(&setup) {
                     b.variant(&fixed.columns(&[&setup]), 0).map_err(refused)?;
                 }
             }
@@ -451,6 +559,7 @@ impl Prepared {
             requirements,
             design,
             motor,
+            motors,
             nominal,
             batch,
         })
@@ -478,6 +587,24 @@ impl Prepared {
     /// The motor as found.
     pub fn motor(&self) -> &Motor {
         &self.motor
+    }
+
+    /// The motors a sweep flies, in the sweep's order (empty without a sweep of motors).
+    pub fn swept_motors(&self) -> &[Motor] {
+        &self.motors
+    }
+
+    /// The designation of the motor a variant's values fly (`None` without a sweep of
+    /// motors).
+    pub fn motor_of(&self, values: &[f64]) -> Option<&str> {
+        let j = self
+            .scenario
+            .inputs
+            .iter()
+            .position(|i| i.param == Param::Motor)?;
+        self.motors
+            .get(values[j] as usize)
+            .map(|m| m.designation.as_str())
     }
 
     /// The nominal flight of sweep point `point` (every input at its center, or at its mean
@@ -527,9 +654,9 @@ impl Prepared {
         let fixed = self.fixed();
         let setup = fixed
             .setup(&v.values)
-            .map(|s| Setup {
-                sensor_seed: v.sensor_seed,
-                ..s
+            .map(|mut s| {
+                s.sensor_seed = v.sensor_seed;
+                s
             })
             .map_err(|e| {
                 hpr_design::error::tidy_numbers(&format!("variant {id} is refused: sampled {e}"))
@@ -751,9 +878,9 @@ fn fly_lanes(
     let setups: Vec<Result<Setup, String>> = variants
         .iter()
         .map(|v| {
-            fixed.setup(&v.values).map(|s| Setup {
-                sensor_seed: v.sensor_seed,
-                ..s
+            fixed.setup(&v.values).map(|mut s| {
+                s.sensor_seed = v.sensor_seed;
+                s
             })
         })
         .collect();
