@@ -120,7 +120,7 @@ fn inspected_margin(span_m: f64, dir: &Path) -> f64 {
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    report["burnout"]["static_margin_cal"]
+    report["after_burnout"]["static_margin_cal"]
         .as_f64()
         .unwrap_or_else(|| panic!("no burnout margin in {report}"))
 }
