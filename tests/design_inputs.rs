@@ -118,7 +118,11 @@ fn inspected_margin(span_m: f64, dir: &Path) -> f64 {
         .arg(&file)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     report["after_burnout"]["static_margin_cal"]
         .as_f64()
@@ -153,7 +157,10 @@ fn a_swept_fin_span_gives_at_each_point_the_margin_inspect_gives_for_that_design
         }
     }
     // Longer fins move the center of pressure aft: the margin grows with the span.
-    assert!(margins[0] < margins[1] && margins[1] < margins[2], "{margins:?}");
+    assert!(
+        margins[0] < margins[1] && margins[1] < margins[2],
+        "{margins:?}"
+    );
 }
 
 #[test]
@@ -182,7 +189,10 @@ fn a_dispersed_dimension_whose_variants_break_a_rule_are_refused_rows_naming_it(
             refused += 1;
         }
     }
-    assert!(refused >= 1 && landed >= 20, "{refused} refused, {landed} landed");
+    assert!(
+        refused >= 1 && landed >= 20,
+        "{refused} refused, {landed} landed"
+    );
 }
 
 #[test]
