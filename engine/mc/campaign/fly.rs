@@ -349,6 +349,10 @@ impl Prepared {
             ),
             (Param::LaunchTimeH, weather.map_or(f64::NAN, |_| 0.0)),
             (Param::WeatherMember, weather.map_or(f64::NAN, |w| w.member)),
+            (
+                Param::MotorDryMassKg,
+                (scenario.motor_options.dry_mass_kg).unwrap_or(motor.dry_mass_kg()),
+            ),
         ] {
             nominal.set(p, v);
         }

@@ -65,6 +65,8 @@ pub enum Input {
     WeatherMember,
     /// The motor, by its number in the batch's list of motors ([`InputContext::motors`]).
     Motor,
+    /// The motor's casing (dry) mass, kg (each motor's, for a cluster).
+    MotorDryMassKg,
     /// A dimension of the design, by its number in the batch's list
     /// ([`BatchDesigns::dimensions`](crate::batch::BatchDesigns)): a component's field
     /// (`design.fins.span_m`), whose change rebuilds the design's tables.
@@ -142,7 +144,7 @@ const fn about(key: &'static str, unit: &'static str, domain: Domain) -> About {
 }
 
 /// Number of inputs of the flight as a whole (not of a parachute, shift or release).
-pub const GLOBAL_COUNT: usize = 21;
+pub const GLOBAL_COUNT: usize = 22;
 
 /// The inputs of the flight as a whole, in canonical order, each with its description.
 pub const GLOBAL: [(Input, About); GLOBAL_COUNT] = {
@@ -199,6 +201,7 @@ pub const GLOBAL: [(Input, About); GLOBAL_COUNT] = {
         (LaunchTimeH, about("launch_time_h", "h", Finite)),
         (WeatherMember, about("weather_member", "1", NonNegative)),
         (Motor, about("motor", "1", NonNegative)),
+        (MotorDryMassKg, about("motor_dry_mass_kg", "kg", Positive)),
     ]
 };
 

@@ -688,3 +688,14 @@ fn a_wind_table_is_scaled_and_turned_lane_by_lane_as_a_single_flight_with_that_t
     let e = batch.variant(&speed, 0).unwrap_err();
     assert!(e.contains("wind_scale and wind_rotation_deg"), "{e}");
 }
+
+#[test]
+fn a_motor_dry_mass_column_adds_its_change_to_the_rocket_at_liftoff() {
+    let batch = Batch::new(base(), None).unwrap();
+    let nominal = batch.base().motor().dry_mass_kg();
+    let c = Columns::new(1).with(Input::MotorDryMassKg, vec![nominal + 0.1]);
+    let lane = batch.variant(&c, 0).unwrap();
+    let mass = |s: &Simulation| s.mass_properties_at(0.0).mass_kg;
+    let added = mass(&lane) - mass(batch.base());
+    assert!((added - 0.1).abs() < 1e-12, "{added} kg added");
+}

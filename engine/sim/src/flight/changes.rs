@@ -447,6 +447,13 @@ impl Changes<'_> {
             self.site(env, rail)?;
         }
         // The motor's impulse and burn time as scales of its own thrust curve's.
+        if let Some(v) = get(MotorDryMassKg) {
+            let o = self.sim.motor_options;
+            self.motor_scales(MotorOptions {
+                dry_mass_kg: Some(v),
+                ..o
+            })?;
+        }
         let impulse = get(MotorImpulseNs).map(|v| v / self.sim.motor.total_impulse_ns());
         let burn = get(MotorBurnTimeS).map(|v| v / self.sim.motor.burn_time_s());
         if impulse.is_some() || burn.is_some() {
