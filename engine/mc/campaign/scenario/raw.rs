@@ -314,6 +314,16 @@ pub(super) struct RawParams<T> {
     pub(super) releases: BTreeMap<String, RawReleaseParams<T>>,
 }
 
+/// A value refused, whatever it is, with this rule.
+struct Refuse(String);
+
+impl<'de> serde::de::DeserializeSeed<'de> for Refuse {
+    type Value = ();
+    fn deserialize<D: serde::Deserializer<'de>>(self, _: D) -> Result<(), D::Error> {
+        Err(serde::de::Error::custom(self.0))
+    }
+}
+
 impl<'de, T: Deserialize<'de>> Deserialize<'de> for RawParams<T> {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         struct Visitor<T>(std::marker::PhantomData<T>);
@@ -351,10 +361,14 @@ impl<'de, T: Deserialize<'de>> Deserialize<'de> for RawParams<T> {
                                     .chain(["design", "parachutes", "shifts", "releases"])
                                     .map(|k| format!("`{k}`"))
                                     .collect();
-                                return Err(A::Error::custom(format!(
+                                // Refused while its value is read, so that the error's path
+                                // ends in the key.
+                                let rule = format!(
                                     "unknown field `{k}`, expected one of {}",
                                     known.join(", ")
-                                )));
+                                );
+                                map.next_value_seed(Refuse(rule.clone()))?;
+                                return Err(A::Error::custom(rule));
                             }
                         },
                     }
