@@ -24,7 +24,10 @@ use hpr_design::design::dimension::DesignSource;
 use hpr_design::design::model::Design;
 use hpr_design::mass;
 use hpr_design::motor::{self, Motor, MotorError, MotorTables};
-use hpr_sim::batch::{Batch, BatchDesigns, BatchWeather, LaneResult};
+use hpr_sim::batch::{
+    Batch, BatchDesigns, BatchWeather, LaneResult, ParachuteOutcome, ReleaseOutcome, ShiftOutcome,
+};
+use hpr_sim::flight::Metrics;
 use hpr_sim::{SimError, SimOptions, Simulation, Trigger};
 use setup::{Fixed, Setup};
 
@@ -56,44 +59,85 @@ pub struct Column {
     pub unit: &'static str,
 }
 
+/// How a metric is read from a flight: its name, its unit and its value (`None` where it does
+/// not exist).
+pub type Metric<T> = (&'static str, &'static str, fn(&T) -> Option<f64>);
+
+/// The landing point's distance from the rail's foot, m.
+fn distance(p: Option<[f64; 2]>) -> Option<f64> {
+    p.map(|p| p[0].hypot(p[1]))
+}
+
 /// The metrics every flight has, in output order.
-pub const FIXED_METRICS: [(&str, &str); 18] = [
-    ("apogee_m", "m"),
-    ("apogee_time_s", "s"),
-    ("max_speed_m_s", "m/s"),
-    ("max_mach", "1"),
-    ("max_accel_m_s2", "m/s²"),
-    ("max_dynamic_pressure_pa", "Pa"),
-    ("rail_exit_speed_m_s", "m/s"),
-    ("static_margin_liftoff_cal", "cal"),
-    ("static_margin_rail_exit_cal", "cal"),
-    ("static_margin_burnout_cal", "cal"),
-    ("static_margin_min_cal", "cal"),
-    ("flight_margin_min_cal", "cal"),
-    ("max_alpha_deg", "deg"),
-    ("landing_time_s", "s"),
-    ("landing_x_m", "m"),
-    ("landing_y_m", "m"),
-    ("landing_distance_m", "m"),
-    ("landing_speed_m_s", "m/s"),
+pub const FIXED_METRICS: [Metric<Metrics>; 18] = [
+    ("apogee_m", "m", |m| m.apogee_m),
+    ("apogee_time_s", "s", |m| m.apogee_time_s),
+    ("max_speed_m_s", "m/s", |m| Some(m.max_speed_m_s)),
+    ("max_mach", "1", |m| Some(m.max_mach)),
+    ("max_accel_m_s2", "m/s²", |m| Some(m.max_accel_m_s2)),
+    ("max_dynamic_pressure_pa", "Pa", |m| {
+        Some(m.max_dynamic_pressure_pa)
+    }),
+    ("rail_exit_speed_m_s", "m/s", |m| m.rail_exit_speed_m_s),
+    ("static_margin_liftoff_cal", "cal", |m| {
+        m.static_margin_liftoff_cal
+    }),
+    ("static_margin_rail_exit_cal", "cal", |m| {
+        m.static_margin_rail_exit_cal
+    }),
+    ("static_margin_burnout_cal", "cal", |m| {
+        m.static_margin_burnout_cal
+    }),
+    ("static_margin_min_cal", "cal", |m| m.static_margin_min_cal),
+    ("flight_margin_min_cal", "cal", |m| m.flight_margin_min_cal),
+    ("max_alpha_deg", "deg", |m| m.max_alpha_deg),
+    ("landing_time_s", "s", |m| m.landing_time_s),
+    ("landing_x_m", "m", |m| m.landing_position_m.map(|p| p[0])),
+    ("landing_y_m", "m", |m| m.landing_position_m.map(|p| p[1])),
+    ("landing_distance_m", "m", |m| {
+        distance(m.landing_position_m)
+    }),
+    ("landing_speed_m_s", "m/s", |m| m.landing_speed_m_s),
 ];
 
-/// Indices of the landing point's east (x) and north (y) in the metrics.
-pub const LANDING_XY: (usize, usize) = (14, 15);
+/// The metrics of each shift (`shift_<name>_...`): its start time and the static margin just
+/// before and just after its move.
+const PER_SHIFT: [Metric<ShiftOutcome>; 3] = [
+    ("start_time_s", "s", |s| s.start_s),
+    ("margin_before_cal", "cal", |s| s.margin_before_cal),
+    ("margin_after_cal", "cal", |s| s.margin_after_cal),
+];
+
+/// The metrics of each parachute (`parachute_<name>_...`): its opening time and speed.
+const PER_PARACHUTE: [Metric<ParachuteOutcome>; 2] = [
+    ("deploy_time_s", "s", |c| c.deploy_time_s),
+    ("deploy_speed_m_s", "m/s", |c| c.deploy_speed_m_s),
+];
+
+/// The metrics of a design with air brakes: when they first opened and their widest opening.
+const AIR_BRAKES: [Metric<Metrics>; 2] = [
+    ("air_brakes_open_time_s", "s", |m| m.air_brakes_open_time_s),
+    ("air_brakes_max_opening", "1", |m| m.air_brakes_max_opening),
+];
 
 /// The metrics of each release (`release_<name>_...`): when it fired, the static margin just
 /// before and after, and the released part's landing; a part with a parachute has
-/// `chute_open_time_s` besides.
-pub const PER_RELEASE: [(&str, &str); 8] = [
-    ("fire_time_s", "s"),
-    ("margin_before_cal", "cal"),
-    ("margin_after_cal", "cal"),
-    ("landing_time_s", "s"),
-    ("landing_x_m", "m"),
-    ("landing_y_m", "m"),
-    ("landing_distance_m", "m"),
-    ("landing_speed_m_s", "m/s"),
+/// [`RELEASE_CHUTE`] besides.
+pub const PER_RELEASE: [Metric<ReleaseOutcome>; 8] = [
+    ("fire_time_s", "s", |r| r.time_s),
+    ("margin_before_cal", "cal", |r| r.margin_before_cal),
+    ("margin_after_cal", "cal", |r| r.margin_after_cal),
+    ("landing_time_s", "s", |r| r.landing_time_s),
+    ("landing_x_m", "m", |r| r.landing_position_m.map(|p| p[0])),
+    ("landing_y_m", "m", |r| r.landing_position_m.map(|p| p[1])),
+    ("landing_distance_m", "m", |r| {
+        distance(r.landing_position_m)
+    }),
+    ("landing_speed_m_s", "m/s", |r| r.landing_speed_m_s),
 ];
+
+/// The metric of a released part with a parachute: when its canopy opened.
+const RELEASE_CHUTE: Metric<ReleaseOutcome> = ("chute_open_time_s", "s", |r| r.chute_open_s);
 
 /// A scenario ready to fly: the design and motor loaded, the nominals resolved, the plan of
 /// the variants built, and every sweep point's nominal flight checked.
@@ -372,53 +416,48 @@ impl Prepared {
                 })
                 .collect(),
         };
-        let per_shift = [
-            ("start_time_s", "s"),
-            ("margin_before_cal", "cal"),
-            ("margin_after_cal", "cal"),
-        ];
-        let per_chute = [("deploy_time_s", "s"), ("deploy_speed_m_s", "m/s")];
         let column = |name: String, unit: &'static str| Column { name, unit };
-        let metrics: Vec<Column> =
-            FIXED_METRICS
-                .iter()
-                .map(|(n, u)| column(n.to_string(), u))
-                .chain(scenario.shifts.iter().flat_map(|s| {
-                    per_shift.map(|(n, u)| column(format!("shift_{}_{n}", s.name), u))
-                }))
-                .chain(scenario.parachutes.iter().flat_map(|c| {
-                    per_chute.map(|(n, u)| column(format!("parachute_{}_{n}", c.name), u))
-                }))
-                .chain(design.air_brakes.iter().flat_map(|_| {
-                    [
-                        column("air_brakes_open_time_s".into(), "s"),
-                        column("air_brakes_max_opening".into(), "1"),
-                    ]
-                }))
-                .chain(scenario.releases.iter().flat_map(|r| {
-                    let chute = r.parachute.is_some().then_some(("chute_open_time_s", "s"));
-                    PER_RELEASE
-                        .into_iter()
-                        .chain(chute)
-                        .map(|(n, u)| column(format!("release_{}_{n}", r.name), u))
-                        .collect::<Vec<_>>()
-                }))
-                .collect();
-        let landings = std::iter::once(("rocket".to_string(), LANDING_XY.0, LANDING_XY.1))
-            .chain(scenario.releases.iter().map(|r| {
-                let at = |n: &str| {
-                    metrics
-                        .iter()
-                        .position(|c| c.name == format!("release_{}_{n}", r.name))
-                        .expect("the release's landing columns")
-                };
-                (
-                    format!("release_{}", r.name),
-                    at("landing_x_m"),
-                    at("landing_y_m"),
-                )
+        let metrics: Vec<Column> = FIXED_METRICS
+            .iter()
+            .map(|(n, u, _)| column(n.to_string(), u))
+            .chain(scenario.shifts.iter().flat_map(|s| {
+                PER_SHIFT.map(|(n, u, _)| column(format!("shift_{}_{n}", s.name), u))
+            }))
+            .chain(scenario.parachutes.iter().flat_map(|c| {
+                PER_PARACHUTE.map(|(n, u, _)| column(format!("parachute_{}_{n}", c.name), u))
+            }))
+            .chain(
+                design
+                    .air_brakes
+                    .iter()
+                    .flat_map(|_| AIR_BRAKES.map(|(n, u, _)| column(n.into(), u))),
+            )
+            .chain(scenario.releases.iter().flat_map(|r| {
+                let chute = r.parachute.is_some().then_some(RELEASE_CHUTE);
+                PER_RELEASE
+                    .into_iter()
+                    .chain(chute)
+                    .map(|(n, u, _)| column(format!("release_{}_{n}", r.name), u))
+                    .collect::<Vec<_>>()
             }))
             .collect();
+        // Each landing's east and north, by name.
+        let at = |name: &str| {
+            metrics
+                .iter()
+                .position(|c| c.name == name)
+                .expect("a landing's columns")
+        };
+        let landings =
+            std::iter::once(("rocket".to_string(), at("landing_x_m"), at("landing_y_m")))
+                .chain(scenario.releases.iter().map(|r| {
+                    (
+                        format!("release_{}", r.name),
+                        at(&format!("release_{}_landing_x_m", r.name)),
+                        at(&format!("release_{}_landing_y_m", r.name)),
+                    )
+                }))
+                .collect();
         let mut requirements = vec![];
         for r in &scenario.requirements {
             let Some(m) = metrics.iter().position(|c| c.name == r.metric) else {
@@ -719,57 +758,23 @@ impl Prepared {
             };
         }
         let m = &lane.metrics;
-        let landing = m.landing_position_m;
-        let mut out = vec![
-            m.apogee_m,
-            m.apogee_time_s,
-            Some(m.max_speed_m_s),
-            Some(m.max_mach),
-            Some(m.max_accel_m_s2),
-            Some(m.max_dynamic_pressure_pa),
-            m.rail_exit_speed_m_s,
-            m.static_margin_liftoff_cal,
-            m.static_margin_rail_exit_cal,
-            m.static_margin_burnout_cal,
-            m.static_margin_min_cal,
-            m.flight_margin_min_cal,
-            m.max_alpha_deg,
-            m.landing_time_s,
-            landing.map(|p| p[0]),
-            landing.map(|p| p[1]),
-            landing.map(|p| p[0].hypot(p[1])),
-            m.landing_speed_m_s,
-        ];
+        let mut out: Vec<Option<f64>> = FIXED_METRICS.iter().map(|(_, _, f)| f(m)).collect();
         for k in 0..self.scenario.shifts.len() {
             let shift = lane.shifts.get(k).copied().unwrap_or_default();
-            out.extend([
-                shift.start_s,
-                shift.margin_before_cal,
-                shift.margin_after_cal,
-            ]);
+            out.extend(PER_SHIFT.iter().map(|(_, _, f)| f(&shift)));
         }
         for k in 0..self.scenario.parachutes.len() {
             let chute = lane.parachutes.get(k).copied().unwrap_or_default();
-            out.extend([chute.deploy_time_s, chute.deploy_speed_m_s]);
+            out.extend(PER_PARACHUTE.iter().map(|(_, _, f)| f(&chute)));
         }
         if self.design.air_brakes.is_some() {
-            out.extend([m.air_brakes_open_time_s, m.air_brakes_max_opening]);
+            out.extend(AIR_BRAKES.iter().map(|(_, _, f)| f(m)));
         }
         for (k, spec) in self.scenario.releases.iter().enumerate() {
             let r = lane.releases.get(k).copied().unwrap_or_default();
-            let landing = r.landing_position_m;
-            out.extend([
-                r.time_s,
-                r.margin_before_cal,
-                r.margin_after_cal,
-                r.landing_time_s,
-                landing.map(|p| p[0]),
-                landing.map(|p| p[1]),
-                landing.map(|p| p[0].hypot(p[1])),
-                r.landing_speed_m_s,
-            ]);
+            out.extend(PER_RELEASE.iter().map(|(_, _, f)| f(&r)));
             if spec.parachute.is_some() {
-                out.push(r.chute_open_s);
+                out.push((RELEASE_CHUTE.2)(&r));
             }
         }
         let warnings = (!lane.warnings.is_empty()).then(|| {

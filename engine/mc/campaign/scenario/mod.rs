@@ -1126,11 +1126,7 @@ impl Scenario {
 
     /// Number of sweep points (1 without a sweep).
     pub fn points(&self) -> usize {
-        self.inputs
-            .iter()
-            .filter_map(|i| i.sweep.as_ref())
-            .map(Vec::len)
-            .product()
+        super::variants::sweep_points(self.inputs.iter().map(|i| i.sweep.as_ref()))
     }
 
     /// Sweep points × variants per point, if it fits in 64 bits.
