@@ -156,6 +156,29 @@ fn a_swept_fin_span_gives_at_each_point_the_margin_inspect_gives_for_that_design
             );
         }
     }
+    // `hpr-mc fly --scenario FILE --point K` flies the point's own design.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("scenario.toml");
+    std::fs::write(
+        &file,
+        scenario(
+            "Cesaroni_I175",
+            "[sweep]\ndesign.fins.span_m = [0.05, 0.066477123, 0.085]\n",
+        ),
+    )
+    .unwrap();
+    let prepared = hpr_mc::campaign::run::prepare(&file, &RunConfig::default()).unwrap();
+    for (k, &s) in spans.iter().enumerate() {
+        let sim = prepared.nominal_flight(k).unwrap();
+        let fins = sim.design().component_index("fins").unwrap();
+        let model = sim.model();
+        let margin = sim.static_margin_for(sim.mass_properties_at(model.burnout_s).cg_m.x);
+        assert!(
+            (margin - margins[k]).abs() <= 1e-12,
+            "point {k}: span {s} m: fly's margin {margin} cal, inspect's {} cal (fins {fins})",
+            margins[k]
+        );
+    }
     // Longer fins move the center of pressure aft: the margin grows with the span.
     assert!(
         margins[0] < margins[1] && margins[1] < margins[2],

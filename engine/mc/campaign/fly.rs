@@ -672,7 +672,15 @@ impl Prepared {
             .map(|(c, input)| input.dispersion.map_or(c, |d| d.scatter_center(c)))
             .collect();
         let setup = fixed.setup(&centers)?;
-        let sim = fixed.simulation(&setup).map_err(|e| e.to_string())?;
+        let sim = if self.motors.is_empty() && self.scenario.dimensions.is_empty() {
+            fixed.simulation(&setup).map_err(|e| e.to_string())?
+        } else {
+            // A point's own motor or design: the base flight with the point's inputs, as its
+            // lanes fly them.
+            self.batch
+                .variant(&fixed.columns(&[&setup]), 0)
+                .map_err(|e| format!("the nominal flight{}: {e}", self.point_label(point)))?
+        };
         let options = SimOptions {
             keep_samples: true,
             ..*sim.options()
