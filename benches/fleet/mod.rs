@@ -43,30 +43,53 @@ pub fn chutes() -> Vec<Parachute> {
     ]
 }
 
-/// The columns of variants `rows`, drawn from (SEED, variant index).
+/// Variant `i`'s draws: the structure's change of mass, kg, the ballast's mass, kg, the
+/// motor's impulse scale, the drag scale, the wind's speed, m/s, and direction, degrees, the
+/// rail's inclination, degrees, the drogue's and the main's CdS, m², the ballast's travel,
+/// m, and the time it starts, s.
+pub fn draws(i: usize) -> [f64; 11] {
+    let mut r = Rng::of_variant(SEED, i);
+    [
+        r.uniform(-0.02, 0.02),
+        r.uniform(0.18, 0.22),
+        r.uniform(0.97, 1.03),
+        r.uniform(0.95, 1.05),
+        r.uniform(0.0, 6.0),
+        r.uniform(0.0, 360.0),
+        r.uniform(85.0, 89.0),
+        r.uniform(0.09, 0.11),
+        r.uniform(0.85, 0.95),
+        r.uniform(0.0, 0.3),
+        r.uniform(4.0, 7.0),
+    ]
+}
+
+/// The columns of variants `rows`, drawn from (SEED, variant index): each input's value as
+/// a scenario writes it (the structure's mass, the motor's impulse).
 pub fn columns_of(rows: std::ops::Range<usize>) -> Columns {
-    let mut c = Columns {
-        len: rows.len(),
-        chute_cds_m2: vec![vec![], vec![]],
-        shift_travel_m: vec![vec![]],
-        shift_trigger: vec![vec![]],
-        ..Columns::default()
-    };
-    for i in rows {
-        let mut r = Rng::of_variant(SEED, i);
-        c.structure_delta_mass_kg.push(r.uniform(-0.02, 0.02));
-        c.part_mass_kg.push(r.uniform(0.18, 0.22));
-        c.impulse_scale.push(r.uniform(0.97, 1.03));
-        c.drag_scale.push(r.uniform(0.95, 1.05));
-        c.wind_speed_m_s.push(r.uniform(0.0, 6.0));
-        c.wind_from_deg.push(r.uniform(0.0, 360.0));
-        c.rail_inclination_deg.push(r.uniform(85.0, 89.0));
-        c.chute_cds_m2[0].push(r.uniform(0.09, 0.11));
-        c.chute_cds_m2[1].push(r.uniform(0.85, 0.95));
-        c.shift_travel_m[0].push(r.uniform(0.0, 0.3));
-        c.shift_trigger[0].push(r.uniform(4.0, 7.0));
-    }
-    c
+    use hpr_sim::inputs::Input::*;
+    // The design's structure and the motor's impulse, found once (not in the timed chunks).
+    static NOMINALS: std::sync::OnceLock<(f64, f64)> = std::sync::OnceLock::new();
+    let &(dry, impulse) = NOMINALS.get_or_init(|| {
+        (
+            hpr_design::mass::dry(&design()).mass_kg,
+            motor::find("Cesaroni_I175").unwrap().total_impulse_ns(),
+        )
+    });
+    let d: Vec<[f64; 11]> = rows.clone().map(draws).collect();
+    let col = |k: usize, f: &dyn Fn(f64) -> f64| d.iter().map(|x| f(x[k])).collect::<Vec<_>>();
+    Columns::new(rows.len())
+        .with(StructureMassKg, col(0, &|v| dry + v))
+        .with(BallastKg, col(1, &|v| v))
+        .with(MotorImpulseNs, col(2, &|v| impulse * v))
+        .with(DragScale, col(3, &|v| v))
+        .with(WindSpeedMS, col(4, &|v| v))
+        .with(WindFromDeg, col(5, &|v| v))
+        .with(RailInclinationDeg, col(6, &|v| v))
+        .with(ParachuteCdsM2(0), col(7, &|v| v))
+        .with(ParachuteCdsM2(1), col(8, &|v| v))
+        .with(ShiftTravelM(0), col(9, &|v| v))
+        .with(ShiftTrigger(0), col(10, &|v| v))
 }
 
 /// The fleet's base flight: the reference rocket with its ballast moving
@@ -79,37 +102,35 @@ pub fn base() -> Simulation {
 
 /// What a user without the batch engine writes: a Simulation per variant, flown in a rayon loop.
 pub fn from_scratch(design: &Design, i: usize) -> f64 {
-    let (c, i) = (&columns_of(i..i + 1), 0);
-    let wind = Wind::constant(c.wind_speed_m_s[i], c.wind_from_deg[i]).unwrap();
+    let d = draws(i);
+    let wind = Wind::constant(d[4], d[5]).unwrap();
     let env = Environment {
         wind,
         ..Environment::default()
     };
     let rail = Rail {
-        inclination_deg: c.rail_inclination_deg[i],
+        inclination_deg: d[6],
         ..Rail::default()
     };
     let mut ch = chutes();
-    ch[0].cds_m2 = c.chute_cds_m2[0][i];
-    ch[1].cds_m2 = c.chute_cds_m2[1][i];
+    ch[0].cds_m2 = d[7];
+    ch[1].cds_m2 = d[8];
     let sim = Simulation::with_motor_options(
         design.clone(),
         motor::find("Cesaroni_I175").unwrap(),
-        MotorOptions::default().with_impulse_scale(c.impulse_scale[i]),
+        MotorOptions::default().with_impulse_scale(d[2]),
         env,
         rail,
     )
-    .and_then(|s| s.with_drag_scale(c.drag_scale[i]))
-    .and_then(|s| s.with_part_mass("ballast", c.part_mass_kg[i]))
-    .and_then(|s| s.with_mass_adjustment(c.structure_delta_mass_kg[i], 0.0))
+    .and_then(|s| s.with_drag_scale(d[3]))
+    .and_then(|s| s.with_part_mass("ballast", d[1]))
+    .and_then(|s| s.with_mass_adjustment(d[0], 0.0))
     .and_then(|s| s.with_parachutes(ch))
     .and_then(|s| {
         s.with_shifts(vec![MassShift::new(
-            Trigger::Time {
-                time_s: c.shift_trigger[0][i],
-            },
+            Trigger::Time { time_s: d[10] },
             "ballast",
-            c.shift_travel_m[0][i],
+            d[9],
             1.0,
         )])
     })

@@ -644,6 +644,7 @@ fn every_bundled_scenario_reads_and_sets_up_at_every_sweep_point() {
             "ballast_sweep",
             "bella_lui",
             "calisto",
+            "fin_sizing",
             "payload_drop",
             "sounding",
             "wind_study"

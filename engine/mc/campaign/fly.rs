@@ -20,10 +20,14 @@ mod setup;
 use super::params::Param;
 use super::scenario::{trigger_value, RequirementSpec, Scenario, ScenarioError};
 use super::variants::{Plan, PlanInput, Variant};
+use hpr_design::design::dimension::DesignSource;
 use hpr_design::design::model::Design;
 use hpr_design::mass;
 use hpr_design::motor::{self, Motor, MotorError, MotorTables};
-use hpr_sim::batch::{Batch, BatchWeather, LaneResult};
+use hpr_sim::batch::{
+    Batch, BatchDesigns, BatchWeather, LaneResult, ParachuteOutcome, ReleaseOutcome, ShiftOutcome,
+};
+use hpr_sim::flight::Metrics;
 use hpr_sim::{SimError, SimOptions, Simulation, Trigger};
 use setup::{Fixed, Setup};
 
@@ -55,44 +59,85 @@ pub struct Column {
     pub unit: &'static str,
 }
 
+/// How a metric is read from a flight: its name, its unit and its value (`None` where it does
+/// not exist).
+pub type Metric<T> = (&'static str, &'static str, fn(&T) -> Option<f64>);
+
+/// The landing point's distance from the rail's foot, m.
+fn distance(p: Option<[f64; 2]>) -> Option<f64> {
+    p.map(|p| p[0].hypot(p[1]))
+}
+
 /// The metrics every flight has, in output order.
-pub const FIXED_METRICS: [(&str, &str); 18] = [
-    ("apogee_m", "m"),
-    ("apogee_time_s", "s"),
-    ("max_speed_m_s", "m/s"),
-    ("max_mach", "1"),
-    ("max_accel_m_s2", "m/s²"),
-    ("max_dynamic_pressure_pa", "Pa"),
-    ("rail_exit_speed_m_s", "m/s"),
-    ("static_margin_liftoff_cal", "cal"),
-    ("static_margin_rail_exit_cal", "cal"),
-    ("static_margin_burnout_cal", "cal"),
-    ("static_margin_min_cal", "cal"),
-    ("flight_margin_min_cal", "cal"),
-    ("max_alpha_deg", "deg"),
-    ("landing_time_s", "s"),
-    ("landing_x_m", "m"),
-    ("landing_y_m", "m"),
-    ("landing_distance_m", "m"),
-    ("landing_speed_m_s", "m/s"),
+pub const FIXED_METRICS: [Metric<Metrics>; 18] = [
+    ("apogee_m", "m", |m| m.apogee_m),
+    ("apogee_time_s", "s", |m| m.apogee_time_s),
+    ("max_speed_m_s", "m/s", |m| Some(m.max_speed_m_s)),
+    ("max_mach", "1", |m| Some(m.max_mach)),
+    ("max_accel_m_s2", "m/s²", |m| Some(m.max_accel_m_s2)),
+    ("max_dynamic_pressure_pa", "Pa", |m| {
+        Some(m.max_dynamic_pressure_pa)
+    }),
+    ("rail_exit_speed_m_s", "m/s", |m| m.rail_exit_speed_m_s),
+    ("static_margin_liftoff_cal", "cal", |m| {
+        m.static_margin_liftoff_cal
+    }),
+    ("static_margin_rail_exit_cal", "cal", |m| {
+        m.static_margin_rail_exit_cal
+    }),
+    ("static_margin_burnout_cal", "cal", |m| {
+        m.static_margin_burnout_cal
+    }),
+    ("static_margin_min_cal", "cal", |m| m.static_margin_min_cal),
+    ("flight_margin_min_cal", "cal", |m| m.flight_margin_min_cal),
+    ("max_alpha_deg", "deg", |m| m.max_alpha_deg),
+    ("landing_time_s", "s", |m| m.landing_time_s),
+    ("landing_x_m", "m", |m| m.landing_position_m.map(|p| p[0])),
+    ("landing_y_m", "m", |m| m.landing_position_m.map(|p| p[1])),
+    ("landing_distance_m", "m", |m| {
+        distance(m.landing_position_m)
+    }),
+    ("landing_speed_m_s", "m/s", |m| m.landing_speed_m_s),
 ];
 
-/// Indices of the landing point's east (x) and north (y) in the metrics.
-pub const LANDING_XY: (usize, usize) = (14, 15);
+/// The metrics of each shift (`shift_<name>_...`): its start time and the static margin just
+/// before and just after its move.
+const PER_SHIFT: [Metric<ShiftOutcome>; 3] = [
+    ("start_time_s", "s", |s| s.start_s),
+    ("margin_before_cal", "cal", |s| s.margin_before_cal),
+    ("margin_after_cal", "cal", |s| s.margin_after_cal),
+];
+
+/// The metrics of each parachute (`parachute_<name>_...`): its opening time and speed.
+const PER_PARACHUTE: [Metric<ParachuteOutcome>; 2] = [
+    ("deploy_time_s", "s", |c| c.deploy_time_s),
+    ("deploy_speed_m_s", "m/s", |c| c.deploy_speed_m_s),
+];
+
+/// The metrics of a design with air brakes: when they first opened and their widest opening.
+const AIR_BRAKES: [Metric<Metrics>; 2] = [
+    ("air_brakes_open_time_s", "s", |m| m.air_brakes_open_time_s),
+    ("air_brakes_max_opening", "1", |m| m.air_brakes_max_opening),
+];
 
 /// The metrics of each release (`release_<name>_...`): when it fired, the static margin just
 /// before and after, and the released part's landing; a part with a parachute has
-/// `chute_open_time_s` besides.
-pub const PER_RELEASE: [(&str, &str); 8] = [
-    ("fire_time_s", "s"),
-    ("margin_before_cal", "cal"),
-    ("margin_after_cal", "cal"),
-    ("landing_time_s", "s"),
-    ("landing_x_m", "m"),
-    ("landing_y_m", "m"),
-    ("landing_distance_m", "m"),
-    ("landing_speed_m_s", "m/s"),
+/// [`RELEASE_CHUTE`] besides.
+pub const PER_RELEASE: [Metric<ReleaseOutcome>; 8] = [
+    ("fire_time_s", "s", |r| r.time_s),
+    ("margin_before_cal", "cal", |r| r.margin_before_cal),
+    ("margin_after_cal", "cal", |r| r.margin_after_cal),
+    ("landing_time_s", "s", |r| r.landing_time_s),
+    ("landing_x_m", "m", |r| r.landing_position_m.map(|p| p[0])),
+    ("landing_y_m", "m", |r| r.landing_position_m.map(|p| p[1])),
+    ("landing_distance_m", "m", |r| {
+        distance(r.landing_position_m)
+    }),
+    ("landing_speed_m_s", "m/s", |r| r.landing_speed_m_s),
 ];
+
+/// The metric of a released part with a parachute: when its canopy opened.
+const RELEASE_CHUTE: Metric<ReleaseOutcome> = ("chute_open_time_s", "s", |r| r.chute_open_s);
 
 /// A scenario ready to fly: the design and motor loaded, the nominals resolved, the plan of
 /// the variants built, and every sweep point's nominal flight checked.
@@ -115,6 +160,8 @@ pub struct Prepared {
     pub requirements: Vec<(usize, RequirementSpec)>,
     design: Design,
     motor: Motor,
+    /// The motors a sweep flies (empty without a sweep of motors).
+    motors: Vec<Motor>,
     nominal: Setup,
     /// The flight at the first sweep point's centers; every lane is it with its row applied.
     batch: Batch,
@@ -132,32 +179,73 @@ impl Prepared {
         };
         let design =
             Design::load(&scenario.design_file).map_err(|e| bad("design.file", e.to_string()))?;
-        let mut motor =
-            motor::find(&scenario.motor).map_err(|e| bad("motor.name", e.to_string()))?;
-        if let Some(t) = scenario.motor_burn_time_s {
-            motor = motor
-                .cut_at(t)
-                .map_err(|e| bad("motor.burn_time_s", e.to_string()))?;
+        // A motor as the scenario names it (`name_key`: where), with its options.
+        let load_motor = |name: &str, name_key: &str| -> Result<Motor, ScenarioError> {
+            let mut motor = motor::find(name).map_err(|e| bad(name_key, e.to_string()))?;
+            if let Some(t) = scenario.motor_burn_time_s {
+                motor = motor
+                    .cut_at(t)
+                    .map_err(|e| bad("motor.burn_time_s", e.to_string()))?;
+            }
+            if let Some(d) = scenario.motor_diameter_m {
+                motor = motor
+                    .with_diameter(d)
+                    .map_err(|e| bad("motor.diameter_m", e.to_string()))?;
+            }
+            // The motor's own numbers against the motor (a center within its length).
+            if let Err(e) = MotorTables::new(&motor, &scenario.motor_options) {
+                let key = match &e {
+                    // The scenario's key of a motor option's field: `chamber_m (radius)` is
+                    // `chamber.radius_m`, `dry_inertia_kg_m2 (axial)` the pair's key.
+                    MotorError::InvalidOption { field, .. } => match *field {
+                        "chamber_m" => "motor.chamber".to_owned(),
+                        "chamber_m (radius)" => "motor.chamber.radius_m".to_owned(),
+                        "chamber_m (height)" => "motor.chamber.height_m".to_owned(),
+                        f => format!("motor.{}", f.split(' ').next().unwrap_or(f)),
+                    },
+                    _ => name_key.to_owned(),
+                };
+                return Err(bad(&key, e.to_string()));
+            }
+            Ok(motor)
+        };
+        let motor = load_motor(&scenario.motor, "motor.name")?;
+        let motors = scenario
+            .motors
+            .iter()
+            .enumerate()
+            .map(|(j, m)| load_motor(m, &format!("sweep.motor[{j}]")))
+            .collect::<Result<Vec<Motor>, _>>()?;
+        if !motors.is_empty() {
+            // The impulse and burn time are a motor's: scaled against which, with several?
+            if let Some(i) = scenario
+                .inputs
+                .iter()
+                .find(|i| matches!(i.param, Param::MotorImpulseNs | Param::MotorBurnTimeS))
+            {
+                return Err(bad(&i.key_path(), "the motor is swept: its impulse and burn time are each motor's own (vary them with a motor of its own, not with a sweep of motors)".into()));
+            }
         }
-        if let Some(d) = scenario.motor_diameter_m {
-            motor = motor
-                .with_diameter(d)
-                .map_err(|e| bad("motor.diameter_m", e.to_string()))?;
-        }
-        // The motor's own numbers against the motor (a center within its length).
-        if let Err(e) = MotorTables::new(&motor, &scenario.motor_options) {
-            let key = match &e {
-                // The scenario's key of a motor option's field: `chamber_m (radius)` is
-                // `chamber.radius_m`, `dry_inertia_kg_m2 (axial)` the pair's key.
-                MotorError::InvalidOption { field, .. } => match *field {
-                    "chamber_m" => "motor.chamber".to_owned(),
-                    "chamber_m (radius)" => "motor.chamber.radius_m".to_owned(),
-                    "chamber_m (height)" => "motor.chamber.height_m".to_owned(),
-                    f => format!("motor.{}", f.split(' ').next().unwrap_or(f)),
-                },
-                _ => "motor.name".to_owned(),
-            };
-            return Err(bad(&key, e.to_string()));
+        // The design's dimensions the scenario varies, each from the design as written.
+        let source = if scenario.dimensions.is_empty() {
+            None
+        } else {
+            let (source, _) = DesignSource::load(&scenario.design_file)
+                .map_err(|e| bad("design.file", e.to_string()))?;
+            Some(source)
+        };
+        let mut dimensions = Vec::new();
+        for (k, dim) in scenario.dimensions.iter().enumerate() {
+            let source = source.as_ref().expect("loaded for the dimensions");
+            let value = source.value(dim).map_err(|r| {
+                let key = scenario
+                    .inputs
+                    .iter()
+                    .find(|i| i.param == Param::Design(k))
+                    .map_or("design".into(), |i| i.key_path());
+                bad(&key, r)
+            })?;
+            dimensions.push(value);
         }
 
         if let Some(i) = scenario
@@ -264,41 +352,54 @@ impl Prepared {
             .environment
             .air
             .site_values(scenario.environment.elevation_m);
-        let nominal = Setup {
-            structure_mass_kg: dry.mass_kg,
-            structure_cg_m: dry.cg_m.x,
-            ballast_kg: ballast.map_or(f64::NAN, |idx| mass::component_own(&design, idx).mass_kg),
-            impulse_ns: motor.total_impulse_ns(),
-            burn_time_s: motor.burn_time_s(),
-            drag_scale: 1.0,
-            brake_target_m: design.air_brakes.map_or(f64::NAN, |b| b.target_apogee_m),
-            elevation_m: scenario.environment.elevation_m,
-            temperature_k,
-            pressure_pa,
-            launch_time_h: match &scenario.environment.weather {
-                Some(_) => 0.0,
-                None => f64::NAN,
-            },
-            weather_member: scenario
-                .environment
-                .weather
-                .as_ref()
-                .map_or(f64::NAN, |w| w.member),
-            wind_speed_m_s: scenario.environment.wind_speed_m_s,
-            wind_from_deg: scenario.environment.wind_from_deg,
-            wind_scale: 1.0,
-            wind_rotation_deg: 0.0,
-            wind_turbulence_intensity: scenario.environment.wind_turbulence_intensity,
-            rail: [
-                scenario.rail.length_m,
-                scenario.rail.inclination_deg,
-                scenario.rail.heading_deg,
-            ],
+        let weather = scenario.environment.weather.as_ref();
+        let mut nominal = Setup {
+            globals: [f64::NAN; hpr_sim::inputs::GLOBAL_COUNT],
             parachutes,
             shifts,
             releases,
+            design: dimensions,
             sensor_seed: 0,
         };
+        // Each input's nominal: the design's, the motor's or the scenario's (NaN for one the
+        // flight does not have).
+        for (p, v) in [
+            (Param::StructureMassKg, dry.mass_kg),
+            (Param::StructureCgM, dry.cg_m.x),
+            (
+                Param::BallastKg,
+                ballast.map_or(f64::NAN, |idx| mass::component_own(&design, idx).mass_kg),
+            ),
+            (Param::MotorImpulseNs, motor.total_impulse_ns()),
+            (Param::MotorBurnTimeS, motor.burn_time_s()),
+            (Param::DragScale, 1.0),
+            (Param::ElevationM, scenario.environment.elevation_m),
+            (Param::TemperatureK, temperature_k),
+            (Param::PressurePa, pressure_pa),
+            (Param::WindSpeedMS, scenario.environment.wind_speed_m_s),
+            (Param::WindFromDeg, scenario.environment.wind_from_deg),
+            (Param::WindScale, 1.0),
+            (Param::WindRotationDeg, 0.0),
+            (
+                Param::WindTurbulenceIntensity,
+                scenario.environment.wind_turbulence_intensity,
+            ),
+            (Param::RailLengthM, scenario.rail.length_m),
+            (Param::RailInclinationDeg, scenario.rail.inclination_deg),
+            (Param::RailHeadingDeg, scenario.rail.heading_deg),
+            (
+                Param::AirBrakesTargetM,
+                design.air_brakes.map_or(f64::NAN, |b| b.target_apogee_m),
+            ),
+            (Param::LaunchTimeH, weather.map_or(f64::NAN, |_| 0.0)),
+            (Param::WeatherMember, weather.map_or(f64::NAN, |w| w.member)),
+            (
+                Param::MotorDryMassKg,
+                (scenario.motor_options.dry_mass_kg).unwrap_or(motor.dry_mass_kg()),
+            ),
+        ] {
+            nominal.set(p, v);
+        }
         let plan = Plan {
             seed: scenario.seed,
             variants_per_point: scenario.variants_per_point,
@@ -315,53 +416,48 @@ impl Prepared {
                 })
                 .collect(),
         };
-        let per_shift = [
-            ("start_time_s", "s"),
-            ("margin_before_cal", "cal"),
-            ("margin_after_cal", "cal"),
-        ];
-        let per_chute = [("deploy_time_s", "s"), ("deploy_speed_m_s", "m/s")];
         let column = |name: String, unit: &'static str| Column { name, unit };
-        let metrics: Vec<Column> =
-            FIXED_METRICS
-                .iter()
-                .map(|(n, u)| column(n.to_string(), u))
-                .chain(scenario.shifts.iter().flat_map(|s| {
-                    per_shift.map(|(n, u)| column(format!("shift_{}_{n}", s.name), u))
-                }))
-                .chain(scenario.parachutes.iter().flat_map(|c| {
-                    per_chute.map(|(n, u)| column(format!("parachute_{}_{n}", c.name), u))
-                }))
-                .chain(design.air_brakes.iter().flat_map(|_| {
-                    [
-                        column("air_brakes_open_time_s".into(), "s"),
-                        column("air_brakes_max_opening".into(), "1"),
-                    ]
-                }))
-                .chain(scenario.releases.iter().flat_map(|r| {
-                    let chute = r.parachute.is_some().then_some(("chute_open_time_s", "s"));
-                    PER_RELEASE
-                        .into_iter()
-                        .chain(chute)
-                        .map(|(n, u)| column(format!("release_{}_{n}", r.name), u))
-                        .collect::<Vec<_>>()
-                }))
-                .collect();
-        let landings = std::iter::once(("rocket".to_string(), LANDING_XY.0, LANDING_XY.1))
-            .chain(scenario.releases.iter().map(|r| {
-                let at = |n: &str| {
-                    metrics
-                        .iter()
-                        .position(|c| c.name == format!("release_{}_{n}", r.name))
-                        .expect("the release's landing columns")
-                };
-                (
-                    format!("release_{}", r.name),
-                    at("landing_x_m"),
-                    at("landing_y_m"),
-                )
+        let metrics: Vec<Column> = FIXED_METRICS
+            .iter()
+            .map(|(n, u, _)| column(n.to_string(), u))
+            .chain(scenario.shifts.iter().flat_map(|s| {
+                PER_SHIFT.map(|(n, u, _)| column(format!("shift_{}_{n}", s.name), u))
+            }))
+            .chain(scenario.parachutes.iter().flat_map(|c| {
+                PER_PARACHUTE.map(|(n, u, _)| column(format!("parachute_{}_{n}", c.name), u))
+            }))
+            .chain(
+                design
+                    .air_brakes
+                    .iter()
+                    .flat_map(|_| AIR_BRAKES.map(|(n, u, _)| column(n.into(), u))),
+            )
+            .chain(scenario.releases.iter().flat_map(|r| {
+                let chute = r.parachute.is_some().then_some(RELEASE_CHUTE);
+                PER_RELEASE
+                    .into_iter()
+                    .chain(chute)
+                    .map(|(n, u, _)| column(format!("release_{}_{n}", r.name), u))
+                    .collect::<Vec<_>>()
             }))
             .collect();
+        // Each landing's east and north, by name.
+        let at = |name: &str| {
+            metrics
+                .iter()
+                .position(|c| c.name == name)
+                .expect("a landing's columns")
+        };
+        let landings =
+            std::iter::once(("rocket".to_string(), at("landing_x_m"), at("landing_y_m")))
+                .chain(scenario.releases.iter().map(|r| {
+                    (
+                        format!("release_{}", r.name),
+                        at(&format!("release_{}_landing_x_m", r.name)),
+                        at(&format!("release_{}_landing_y_m", r.name)),
+                    )
+                }))
+                .collect();
         let mut requirements = vec![];
         for r in &scenario.requirements {
             let Some(m) = metrics.iter().position(|c| c.name == r.metric) else {
@@ -388,6 +484,51 @@ impl Prepared {
         // Every sweep point's nominal flight must set up, and a dispersion relative to its
         // center needs a center that is not zero. The first point's flight is the base of
         // every lane; the others are checked as lanes of it.
+        // Every swept motor fits the design's mount (as written: a dimension that moves the
+        // mount is judged flight by flight).
+        for (j, m) in motors.iter().enumerate() {
+            design
+                .motor_fits(m.diameter_m, m.length_m)
+                .map_err(|e| bad(&format!("sweep.motor[{j}]"), e.to_string()))?;
+        }
+        // The designs of the sweep points, built once each before the run (unless a dimension
+        // is dispersed: then every variant's design is its own, built for its lane).
+        let designs = source.map(|source| {
+            let dims: Vec<usize> = (0..scenario.dimensions.len()).collect();
+            let mut designs = BatchDesigns::new(source, scenario.dimensions.clone());
+            let dispersed = scenario
+                .inputs
+                .iter()
+                .any(|i| matches!(i.param, Param::Design(_)) && i.dispersion.is_some());
+            if !dispersed {
+                for point in 0..plan.points() {
+                    let centers = plan.centers(point);
+                    let values: Vec<(usize, f64)> = dims
+                        .iter()
+                        .map(|&k| {
+                            let j = scenario
+                                .inputs
+                                .iter()
+                                .position(|i| i.param == Param::Design(k))
+                                .expect("every dimension is an input");
+                            (k, centers[j])
+                        })
+                        .collect();
+                    // A point whose design breaks a rule: its variants are refused, each
+                    // naming the rule.
+                    let _ = designs.keep(&values);
+                }
+            }
+            designs
+        });
+        let designs = designs.map(std::sync::Arc::new);
+        // Whether a sweep point's design breaks a rule (its variants are refused rows).
+        let refused_design = |setup: &Setup| -> bool {
+            designs.as_ref().is_some_and(|d| {
+                let values: Vec<(usize, f64)> = setup.design.iter().copied().enumerate().collect();
+                d.design(&values).is_err()
+            })
+        };
         let mut batch: Option<Batch> = None;
         for point in 0..plan.points() {
             let centers = plan.centers(point);
@@ -435,9 +576,19 @@ impl Prepared {
                             elevation_m: scenario.environment.elevation_m,
                         });
                     }
+                    b = b.with_motors(motors.clone());
+                    if let Some(d) = &designs {
+                        b = b.with_designs(d.clone());
+                    }
                     batch = Some(b);
                 }
-                Some(b) => {
+                Some(_) => {}
+            }
+            // The base is the first point's flight with the design and the motor as written:
+            // every point with a motor or a design of its own is checked as a lane of it.
+            let changes_base = !motors.is_empty() || designs.is_some();
+            if let Some(b) = batch.as_ref().filter(|_| point > 0 || changes_base) {
+                if !refused_design(&setup) {
                     b.variant(&fixed.columns(&[&setup]), 0).map_err(refused)?;
                 }
             }
@@ -451,6 +602,7 @@ impl Prepared {
             requirements,
             design,
             motor,
+            motors,
             nominal,
             batch,
         })
@@ -480,6 +632,24 @@ impl Prepared {
         &self.motor
     }
 
+    /// The motors a sweep flies, in the sweep's order (empty without a sweep of motors).
+    pub fn swept_motors(&self) -> &[Motor] {
+        &self.motors
+    }
+
+    /// The designation of the motor a variant's values fly (`None` without a sweep of
+    /// motors).
+    pub fn motor_of(&self, values: &[f64]) -> Option<&str> {
+        let j = self
+            .scenario
+            .inputs
+            .iter()
+            .position(|i| i.param == Param::Motor)?;
+        self.motors
+            .get(values[j] as usize)
+            .map(|m| m.designation.as_str())
+    }
+
     /// The nominal flight of sweep point `point` (every input at its center, or at its mean
     /// where it is dispersed as a normal about its own mean), built from scratch and keeping
     /// its samples: what `hpr-mc fly --scenario` flies.
@@ -502,7 +672,15 @@ impl Prepared {
             .map(|(c, input)| input.dispersion.map_or(c, |d| d.scatter_center(c)))
             .collect();
         let setup = fixed.setup(&centers)?;
-        let sim = fixed.simulation(&setup).map_err(|e| e.to_string())?;
+        let sim = if self.motors.is_empty() && self.scenario.dimensions.is_empty() {
+            fixed.simulation(&setup).map_err(|e| e.to_string())?
+        } else {
+            // A point's own motor or design: the base flight with the point's inputs, as its
+            // lanes fly them.
+            self.batch
+                .variant(&fixed.columns(&[&setup]), 0)
+                .map_err(|e| format!("the nominal flight{}: {e}", self.point_label(point)))?
+        };
         let options = SimOptions {
             keep_samples: true,
             ..*sim.options()
@@ -527,9 +705,9 @@ impl Prepared {
         let fixed = self.fixed();
         let setup = fixed
             .setup(&v.values)
-            .map(|s| Setup {
-                sensor_seed: v.sensor_seed,
-                ..s
+            .map(|mut s| {
+                s.sensor_seed = v.sensor_seed;
+                s
             })
             .map_err(|e| {
                 hpr_design::error::tidy_numbers(&format!("variant {id} is refused: sampled {e}"))
@@ -588,57 +766,23 @@ impl Prepared {
             };
         }
         let m = &lane.metrics;
-        let landing = m.landing_position_m;
-        let mut out = vec![
-            m.apogee_m,
-            m.apogee_time_s,
-            Some(m.max_speed_m_s),
-            Some(m.max_mach),
-            Some(m.max_accel_m_s2),
-            Some(m.max_dynamic_pressure_pa),
-            m.rail_exit_speed_m_s,
-            m.static_margin_liftoff_cal,
-            m.static_margin_rail_exit_cal,
-            m.static_margin_burnout_cal,
-            m.static_margin_min_cal,
-            m.flight_margin_min_cal,
-            m.max_alpha_deg,
-            m.landing_time_s,
-            landing.map(|p| p[0]),
-            landing.map(|p| p[1]),
-            landing.map(|p| p[0].hypot(p[1])),
-            m.landing_speed_m_s,
-        ];
+        let mut out: Vec<Option<f64>> = FIXED_METRICS.iter().map(|(_, _, f)| f(m)).collect();
         for k in 0..self.scenario.shifts.len() {
             let shift = lane.shifts.get(k).copied().unwrap_or_default();
-            out.extend([
-                shift.start_s,
-                shift.margin_before_cal,
-                shift.margin_after_cal,
-            ]);
+            out.extend(PER_SHIFT.iter().map(|(_, _, f)| f(&shift)));
         }
         for k in 0..self.scenario.parachutes.len() {
             let chute = lane.parachutes.get(k).copied().unwrap_or_default();
-            out.extend([chute.deploy_time_s, chute.deploy_speed_m_s]);
+            out.extend(PER_PARACHUTE.iter().map(|(_, _, f)| f(&chute)));
         }
         if self.design.air_brakes.is_some() {
-            out.extend([m.air_brakes_open_time_s, m.air_brakes_max_opening]);
+            out.extend(AIR_BRAKES.iter().map(|(_, _, f)| f(m)));
         }
         for (k, spec) in self.scenario.releases.iter().enumerate() {
             let r = lane.releases.get(k).copied().unwrap_or_default();
-            let landing = r.landing_position_m;
-            out.extend([
-                r.time_s,
-                r.margin_before_cal,
-                r.margin_after_cal,
-                r.landing_time_s,
-                landing.map(|p| p[0]),
-                landing.map(|p| p[1]),
-                landing.map(|p| p[0].hypot(p[1])),
-                r.landing_speed_m_s,
-            ]);
+            out.extend(PER_RELEASE.iter().map(|(_, _, f)| f(&r)));
             if spec.parachute.is_some() {
-                out.push(r.chute_open_s);
+                out.push((RELEASE_CHUTE.2)(&r));
             }
         }
         let warnings = (!lane.warnings.is_empty()).then(|| {
@@ -751,9 +895,9 @@ fn fly_lanes(
     let setups: Vec<Result<Setup, String>> = variants
         .iter()
         .map(|v| {
-            fixed.setup(&v.values).map(|s| Setup {
-                sensor_seed: v.sensor_seed,
-                ..s
+            fixed.setup(&v.values).map(|mut s| {
+                s.sensor_seed = v.sensor_seed;
+                s
             })
         })
         .collect();

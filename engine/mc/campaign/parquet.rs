@@ -170,6 +170,10 @@ pub fn variants_schema(p: &Prepared, meta: &RunMeta) -> SchemaRef {
             .iter()
             .map(|i| field(&i.column, DataType::Float64, false, Some(i.unit))),
     );
+    if !p.swept_motors().is_empty() {
+        // The designation of the motor each variant flies.
+        fields.push(field("motor", DataType::Utf8, false, None));
+    }
     fields.push(field("status", DataType::Utf8, false, None));
     fields.push(field("error", DataType::Utf8, true, None));
     fields.push(field("warnings", DataType::Utf8, true, None));
@@ -226,6 +230,13 @@ pub fn variants_batch(
     for j in 0..p.scenario.inputs.len() {
         cols.push(Arc::new(Float64Array::from_iter_values(
             variants.iter().map(|v| v.values[j]),
+        )));
+    }
+    if !p.swept_motors().is_empty() {
+        cols.push(Arc::new(StringArray::from_iter_values(
+            variants
+                .iter()
+                .map(|v| p.motor_of(&v.values).unwrap_or_default()),
         )));
     }
     cols.push(Arc::new(StringArray::from_iter_values(

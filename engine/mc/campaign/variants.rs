@@ -52,14 +52,16 @@ pub struct Variant {
     pub sensor_seed: u64,
 }
 
+/// Number of points of a sweep whose inputs' values are `sweeps` (`None` for an input not
+/// swept): the product of the swept inputs' counts, 1 without a sweep.
+pub fn sweep_points<'a>(sweeps: impl Iterator<Item = Option<&'a Vec<f64>>>) -> usize {
+    sweeps.flatten().map(Vec::len).product()
+}
+
 impl Plan {
     /// Number of sweep points.
     pub fn points(&self) -> usize {
-        self.inputs
-            .iter()
-            .filter_map(|i| i.sweep.as_ref())
-            .map(Vec::len)
-            .product()
+        sweep_points(self.inputs.iter().map(|i| i.sweep.as_ref()))
     }
 
     /// Number of variants.

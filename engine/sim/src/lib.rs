@@ -13,6 +13,7 @@ pub mod events;
 pub mod flight;
 pub mod frames;
 pub mod gravity;
+pub mod inputs;
 pub mod integrate;
 pub mod lanes;
 pub mod massprops;

@@ -2,6 +2,7 @@
 //! validated [`model`] that the rest of hpr reads. Only this module knows about serde.
 //! [`shapes`] holds the nose-cone and transition profiles that mass and aerodynamics share.
 
+pub mod dimension;
 pub mod json_errors;
 pub mod model;
 pub mod raw;

@@ -7,117 +7,53 @@ use super::super::scenario::{with_trigger_value, Scenario};
 use hpr_design::design::model::Design;
 use hpr_design::motor::{Motor, MotorOptions};
 use hpr_sim::batch::Columns;
+use hpr_sim::inputs::{Part, Slot, GLOBAL_COUNT};
 use hpr_sim::wind::Wind;
 use hpr_sim::{
     Environment, MassShift, Parachute, PartChute, Rail, Release, SimError, SimOptions, Simulation,
 };
 
-/// Every flight's values, nominal or a variant's.
+/// Every flight's values, nominal or a variant's: one per input of the flight
+/// ([`hpr_sim::inputs`]), held where the input's [`Slot`] says.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Setup {
-    pub(super) structure_mass_kg: f64,
-    pub(super) structure_cg_m: f64,
-    pub(super) ballast_kg: f64,
-    pub(super) impulse_ns: f64,
-    pub(super) burn_time_s: f64,
-    pub(super) drag_scale: f64,
-    pub(super) elevation_m: f64,
-    /// The site's air temperature, K, and pressure, Pa.
-    pub(super) temperature_k: f64,
-    pub(super) pressure_pa: f64,
-    /// The launch time, hours after the weather file's `time`, and its ensemble member (NaN
-    /// without a weather file).
-    pub(super) launch_time_h: f64,
-    pub(super) weather_member: f64,
-    pub(super) wind_speed_m_s: f64,
-    pub(super) wind_from_deg: f64,
-    pub(super) wind_scale: f64,
-    pub(super) wind_rotation_deg: f64,
-    pub(super) wind_turbulence_intensity: f64,
-    pub(super) rail: [f64; 3],
-    /// The air brakes' target apogee, m (NaN without brakes).
-    pub(super) brake_target_m: f64,
-    /// Per parachute: CdS, lag, trigger number (NaN if none).
+    /// The inputs of the flight as a whole, in [`hpr_sim::inputs::GLOBAL`] order (NaN for
+    /// one the scenario's flight does not have: a ballast, air brakes or a weather file).
+    pub(super) globals: [f64; GLOBAL_COUNT],
+    /// Per parachute, shift and release: its inputs in [`Part::fields`] order (a trigger's
+    /// number NaN if it has none; a release's parachute's NaN without a parachute).
     pub(super) parachutes: Vec<[f64; 3]>,
-    /// Per shift: travel, duration, trigger number (NaN if none).
     pub(super) shifts: Vec<[f64; 3]>,
-    /// Per release: trigger number (NaN if none), the part's drag area, its parachute's CdS
-    /// and lag (NaN without a parachute).
     pub(super) releases: Vec<[f64; 4]>,
+    /// Per dimension of the design the scenario varies: its value.
+    pub(super) design: Vec<f64>,
     /// The seed of the parachutes' barometer noise (the variant's own; 0 for the nominal).
     pub(super) sensor_seed: u64,
 }
 
 impl Setup {
+    fn slot(&mut self, p: Param) -> &mut f64 {
+        match p.slot() {
+            Slot::Global(i) => &mut self.globals[i],
+            Slot::Design(k) => &mut self.design[k],
+            Slot::Part(Part::Parachute, k, f) => &mut self.parachutes[k][f],
+            Slot::Part(Part::Shift, k, f) => &mut self.shifts[k][f],
+            Slot::Part(Part::Release, k, f) => &mut self.releases[k][f],
+        }
+    }
+
     pub(super) fn get(&self, p: Param) -> f64 {
-        match p {
-            Param::StructureMassKg => self.structure_mass_kg,
-            Param::StructureCgM => self.structure_cg_m,
-            Param::BallastKg => self.ballast_kg,
-            Param::MotorImpulseNs => self.impulse_ns,
-            Param::MotorBurnTimeS => self.burn_time_s,
-            Param::DragScale => self.drag_scale,
-            Param::ElevationM => self.elevation_m,
-            Param::TemperatureK => self.temperature_k,
-            Param::PressurePa => self.pressure_pa,
-            Param::LaunchTimeH => self.launch_time_h,
-            Param::WeatherMember => self.weather_member,
-            Param::WindSpeedMS => self.wind_speed_m_s,
-            Param::WindFromDeg => self.wind_from_deg,
-            Param::WindScale => self.wind_scale,
-            Param::WindRotationDeg => self.wind_rotation_deg,
-            Param::WindTurbulenceIntensity => self.wind_turbulence_intensity,
-            Param::RailLengthM => self.rail[0],
-            Param::RailInclinationDeg => self.rail[1],
-            Param::RailHeadingDeg => self.rail[2],
-            Param::AirBrakesTargetM => self.brake_target_m,
-            Param::ParachuteCdsM2(i) => self.parachutes[i][0],
-            Param::ParachuteLagS(i) => self.parachutes[i][1],
-            Param::ParachuteTrigger(i) => self.parachutes[i][2],
-            Param::ShiftTravelM(i) => self.shifts[i][0],
-            Param::ShiftDurationS(i) => self.shifts[i][1],
-            Param::ShiftTrigger(i) => self.shifts[i][2],
-            Param::ReleaseTrigger(i) => self.releases[i][0],
-            Param::ReleaseCdaM2(i) => self.releases[i][1],
-            Param::ReleaseChuteCdsM2(i) => self.releases[i][2],
-            Param::ReleaseChuteLagS(i) => self.releases[i][3],
+        match p.slot() {
+            Slot::Global(i) => self.globals[i],
+            Slot::Design(k) => self.design[k],
+            Slot::Part(Part::Parachute, k, f) => self.parachutes[k][f],
+            Slot::Part(Part::Shift, k, f) => self.shifts[k][f],
+            Slot::Part(Part::Release, k, f) => self.releases[k][f],
         }
     }
 
     pub(super) fn set(&mut self, p: Param, v: f64) {
-        let slot = match p {
-            Param::StructureMassKg => &mut self.structure_mass_kg,
-            Param::StructureCgM => &mut self.structure_cg_m,
-            Param::BallastKg => &mut self.ballast_kg,
-            Param::MotorImpulseNs => &mut self.impulse_ns,
-            Param::MotorBurnTimeS => &mut self.burn_time_s,
-            Param::DragScale => &mut self.drag_scale,
-            Param::ElevationM => &mut self.elevation_m,
-            Param::TemperatureK => &mut self.temperature_k,
-            Param::PressurePa => &mut self.pressure_pa,
-            Param::LaunchTimeH => &mut self.launch_time_h,
-            Param::WeatherMember => &mut self.weather_member,
-            Param::WindSpeedMS => &mut self.wind_speed_m_s,
-            Param::WindFromDeg => &mut self.wind_from_deg,
-            Param::WindScale => &mut self.wind_scale,
-            Param::WindRotationDeg => &mut self.wind_rotation_deg,
-            Param::WindTurbulenceIntensity => &mut self.wind_turbulence_intensity,
-            Param::RailLengthM => &mut self.rail[0],
-            Param::RailInclinationDeg => &mut self.rail[1],
-            Param::RailHeadingDeg => &mut self.rail[2],
-            Param::AirBrakesTargetM => &mut self.brake_target_m,
-            Param::ParachuteCdsM2(i) => &mut self.parachutes[i][0],
-            Param::ParachuteLagS(i) => &mut self.parachutes[i][1],
-            Param::ParachuteTrigger(i) => &mut self.parachutes[i][2],
-            Param::ShiftTravelM(i) => &mut self.shifts[i][0],
-            Param::ShiftDurationS(i) => &mut self.shifts[i][1],
-            Param::ShiftTrigger(i) => &mut self.shifts[i][2],
-            Param::ReleaseTrigger(i) => &mut self.releases[i][0],
-            Param::ReleaseCdaM2(i) => &mut self.releases[i][1],
-            Param::ReleaseChuteCdsM2(i) => &mut self.releases[i][2],
-            Param::ReleaseChuteLagS(i) => &mut self.releases[i][3],
-        };
-        *slot = v;
+        *self.slot(p) = v;
     }
 }
 
@@ -152,7 +88,11 @@ impl Fixed<'_> {
         let site = &self.scenario.environment;
         let gravity = site
             .gravity
-            .at_site(site.latitude_deg, s.elevation_m, "environment.latitude_deg")
+            .at_site(
+                site.latitude_deg,
+                s.get(Param::ElevationM),
+                "environment.latitude_deg",
+            )
             .map_err(|e| err(&e))?;
         // A launch time or member of its own: the weather file's air and wind then.
         let drawn = self.drawn_weather(s).map_err(|e| err(&e))?;
@@ -160,26 +100,32 @@ impl Fixed<'_> {
             Some(w) => w.air_model(),
             None => site.air.clone(),
         };
-        let air = if (s.temperature_k, s.pressure_pa)
-            == (self.nominal.temperature_k, self.nominal.pressure_pa)
-        {
+        let air = if (s.get(Param::TemperatureK), s.get(Param::PressurePa))
+            == (
+                self.nominal.get(Param::TemperatureK),
+                self.nominal.get(Param::PressurePa),
+            ) {
             base_air
         } else {
             // The air of the scenario's site, at this setup's temperature and pressure.
             base_air
-                .with_site_values(site.elevation_m, Some(s.temperature_k), Some(s.pressure_pa))
+                .with_site_values(
+                    site.elevation_m,
+                    Some(s.get(Param::TemperatureK)),
+                    Some(s.get(Param::PressurePa)),
+                )
                 .map_err(|e| err(&e))?
         };
         let wind = match &drawn {
             Some(w) => w
                 .wind()
-                .and_then(|w| w.transformed(s.wind_scale, s.wind_rotation_deg))
-                .and_then(|w| w.with_turbulence(s.wind_turbulence_intensity)),
+                .and_then(|w| w.transformed(s.get(Param::WindScale), s.get(Param::WindRotationDeg)))
+                .and_then(|w| w.with_turbulence(s.get(Param::WindTurbulenceIntensity))),
             None => self.wind(s),
         }
         .map_err(|e| err(&e))?;
         let env = Environment {
-            elevation_m: s.elevation_m,
+            elevation_m: s.get(Param::ElevationM),
             wind,
             gravity,
             vacuum: false,
@@ -187,9 +133,9 @@ impl Fixed<'_> {
             air,
         };
         let rail = Rail {
-            length_m: s.rail[0],
-            inclination_deg: s.rail[1],
-            heading_deg: s.rail[2],
+            length_m: s.get(Param::RailLengthM),
+            inclination_deg: s.get(Param::RailInclinationDeg),
+            heading_deg: s.get(Param::RailHeadingDeg),
         };
         let sim = Simulation::new(self.design.clone(), self.motor.clone(), env, rail)?;
         let (delta_mass, delta_cg) = self.structure_deltas(s);
@@ -197,7 +143,7 @@ impl Fixed<'_> {
             .scenario
             .ballast
             .as_deref()
-            .filter(|_| s.ballast_kg != self.nominal.ballast_kg);
+            .filter(|_| s.get(Param::BallastKg) != self.nominal.get(Param::BallastKg));
         sim.with_changes(|c| {
             c.motor_scales(self.motor_scales(s))?;
             if !self.scenario.parachutes.is_empty() {
@@ -263,14 +209,16 @@ impl Fixed<'_> {
                 max_time_s: self.scenario.max_time_s,
                 keep_samples: false,
             })?;
-            if s.drag_scale != 1.0 {
-                c.drag_scale(s.drag_scale)?;
+            if s.get(Param::DragScale) != 1.0 {
+                c.drag_scale(s.get(Param::DragScale))?;
             }
-            if s.brake_target_m != self.nominal.brake_target_m && !s.brake_target_m.is_nan() {
-                c.air_brakes_target(s.brake_target_m)?;
+            if s.get(Param::AirBrakesTargetM) != self.nominal.get(Param::AirBrakesTargetM)
+                && !s.get(Param::AirBrakesTargetM).is_nan()
+            {
+                c.air_brakes_target(s.get(Param::AirBrakesTargetM))?;
             }
             if let Some(id) = ballast {
-                c.part_mass(id, s.ballast_kg)?;
+                c.part_mass(id, s.get(Param::BallastKg))?;
             }
             if delta_mass != 0.0 || delta_cg != 0.0 {
                 c.mass_adjustment(delta_mass, delta_cg)?;
@@ -285,7 +233,7 @@ impl Fixed<'_> {
             .environment
             .weather
             .as_ref()
-            .map_or(f64::NAN, |w| w.time_s + s.launch_time_h * 3600.0)
+            .map_or(f64::NAN, |w| w.time_s + s.get(Param::LaunchTimeH) * 3600.0)
     }
 
     /// The weather file's air and wind over the site at a setup's launch time and member,
@@ -297,12 +245,15 @@ impl Fixed<'_> {
         let Some(w) = &self.scenario.environment.weather else {
             return Ok(None);
         };
-        if (s.launch_time_h, s.weather_member)
-            == (self.nominal.launch_time_h, self.nominal.weather_member)
+        if (s.get(Param::LaunchTimeH), s.get(Param::WeatherMember))
+            == (
+                self.nominal.get(Param::LaunchTimeH),
+                self.nominal.get(Param::WeatherMember),
+            )
         {
             return Ok(None);
         }
-        let member = w.site.member_index(s.weather_member)?;
+        let member = w.site.member_index(s.get(Param::WeatherMember))?;
         w.site
             .over_site(
                 self.launch_time_s(s),
@@ -317,19 +268,21 @@ impl Fixed<'_> {
     pub(super) fn wind(&self, s: &Setup) -> Result<Wind, hpr_sim::wind::WindError> {
         let env = &self.scenario.environment;
         match &env.wind_profile {
-            Some(profile) => profile.transformed(s.wind_scale, s.wind_rotation_deg),
-            None => Wind::constant(s.wind_speed_m_s, s.wind_from_deg)?
-                .transformed(s.wind_scale, s.wind_rotation_deg),
+            Some(profile) => {
+                profile.transformed(s.get(Param::WindScale), s.get(Param::WindRotationDeg))
+            }
+            None => Wind::constant(s.get(Param::WindSpeedMS), s.get(Param::WindFromDeg))?
+                .transformed(s.get(Param::WindScale), s.get(Param::WindRotationDeg)),
         }?
-        .with_turbulence(s.wind_turbulence_intensity)
+        .with_turbulence(s.get(Param::WindTurbulenceIntensity))
     }
 
     /// The structure's change from its nominal (which is at the nominal ballast: a ballast
     /// change is the part's mass, the structure's dispersion comes on top of it).
     pub(super) fn structure_deltas(&self, s: &Setup) -> (f64, f64) {
         (
-            s.structure_mass_kg - self.nominal.structure_mass_kg,
-            s.structure_cg_m - self.nominal.structure_cg_m,
+            s.get(Param::StructureMassKg) - self.nominal.get(Param::StructureMassKg),
+            s.get(Param::StructureCgM) - self.nominal.get(Param::StructureCgM),
         )
     }
 
@@ -338,79 +291,29 @@ impl Fixed<'_> {
     pub(super) fn motor_scales(&self, s: &Setup) -> MotorOptions {
         self.scenario
             .motor_options
-            .with_impulse_scale(s.impulse_ns / self.nominal.impulse_ns)
-            .with_time_scale(s.burn_time_s / self.nominal.burn_time_s)
+            .with_impulse_scale(
+                s.get(Param::MotorImpulseNs) / self.nominal.get(Param::MotorImpulseNs),
+            )
+            .with_time_scale(s.get(Param::MotorBurnTimeS) / self.nominal.get(Param::MotorBurnTimeS))
     }
 
-    /// The batch engine's columns of `rows`: one column per swept or dispersed input (the
-    /// wind's speed and direction together, the rail's three numbers together, so that each
-    /// is the setup's own value), empty for every other.
+    /// The batch engine's columns of `rows`: one per swept or dispersed input, each row's
+    /// value as the scenario writes it, and the rows' noise seeds when the parachutes'
+    /// barometers are noisy.
     pub(super) fn columns(&self, rows: &[&Setup]) -> Columns {
-        let has = |p: Param| self.scenario.inputs.iter().any(|i| i.param == p);
-        let any = |ps: &[Param]| ps.iter().any(|&p| has(p));
-        let col = |on: bool, f: &dyn Fn(&Setup) -> f64| -> Vec<f64> {
-            if on {
-                rows.iter().map(|s| f(s)).collect()
-            } else {
-                vec![]
-            }
-        };
-        use Param::*;
-        let structure = any(&[StructureMassKg, StructureCgM]);
-        let motor = any(&[MotorImpulseNs, MotorBurnTimeS]);
-        let wind = any(&[WindSpeedMS, WindFromDeg, WindScale, WindRotationDeg]);
-        // A profile's rows are the scenario's own: only its scale and turn vary.
-        let constant_wind = wind && self.scenario.environment.wind_profile.is_none();
-        let rail = any(&[RailLengthM, RailInclinationDeg, RailHeadingDeg]);
-        let air = any(&[TemperatureK, PressurePa]);
-        let drawn = any(&[LaunchTimeH, WeatherMember]);
-        let per = |count: usize, p: fn(usize) -> Param, f: fn(&Setup, usize) -> f64| {
-            (0..count)
-                .map(|k| col(has(p(k)), &|s| f(s, k)))
-                .collect::<Vec<_>>()
-        };
-        let (chutes, shifts) = (self.scenario.parachutes.len(), self.scenario.shifts.len());
-        let releases = self.scenario.releases.len();
-        let noisy = self.scenario.has_noise();
         Columns {
-            sensor_seed: if noisy {
+            len: rows.len(),
+            inputs: self
+                .scenario
+                .inputs
+                .iter()
+                .map(|i| (i.param, rows.iter().map(|s| s.get(i.param)).collect()))
+                .collect(),
+            sensor_seed: if self.scenario.has_noise() {
                 rows.iter().map(|s| s.sensor_seed).collect()
             } else {
                 vec![]
             },
-            len: rows.len(),
-            structure_delta_mass_kg: col(structure, &|s| self.structure_deltas(s).0),
-            structure_delta_cg_m: col(structure, &|s| self.structure_deltas(s).1),
-            part_mass_kg: col(has(BallastKg), &|s| s.ballast_kg),
-            impulse_scale: col(motor, &|s| self.motor_scales(s).impulse_scale),
-            time_scale: col(motor, &|s| self.motor_scales(s).time_scale),
-            drag_scale: col(has(DragScale), &|s| s.drag_scale),
-            elevation_m: col(has(ElevationM), &|s| s.elevation_m),
-            temperature_k: col(air, &|s| s.temperature_k),
-            pressure_pa: col(air, &|s| s.pressure_pa),
-            launch_time_s: col(drawn, &|s| self.launch_time_s(s)),
-            weather_member: col(drawn, &|s| s.weather_member),
-            wind_speed_m_s: col(constant_wind, &|s| s.wind_speed_m_s),
-            wind_from_deg: col(constant_wind, &|s| s.wind_from_deg),
-            wind_scale: col(wind, &|s| s.wind_scale),
-            wind_rotation_deg: col(wind, &|s| s.wind_rotation_deg),
-            wind_turbulence_intensity: col(has(WindTurbulenceIntensity), &|s| {
-                s.wind_turbulence_intensity
-            }),
-            rail_length_m: col(rail, &|s| s.rail[0]),
-            rail_inclination_deg: col(rail, &|s| s.rail[1]),
-            rail_heading_deg: col(rail, &|s| s.rail[2]),
-            air_brakes_target_m: col(has(AirBrakesTargetM), &|s| s.brake_target_m),
-            chute_cds_m2: per(chutes, ParachuteCdsM2, |s, k| s.parachutes[k][0]),
-            chute_lag_s: per(chutes, ParachuteLagS, |s, k| s.parachutes[k][1]),
-            chute_trigger: per(chutes, ParachuteTrigger, |s, k| s.parachutes[k][2]),
-            shift_travel_m: per(shifts, ShiftTravelM, |s, k| s.shifts[k][0]),
-            shift_duration_s: per(shifts, ShiftDurationS, |s, k| s.shifts[k][1]),
-            shift_trigger: per(shifts, ShiftTrigger, |s, k| s.shifts[k][2]),
-            release_trigger: per(releases, ReleaseTrigger, |s, k| s.releases[k][0]),
-            release_cda_m2: per(releases, ReleaseCdaM2, |s, k| s.releases[k][1]),
-            release_chute_cds_m2: per(releases, ReleaseChuteCdsM2, |s, k| s.releases[k][2]),
-            release_chute_lag_s: per(releases, ReleaseChuteLagS, |s, k| s.releases[k][3]),
         }
     }
 }

@@ -279,6 +279,8 @@ impl Run {
                         unit: unit(f),
                     });
                 } else if !["variant_id", "point", "replicate", "sensor_seed"].contains(&n.as_str())
+                    // An input's number (a swept motor's designation is text beside it).
+                    && f.data_type() == &arrow::datatypes::DataType::Float64
                 {
                     inputs.push(Col {
                         name: n.clone(),

@@ -15,6 +15,7 @@ mod tests;
 
 use super::params::{trigger_unit, Param};
 use super::sample::{fingerprint, Dispersion};
+use hpr_design::design::dimension::Dimension;
 use hpr_design::motor::{Grains, MotorOptions};
 use hpr_design::MAX_SAMPLING_RATE_HZ;
 use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
@@ -259,6 +260,22 @@ impl InputSpec {
     }
 }
 
+/// A motor as a scenario names it: a file beside the scenario, `FILE#NAME` (one motor of a
+/// file of several, the file beside the scenario), or a bundled motor's name.
+fn resolve_motor(dir: &Path, name: &str) -> String {
+    let path = dir.join(name);
+    let in_file = name
+        .rsplit_once('#')
+        .filter(|(file, _)| dir.join(file).is_file());
+    if path.is_file() {
+        path.display().to_string()
+    } else if let Some((file, name)) = in_file {
+        format!("{}#{name}", dir.join(file).display())
+    } else {
+        name.to_string()
+    }
+}
+
 /// A validated scenario.
 #[derive(Debug, Clone)]
 pub struct Scenario {
@@ -280,6 +297,12 @@ pub struct Scenario {
     pub ballast: Option<String>,
     /// A motor file (resolved against the scenario's directory) or a bundled motor's name.
     pub motor: String,
+    /// The motors a sweep flies (`[sweep] motor`, by name or file, as `motor.name`), one per
+    /// point along the motor's axis; empty without a sweep of motors.
+    pub motors: Vec<String>,
+    /// The design's dimensions the scenario sweeps or disperses (`design.<id>.<field>`), in
+    /// order of component id and field: [`Param::Design`] numbers them.
+    pub dimensions: Vec<Dimension>,
     /// The motor's own masses, their centers, the casing's inertia, the grains and the nozzle
     /// in place of the defaults (`motor.propellant_mass_kg`, `dry_mass_kg`,
     /// `dry_center_from_nozzle_m`, `propellant_center_from_nozzle_m`, `dry_inertia_kg_m2`,
@@ -501,25 +524,14 @@ impl Scenario {
                 ));
             }
         }
-        let motor_path = dir.join(&raw.motor.name);
-        // `FILE#NAME`: one motor of a file of several, the file relative to the scenario.
-        let in_file = raw
-            .motor
-            .name
-            .rsplit_once('#')
-            .filter(|(file, _)| dir.join(file).is_file());
         let motor = if raw.motor.name.trim().is_empty() {
             return Err(bad(
                 "motor.name",
                 "must name a motor: a bundled motor (Cesaroni_I175, I175...) or an .eng/.rse file"
                     .into(),
             ));
-        } else if motor_path.is_file() {
-            motor_path.display().to_string()
-        } else if let Some((file, name)) = in_file {
-            format!("{}#{name}", dir.join(file).display())
         } else {
-            raw.motor.name.clone()
+            resolve_motor(&dir, &raw.motor.name)
         };
         let inertia = raw.motor.dry_inertia_kg_m2.unwrap_or_default();
         for (key, v) in [
@@ -971,12 +983,53 @@ impl Scenario {
             integrator,
             max_time_s,
             inputs: vec![],
+            motors: vec![],
+            dimensions: vec![],
             chunk_size: chunk_size as usize,
             row_group_rows: row_group_rows as usize,
             requirements,
             trajectories,
         };
-        scenario.inputs = inputs(&scenario, &bad, raw.sweep.take(), raw.dispersions.take())?;
+        let (mut sweep, dispersions) = (raw.sweep.take(), raw.dispersions.take());
+        if dispersions.as_ref().is_some_and(|d| d.motor.is_some()) {
+            return Err(bad(
+                "dispersions.motor",
+                "a motor is not a number to disperse: sweep it over a list of motors ([sweep] motor = [\"Cesaroni_I175\", ...])".into(),
+            ));
+        }
+        if let Some(motors) = sweep.as_mut().and_then(|s| s.motor.take()) {
+            if motors.is_empty() {
+                return Err(bad(
+                    "sweep.motor",
+                    "empty sweep: give at least one motor".into(),
+                ));
+            }
+            for (j, m) in motors.iter().enumerate() {
+                if motors[..j].contains(m) {
+                    return Err(bad(
+                        &format!("sweep.motor[{j}]"),
+                        format!("the motor \"{m}\" appears twice in the sweep"),
+                    ));
+                }
+            }
+            // A motor file is found beside the scenario, as motor.name's.
+            scenario.motors = motors
+                .iter()
+                .map(|m| resolve_motor(&scenario.dir, m))
+                .collect();
+        }
+        // The design's dimensions, numbered before the inputs are collected.
+        let mut dimensions: Vec<Dimension> = Vec::new();
+        if let Some(s) = &sweep {
+            dimensions.extend(rules::dimensions(&s.design));
+        }
+        if let Some(d) = &dispersions {
+            dimensions.extend(rules::dimensions(&d.design));
+        }
+        dimensions.sort();
+        dimensions.dedup();
+        scenario.dimensions = dimensions;
+        scenario.inputs = inputs(&scenario, &bad, sweep, dispersions)?;
         if scenario.turbulent() && scenario.max_time_s > MAX_TURBULENT_FLIGHT_S {
             return Err(bad(
                 "integrator.max_time_s",
@@ -1073,11 +1126,7 @@ impl Scenario {
 
     /// Number of sweep points (1 without a sweep).
     pub fn points(&self) -> usize {
-        self.inputs
-            .iter()
-            .filter_map(|i| i.sweep.as_ref())
-            .map(Vec::len)
-            .product()
+        super::variants::sweep_points(self.inputs.iter().map(|i| i.sweep.as_ref()))
     }
 
     /// Sweep points × variants per point, if it fits in 64 bits.
@@ -1096,6 +1145,10 @@ impl Scenario {
             return k.to_string();
         }
         match p {
+            Param::Design(k) => format!(
+                "design.{}.{}",
+                self.dimensions[k].component, self.dimensions[k].field
+            ),
             Param::ParachuteCdsM2(i) => format!("parachutes.{}.cds_m2", self.parachutes[i].name),
             Param::ParachuteLagS(i) => format!("parachutes.{}.lag_s", self.parachutes[i].name),
             Param::ParachuteTrigger(i) => format!(
@@ -1135,6 +1188,11 @@ impl Scenario {
             format!("shift_{}", rest.replace('.', "_"))
         } else if let Some(rest) = key.strip_prefix("releases.") {
             format!("release_{}", rest.replace('.', "_"))
+        } else if key.starts_with("design.") {
+            key.replace('.', "_")
+        } else if p == Param::Motor {
+            // The motor's number in the sweep's list (its designation is the `motor` column).
+            "motor_index".into()
         } else {
             key
         }
@@ -1152,6 +1210,7 @@ impl Scenario {
             Param::ReleaseTrigger(i) => {
                 trigger_unit(trigger_field(&self.releases[i].trigger).unwrap_or(""))
             }
+            Param::Design(k) => self.dimensions[k].unit(),
             _ => p.unit(),
         }
     }

@@ -1,6 +1,7 @@
 //! The scenario file as TOML says it: serde structs that refuse unknown keys. Only
 //! [`super`] reads them, turning them into the validated [`super::Scenario`].
 
+use crate::campaign::params::{Param, GLOBAL};
 use hpr_design::DeployTrigger;
 use hpr_sim::{PartTrigger, Trigger};
 use serde::Deserialize;
@@ -299,63 +300,83 @@ impl TryFrom<toml::Value> for RawTrigger {
     }
 }
 
-/// The inputs under `[sweep]` (T = a list of values) or `[dispersions]` (T = a distribution).
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The inputs under `[sweep]` (T = a list of values) or `[dispersions]` (T = a distribution):
+/// each input of the flight as a whole by its key ([`hpr_sim::inputs::GLOBAL`]), in the
+/// file's order, and each parachute's, shift's and release's under its name.
 pub(super) struct RawParams<T> {
-    pub(super) structure_mass_kg: Option<T>,
-    pub(super) structure_cg_m: Option<T>,
-    pub(super) ballast_kg: Option<T>,
-    pub(super) motor_impulse_ns: Option<T>,
-    pub(super) motor_burn_time_s: Option<T>,
-    pub(super) drag_scale: Option<T>,
-    pub(super) elevation_m: Option<T>,
-    pub(super) temperature_k: Option<T>,
-    pub(super) pressure_pa: Option<T>,
-    pub(super) wind_speed_m_s: Option<T>,
-    pub(super) wind_from_deg: Option<T>,
-    pub(super) wind_scale: Option<T>,
-    pub(super) wind_rotation_deg: Option<T>,
-    pub(super) wind_turbulence_intensity: Option<T>,
-    pub(super) rail_length_m: Option<T>,
-    pub(super) rail_inclination_deg: Option<T>,
-    pub(super) rail_heading_deg: Option<T>,
-    pub(super) air_brakes_target_apogee_m: Option<T>,
-    pub(super) launch_time_h: Option<T>,
-    pub(super) weather_member: Option<T>,
-    #[serde(default = "BTreeMap::new")]
+    pub(super) globals: Vec<(Param, T)>,
+    /// `motor = ["Cesaroni_I175", ...]`: the motors a sweep flies, by name or file.
+    pub(super) motor: Option<Vec<String>>,
+    /// `design.<component id>.<field>`: a dimension of the design.
+    pub(super) design: BTreeMap<String, BTreeMap<String, T>>,
     pub(super) parachutes: BTreeMap<String, RawParachuteParams<T>>,
-    #[serde(default = "BTreeMap::new")]
     pub(super) shifts: BTreeMap<String, RawShiftParams<T>>,
-    #[serde(default = "BTreeMap::new")]
     pub(super) releases: BTreeMap<String, RawReleaseParams<T>>,
 }
 
-impl<T> RawParams<T> {
-    /// The global entries in [`GLOBAL`] order.
-    pub(super) fn globals(&mut self) -> [Option<T>; 20] {
-        [
-            self.structure_mass_kg.take(),
-            self.structure_cg_m.take(),
-            self.ballast_kg.take(),
-            self.motor_impulse_ns.take(),
-            self.motor_burn_time_s.take(),
-            self.drag_scale.take(),
-            self.elevation_m.take(),
-            self.temperature_k.take(),
-            self.pressure_pa.take(),
-            self.wind_speed_m_s.take(),
-            self.wind_from_deg.take(),
-            self.wind_scale.take(),
-            self.wind_rotation_deg.take(),
-            self.wind_turbulence_intensity.take(),
-            self.rail_length_m.take(),
-            self.rail_inclination_deg.take(),
-            self.rail_heading_deg.take(),
-            self.air_brakes_target_apogee_m.take(),
-            self.launch_time_h.take(),
-            self.weather_member.take(),
-        ]
+/// A value refused, whatever it is, with this rule.
+struct Refuse(String);
+
+impl<'de> serde::de::DeserializeSeed<'de> for Refuse {
+    type Value = ();
+    fn deserialize<D: serde::Deserializer<'de>>(self, _: D) -> Result<(), D::Error> {
+        Err(serde::de::Error::custom(self.0))
+    }
+}
+
+impl<'de, T: Deserialize<'de>> Deserialize<'de> for RawParams<T> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor<T>(std::marker::PhantomData<T>);
+        impl<'de, T: Deserialize<'de>> serde::de::Visitor<'de> for Visitor<T> {
+            type Value = RawParams<T>;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a table of inputs")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> Result<RawParams<T>, A::Error> {
+                use serde::de::Error;
+                let mut out = RawParams {
+                    globals: Vec::new(),
+                    motor: None,
+                    design: BTreeMap::new(),
+                    parachutes: BTreeMap::new(),
+                    shifts: BTreeMap::new(),
+                    releases: BTreeMap::new(),
+                };
+                while let Some(key) = map.next_key::<String>()? {
+                    match key.as_str() {
+                        "motor" => out.motor = Some(map.next_value()?),
+                        "design" => out.design = map.next_value()?,
+                        "parachutes" => out.parachutes = map.next_value()?,
+                        "shifts" => out.shifts = map.next_value()?,
+                        "releases" => out.releases = map.next_value()?,
+                        k => match Param::global(k) {
+                            Some(p) => out.globals.push((p, map.next_value()?)),
+                            None => {
+                                let known: Vec<String> = GLOBAL
+                                    .iter()
+                                    .map(|g| g.1.key)
+                                    .chain(["design", "parachutes", "shifts", "releases"])
+                                    .map(|k| format!("`{k}`"))
+                                    .collect();
+                                // Refused while its value is read, so that the error's path
+                                // ends in the key.
+                                let rule = format!(
+                                    "unknown field `{k}`, expected one of {}",
+                                    known.join(", ")
+                                );
+                                map.next_value_seed(Refuse(rule.clone()))?;
+                                return Err(A::Error::custom(rule));
+                            }
+                        },
+                    }
+                }
+                Ok(out)
+            }
+        }
+        d.deserialize_map(Visitor(std::marker::PhantomData))
     }
 }
 

@@ -6,8 +6,9 @@ use super::raw::{
     RawReleaseParams, RawRequirement, RawShiftParams, RawWindRow,
 };
 use super::{trigger_field, InputSpec, RequirementSpec, Scenario, ScenarioError};
-use crate::campaign::params::{Param, GLOBAL};
+use crate::campaign::params::Param;
 use crate::campaign::sample::{Dispersion, Shape};
+use hpr_design::design::dimension::Dimension;
 use hpr_sim::sounding::Sounding;
 use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use std::collections::BTreeMap;
@@ -600,9 +601,17 @@ fn collect<T>(
 ) -> Result<BTreeMap<Param, T>, ScenarioError> {
     let mut out = BTreeMap::new();
     let Some(mut raw) = raw else { return Ok(out) };
-    for ((p, _, _), v) in GLOBAL.iter().zip(raw.globals()) {
-        if let Some(v) = v {
-            out.insert(*p, v);
+    for (p, v) in std::mem::take(&mut raw.globals) {
+        out.insert(p, v);
+    }
+    for (component, fields) in std::mem::take(&mut raw.design) {
+        for (field, v) in fields {
+            let k = scenario
+                .dimensions
+                .iter()
+                .position(|d| d.component == component && d.field == field)
+                .expect("the scenario's dimensions hold every one its tables name");
+            out.insert(Param::Design(k), v);
         }
     }
     let parts: [PartNames; 3] = [
@@ -717,13 +726,31 @@ fn index_of(
     })
 }
 
+/// The design's dimensions a `design` table of `[sweep]` or `[dispersions]` names.
+pub(super) fn dimensions<T>(design: &BTreeMap<String, BTreeMap<String, T>>) -> Vec<Dimension> {
+    design
+        .iter()
+        .flat_map(|(component, fields)| {
+            fields.keys().map(|field| Dimension {
+                component: component.clone(),
+                field: field.clone(),
+            })
+        })
+        .collect()
+}
+
 pub(super) fn inputs(
     scenario: &Scenario,
     bad: &Bad,
     sweep: Option<RawParams<Vec<f64>>>,
     disp: Option<RawParams<RawDist>>,
 ) -> Result<Vec<InputSpec>, ScenarioError> {
-    let sweep = collect(scenario, bad, "sweep", sweep)?;
+    let mut sweep = collect(scenario, bad, "sweep", sweep)?;
+    // A sweep of motors is a sweep of their numbers in the list.
+    if !scenario.motors.is_empty() {
+        let numbers = (0..scenario.motors.len()).map(|j| j as f64).collect();
+        sweep.insert(Param::Motor, numbers);
+    }
     let disp = collect(scenario, bad, "dispersions", disp)?;
     let mut params: Vec<Param> = sweep.keys().chain(disp.keys()).copied().collect();
     params.sort();

@@ -55,13 +55,18 @@ pub use group::{eval_four, LANES_IN_FLIGHT};
 
 use crate::atmosphere::{AirModel, AirTable};
 use crate::events::EventKind;
+use crate::flight::changes::InputContext;
 use crate::flight::driver::{fly_to_free, AfterFree, Progress};
+use crate::flight::DesignTables;
 use crate::flight::{Flight, Metrics, SimError, Simulation, Warning};
-use crate::trigger::Trigger;
+use crate::inputs::{Input, Part};
 use crate::weather::SiteWeather;
-use crate::wind::Wind;
 use group::{step_group, Flying, Lane, LaneEnd, Scratch};
+use hpr_design::design::dimension::{DesignSource, Dimension};
+use hpr_design::motor::Motor;
+use hpr_design::Design;
 use std::cell::{OnceCell, RefCell};
+use std::collections::HashMap;
 use std::ops::Range;
 use std::sync::Arc;
 
@@ -90,63 +95,16 @@ impl AirTables {
 }
 
 /// Inputs of some variants (a chunk of them, or all), one column per input: row `r` is the
-/// `r`-th of those variants. An empty column means every variant has the base simulation's
-/// value; a full column has one value per variant. Nested columns are per parachute or per
-/// shift (in the base simulation's order), each empty or full.
+/// `r`-th of those variants. An input without a column keeps the base simulation's value in
+/// every variant; a column has one value per variant, as a scenario writes it (the
+/// [`Input`]'s key and unit), applied by [`Changes::set`](crate::flight::changes::Changes::set).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Columns {
     pub len: usize,
-    /// Change of the structure's mass, kg, and of its center of mass, m aft.
-    pub structure_delta_mass_kg: Vec<f64>,
-    pub structure_delta_cg_m: Vec<f64>,
-    /// Mass of the batch's named part (e.g. the ballast), kg.
-    pub part_mass_kg: Vec<f64>,
-    /// Motor impulse and time scales.
-    pub impulse_scale: Vec<f64>,
-    pub time_scale: Vec<f64>,
-    pub drag_scale: Vec<f64>,
-    pub elevation_m: Vec<f64>,
-    /// The site's air temperature, K, and pressure, Pa, at the site the base's air names
-    /// ([`crate::atmosphere::AirModel::with_site_values`]).
-    pub temperature_k: Vec<f64>,
-    pub pressure_pa: Vec<f64>,
-    /// The launch time, seconds since 1970 UTC, and the ensemble member (by the file's
-    /// number) of the batch's weather file ([`Batch::with_weather`]): the variant's air and
-    /// wind are that file's at them, before the columns above and below change them.
-    pub launch_time_s: Vec<f64>,
-    pub weather_member: Vec<f64>,
-    pub wind_speed_m_s: Vec<f64>,
-    /// Direction the wind blows from, degrees clockwise from north (with the speed: a
-    /// constant wind's as given).
-    pub wind_from_deg: Vec<f64>,
-    /// Scale of the wind's speeds and clockwise turn of its directions, degrees, applied to
-    /// the wind as given (a table, or the constant wind above): [`Wind::transformed`].
-    pub wind_scale: Vec<f64>,
-    pub wind_rotation_deg: Vec<f64>,
-    /// The wind's turbulence intensity ([`Wind::with_turbulence`]), in place of the base
-    /// wind's.
-    pub wind_turbulence_intensity: Vec<f64>,
-    pub rail_length_m: Vec<f64>,
-    pub rail_inclination_deg: Vec<f64>,
-    pub rail_heading_deg: Vec<f64>,
-    /// The air brakes' target apogee, m ([`Simulation::with_air_brakes_target`]).
-    pub air_brakes_target_m: Vec<f64>,
-    pub chute_cds_m2: Vec<Vec<f64>>,
-    pub chute_lag_s: Vec<Vec<f64>>,
-    /// The number in a parachute's trigger (its time, height or delay).
-    pub chute_trigger: Vec<Vec<f64>>,
-    pub shift_travel_m: Vec<Vec<f64>>,
-    pub shift_duration_s: Vec<Vec<f64>>,
-    /// The number in a shift's trigger (its time, height or delay).
-    pub shift_trigger: Vec<Vec<f64>>,
-    /// The number in a release's trigger (its time, height or delay).
-    pub release_trigger: Vec<Vec<f64>>,
-    /// A released part's drag area falling free, m².
-    pub release_cda_m2: Vec<Vec<f64>>,
-    /// A released part's own parachute: its CdS, m², and its lag, s.
-    pub release_chute_cds_m2: Vec<Vec<f64>>,
-    pub release_chute_lag_s: Vec<Vec<f64>>,
-    /// The seed of the parachutes' sensor noise ([`Simulation::with_sensor_seed`]).
+    /// The varied inputs, each with its values.
+    pub inputs: Vec<(Input, Vec<f64>)>,
+    /// The seed of the parachutes' sensor noise ([`Simulation::with_sensor_seed`]), empty or
+    /// one per variant.
     pub sensor_seed: Vec<u64>,
 }
 
@@ -250,50 +208,55 @@ pub struct ShiftOutcome {
 }
 
 impl Columns {
-    /// The rows `rows` of these columns (empty columns stay empty). A column too short for
-    /// `rows` gives the values it has, which [`Batch::check`] then refuses (never a panic).
+    /// Columns of `len` variants, none of them varied yet.
+    pub fn new(len: usize) -> Columns {
+        Columns {
+            len,
+            ..Columns::default()
+        }
+    }
+
+    /// These columns with `input` given `values` (one per variant).
+    pub fn with(mut self, input: Input, values: Vec<f64>) -> Columns {
+        self.inputs.push((input, values));
+        self
+    }
+
+    /// The values of `input`, if it has a column.
+    pub fn get(&self, input: Input) -> Option<&[f64]> {
+        self.inputs
+            .iter()
+            .find(|(i, _)| *i == input)
+            .map(|(_, c)| c.as_slice())
+    }
+
+    /// The values of `input`, a column of its own made if it has none yet.
+    pub fn column_mut(&mut self, input: Input) -> &mut Vec<f64> {
+        let k = match self.inputs.iter().position(|(i, _)| *i == input) {
+            Some(k) => k,
+            None => {
+                self.inputs.push((input, Vec::new()));
+                self.inputs.len() - 1
+            }
+        };
+        &mut self.inputs[k].1
+    }
+
+    /// The rows `rows` of these columns. A column too short for `rows` gives the values it
+    /// has, which [`Batch::check`] then refuses (never a panic).
     pub fn slice(&self, rows: Range<usize>) -> Columns {
-        let flat = |c: &Vec<f64>| {
+        fn part<T: Clone>(c: &[T], rows: &Range<usize>) -> Vec<T> {
             let end = rows.end.min(c.len());
             c[rows.start.min(end)..end].to_vec()
-        };
-        let nested = |c: &Vec<Vec<f64>>| c.iter().map(flat).collect();
+        }
         Columns {
             len: rows.len(),
-            structure_delta_mass_kg: flat(&self.structure_delta_mass_kg),
-            structure_delta_cg_m: flat(&self.structure_delta_cg_m),
-            part_mass_kg: flat(&self.part_mass_kg),
-            impulse_scale: flat(&self.impulse_scale),
-            time_scale: flat(&self.time_scale),
-            drag_scale: flat(&self.drag_scale),
-            elevation_m: flat(&self.elevation_m),
-            temperature_k: flat(&self.temperature_k),
-            pressure_pa: flat(&self.pressure_pa),
-            launch_time_s: flat(&self.launch_time_s),
-            weather_member: flat(&self.weather_member),
-            wind_speed_m_s: flat(&self.wind_speed_m_s),
-            wind_from_deg: flat(&self.wind_from_deg),
-            wind_scale: flat(&self.wind_scale),
-            wind_rotation_deg: flat(&self.wind_rotation_deg),
-            wind_turbulence_intensity: flat(&self.wind_turbulence_intensity),
-            rail_length_m: flat(&self.rail_length_m),
-            rail_inclination_deg: flat(&self.rail_inclination_deg),
-            rail_heading_deg: flat(&self.rail_heading_deg),
-            air_brakes_target_m: flat(&self.air_brakes_target_m),
-            chute_cds_m2: nested(&self.chute_cds_m2),
-            chute_lag_s: nested(&self.chute_lag_s),
-            chute_trigger: nested(&self.chute_trigger),
-            shift_travel_m: nested(&self.shift_travel_m),
-            shift_duration_s: nested(&self.shift_duration_s),
-            shift_trigger: nested(&self.shift_trigger),
-            release_trigger: nested(&self.release_trigger),
-            release_cda_m2: nested(&self.release_cda_m2),
-            release_chute_cds_m2: nested(&self.release_chute_cds_m2),
-            release_chute_lag_s: nested(&self.release_chute_lag_s),
-            sensor_seed: {
-                let end = rows.end.min(self.sensor_seed.len());
-                self.sensor_seed[rows.start.min(end)..end].to_vec()
-            },
+            inputs: self
+                .inputs
+                .iter()
+                .map(|(input, c)| (*input, part(c, &rows)))
+                .collect(),
+            sensor_seed: part(&self.sensor_seed, &rows),
         }
     }
 }
@@ -305,6 +268,70 @@ pub struct Batch {
     base: Simulation,
     part: Option<String>,
     weather: Option<BatchWeather>,
+    /// The motors the [`Input::Motor`] column numbers.
+    motors: Arc<Vec<Motor>>,
+    /// The design's dimensions the [`Input::Design`] columns give, and the designs built.
+    designs: Option<Arc<BatchDesigns>>,
+}
+
+/// The designs of a batch whose lanes change the design's dimensions ([`Input::Design`]): the
+/// design's JSON form, the dimensions by number, and the designs already built with their
+/// tables, by their dimensions' values (each sweep point's, built once before the run). A row
+/// of values not among them (a dimension dispersed) is built for its lane: the design
+/// validated again and its tables built again.
+#[derive(Debug)]
+pub struct BatchDesigns {
+    pub source: DesignSource,
+    pub dimensions: Vec<Dimension>,
+    built: HashMap<Vec<(usize, u64)>, (Design, Arc<DesignTables>)>,
+}
+
+impl BatchDesigns {
+    pub fn new(source: DesignSource, dimensions: Vec<Dimension>) -> BatchDesigns {
+        BatchDesigns {
+            source,
+            dimensions,
+            built: HashMap::new(),
+        }
+    }
+
+    fn key(values: &[(usize, f64)]) -> Vec<(usize, u64)> {
+        let mut key: Vec<(usize, u64)> = values.iter().map(|&(k, v)| (k, v.to_bits())).collect();
+        key.sort_unstable();
+        key
+    }
+
+    /// The design with the dimensions `values` (by number) changed, and its tables: built
+    /// before, or built now. The error names the rule the design breaks.
+    pub fn design(&self, values: &[(usize, f64)]) -> Result<(Design, Arc<DesignTables>), String> {
+        if let Some((d, t)) = self.built.get(&Self::key(values)) {
+            return Ok((d.clone(), t.clone()));
+        }
+        let mut changes = Vec::with_capacity(values.len());
+        for &(k, v) in values {
+            let dim = self.dimensions.get(k).ok_or_else(|| {
+                format!(
+                    "design dimension {k}: the batch has {}",
+                    self.dimensions.len()
+                )
+            })?;
+            changes.push((dim, v));
+        }
+        let design = self
+            .source
+            .design_with(&changes)
+            .map_err(|e| e.to_string())?;
+        let tables = DesignTables::new(&design).map_err(|e| e.to_string())?;
+        Ok((design, Arc::new(tables)))
+    }
+
+    /// Build the design of `values` now and keep it for the lanes that fly it (a sweep
+    /// point's). The error names the rule the design breaks (nothing is kept).
+    pub fn keep(&mut self, values: &[(usize, f64)]) -> Result<(), String> {
+        let built = self.design(values)?;
+        self.built.insert(Self::key(values), built);
+        Ok(())
+    }
 }
 
 /// The weather file a batch's variants draw their launch time and ensemble member from
@@ -317,17 +344,6 @@ pub struct BatchWeather {
     pub time_s: f64,
     pub member: f64,
     pub elevation_m: f64,
-}
-
-fn with_number(t: Trigger, v: f64) -> Result<Trigger, String> {
-    Ok(match t {
-        Trigger::Time { .. } => Trigger::Time { time_s: v },
-        Trigger::HeightDescending { .. } => Trigger::HeightDescending { height_m: v },
-        Trigger::BurnoutPlusDelay { .. } => Trigger::BurnoutPlusDelay { delay_s: Some(v) },
-        Trigger::Apogee | Trigger::Burnout => {
-            return Err(format!("trigger {t} has no number to vary"))
-        }
-    })
 }
 
 /// Run `f`, turning a panic into its message.
@@ -357,6 +373,8 @@ impl Batch {
             base,
             part: part.map(str::to_string),
             weather: None,
+            motors: Arc::new(Vec::new()),
+            designs: None,
         })
     }
 
@@ -364,6 +382,18 @@ impl Batch {
     /// `weather` (the base's air and wind must be the file's at its time and member).
     pub fn with_weather(mut self, weather: BatchWeather) -> Batch {
         self.weather = Some(weather);
+        self
+    }
+
+    /// The batch whose [`Input::Motor`] column numbers `motors`.
+    pub fn with_motors(mut self, motors: Vec<Motor>) -> Batch {
+        self.motors = Arc::new(motors);
+        self
+    }
+
+    /// The batch whose [`Input::Design`] columns give `designs`' dimensions.
+    pub fn with_designs(mut self, designs: Arc<BatchDesigns>) -> Batch {
+        self.designs = Some(designs);
         self
     }
 
@@ -383,6 +413,8 @@ impl Batch {
                 .map_err(|e| e.to_string())?,
             part: self.part.clone(),
             weather: self.weather.clone(),
+            motors: self.motors.clone(),
+            designs: self.designs.clone(),
         })
     }
 
@@ -391,81 +423,47 @@ impl Batch {
         &self.base
     }
 
-    /// Check the shapes of `columns`: every flat column empty or `columns.len` long, every
-    /// nested one empty or one column per parachute (shift) of the base, each empty or full.
+    /// Check the shapes of `columns`: every column `columns.len` long (the seeds empty or
+    /// that long), no input twice, every parachute's, shift's or release's input of one the
+    /// base has, and a ballast's mass only for a batch that names its part.
     pub fn check(&self, columns: &Columns) -> Result<(), String> {
         let n = columns.len;
-        let flat: [(&str, &Vec<f64>); 20] = [
-            ("structure_delta_mass_kg", &columns.structure_delta_mass_kg),
-            ("structure_delta_cg_m", &columns.structure_delta_cg_m),
-            ("part_mass_kg", &columns.part_mass_kg),
-            ("impulse_scale", &columns.impulse_scale),
-            ("time_scale", &columns.time_scale),
-            ("drag_scale", &columns.drag_scale),
-            ("elevation_m", &columns.elevation_m),
-            ("temperature_k", &columns.temperature_k),
-            ("pressure_pa", &columns.pressure_pa),
-            ("launch_time_s", &columns.launch_time_s),
-            ("weather_member", &columns.weather_member),
-            ("wind_speed_m_s", &columns.wind_speed_m_s),
-            ("wind_from_deg", &columns.wind_from_deg),
-            ("wind_scale", &columns.wind_scale),
-            ("wind_rotation_deg", &columns.wind_rotation_deg),
-            (
-                "wind_turbulence_intensity",
-                &columns.wind_turbulence_intensity,
-            ),
-            ("rail_length_m", &columns.rail_length_m),
-            ("air_brakes_target_m", &columns.air_brakes_target_m),
-            ("rail_inclination_deg", &columns.rail_inclination_deg),
-            ("rail_heading_deg", &columns.rail_heading_deg),
-        ];
-        let seeds = ("sensor_seed", columns.sensor_seed.len());
-        for (name, len) in flat.iter().map(|(name, c)| (*name, c.len())).chain([seeds]) {
-            if len != 0 && len != n {
-                return Err(format!("column {name} has {len} values for {n} variants"));
-            }
+        let seeds = columns.sensor_seed.len();
+        if seeds != 0 && seeds != n {
+            return Err(format!(
+                "column sensor_seed has {seeds} values for {n} variants"
+            ));
         }
-        let (chutes, shifts) = (self.base.parachutes().len(), self.base.shifts().len());
-        let releases = self.base.releases().len();
-        let nested = [
-            ("chute_cds_m2", &columns.chute_cds_m2, chutes),
-            ("chute_lag_s", &columns.chute_lag_s, chutes),
-            ("chute_trigger", &columns.chute_trigger, chutes),
-            ("shift_travel_m", &columns.shift_travel_m, shifts),
-            ("shift_duration_s", &columns.shift_duration_s, shifts),
-            ("shift_trigger", &columns.shift_trigger, shifts),
-            ("release_trigger", &columns.release_trigger, releases),
-            ("release_cda_m2", &columns.release_cda_m2, releases),
-            (
-                "release_chute_cds_m2",
-                &columns.release_chute_cds_m2,
-                releases,
-            ),
-            (
-                "release_chute_lag_s",
-                &columns.release_chute_lag_s,
-                releases,
-            ),
-        ];
-        for (name, c, count) in nested {
-            if !c.is_empty() && c.len() != count {
+        for (k, (input, c)) in columns.inputs.iter().enumerate() {
+            if c.len() != n {
                 return Err(format!(
-                    "column {name} has {} entries for {count} of them",
+                    "column {} has {} values for {n} variants",
+                    input.name(),
                     c.len()
                 ));
             }
-            for (k, col) in c.iter().enumerate() {
-                if !col.is_empty() && col.len() != n {
+            if columns.inputs[..k].iter().any(|(i, _)| i == input) {
+                return Err(format!("column {} is given twice", input.name()));
+            }
+            if let Some((part, index)) = input.part() {
+                let count = match part {
+                    Part::Parachute => self.base.parachutes().len(),
+                    Part::Shift => self.base.shifts().len(),
+                    Part::Release => self.base.releases().len(),
+                };
+                if index >= count {
                     return Err(format!(
-                        "column {name}[{k}] has {} values for {n} variants",
-                        col.len()
+                        "column {} is of a part the flight does not have (it has {count})",
+                        input.name()
                     ));
                 }
             }
-        }
-        if !columns.part_mass_kg.is_empty() && self.part.is_none() {
-            return Err("column part_mass_kg needs the part it gives the mass of".into());
+            if *input == Input::BallastKg && self.part.is_none() {
+                return Err(format!(
+                    "column {} needs the part it gives the mass of",
+                    input.name()
+                ));
+            }
         }
         Ok(())
     }
@@ -486,182 +484,27 @@ impl Batch {
         row: usize,
         tables: &AirTables,
     ) -> Result<Simulation, String> {
-        let c = columns;
-        let get = |col: &Vec<f64>| col.get(row).copied();
-        let nested =
-            |cols: &Vec<Vec<f64>>, k: usize| cols.get(k).and_then(|col| col.get(row).copied());
-        let base = &self.base;
-        let setup = SimError::Setup;
-        let changed = base.clone().with_changes(|ch| {
-            let (temperature, pressure) = (get(&c.temperature_k), get(&c.pressure_pa));
-            let (time, member) = (get(&c.launch_time_s), get(&c.weather_member));
-            let drawn = time.is_some() || member.is_some();
-            if get(&c.elevation_m).is_some()
-                || temperature.is_some()
-                || pressure.is_some()
-                || drawn
-                || get(&c.wind_speed_m_s).is_some()
-                || get(&c.wind_from_deg).is_some()
-                || get(&c.wind_scale).is_some()
-                || get(&c.wind_rotation_deg).is_some()
-                || get(&c.wind_turbulence_intensity).is_some()
-                || get(&c.rail_length_m).is_some()
-                || get(&c.rail_inclination_deg).is_some()
-                || get(&c.rail_heading_deg).is_some()
-            {
-                let mut env = base.environment().clone();
-                // The base wind's transformation and turbulence, before a drawn weather
-                // replaces the wind as given.
-                let (scale, rotation) = env.wind.transformation();
-                let base_turbulence = env.wind.turbulence_intensity();
-                if drawn {
-                    let w = self.weather.as_ref().ok_or_else(|| {
-                        setup("the launch time and weather member columns need the batch's weather file".into())
-                    })?;
-                    let index = w
-                        .site
-                        .member_index(member.unwrap_or(w.member))
-                        .map_err(|e| setup(format!("weather: {e}")))?;
-                    let site = w
-                        .site
-                        .over_site(time.unwrap_or(w.time_s), index, w.elevation_m)
-                        .map_err(|e| setup(format!("weather: {e}")))?;
-                    env.air = site.air_model();
-                    env.wind = site.wind().map_err(|e| setup(format!("weather: {e}")))?;
+        let find = |air: &AirModel| tables.find(air);
+        let design = |values: &[(usize, f64)]| match &self.designs {
+            Some(d) => d.design(values),
+            None => Err("the design's dimensions need the batch's designs".to_string()),
+        };
+        let context = InputContext {
+            part: self.part.as_deref(),
+            weather: self.weather.as_ref(),
+            air_table: Some(&find),
+            motors: &self.motors,
+            design: Some(&design),
+        };
+        let changed = self.base.clone().with_changes(|ch| {
+            for (input, c) in &columns.inputs {
+                if let Some(&v) = c.get(row) {
+                    ch.set(*input, v);
                 }
-                if temperature.is_some() || pressure.is_some() {
-                    env.air = env
-                        .air
-                        .with_site_values(env.elevation_m, temperature, pressure)
-                        .map_err(|e| setup(format!("environment: {e}")))?;
-                }
-                if drawn || temperature.is_some() || pressure.is_some() {
-                    if let Some(table) = tables.find(&env.air) {
-                        ch.air_table_candidate(table);
-                    }
-                }
-                if let Some(v) = get(&c.elevation_m) {
-                    env.elevation_m = v;
-                    env.gravity = env
-                        .gravity
-                        .at_launch_elevation(v)
-                        .map_err(|e| setup(format!("environment: {e}")))?;
-                }
-                let turbulence = get(&c.wind_turbulence_intensity).unwrap_or(base_turbulence);
-                if get(&c.wind_speed_m_s).is_some() || get(&c.wind_from_deg).is_some() {
-                    let (speed, from) = env.wind.constant_parts().ok_or_else(|| {
-                        setup("the base wind is a table, whose speed and direction the wind columns can't set (scale and turn it with wind_scale and wind_rotation_deg)".into())
-                    })?;
-                    env.wind = Wind::constant(
-                        get(&c.wind_speed_m_s).unwrap_or(speed),
-                        get(&c.wind_from_deg).unwrap_or(from),
-                    )
-                    .map_err(|e| setup(format!("wind: {e}")))?;
-                }
-                env.wind = env
-                    .wind
-                    .transformed(
-                        get(&c.wind_scale).unwrap_or(scale),
-                        get(&c.wind_rotation_deg).unwrap_or(rotation),
-                    )
-                    .and_then(|w| w.with_turbulence(turbulence))
-                    .map_err(|e| setup(format!("{e}")))?;
-                let mut rail = *base.rail();
-                rail.length_m = get(&c.rail_length_m).unwrap_or(rail.length_m);
-                rail.inclination_deg = get(&c.rail_inclination_deg).unwrap_or(rail.inclination_deg);
-                rail.heading_deg = get(&c.rail_heading_deg).unwrap_or(rail.heading_deg);
-                ch.site(env, rail)?;
             }
-            if get(&c.impulse_scale).is_some() || get(&c.time_scale).is_some() {
-                let o = *base.motor_options();
-                ch.motor_scales(
-                    o.with_impulse_scale(get(&c.impulse_scale).unwrap_or(o.impulse_scale))
-                        .with_time_scale(get(&c.time_scale).unwrap_or(o.time_scale)),
-                )?;
-            }
-            if let Some(v) = get(&c.drag_scale) {
-                ch.drag_scale(v)?;
-            }
-            if let Some(v) = get(&c.air_brakes_target_m) {
-                ch.air_brakes_target(v)?;
-            }
-            if let Some(&seed) = c.sensor_seed.get(row) {
+            ch.apply_inputs(&context)?;
+            if let Some(&seed) = columns.sensor_seed.get(row) {
                 ch.sensor_seed(seed);
-            }
-            if let Some(m) = get(&c.part_mass_kg) {
-                ch.part_mass(self.part.as_deref().unwrap_or_default(), m)?;
-            }
-            if get(&c.structure_delta_mass_kg).is_some() || get(&c.structure_delta_cg_m).is_some() {
-                ch.mass_adjustment(
-                    get(&c.structure_delta_mass_kg).unwrap_or(0.0),
-                    get(&c.structure_delta_cg_m).unwrap_or(0.0),
-                )?;
-            }
-            let mut chutes = base.parachutes().to_vec();
-            let mut changed = false;
-            for (k, p) in chutes.iter_mut().enumerate() {
-                if let Some(v) = nested(&c.chute_cds_m2, k) {
-                    p.cds_m2 = v;
-                    changed = true;
-                }
-                if let Some(v) = nested(&c.chute_lag_s, k) {
-                    p.lag_s = v;
-                    changed = true;
-                }
-                if let Some(v) = nested(&c.chute_trigger, k) {
-                    p.trigger = with_number(p.trigger, v)
-                        .map_err(|r| setup(format!("parachute {k}: {r}")))?;
-                    changed = true;
-                }
-            }
-            if changed {
-                ch.parachutes(chutes)?;
-            }
-            let mut shifts = base.shifts().to_vec();
-            let mut changed = false;
-            for (k, s) in shifts.iter_mut().enumerate() {
-                if let Some(v) = nested(&c.shift_travel_m, k) {
-                    s.travel_m = v;
-                    changed = true;
-                }
-                if let Some(v) = nested(&c.shift_duration_s, k) {
-                    s.duration_s = v;
-                    changed = true;
-                }
-                if let Some(v) = nested(&c.shift_trigger, k) {
-                    s.trigger =
-                        with_number(s.trigger, v).map_err(|r| setup(format!("shift {k}: {r}")))?;
-                    changed = true;
-                }
-            }
-            if changed {
-                ch.shifts(shifts)?;
-            }
-            let mut releases = base.releases().to_vec();
-            let mut changed = false;
-            for (k, r) in releases.iter_mut().enumerate() {
-                if let Some(v) = nested(&c.release_trigger, k) {
-                    r.trigger = with_number(r.trigger, v)
-                        .map_err(|e| setup(format!("release {k}: {e}")))?;
-                    changed = true;
-                }
-                if let Some(v) = nested(&c.release_cda_m2, k) {
-                    r.cda_m2 = Some(v);
-                    changed = true;
-                }
-                let cds = nested(&c.release_chute_cds_m2, k);
-                let lag = nested(&c.release_chute_lag_s, k);
-                if cds.is_some() || lag.is_some() {
-                    let chute = r.parachute.as_mut().ok_or_else(|| {
-                        setup(format!("release {k}: its part has no parachute to vary"))
-                    })?;
-                    chute.cds_m2 = cds.unwrap_or(chute.cds_m2);
-                    chute.lag_s = lag.unwrap_or(chute.lag_s);
-                    changed = true;
-                }
-            }
-            if changed {
-                ch.releases(releases)?;
             }
             Ok(())
         });

@@ -6,6 +6,8 @@ use crate::eom::{pack_mass, MassLanes, N6};
 use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
 use crate::flight::{AirModel, Environment, Parachute, Rail, SimOptions, Simulation};
 use crate::lanes::{F64x4, Real};
+use crate::trigger::Trigger;
+use crate::wind::Wind;
 use crate::MassShift;
 use hpr_design::motor::{self, MotorOptions};
 use hpr_design::Design;
@@ -98,43 +100,46 @@ impl Rng {
     }
 }
 
+/// The motor's total impulse and burn time and the design's structure, which the random
+/// scales and changes of the variants are of.
+fn nominals() -> (f64, f64, hpr_design::mass::MassProps) {
+    let m = motor::find("Cesaroni_I175").unwrap();
+    let dry = hpr_design::mass::dry(&Design::load(REFERENCE).unwrap());
+    (m.total_impulse_ns(), m.burn_time_s(), dry)
+}
+
 /// The rows `rows` of random variants from stream `seed`; about one in twenty has a shift too
 /// long for its holder (refused) and one in fifty a non-finite drag scale.
 fn columns_of(rows: std::ops::Range<usize>, seed: u64) -> Columns {
-    let mut c = Columns {
-        len: rows.len(),
-        chute_cds_m2: vec![vec![], vec![]],
-        chute_lag_s: vec![vec![], vec![]],
-        shift_travel_m: vec![vec![]],
-        shift_duration_s: vec![vec![]],
-        shift_trigger: vec![vec![]],
-        ..Columns::default()
-    };
+    use Input::*;
+    let (impulse, burn, dry) = nominals();
+    let mut c = Columns::new(rows.len());
     for i in rows {
         let mut r = Rng::of_variant(seed, i);
-        c.structure_delta_mass_kg.push(r.uniform(-0.02, 0.02));
-        c.structure_delta_cg_m.push(r.uniform(-0.01, 0.01));
-        c.part_mass_kg.push(r.uniform(0.15, 0.25));
-        c.impulse_scale.push(r.uniform(0.95, 1.05));
-        c.time_scale.push(r.uniform(0.97, 1.03));
+        let mut push = |input: Input, v: f64| c.column_mut(input).push(v);
+        push(StructureMassKg, dry.mass_kg + r.uniform(-0.02, 0.02));
+        push(StructureCgM, dry.cg_m.x + r.uniform(-0.01, 0.01));
+        push(BallastKg, r.uniform(0.15, 0.25));
+        push(MotorImpulseNs, impulse * r.uniform(0.95, 1.05));
+        push(MotorBurnTimeS, burn * r.uniform(0.97, 1.03));
         let drag = r.uniform(0.9, 1.1);
-        c.drag_scale.push(if i % 50 == 7 { f64::NAN } else { drag });
-        c.wind_speed_m_s.push(r.uniform(0.0, 8.0));
-        c.wind_from_deg.push(r.uniform(0.0, 360.0));
-        c.rail_inclination_deg.push(r.uniform(84.0, 90.0));
-        c.rail_heading_deg.push(r.uniform(0.0, 360.0));
-        c.elevation_m.push(r.uniform(0.0, 1500.0));
-        c.chute_cds_m2[0].push(r.uniform(0.08, 0.12));
-        c.chute_cds_m2[1].push(r.uniform(0.8, 1.0));
-        c.chute_lag_s[0].push(r.uniform(0.5, 1.5));
+        push(DragScale, if i % 50 == 7 { f64::NAN } else { drag });
+        push(WindSpeedMS, r.uniform(0.0, 8.0));
+        push(WindFromDeg, r.uniform(0.0, 360.0));
+        push(RailInclinationDeg, r.uniform(84.0, 90.0));
+        push(RailHeadingDeg, r.uniform(0.0, 360.0));
+        push(ElevationM, r.uniform(0.0, 1500.0));
+        push(ParachuteCdsM2(0), r.uniform(0.08, 0.12));
+        push(ParachuteCdsM2(1), r.uniform(0.8, 1.0));
+        push(ParachuteLagS(0), r.uniform(0.5, 1.5));
         let travel = r.uniform(0.0, 0.3);
-        c.shift_travel_m[0].push(if i % 20 == 3 { 0.9 } else { travel });
-        c.shift_duration_s[0].push(r.uniform(0.2, 1.5));
-        c.shift_trigger[0].push(r.uniform(3.0, 8.0));
-        c.wind_scale.push(r.uniform(0.5, 1.5));
-        c.wind_rotation_deg.push(r.uniform(-30.0, 30.0));
-        c.temperature_k.push(r.uniform(263.0, 313.0));
-        c.pressure_pa.push(r.uniform(95_000.0, 104_000.0));
+        push(ShiftTravelM(0), if i % 20 == 3 { 0.9 } else { travel });
+        push(ShiftDurationS(0), r.uniform(0.2, 1.5));
+        push(ShiftTrigger(0), r.uniform(3.0, 8.0));
+        push(WindScale, r.uniform(0.5, 1.5));
+        push(WindRotationDeg, r.uniform(-30.0, 30.0));
+        push(TemperatureK, r.uniform(263.0, 313.0));
+        push(PressurePa, r.uniform(95_000.0, 104_000.0));
     }
     c
 }
@@ -164,49 +169,57 @@ fn columns(n: usize, seed: u64) -> Columns {
 
 /// The single-flight simulator set up from scratch with row `i`'s inputs.
 fn single(c: &Columns, i: usize) -> Result<Simulation, String> {
+    use Input::*;
     let e = |e: crate::flight::SimError| e.to_string();
-    let wind = Wind::constant(c.wind_speed_m_s[i], c.wind_from_deg[i])
-        .and_then(|w| w.transformed(c.wind_scale[i], c.wind_rotation_deg[i]))
+    let at = |input: Input| c.get(input).expect("the column")[i];
+    let (impulse, burn, dry) = nominals();
+    let wind = Wind::constant(at(WindSpeedMS), at(WindFromDeg))
+        .and_then(|w| w.transformed(at(WindScale), at(WindRotationDeg)))
         .map_err(|e| e.to_string())?;
     // The base's site is at sea level in the standard atmosphere: a site's air there.
-    let air = AirModel::site(0.0, Some(c.temperature_k[i]), Some(c.pressure_pa[i]))
+    let air = AirModel::site(0.0, Some(at(TemperatureK)), Some(at(PressurePa)))
         .map_err(|e| e.to_string())?;
     let env = Environment {
         wind,
         air,
-        ..site(c.elevation_m[i])
+        ..site(at(ElevationM))
     };
     let rail = Rail {
         length_m: 2.0,
-        inclination_deg: c.rail_inclination_deg[i],
-        heading_deg: c.rail_heading_deg[i],
+        inclination_deg: at(RailInclinationDeg),
+        heading_deg: at(RailHeadingDeg),
     };
     let options = MotorOptions::default()
-        .with_impulse_scale(c.impulse_scale[i])
-        .with_time_scale(c.time_scale[i]);
+        .with_impulse_scale(at(MotorImpulseNs) / impulse)
+        .with_time_scale(at(MotorBurnTimeS) / burn);
     let mut ch = chutes();
-    ch[0].cds_m2 = c.chute_cds_m2[0][i];
-    ch[0].lag_s = c.chute_lag_s[0][i];
-    ch[1].cds_m2 = c.chute_cds_m2[1][i];
+    ch[0].cds_m2 = at(ParachuteCdsM2(0));
+    ch[0].lag_s = at(ParachuteLagS(0));
+    ch[1].cds_m2 = at(ParachuteCdsM2(1));
     Simulation::with_motor_options(
-        Design::load(REFERENCE).unwrap(),
+        hpr_design::Design::load(REFERENCE).unwrap(),
         motor::find("Cesaroni_I175").unwrap(),
         options,
         env,
         rail,
     )
-    .and_then(|s| s.with_drag_scale(c.drag_scale[i]))
-    .and_then(|s| s.with_part_mass("ballast", c.part_mass_kg[i]))
-    .and_then(|s| s.with_mass_adjustment(c.structure_delta_mass_kg[i], c.structure_delta_cg_m[i]))
+    .and_then(|s| s.with_drag_scale(at(DragScale)))
+    .and_then(|s| s.with_part_mass("ballast", at(BallastKg)))
+    .and_then(|s| {
+        s.with_mass_adjustment(
+            at(StructureMassKg) - dry.mass_kg,
+            at(StructureCgM) - dry.cg_m.x,
+        )
+    })
     .and_then(|s| s.with_parachutes(ch))
     .and_then(|s| {
         s.with_shifts(vec![MassShift::new(
             Trigger::Time {
-                time_s: c.shift_trigger[0][i],
+                time_s: at(ShiftTrigger(0)),
             },
             "ballast",
-            c.shift_travel_m[0][i],
-            c.shift_duration_s[0][i],
+            at(ShiftTravelM(0)),
+            at(ShiftDurationS(0)),
         )])
     })
     .and_then(|s| {
@@ -368,11 +381,7 @@ fn each_chunk_s_columns_are_asked_for_once_in_chunk_sized_ranges_covering_every_
             |rows| {
                 asked.lock().unwrap().push(rows.clone());
                 // Cheap lanes: every one refused by its drag scale, flown no further.
-                Columns {
-                    len: rows.len(),
-                    drag_scale: vec![-1.0; rows.len()],
-                    ..Columns::default()
-                }
+                Columns::new(rows.len()).with(Input::DragScale, vec![-1.0; rows.len()])
             },
             |r| {
                 assert_eq!(r.variant, seen);
@@ -473,9 +482,11 @@ fn columns_of_the_wrong_length_or_shape_are_an_error_naming_the_variants() {
             10,
             4,
             1,
-            |rows| Columns {
-                drag_scale: vec![1.0; if rows.start == 8 { 1 } else { rows.len() }],
-                ..columns_of(rows, 1)
+            |rows| {
+                let n = if rows.start == 8 { 1 } else { rows.len() };
+                let mut c = columns_of(rows, 1);
+                *c.column_mut(Input::DragScale) = vec![1.0; n];
+                c
             },
             |_| flown += 1,
         )
@@ -491,12 +502,12 @@ fn columns_of_the_wrong_length_or_shape_are_an_error_naming_the_variants() {
         .unwrap_err();
     assert_eq!(
         no_part,
-        "column part_mass_kg needs the part it gives the mass of"
+        "column ballast_kg needs the part it gives the mass of"
     );
     // A held column too short for its variants: refused before any flight, and a slice of it
     // past its end is refused by the chunk's check rather than panicking.
     let mut short = columns(6, 1);
-    short.wind_speed_m_s.truncate(5);
+    short.column_mut(Input::WindSpeedMS).truncate(5);
     let batch = Batch::new(base(), Some("ballast")).unwrap();
     let e = batch.run_columns(&short, 4, 1, |_| {}).unwrap_err();
     assert_eq!(e, "column wind_speed_m_s has 5 values for 6 variants");
@@ -584,11 +595,7 @@ fn an_elevation_column_moves_an_inverse_square_gravity_with_the_site() {
         None,
     )
     .unwrap();
-    let c = Columns {
-        len: 1,
-        elevation_m: vec![2500.0],
-        ..Columns::default()
-    };
+    let c = Columns::new(1).with(Input::ElevationM, vec![2500.0]);
     let lane = batch.variant(&c, 0).unwrap();
     assert_eq!(
         lane.environment().gravity,
@@ -647,12 +654,9 @@ fn a_wind_table_is_scaled_and_turned_lane_by_lane_as_a_single_flight_with_that_t
     };
     let batch = Batch::new(with_wind(table.clone()), Some("ballast")).unwrap();
     let (scales, turns) = ([0.0, 0.5, 1.0, 1.7, 2.2], [0.0, -35.0, 0.0, 120.0, 15.0]);
-    let c = Columns {
-        len: 5,
-        wind_scale: scales.to_vec(),
-        wind_rotation_deg: turns.to_vec(),
-        ..Columns::default()
-    };
+    let c = Columns::new(5)
+        .with(Input::WindScale, scales.to_vec())
+        .with(Input::WindRotationDeg, turns.to_vec());
     let mut lanes = Vec::new();
     batch.run_columns(&c, 5, 1, |r| lanes.push(r)).unwrap();
     let bits = |m: &Metrics| -> Vec<Option<u64>> {
@@ -680,11 +684,18 @@ fn a_wind_table_is_scaled_and_turned_lane_by_lane_as_a_single_flight_with_that_t
     assert!(apart(landings[1], landings[2]) > 5.0, "{landings:?}");
     assert!(apart(landings[3], landings[2]) > 5.0, "{landings:?}");
     // A table has no single speed or direction for a column to set.
-    let speed = Columns {
-        len: 1,
-        wind_speed_m_s: vec![4.0],
-        ..Columns::default()
-    };
+    let speed = Columns::new(1).with(Input::WindSpeedMS, vec![4.0]);
     let e = batch.variant(&speed, 0).unwrap_err();
     assert!(e.contains("wind_scale and wind_rotation_deg"), "{e}");
+}
+
+#[test]
+fn a_motor_dry_mass_column_adds_its_change_to_the_rocket_at_liftoff() {
+    let batch = Batch::new(base(), None).unwrap();
+    let nominal = batch.base().motor().dry_mass_kg();
+    let c = Columns::new(1).with(Input::MotorDryMassKg, vec![nominal + 0.1]);
+    let lane = batch.variant(&c, 0).unwrap();
+    let mass = |s: &Simulation| s.mass_properties_at(0.0).mass_kg;
+    let added = mass(&lane) - mass(batch.base());
+    assert!((added - 0.1).abs() < 1e-12, "{added} kg added");
 }

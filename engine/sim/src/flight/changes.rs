@@ -10,12 +10,18 @@
 //! releases' rules, which read the shifts, are checked by the rebuild, after every change.
 
 use super::{MassAdjustment, Parachute, Rail, SimError, SimOptions, Simulation};
-use crate::atmosphere::AirTable;
+use crate::atmosphere::{AirModel, AirTable};
+use crate::batch::BatchWeather;
+use crate::flight::DesignTables;
 use crate::flight::{model, Environment};
+use crate::inputs::Input;
 use crate::releases::Release;
 use crate::shifts::{self, MassShift};
 use crate::trigger::Trigger;
+use crate::wind::Wind;
+use hpr_design::motor::Motor;
 use hpr_design::motor::MotorOptions;
+use hpr_design::Design;
 use hpr_design::{mass, MAX_SAMPLING_RATE_HZ};
 use std::sync::Arc;
 
@@ -24,7 +30,27 @@ use std::sync::Arc;
 #[derive(Debug)]
 pub struct Changes<'a> {
     sim: &'a mut Simulation,
+    /// The inputs set so far ([`Changes::set`]), applied together by
+    /// [`Changes::apply_inputs`].
+    inputs: Vec<(Input, f64)>,
 }
+
+/// What applying inputs needs besides the flight: the part whose mass
+/// [`Input::BallastKg`] gives, the weather file a launch time or an ensemble member is
+/// drawn from, air tables already built (one of which may be the new air's), the motors
+/// [`Input::Motor`] numbers, and the design of a row of [`Input::Design`] values (by
+/// dimension number) with its tables, or the rule it breaks.
+#[derive(Default)]
+pub struct InputContext<'a> {
+    pub part: Option<&'a str>,
+    pub weather: Option<&'a BatchWeather>,
+    pub air_table: Option<&'a dyn Fn(&AirModel) -> Option<Arc<AirTable>>>,
+    pub motors: &'a [Motor],
+    pub design: Option<&'a DesignOf<'a>>,
+}
+
+/// The design of a row of dimension values, with its tables (see [`InputContext::design`]).
+pub type DesignOf<'a> = dyn Fn(&[(usize, f64)]) -> Result<(Design, Arc<DesignTables>), String> + 'a;
 
 impl Simulation {
     /// Apply the changes `f` makes, then rebuild the flight's model once. The first refused
@@ -33,7 +59,14 @@ impl Simulation {
         mut self,
         f: impl FnOnce(&mut Changes<'_>) -> Result<(), SimError>,
     ) -> Result<Simulation, SimError> {
-        f(&mut Changes { sim: &mut self })?;
+        let mut changes = Changes {
+            sim: &mut self,
+            inputs: Vec::new(),
+        };
+        f(&mut changes)?;
+        if !changes.inputs.is_empty() {
+            changes.apply_inputs(&InputContext::default())?;
+        }
         self.rebuild()
     }
 }
@@ -253,6 +286,265 @@ impl Changes<'_> {
     /// motor's tables).
     pub fn motor_scales(&mut self, options: MotorOptions) -> Result<(), SimError> {
         self.sim.motor_options = options;
+        Ok(())
+    }
+}
+
+/// A trigger with its number (its time, height or delay) set to `v`.
+fn with_number(t: Trigger, v: f64) -> Result<Trigger, String> {
+    Ok(match t {
+        Trigger::Time { .. } => Trigger::Time { time_s: v },
+        Trigger::HeightDescending { .. } => Trigger::HeightDescending { height_m: v },
+        Trigger::BurnoutPlusDelay { .. } => Trigger::BurnoutPlusDelay { delay_s: Some(v) },
+        Trigger::Apogee | Trigger::Burnout => {
+            return Err(format!("trigger {t} has no number to vary"))
+        }
+    })
+}
+
+impl Changes<'_> {
+    /// Set `input` to `value` (as a scenario writes it). The inputs set are applied together
+    /// by [`Changes::apply_inputs`], or at the end of [`Simulation::with_changes`]; a later
+    /// value of the same input replaces an earlier one.
+    pub fn set(&mut self, input: Input, value: f64) {
+        match self.inputs.iter_mut().find(|(i, _)| *i == input) {
+            Some(slot) => slot.1 = value,
+            None => self.inputs.push((input, value)),
+        }
+    }
+
+    /// Apply the inputs set so far, in one order whatever the order they were set in: the
+    /// site (a drawn weather's air and wind, then the site's temperature and pressure, the
+    /// elevation, the wind, the rail), the motor's scales, the drag, the air brakes, the
+    /// ballast, the structure, then each parachute's, shift's and release's numbers. An input
+    /// not set keeps the flight's value. The first refused value is the error.
+    pub fn apply_inputs(&mut self, ctx: &InputContext<'_>) -> Result<(), SimError> {
+        use Input::*;
+        let inputs = std::mem::take(&mut self.inputs);
+        let get = |input: Input| inputs.iter().find(|(i, _)| *i == input).map(|p| p.1);
+        let setup = SimError::Setup;
+        // The design and the motor first: the checks of the parts below read them.
+        let dimensions: Vec<(usize, f64)> = inputs
+            .iter()
+            .filter_map(|&(i, v)| match i {
+                Input::Design(k) => Some((k, v)),
+                _ => None,
+            })
+            .collect();
+        let rebuilt = !dimensions.is_empty();
+        if rebuilt {
+            let of = ctx
+                .design
+                .ok_or_else(|| setup("the design's dimensions need the batch's designs".into()))?;
+            let (design, tables) = of(&dimensions).map_err(setup)?;
+            self.sim.design = design;
+            self.sim.tables = tables;
+        }
+        let new_motor = get(Input::Motor).is_some();
+        if let Some(k) = get(Input::Motor) {
+            let m = ctx
+                .motors
+                .get(k as usize)
+                .filter(|_| k.fract() == 0.0)
+                .ok_or_else(|| {
+                    setup(format!(
+                        "motor {k}: the batch has {} motors",
+                        ctx.motors.len()
+                    ))
+                })?;
+            self.sim.motor = m.clone();
+        }
+        // A new design or motor: the parachutes, shifts and releases are judged again.
+        let judge_again = rebuilt || new_motor;
+        let (temperature, pressure) = (get(TemperatureK), get(PressurePa));
+        let member = get(WeatherMember);
+        let time = match (get(LaunchTimeH), ctx.weather) {
+            (Some(h), Some(w)) => Some(w.time_s + h * 3600.0),
+            (Some(_), None) => Some(f64::NAN),
+            (None, _) => None,
+        };
+        let drawn = time.is_some() || member.is_some();
+        let site = [
+            ElevationM,
+            WindSpeedMS,
+            WindFromDeg,
+            WindScale,
+            WindRotationDeg,
+            WindTurbulenceIntensity,
+            RailLengthM,
+            RailInclinationDeg,
+            RailHeadingDeg,
+        ];
+        if temperature.is_some()
+            || pressure.is_some()
+            || drawn
+            || site.iter().any(|&i| get(i).is_some())
+        {
+            let mut env = self.sim.env.clone();
+            // The base wind's transformation and turbulence, before a drawn weather
+            // replaces the wind as given.
+            let (scale, rotation) = env.wind.transformation();
+            let base_turbulence = env.wind.turbulence_intensity();
+            if drawn {
+                let w = ctx.weather.ok_or_else(|| {
+                    setup(
+                        "the launch time and weather member columns need the batch's weather file"
+                            .into(),
+                    )
+                })?;
+                let index = w
+                    .site
+                    .member_index(member.unwrap_or(w.member))
+                    .map_err(|e| setup(format!("weather: {e}")))?;
+                let site = w
+                    .site
+                    .over_site(time.unwrap_or(w.time_s), index, w.elevation_m)
+                    .map_err(|e| setup(format!("weather: {e}")))?;
+                env.air = site.air_model();
+                env.wind = site.wind().map_err(|e| setup(format!("weather: {e}")))?;
+            }
+            if temperature.is_some() || pressure.is_some() {
+                env.air = env
+                    .air
+                    .with_site_values(env.elevation_m, temperature, pressure)
+                    .map_err(|e| setup(format!("environment: {e}")))?;
+            }
+            if drawn || temperature.is_some() || pressure.is_some() {
+                if let Some(table) = ctx.air_table.and_then(|find| find(&env.air)) {
+                    self.air_table_candidate(table);
+                }
+            }
+            if let Some(v) = get(ElevationM) {
+                env.elevation_m = v;
+                env.gravity = env
+                    .gravity
+                    .at_launch_elevation(v)
+                    .map_err(|e| setup(format!("environment: {e}")))?;
+            }
+            let turbulence = get(WindTurbulenceIntensity).unwrap_or(base_turbulence);
+            if get(WindSpeedMS).is_some() || get(WindFromDeg).is_some() {
+                let (speed, from) = env.wind.constant_parts().ok_or_else(|| {
+                    setup("the base wind is a table, whose speed and direction the wind columns can't set (scale and turn it with wind_scale and wind_rotation_deg)".into())
+                })?;
+                env.wind = Wind::constant(
+                    get(WindSpeedMS).unwrap_or(speed),
+                    get(WindFromDeg).unwrap_or(from),
+                )
+                .map_err(|e| setup(format!("wind: {e}")))?;
+            }
+            env.wind = env
+                .wind
+                .transformed(
+                    get(WindScale).unwrap_or(scale),
+                    get(WindRotationDeg).unwrap_or(rotation),
+                )
+                .and_then(|w| w.with_turbulence(turbulence))
+                .map_err(|e| setup(format!("{e}")))?;
+            let mut rail = self.sim.rail;
+            rail.length_m = get(RailLengthM).unwrap_or(rail.length_m);
+            rail.inclination_deg = get(RailInclinationDeg).unwrap_or(rail.inclination_deg);
+            rail.heading_deg = get(RailHeadingDeg).unwrap_or(rail.heading_deg);
+            self.site(env, rail)?;
+        }
+        // The motor's impulse and burn time as scales of its own thrust curve's.
+        if let Some(v) = get(MotorDryMassKg) {
+            let o = self.sim.motor_options;
+            self.motor_scales(MotorOptions {
+                dry_mass_kg: Some(v),
+                ..o
+            })?;
+        }
+        let impulse = get(MotorImpulseNs).map(|v| v / self.sim.motor.total_impulse_ns());
+        let burn = get(MotorBurnTimeS).map(|v| v / self.sim.motor.burn_time_s());
+        if impulse.is_some() || burn.is_some() {
+            let o = self.sim.motor_options;
+            self.motor_scales(
+                o.with_impulse_scale(impulse.unwrap_or(o.impulse_scale))
+                    .with_time_scale(burn.unwrap_or(o.time_scale)),
+            )?;
+        }
+        if let Some(v) = get(DragScale) {
+            self.drag_scale(v)?;
+        }
+        if let Some(v) = get(AirBrakesTargetM) {
+            self.air_brakes_target(v)?;
+        }
+        if let Some(m) = get(BallastKg) {
+            self.part_mass(ctx.part.unwrap_or_default(), m)?;
+        }
+        // The structure's mass and center as changes from the design's.
+        let dry = self.sim.tables.dry;
+        let delta_mass = get(StructureMassKg).map(|m| m - dry.mass_kg);
+        let delta_cg = get(StructureCgM).map(|x| x - dry.cg_m.x);
+        if delta_mass.is_some() || delta_cg.is_some() {
+            self.mass_adjustment(delta_mass.unwrap_or(0.0), delta_cg.unwrap_or(0.0))?;
+        }
+        let mut chutes = self.sim.parachutes.clone();
+        let mut changed = judge_again && !chutes.is_empty();
+        for (k, p) in chutes.iter_mut().enumerate() {
+            if let Some(v) = get(ParachuteCdsM2(k)) {
+                p.cds_m2 = v;
+                changed = true;
+            }
+            if let Some(v) = get(ParachuteLagS(k)) {
+                p.lag_s = v;
+                changed = true;
+            }
+            if let Some(v) = get(ParachuteTrigger(k)) {
+                p.trigger =
+                    with_number(p.trigger, v).map_err(|r| setup(format!("parachute {k}: {r}")))?;
+                changed = true;
+            }
+        }
+        if changed {
+            self.parachutes(chutes)?;
+        }
+        let mut shifts = self.sim.shifts.clone();
+        let mut changed = judge_again && !shifts.is_empty();
+        for (k, s) in shifts.iter_mut().enumerate() {
+            if let Some(v) = get(ShiftTravelM(k)) {
+                s.travel_m = v;
+                changed = true;
+            }
+            if let Some(v) = get(ShiftDurationS(k)) {
+                s.duration_s = v;
+                changed = true;
+            }
+            if let Some(v) = get(ShiftTrigger(k)) {
+                s.trigger =
+                    with_number(s.trigger, v).map_err(|r| setup(format!("shift {k}: {r}")))?;
+                changed = true;
+            }
+        }
+        if changed {
+            self.shifts(shifts)?;
+        }
+        let mut releases = self.sim.releases.clone();
+        let mut changed = false;
+        for (k, r) in releases.iter_mut().enumerate() {
+            if let Some(v) = get(ReleaseTrigger(k)) {
+                r.trigger =
+                    with_number(r.trigger, v).map_err(|e| setup(format!("release {k}: {e}")))?;
+                changed = true;
+            }
+            if let Some(v) = get(ReleaseCdaM2(k)) {
+                r.cda_m2 = Some(v);
+                changed = true;
+            }
+            let cds = get(ReleaseChuteCdsM2(k));
+            let lag = get(ReleaseChuteLagS(k));
+            if cds.is_some() || lag.is_some() {
+                let chute = r.parachute.as_mut().ok_or_else(|| {
+                    setup(format!("release {k}: its part has no parachute to vary"))
+                })?;
+                chute.cds_m2 = cds.unwrap_or(chute.cds_m2);
+                chute.lag_s = lag.unwrap_or(chute.lag_s);
+                changed = true;
+            }
+        }
+        if changed {
+            self.releases(releases)?;
+        }
         Ok(())
     }
 }

@@ -30,7 +30,10 @@ fn rockets(file: &str) -> Vec<(String, Value)> {
 
 /// `VARIANTS` rows of scattered inputs, spread evenly between their bounds (a low-discrepancy
 /// walk, not random draws: nothing here needs to be random, only different from row to row).
-fn columns(chutes: usize) -> Columns {
+fn columns(sim: &hpr_sim::Simulation) -> Columns {
+    use hpr_sim::inputs::Input;
+    let chutes = sim.parachutes().len();
+    let (impulse, burn) = (sim.motor().total_impulse_ns(), sim.motor().burn_time_s());
     let spread = |k: usize, lo: f64, hi: f64| -> Vec<f64> {
         (0..VARIANTS)
             .map(|i| {
@@ -41,18 +44,19 @@ fn columns(chutes: usize) -> Columns {
             })
             .collect()
     };
-    Columns {
-        len: VARIANTS,
-        impulse_scale: spread(0, 0.95, 1.05),
-        time_scale: spread(1, 0.97, 1.03),
-        drag_scale: spread(2, 0.9, 1.1),
-        wind_scale: spread(3, 0.5, 1.5),
-        wind_rotation_deg: spread(4, -40.0, 40.0),
-        rail_inclination_deg: spread(5, 82.0, 89.5),
-        rail_heading_deg: spread(6, 0.0, 330.0),
-        chute_lag_s: (0..chutes).map(|k| spread(7 + k, 0.5, 2.0)).collect(),
-        ..Columns::default()
+    let times = |c: f64, v: Vec<f64>| v.into_iter().map(|x| c * x).collect();
+    let mut c = Columns::new(VARIANTS)
+        .with(Input::MotorImpulseNs, times(impulse, spread(0, 0.95, 1.05)))
+        .with(Input::MotorBurnTimeS, times(burn, spread(1, 0.97, 1.03)))
+        .with(Input::DragScale, spread(2, 0.9, 1.1))
+        .with(Input::WindScale, spread(3, 0.5, 1.5))
+        .with(Input::WindRotationDeg, spread(4, -40.0, 40.0))
+        .with(Input::RailInclinationDeg, spread(5, 82.0, 89.5))
+        .with(Input::RailHeadingDeg, spread(6, 0.0, 330.0));
+    for k in 0..chutes {
+        c = c.with(Input::ParachuteLagS(k), spread(7 + k, 0.5, 2.0));
     }
+    c
 }
 
 #[test]
@@ -70,9 +74,8 @@ fn every_cross_checked_rocket_flies_in_the_batch_bit_for_bit_as_its_single_fligh
     for (name, r) in &all {
         for case in ["wind", "profile", "calm"] {
             let (sim, _, _) = crosscheck_simulation(r, case);
-            let chutes = sim.parachutes().len();
+            let c = columns(&sim);
             let batch = Batch::new(sim, None).expect("batch");
-            let c = columns(chutes);
             let mut results = Vec::new();
             // Chunks of 5 rows: lanes are refilled mid-chunk and groups mix lanes at
             // different times of their flights.

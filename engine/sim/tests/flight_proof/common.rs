@@ -159,14 +159,14 @@ pub fn batch_flies_as_singles(sim: Simulation) -> Vec<hpr_sim::batch::LaneResult
             .map(|i| lo + (hi - lo) * ((i * m) % n) as f64 / (n - 1) as f64)
             .collect()
     };
-    let columns = Columns {
-        len: n,
-        impulse_scale: spread(0.9, 1.1, 1),
-        time_scale: spread(0.97, 1.03, 3),
-        drag_scale: spread(0.9, 1.1, 5),
-        rail_inclination_deg: spread(84.0, 89.0, 7),
-        ..Columns::default()
-    };
+    use hpr_sim::inputs::Input;
+    let (impulse, burn) = (sim.motor().total_impulse_ns(), sim.motor().burn_time_s());
+    let times = |c: f64, v: Vec<f64>| v.into_iter().map(|x| c * x).collect();
+    let columns = Columns::new(n)
+        .with(Input::MotorImpulseNs, times(impulse, spread(0.9, 1.1, 1)))
+        .with(Input::MotorBurnTimeS, times(burn, spread(0.97, 1.03, 3)))
+        .with(Input::DragScale, spread(0.9, 1.1, 5))
+        .with(Input::RailInclinationDeg, spread(84.0, 89.0, 7));
     let batch = Batch::new(sim, None).expect("batch");
     let mut lanes = Vec::new();
     batch

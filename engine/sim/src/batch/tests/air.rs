@@ -5,11 +5,7 @@ use super::*;
 #[test]
 fn variants_of_the_same_swept_temperature_share_one_air_table_and_fly_as_with_their_own() {
     let batch = Batch::new(base(), Some("ballast")).unwrap();
-    let cols = Columns {
-        len: 4,
-        temperature_k: vec![300.0, 310.0, 300.0, 310.0],
-        ..Columns::default()
-    };
+    let cols = Columns::new(4).with(Input::TemperatureK, vec![300.0, 310.0, 300.0, 310.0]);
     let tables = AirTables::default();
     let sims: Vec<Simulation> = (0..4)
         .map(|r| batch.variant_in(&cols, r, &tables).unwrap())
@@ -35,11 +31,7 @@ fn variants_of_the_same_swept_temperature_share_one_air_table_and_fly_as_with_th
     // A candidate of other air is not taken: 310 K offered where 305 K is asked.
     let offered = AirTables::default();
     offered.keep(air(1));
-    let other = Columns {
-        len: 1,
-        temperature_k: vec![305.0],
-        ..Columns::default()
-    };
+    let other = Columns::new(1).with(Input::TemperatureK, vec![305.0]);
     let s = batch.variant_in(&other, 0, &offered).unwrap();
     assert_eq!(s.model().air.model().site_values(0.0).1, 305.0);
 }

@@ -236,7 +236,7 @@ fn lanes_whose_ballast_moves_while_the_motor_burns_equal_their_single_flights_bi
     let early = |rows: std::ops::Range<usize>| {
         let mut c = columns_of(rows.clone(), 17);
         for (k, i) in rows.enumerate() {
-            c.shift_trigger[0][k] = 0.2 + 2.8 * (i % 8) as f64 / 7.0;
+            c.column_mut(Input::ShiftTrigger(0))[k] = 0.2 + 2.8 * (i % 8) as f64 / 7.0;
         }
         c
     };

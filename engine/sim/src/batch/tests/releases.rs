@@ -55,29 +55,24 @@ fn released_base() -> Simulation {
 /// release time (about one in sixteen inside its move, which stops the flight), the avionics'
 /// canopy and lag, the payload's height and drag area.
 fn release_columns(rows: std::ops::Range<usize>, seed: u64) -> Columns {
-    let mut c = Columns {
-        len: rows.len(),
-        shift_trigger: vec![vec![]],
-        release_trigger: vec![vec![], vec![], vec![]],
-        release_cda_m2: vec![vec![], vec![], vec![]],
-        release_chute_cds_m2: vec![vec![], vec![], vec![]],
-        release_chute_lag_s: vec![vec![], vec![], vec![]],
-        ..Columns::default()
-    };
+    use Input::*;
+    let impulse = nominals().0;
+    let mut c = Columns::new(rows.len());
     for i in rows {
         let mut r = Rng::of_variant(seed, i);
-        c.drag_scale.push(r.uniform(0.9, 1.1));
-        c.wind_speed_m_s.push(r.uniform(0.0, 8.0));
-        c.wind_from_deg.push(r.uniform(0.0, 360.0));
-        c.elevation_m.push(r.uniform(0.0, 1500.0));
-        c.impulse_scale.push(r.uniform(0.95, 1.05));
-        c.shift_trigger[0].push(r.uniform(3.0, 3.6));
-        c.release_trigger[0].push(r.uniform(4.0, 9.0));
-        c.release_cda_m2[0].push(r.uniform(0.0005, 0.002));
-        c.release_chute_cds_m2[1].push(r.uniform(0.02, 0.05));
-        c.release_chute_lag_s[1].push(r.uniform(0.0, 2.0));
-        c.release_trigger[2].push(r.uniform(150.0, 400.0));
-        c.release_cda_m2[2].push(r.uniform(0.0005, 0.002));
+        let mut push = |input: Input, v: f64| c.column_mut(input).push(v);
+        push(DragScale, r.uniform(0.9, 1.1));
+        push(WindSpeedMS, r.uniform(0.0, 8.0));
+        push(WindFromDeg, r.uniform(0.0, 360.0));
+        push(ElevationM, r.uniform(0.0, 1500.0));
+        push(MotorImpulseNs, impulse * r.uniform(0.95, 1.05));
+        push(ShiftTrigger(0), r.uniform(3.0, 3.6));
+        push(ReleaseTrigger(0), r.uniform(4.0, 9.0));
+        push(ReleaseCdaM2(0), r.uniform(0.0005, 0.002));
+        push(ReleaseChuteCdsM2(1), r.uniform(0.02, 0.05));
+        push(ReleaseChuteLagS(1), r.uniform(0.0, 2.0));
+        push(ReleaseTrigger(2), r.uniform(150.0, 400.0));
+        push(ReleaseCdaM2(2), r.uniform(0.0005, 0.002));
     }
     c
 }
