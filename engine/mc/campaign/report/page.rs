@@ -284,9 +284,17 @@ pub fn html(run: &Run, ctx: &Context) -> String {
     flights_to_look_at(&mut s, run, ctx);
     let _ = write!(
         s,
-        "<h2>How this page was made</h2><p class=\"small\">Drawn by hpr-mc {} from the run's files in this directory (variants, summary, ellipses, sensitivity, requirements and trajectories Parquet files); <code>hpr-mc report DIR</code> draws it again from them. Percentiles are type 7 (linear between order statistics) over the landed flights; shares of requirements count every variant of a point, with Wilson's 95 % interval. A landing cloud of more than {} flights is drawn as a density. Nothing on this page is fetched from the network.</p>\n</main></body></html>\n",
+        "<h2>How this page was made</h2><p class=\"small\">Drawn by hpr-mc {} from the run's files in this directory (variants, summary, ellipses, sensitivity, requirements and trajectories Parquet files); <code>hpr-mc report DIR</code> draws it again from them. Percentiles are type 7 (linear between order statistics) over the landed flights; shares of requirements count every variant of a point, with Wilson's 95 % interval. A landing cloud of more than {} flights is drawn as a density.{} Nothing on this page is fetched from the network.</p>\n</main></body></html>\n",
         env!("CARGO_PKG_VERSION"),
-        figures::MAX_DOTS
+        figures::MAX_DOTS,
+        if run.whole() {
+            String::new()
+        } else {
+            format!(
+                " The report holds at most {} rows of a point (the first, in variant order) to draw from rows, so that its memory does not grow with the run; a point with more flights says so in its section, and its counts, shares, percentiles, ellipses and sensitivities are still over all of them.",
+                run.held_per_point
+            )
+        }
     );
     s
 }
