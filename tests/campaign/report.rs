@@ -548,3 +548,156 @@ fn a_flight_plot_draws_its_height_to_the_apogee_and_marks_its_events() {
         "{err}"
     );
 }
+
+#[test]
+fn a_run_larger_than_the_rows_held_draws_the_first_n_of_each_point_says_so_and_counts_every_row() {
+    use hpr_mc::campaign::report::{data, write_dir_holding};
+    // A first run finds the apogees; the ceiling then sits among them.
+    let (_d, _f, first) = run_mapped(&mapped(30, "rail_exit_speed_m_s = { min = 15.0 }\n"));
+    let b = read(&first.outputs.variants);
+    let mut apogees: Vec<f64> = f64s(&b, "apogee_m").iter().flatten().collect();
+    apogees.sort_by(f64::total_cmp);
+    let ceiling = (apogees[apogees.len() / 2] * 10.0).round() / 10.0;
+    let (_dir, _file, report) = run_mapped(&mapped(
+        30,
+        &format!("apogee_m = {{ max = {ceiling} }}\nlanding_distance_m = {{ max = 900.0 }}\n"),
+    ));
+    let dir = report.outputs.dir.clone();
+    let whole = std::fs::read_to_string(&report.report.as_ref().unwrap().report).unwrap();
+    // The run's own report held every row (60 are far under the bound).
+    let run = data::Run::read(&dir, &data::Files::in_dir(&dir, "")).unwrap();
+    assert!(run.whole());
+    assert_eq!(run.id.len(), 60);
+    // Room for 10 rows a point: 8 bytes a value of each input and metric, with the id, the
+    // point and the status (8 + 8 + 1 bytes).
+    let row = 8 * (run.inputs.len() + run.metrics.len()) + 17;
+    let held = write_dir_holding(&dir, 10 * row * 2 + row - 1).unwrap();
+    let page = std::fs::read_to_string(&held.report).unwrap();
+    let kml = std::fs::read_to_string(held.kml.as_ref().unwrap()).unwrap();
+    let geojson: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(held.geojson.as_ref().unwrap()).unwrap())
+            .unwrap();
+    let v = read(&report.outputs.variants);
+    let point = v
+        .column_by_name("point")
+        .unwrap()
+        .as_any()
+        .downcast_ref::<UInt32Array>()
+        .unwrap();
+    let (ids, status, apogee) = (
+        u64s(&v, "variant_id"),
+        strings(&v, "status"),
+        f64s(&v, "apogee_m"),
+    );
+    for pt in 0..2u32 {
+        let rows: Vec<usize> = (0..v.num_rows())
+            .filter(|&r| point.value(r) == pt)
+            .collect();
+        assert_eq!(rows.len(), 30);
+        let landed = |r: &&usize| status.value(**r) == "landed";
+        let first: Vec<usize> = rows[..10].iter().filter(landed).copied().collect();
+        let all: Vec<usize> = rows.iter().filter(landed).copied().collect();
+        assert!(
+            first.len() >= 8 && all.len() > first.len(),
+            "{first:?} {all:?}"
+        );
+        // Stated, in the point's section and in the maps.
+        let said = "the first 10 of the point's 30 flights in variant order";
+        let section = &page[page.find(&format!("id=\"point-{pt}\"")).unwrap()..];
+        let section = &section[..section.find("</details>").unwrap()];
+        assert!(section.contains(said), "point {pt}: {section:.600}");
+        assert!(section.contains("Drawn from the first 10 of the point's 30 flights."));
+        assert!(
+            section.contains(&format!("30 variants, {} landed.", all.len())),
+            "the point's counts are over every row"
+        );
+        // Drawn: the histogram holds the landed flights among the first 10, the map's dots
+        // are those flights, by id.
+        let bars: u64 = attrs(chart(&page, &format!("p{pt}-apogee-hist")), "data-count")
+            .iter()
+            .map(|c| c.parse::<u64>().unwrap())
+            .sum();
+        assert_eq!(bars, first.len() as u64, "point {pt}");
+        assert!(section.contains(&format!(
+            "every one of the {} landings as a dot",
+            first.len()
+        )));
+        let drawn: Vec<u64> = geojson["features"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|f| {
+                f["properties"]["kind"] == "landings" && f["properties"]["point"] == pt as u64
+            })
+            .flat_map(|f| {
+                assert_eq!(
+                    f["properties"]["sample"].as_str().unwrap(),
+                    format!(
+                        "{said} (a uniform sample: the variants of a point are independent draws; the report holds at most {} bytes of rows)",
+                        10 * row * 2 + row - 1
+                    )
+                );
+                f["properties"]["variant_ids"].as_array().unwrap().clone()
+            })
+            .map(|id| id.as_u64().unwrap())
+            .collect();
+        let expected: Vec<u64> = first.iter().map(|&r| ids.value(r)).collect();
+        assert_eq!(drawn, expected, "point {pt}");
+        // (The KML escapes the apostrophe.)
+        assert!(kml.contains(&format!(
+            "{} landings: the first 10 of the point",
+            first.len()
+        )));
+        assert!(kml.contains("s 30 flights in variant order"));
+        // The chance of passing the ceiling counts every landed flight of the point.
+        let k = all.iter().filter(|&&r| apogee.value(r) > ceiling).count() as u64;
+        let span = &section[section.find("<span class=\"p-exceed\"").unwrap()..];
+        assert_eq!(attrs(span, "data-k")[0], k.to_string(), "point {pt}");
+        assert_eq!(
+            attrs(span, "data-n")[0],
+            all.len().to_string(),
+            "point {pt}"
+        );
+        assert!(k > 0 && k < all.len() as u64, "{k} of {}", all.len());
+    }
+    // What counts over every row is the page that held every row: the run's counts and
+    // statuses, the flights to look at and the worst flight of each point by each
+    // requirement.
+    let head = |h: &str| h[..h.find("<h3>Inputs").unwrap()].to_string();
+    assert_eq!(head(&page), head(&whole));
+    let flights = |h: &str| {
+        h[h.find("<h2 id=\"flights\">").unwrap()..h.find("<h2>How this page").unwrap()].to_string()
+    };
+    assert_eq!(flights(&page), flights(&whole));
+    assert!(flights(&page).contains("The worst flight of each point by each requirement"));
+    // Nothing says "sample" on the page that held every row.
+    assert!(!whole.contains("in variant order (a uniform sample"));
+}
+
+#[test]
+fn a_run_within_the_rows_held_gives_the_page_of_every_row_unchanged() {
+    use hpr_mc::campaign::report::write_dir_holding;
+    let (_dir, _file, report) = run_mapped(&mapped(20, "landing_distance_m = { max = 900.0 }\n"));
+    let dir = report.outputs.dir.clone();
+    let read_all = |w: &hpr_mc::campaign::report::Written| {
+        (
+            std::fs::read(&w.report).unwrap(),
+            std::fs::read(w.kml.as_ref().unwrap()).unwrap(),
+            std::fs::read(w.geojson.as_ref().unwrap()).unwrap(),
+        )
+    };
+    let by_run = read_all(report.report.as_ref().unwrap());
+    // Holding exactly 20 rows a point, and holding without bound: the same bytes.
+    let run = hpr_mc::campaign::report::data::Run::read(
+        &dir,
+        &hpr_mc::campaign::report::data::Files::in_dir(&dir, ""),
+    )
+    .unwrap();
+    let row = 8 * (run.inputs.len() + run.metrics.len()) + 17;
+    for bytes in [20 * row * 2, usize::MAX / 2] {
+        let again = read_all(&write_dir_holding(&dir, bytes).unwrap());
+        assert!(again == by_run, "holding {bytes} bytes");
+    }
+    let fewer = read_all(&write_dir_holding(&dir, 19 * row * 2).unwrap());
+    assert!(fewer.0 != by_run.0, "19 rows a point is a sample");
+}

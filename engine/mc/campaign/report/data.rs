@@ -1,8 +1,18 @@
-//! The files a run wrote, read back for the report: `variants.parquet` (its metadata, every
-//! input and metric column, the statuses and warnings), `summary.parquet`,
+//! The files a run wrote, read back for the report: `variants.parquet` (its metadata, the
+//! input and metric columns, the statuses and warnings), `summary.parquet`,
 //! `ellipses.parquet`, `sensitivity.parquet`, `requirements.parquet` and
 //! `trajectories.parquet`. Columns are found by name and role (the order the run writes
 //! them), never by a scenario: the report needs only the directory.
+//!
+//! The variants file is streamed, a batch at a time and only the columns the report uses,
+//! so the report's memory does not grow with the run. What it draws from rows (landings,
+//! histograms, margins, convergence) comes from a bounded sample it holds: per sweep point the
+//! first [`Run::held_per_point`] rows in variant order (the variants of a point are
+//! independent draws, so the first N are a uniform sample), N chosen so that the values held
+//! stay under [`HELD_BYTES`] whatever the number of points. What counts over every row (the
+//! statuses, the flights that did not land or warned, each input's mean and spread, each
+//! requirement's counts and worst flight) is gathered as the rows pass. A run whose points
+//! all fit is held whole and gives the page it gave when every row was read.
 
 use crate::campaign::parquet::read_batches;
 use anyhow::{bail, Context, Result};
@@ -123,6 +133,85 @@ impl Status {
     }
 }
 
+/// The most bytes of row values the report holds (8 bytes a value, a row's inputs and metrics
+/// with its id, point and status): 16 MiB.
+pub const HELD_BYTES: usize = 16 << 20;
+
+/// The flights a point has and how many of them the report holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PointCount {
+    /// Rows of the point in variants.parquet.
+    pub variants: u64,
+    /// Of them, landed.
+    pub landed: u64,
+    /// Rows of the point held (the first ones, in variant order).
+    pub held: u64,
+}
+
+/// A flight that did not land or raised a warning.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Look {
+    pub id: u64,
+    pub point: usize,
+    pub status: Status,
+    /// Its error, else its warnings.
+    pub why: String,
+}
+
+/// An input's moments over every row: count, sum (in row order), Welford's mean and sum of
+/// squared deviations, least and greatest.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Moments {
+    pub n: u64,
+    pub sum: f64,
+    pub mean: f64,
+    pub m2: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Default for Moments {
+    fn default() -> Self {
+        Moments {
+            n: 0,
+            sum: 0.0,
+            mean: 0.0,
+            m2: 0.0,
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+        }
+    }
+}
+
+impl Moments {
+    fn add(&mut self, x: f64) {
+        self.n += 1;
+        self.sum += x;
+        let d = x - self.mean;
+        self.mean += d / self.n as f64;
+        self.m2 += d * (x - self.mean);
+        self.min = self.min.min(x);
+        self.max = self.max.max(x);
+    }
+}
+
+/// A requirement's counts over every row of its point: the landed flights with a finite
+/// value, those above its maximum and those below its minimum.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Tally {
+    pub landed: u64,
+    pub above: u64,
+    pub below: u64,
+}
+
+/// The worst flight of a point by a requirement (point 0's bounds): its id and value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Worst {
+    pub id: u64,
+    pub value: f64,
+    score: f64,
+}
+
 /// Everything the report draws from.
 #[derive(Debug, Clone, Default)]
 pub struct Run {
@@ -136,17 +225,32 @@ pub struct Run {
     pub sweep_values: Vec<Vec<f64>>,
     pub inputs: Vec<Col>,
     pub metrics: Vec<Col>,
+    /// The rows held (the sample): their ids, points and statuses.
     pub id: Vec<u64>,
     pub point: Vec<usize>,
     pub status: Vec<Status>,
-    /// Row → error text, for rows that have one.
-    pub errors: HashMap<usize, String>,
-    /// Row → warnings text, for rows that have some.
-    pub warnings: HashMap<usize, String>,
-    /// Per input, per row.
+    /// Per input, per row held.
     pub input_values: Vec<Vec<f64>>,
-    /// Per metric, per row (NaN where null).
+    /// Per metric, per row held (NaN where null).
     pub metric_values: Vec<Vec<f64>>,
+    /// The most rows held of a point, and the bound on the bytes held it follows from.
+    pub held_per_point: u64,
+    pub held_bytes: usize,
+    /// Per point: its rows, landed, held.
+    pub counts: Vec<PointCount>,
+    /// Rows in variants.parquet, and of them landed.
+    pub variants: u64,
+    pub landed: u64,
+    /// The first [`LOOKS_KEPT`] flights that did not land or warned, in variant order, and
+    /// how many there are.
+    pub looks: Vec<Look>,
+    pub looks_total: u64,
+    /// Per input, over every row.
+    pub input_moments: Vec<Moments>,
+    /// Per row of `requirements`, over every row of its point.
+    pub tallies: Vec<Tally>,
+    /// Per requirement of point 0 (its index in `requirements`), per point: the worst flight.
+    pub worst: HashMap<(usize, usize), Worst>,
     pub summary: Vec<SummaryRow>,
     pub ellipses: Vec<EllipseRow>,
     /// The released parts' body names in ellipses.parquet (`release_<name>`), in order.
@@ -227,9 +331,17 @@ fn batches(path: &Path) -> Result<Vec<RecordBatch>> {
         .with_context(|| format!("reading {}", path.display()))
 }
 
+/// How many flights that did not land or warned are kept by name.
+pub const LOOKS_KEPT: usize = 40;
+
 impl Run {
-    /// Read a run's files.
+    /// Read a run's files, holding at most [`HELD_BYTES`] of rows.
     pub fn read(dir: &Path, files: &Files) -> Result<Run> {
+        Run::read_holding(dir, files, HELD_BYTES)
+    }
+
+    /// Read a run's files, holding at most `held_bytes` of rows (at least one row a point).
+    pub fn read_holding(dir: &Path, files: &Files, held_bytes: usize) -> Result<Run> {
         let path = &files.variants;
         if !path.is_file() {
             bail!(
@@ -304,6 +416,8 @@ impl Run {
             .get("hpr_mc.points")
             .and_then(|p| p.parse().ok())
             .unwrap_or(1);
+        let row_bytes = 8 * (inputs.len() + metrics.len()) + 8 + 8 + 1;
+        let held_per_point = (held_bytes / (row_bytes * points.max(1))).max(1) as u64;
         let mut run = Run {
             dir: dir.to_path_buf(),
             meta,
@@ -311,17 +425,55 @@ impl Run {
             sweep_values: vec![vec![]; points],
             input_values: vec![vec![]; inputs.len()],
             metric_values: vec![vec![]; metrics.len()],
+            input_moments: vec![Moments::default(); inputs.len()],
+            counts: vec![PointCount::default(); points],
+            held_per_point,
+            held_bytes,
             sweep,
             inputs,
             metrics,
             ..Run::default()
         };
-        let reader = builder.with_batch_size(8192).build()?;
+        // The statistics first: the requirements say what to count as the rows pass.
+        run.read_statistics(files)?;
+        run.tallies = vec![Tally::default(); run.requirements.len()];
+        let tallied: Vec<(usize, Option<usize>)> = run
+            .requirements
+            .iter()
+            .enumerate()
+            .map(|(q, r)| (q, run.metric(&r.metric)))
+            .collect();
+        let judged: Vec<(usize, usize)> = run
+            .requirements
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.point == 0)
+            .filter_map(|(q, r)| Some((q, run.metric(&r.metric)?)))
+            .collect();
+        let mut names: Vec<String> = vec!["variant_id".into(), "point".into()];
+        names.extend(run.sweep.iter().map(|c| format!("sweep_{}", c.name)));
+        names.extend(["status".into(), "error".into(), "warnings".into()]);
+        names.extend(run.inputs.iter().map(|c| c.name.clone()));
+        names.extend(run.metrics.iter().map(|c| c.name.clone()));
+        let mask = parquet::arrow::ProjectionMask::columns(
+            builder.parquet_schema(),
+            names.iter().map(String::as_str),
+        );
+        let reader = builder
+            .with_projection(mask)
+            .with_batch_size(8192)
+            .build()?;
         for b in reader {
             let b = b.with_context(|| format!("reading {}", path.display()))?;
-            let first = run.id.len();
-            run.id.extend(u64s(&b, "variant_id", path)?);
+            let ids = u64s(&b, "variant_id", path)?;
             let pts = u32s(&b, "point", path)?;
+            let status: &StringArray = col(&b, "status", path)?;
+            let status: Vec<Status> = (0..status.len())
+                .map(|r| Status::parse(status.value(r)))
+                .collect();
+            let errors: &StringArray = col(&b, "error", path)?;
+            let warnings: &StringArray = col(&b, "warnings", path)?;
+            let mut keep = vec![];
             for (r, &pt) in pts.iter().enumerate() {
                 if pt < points && run.sweep_values[pt].is_empty() {
                     run.sweep_values[pt] = run
@@ -334,29 +486,100 @@ impl Run {
                         })
                         .collect();
                 }
-            }
-            run.point.extend(pts);
-            let status: &StringArray = col(&b, "status", path)?;
-            run.status
-                .extend((0..status.len()).map(|r| Status::parse(status.value(r))));
-            for (r, e) in strings(&b, "error", path)?.into_iter().enumerate() {
-                if let Some(e) = e {
-                    run.errors.insert(first + r, e);
+                let landed = status[r] == Status::Landed;
+                run.variants += 1;
+                run.landed += u64::from(landed);
+                if let Some(c) = run.counts.get_mut(pt) {
+                    c.variants += 1;
+                    c.landed += u64::from(landed);
+                    if c.held < held_per_point {
+                        c.held += 1;
+                        keep.push(r);
+                    }
+                }
+                if !landed || !warnings.is_null(r) {
+                    run.looks_total += 1;
+                    if run.looks.len() < LOOKS_KEPT {
+                        let why = if !errors.is_null(r) {
+                            errors.value(r)
+                        } else if !warnings.is_null(r) {
+                            warnings.value(r)
+                        } else {
+                            ""
+                        };
+                        run.looks.push(Look {
+                            id: ids[r],
+                            point: pt,
+                            status: status[r],
+                            why: why.to_string(),
+                        });
+                    }
                 }
             }
-            for (r, w) in strings(&b, "warnings", path)?.into_iter().enumerate() {
-                if let Some(w) = w {
-                    run.warnings.insert(first + r, w);
-                }
+            for &r in &keep {
+                run.id.push(ids[r]);
+                run.point.push(pts[r]);
+                run.status.push(status[r]);
             }
             for (j, c) in run.inputs.iter().enumerate() {
-                run.input_values[j].extend(f64s(&b, &c.name, path)?);
+                let v = f64s(&b, &c.name, path)?;
+                let m = &mut run.input_moments[j];
+                v.iter().for_each(|&x| m.add(x));
+                run.input_values[j].extend(keep.iter().map(|&r| v[r]));
             }
+            let mut values: Vec<Option<Vec<f64>>> = vec![None; run.metrics.len()];
             for (m, c) in run.metrics.iter().enumerate() {
-                run.metric_values[m].extend(f64s(&b, &c.name, path)?);
+                let v = f64s(&b, &c.name, path)?;
+                run.metric_values[m].extend(keep.iter().map(|&r| v[r]));
+                values[m] = Some(v);
+            }
+            for &(q, m) in &tallied {
+                let (Some(m), req) = (m, &run.requirements[q]) else {
+                    continue;
+                };
+                let v = values[m].as_ref().expect("read above");
+                let t = &mut run.tallies[q];
+                for r in 0..v.len() {
+                    if pts[r] != req.point || status[r] != Status::Landed || !v[r].is_finite() {
+                        continue;
+                    }
+                    t.landed += 1;
+                    t.above += u64::from(req.max.is_some_and(|c| v[r] > c));
+                    t.below += u64::from(req.min.is_some_and(|c| v[r] < c));
+                }
+            }
+            for &(q, m) in &judged {
+                let (min, max) = (run.requirements[q].min, run.requirements[q].max);
+                // Below a minimum, the least; above a maximum, the greatest; within both,
+                // the farthest out in half-widths of the interval.
+                let score = |v: f64| match (min, max) {
+                    (Some(a), Some(b)) => ((v - 0.5 * (a + b)) / (0.5 * (b - a))).abs(),
+                    (Some(_), None) => -v,
+                    (None, Some(_)) => v,
+                    (None, None) => 0.0,
+                };
+                let v = values[m].as_ref().expect("read above");
+                for r in 0..v.len() {
+                    if !v[r].is_finite() {
+                        continue;
+                    }
+                    let s = score(v[r]);
+                    // The last of equals, as a maximum over the rows in order is.
+                    let w = run.worst.entry((q, pts[r])).or_insert(Worst {
+                        id: ids[r],
+                        value: v[r],
+                        score: s,
+                    });
+                    if s.total_cmp(&w.score) != std::cmp::Ordering::Less {
+                        *w = Worst {
+                            id: ids[r],
+                            value: v[r],
+                            score: s,
+                        };
+                    }
+                }
             }
         }
-        run.read_statistics(files)?;
         if files.trajectories.is_file() {
             run.read_series(&files.trajectories)?;
             run.has_trajectories = true;
@@ -536,6 +759,34 @@ impl Run {
         Ok(())
     }
 
+    /// Whether every row is held (no point has more rows than the sample holds).
+    pub fn whole(&self) -> bool {
+        self.counts.iter().all(|c| c.held == c.variants)
+    }
+
+    /// Whether point `pt` is drawn from a sample of its rows.
+    pub fn sampled(&self, pt: usize) -> bool {
+        self.counts.get(pt).is_some_and(|c| c.held < c.variants)
+    }
+
+    /// Where a point is drawn from a sample: "the first N of its M flights" said in words
+    /// (empty when every row of the point is held).
+    pub fn sample_text(&self, pt: usize) -> String {
+        match self.counts.get(pt) {
+            Some(c) if c.held < c.variants => format!(
+                "the first {} of the point's {} flights in variant order (a uniform sample: the variants of a point are independent draws; the report holds at most {} of rows)",
+                c.held,
+                c.variants,
+                if self.held_bytes % (1 << 20) == 0 {
+                    format!("{} MiB", self.held_bytes >> 20)
+                } else {
+                    format!("{} bytes", self.held_bytes)
+                }
+            ),
+            _ => String::new(),
+        }
+    }
+
     /// Number of sweep points.
     pub fn points(&self) -> usize {
         self.sweep_values.len()
@@ -572,6 +823,15 @@ impl Run {
         self.summary
             .iter()
             .find(|s| s.point == pt && s.metric == metric)
+    }
+
+    /// The counts over every row of the requirement on `metric` at point `pt`.
+    pub fn tally(&self, pt: usize, metric: &str) -> Option<Tally> {
+        let q = self
+            .requirements
+            .iter()
+            .position(|r| r.point == pt && r.metric == metric)?;
+        self.tallies.get(q).copied()
     }
 
     /// The requirement on `metric` at point `pt`.

@@ -146,8 +146,11 @@ pub fn ellipse_ring(c: (f64, f64), a: f64, b: f64, angle_deg: f64) -> Vec<(f64, 
 pub struct PointShapes {
     pub point: usize,
     pub label: String,
-    /// Landings: variant id, east, north.
+    /// Landings: variant id, east, north (of the rows the report holds: the first N of the
+    /// point's flights when the run is larger than it holds).
     pub landings: Vec<(u64, f64, f64)>,
+    /// Where the landings are a sample, said in words (empty when they are every flight).
+    pub sample: String,
     /// k σ ellipses: sigma and ring.
     pub ellipses: Vec<(u8, Vec<(f64, f64)>)>,
     /// R90 and R99 about the mean landing point: name, radius, ring.
@@ -206,6 +209,7 @@ pub fn shapes(run: &Run, labels: &[String]) -> Vec<PointShapes> {
                 point: pt,
                 label: labels.get(pt).cloned().unwrap_or_default(),
                 landings,
+                sample: run.sample_text(pt),
                 ellipses,
                 circles,
             }
@@ -339,7 +343,11 @@ pub fn kml(site: &Site, title: &str, points: &[PointShapes]) -> anyhow::Result<S
                 })
                 .collect();
             inner.push(placemark(
-                format!("{} landings", p.landings.len()),
+                if p.sample.is_empty() {
+                    format!("{} landings", p.landings.len())
+                } else {
+                    format!("{} landings: {}", p.landings.len(), p.sample)
+                },
                 "landing",
                 KmlGeometry::MultiGeometry(MultiGeometry::new(points)),
             ));
@@ -429,13 +437,17 @@ pub fn geojson(site: &Site, points: &[PointShapes]) -> String {
                 })
                 .collect();
             let ids: Vec<u64> = p.landings.iter().map(|l| l.0).collect();
+            let mut props = vec![
+                ("kind", json!("landings")),
+                ("point", json!(p.point)),
+                ("variant_ids", json!(ids)),
+            ];
+            if !p.sample.is_empty() {
+                props.push(("sample", json!(p.sample)));
+            }
             features.push(feature(
                 GeometryValue::new_multi_point(coords),
-                properties(&[
-                    ("kind", json!("landings")),
-                    ("point", json!(p.point)),
-                    ("variant_ids", json!(ids)),
-                ]),
+                properties(&props),
             ));
         }
     }

@@ -8,9 +8,11 @@
 //! [`write_files`] at its end and `hpr-mc report RESULTS_DIR` calls [`write_dir`], and both
 //! give the same page (its date is the variants file's). A dense landing cloud is drawn as a
 //! density, not one element per flight, so the page's size does not grow with the number
-//! of variants.
+//! of variants; and the variants file is streamed, the rows drawn being a bounded sample
+//! (the first N of each point, said on the page) and the counts gathered over every row as
+//! they pass, so the report's memory does not grow with it either ([`data`]).
 //!
-//! - [`data`]: the files read back.
+//! - [`data`]: the files read back: the statistics files whole, the variants streamed.
 //! - [`numbers`]: the few figures computed from the rows (a ceiling's chance and bound,
 //!   radii, histogram bins, bands across flights).
 //! - [`figures`]: the charts.
@@ -69,11 +71,17 @@ pub fn write_files(outputs: &Outputs) -> Result<Written> {
         &outputs.report,
         &outputs.kml,
         &outputs.geojson,
+        data::HELD_BYTES,
     )
 }
 
 /// `hpr-mc report RESULTS_DIR`: the report and maps of the (whole) run in `dir`, again.
 pub fn write_dir(dir: &Path) -> Result<Written> {
+    write_dir_holding(dir, data::HELD_BYTES)
+}
+
+/// [`write_dir`] holding at most `held_bytes` of rows (see [`data`]).
+pub fn write_dir_holding(dir: &Path, held_bytes: usize) -> Result<Written> {
     if !dir.is_dir() {
         anyhow::bail!(
             "{}: no such directory (give a run's output directory)",
@@ -86,13 +94,21 @@ pub fn write_dir(dir: &Path) -> Result<Written> {
         &dir.join("report.html"),
         &dir.join("landing.kml"),
         &dir.join("landing.geojson"),
+        held_bytes,
     )
 }
 
-fn write(dir: &Path, suffix: &str, report: &Path, kml: &Path, geojson: &Path) -> Result<Written> {
+fn write(
+    dir: &Path,
+    suffix: &str,
+    report: &Path,
+    kml: &Path,
+    geojson: &Path,
+    held_bytes: usize,
+) -> Result<Written> {
     let started = Instant::now();
     let files = data::Files::in_dir(dir, suffix);
-    let run = data::Run::read(dir, &files)?;
+    let run = data::Run::read_holding(dir, &files, held_bytes)?;
     let context = page::Context::of(&run);
     let html = page::html(&run, &context);
     write_atomic(report, &html)?;

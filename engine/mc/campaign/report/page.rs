@@ -284,15 +284,23 @@ pub fn html(run: &Run, ctx: &Context) -> String {
     flights_to_look_at(&mut s, run, ctx);
     let _ = write!(
         s,
-        "<h2>How this page was made</h2><p class=\"small\">Drawn by hpr-mc {} from the run's files in this directory (variants, summary, ellipses, sensitivity, requirements and trajectories Parquet files); <code>hpr-mc report DIR</code> draws it again from them. Percentiles are type 7 (linear between order statistics) over the landed flights; shares of requirements count every variant of a point, with Wilson's 95 % interval. A landing cloud of more than {} flights is drawn as a density. Nothing on this page is fetched from the network.</p>\n</main></body></html>\n",
+        "<h2>How this page was made</h2><p class=\"small\">Drawn by hpr-mc {} from the run's files in this directory (variants, summary, ellipses, sensitivity, requirements and trajectories Parquet files); <code>hpr-mc report DIR</code> draws it again from them. Percentiles are type 7 (linear between order statistics) over the landed flights; shares of requirements count every variant of a point, with Wilson's 95 % interval. A landing cloud of more than {} flights is drawn as a density.{} Nothing on this page is fetched from the network.</p>\n</main></body></html>\n",
         env!("CARGO_PKG_VERSION"),
-        figures::MAX_DOTS
+        figures::MAX_DOTS,
+        if run.whole() {
+            String::new()
+        } else {
+            format!(
+                " The report holds at most {} rows of a point (the first, in variant order) to draw from rows, so that its memory does not grow with the run; a point with more flights says so in its section, and its counts, shares, percentiles, ellipses and sensitivities are still over all of them.",
+                run.held_per_point
+            )
+        }
     );
     s
 }
 
 fn header(s: &mut String, run: &Run, ctx: &Context) {
-    let landed = run.status.iter().filter(|x| **x == Status::Landed).count();
+    let landed = run.landed;
     let _ = write!(s, "<h1>{}</h1>\n", esc(&ctx.name));
     if let Some(d) = &ctx.description {
         let _ = write!(s, "<p class=\"sub\">{}</p>\n", esc(d));
@@ -322,13 +330,13 @@ fn header(s: &mut String, run: &Run, ctx: &Context) {
         esc(&ctx.scenario_file),
         esc(run.meta("hpr_mc.scenario_hash")),
         esc(run.meta("hpr_mc.seed")),
-        run.id.len(),
+        run.variants,
         shard_text,
         points,
         if points == 1 { "" } else { "s" },
         esc(vpp),
         landed,
-        run.id.len() - landed,
+        run.variants - landed,
         esc(&site),
         esc(run.meta("hpr_mc.version")),
         run.written_unix_s.map_or("an unknown date".into(), utc),
@@ -338,16 +346,18 @@ fn header(s: &mut String, run: &Run, ctx: &Context) {
         "<h3>Inputs</h3><table><tr><th>input</th><th>unit</th><th>swept over</th><th>dispersion (as the scenario writes it)</th><th>mean</th><th>standard deviation</th><th>least</th><th>greatest</th></tr>\n"
     );
     for (j, c) in run.inputs.iter().enumerate() {
-        let v = &run.input_values[j];
-        let n = v.len() as f64;
-        let mean = v.iter().sum::<f64>() / n;
-        let sd =
-            (v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0).max(1.0)).sqrt();
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
+        // Over every row: the sum in row order and the extremes as the rows passed; the
+        // spread from the rows when all are held (two passes), else Welford's as they passed.
+        let mo = &run.input_moments[j];
+        let n = mo.n as f64;
+        let mean = mo.sum / n;
+        let sd = if run.whole() {
+            let v = &run.input_values[j];
+            (v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0).max(1.0)).sqrt()
+        } else {
+            (mo.m2 / (n - 1.0).max(1.0)).sqrt()
+        };
+        let (lo, hi) = (mo.min, mo.max);
         let (sweep, disp) = &ctx.inputs[j];
         let _ = write!(
             s,
@@ -566,10 +576,17 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
 
 fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
     let rows = run.rows_of(pt);
-    let landed = rows
-        .iter()
-        .filter(|&&r| run.status[r] == Status::Landed)
-        .count();
+    let count = run.counts[pt];
+    let sample = run.sample_text(pt);
+    // Said in each caption drawn from the rows when they are a sample.
+    let of_sample = if sample.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " Drawn from the first {} of the point's {} flights.",
+            count.held, count.variants
+        )
+    };
     let title = if run.points() > 1 {
         format!("Point {pt}{}", ctx.point_labels[pt])
     } else {
@@ -577,10 +594,18 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
     };
     let _ = write!(
         s,
-        "<details open id=\"point-{pt}\"><summary>{}</summary>\n<p>{} variants, {} landed.</p>\n<div class=\"grid\">\n",
+        "<details open id=\"point-{pt}\"><summary>{}</summary>\n<p>{} variants, {} landed.{}</p>\n<div class=\"grid\">\n",
         esc(&title),
-        rows.len(),
-        landed
+        count.variants,
+        count.landed,
+        if sample.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "</p><p class=\"sample\"><b>Sample.</b> The landing map, histograms, distributions, margins, descent speeds and convergence of this point draw {sample}. The counts, shares, percentiles, ellipses, sensitivities and the flights to look at count all {} flights.",
+                count.variants
+            )
+        }
     );
     let id = |what: &str| format!("p{pt}-{what}");
     // Landing.
@@ -650,7 +675,7 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
             s.push_str(&figure(
                 Some(svg),
                 &format!(
-                    "Shown: {cloud}, the rocket's. Dashed grey circles about the mean landing point ({} m east, {} m north) hold 50, 90 and 99 % of the landings: R50 {} m, R90 {} m, R99 {} m.{ell}{rec}{parts}",
+                    "Shown: {cloud}, the rocket's.{of_sample} Dashed grey circles about the mean landing point ({} m east, {} m north) hold 50, 90 and 99 % of the landings: R50 {} m, R90 {} m, R99 {} m.{ell}{rec}{parts}",
                     short(mean.0),
                     short(mean.1),
                     short(r[0]),
@@ -667,9 +692,9 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
         let lines: Vec<(f64, String, &str)> = ceiling
             .map(|c| vec![(c, format!("ceiling {} m", short(c)), "#C00000")])
             .unwrap_or_default();
-        let exceed = ceiling.map(|c| {
-            let k = v.iter().filter(|&&x| x > c).count() as u64;
-            let n = v.len() as u64;
+        // Over every landed flight of the point, counted as the rows passed.
+        let exceed = ceiling.zip(run.tally(pt, "apogee_m")).map(|(c, t)| {
+            let (k, n) = (t.above, t.landed);
             (c, k, n, binomial_upper(k, n, 0.95))
         });
         let p_text = exceed.map_or(
@@ -691,7 +716,10 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
                 &v,
                 &lines,
             ),
-            &format!("How high the {} landed flights go.{p_text}", v.len()),
+            &format!(
+                "How high the {} landed flights go.{of_sample}{p_text}",
+                v.len()
+            ),
         ));
         s.push_str(&figure(
             figures::ecdf_chart(
@@ -701,7 +729,7 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
                 &v,
                 &lines,
             ),
-            "The share of flights whose apogee is at or below each height.",
+            &format!("The share of flights whose apogee is at or below each height.{of_sample}"),
         ));
     }
     // Rail exit speed.
@@ -713,14 +741,16 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
         let lines: Vec<(f64, String, &str)> = min
             .map(|c| vec![(c, format!("required ≥ {} m/s", short(c)), "#C00000")])
             .unwrap_or_default();
-        let below = min.map_or(String::new(), |c| {
-            let k = v.iter().filter(|&&x| x < c).count();
-            format!(
-                " {k} of {} leave the rail slower than the {} m/s required.",
-                v.len(),
-                short(c)
-            )
-        });
+        let below =
+            min.zip(run.tally(pt, "rail_exit_speed_m_s"))
+                .map_or(String::new(), |(c, t)| {
+                    format!(
+                        " {} of {} leave the rail slower than the {} m/s required.",
+                        t.below,
+                        t.landed,
+                        short(c)
+                    )
+                });
         s.push_str(&figure(
             figures::histogram_chart(
                 &id("rail"),
@@ -729,7 +759,7 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
                 &v,
                 &lines,
             ),
-            &format!("The speed as the rocket leaves the rail.{below}"),
+            &format!("The speed as the rocket leaves the rail.{of_sample}{below}"),
         ));
     }
     // Margins at the flight's moments.
@@ -781,7 +811,7 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
     }
     s.push_str(&figure(
         figures::rows_chart(&id("margins"), "Stability margin", "margin (calibres)", &margin_rows),
-        "The static margin (centre of pressure at Mach 0) at the flight's moments and its least from liftoff to apogee, and the flight margin's least (centre of pressure at the flight's Mach). Box 25–75 %, whiskers 5–95 %, dots the least and the greatest; a red mark is a requirement.",
+        &format!("The static margin (centre of pressure at Mach 0) at the flight's moments and its least from liftoff to apogee, and the flight margin's least (centre of pressure at the flight's Mach). Box 25–75 %, whiskers 5–95 %, dots the least and the greatest; a red mark is a requirement.{of_sample}"),
     ));
     // Loads.
     for (name, title, label, scale) in [
@@ -802,7 +832,15 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
         if let Some(m) = run.metric(name) {
             let v: Vec<f64> = run.landed_values(m, pt).iter().map(|x| x * scale).collect();
             let extra = if name == "max_accel_m_s2" {
-                let med = {
+                // The median of every landed flight (summary.parquet) when the rows are a
+                // sample.
+                let whole = run
+                    .summary_of(pt, name)
+                    .and_then(|r| r.p50)
+                    .filter(|_| !of_sample.is_empty());
+                let med = if let Some(p50) = whole {
+                    p50
+                } else {
                     let mut w = v.clone();
                     w.sort_by(f64::total_cmp);
                     if w.is_empty() {
@@ -817,7 +855,7 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
             };
             s.push_str(&figure(
                 figures::histogram_chart(&id(name), title, label, &v, &[]),
-                &format!("{title} over each landed flight{extra}."),
+                &format!("{title} over each landed flight{extra}.{of_sample}"),
             ));
         }
     }
@@ -869,7 +907,7 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
             .collect();
         s.push_str(&figure(
             figures::rows_chart(&id("descent"), "Speed under canopy", "speed (m/s)", &rows_),
-            "The rocket's speed once each canopy has opened and the descent has settled: under a canopy, the speed as the next one opens, or at landing under the last (the centre of mass's speed, the wind's drift included). Box 25–75 %, whiskers 5–95 %.",
+            &format!("The rocket's speed once each canopy has opened and the descent has settled: under a canopy, the speed as the next one opens, or at landing under the last (the centre of mass's speed, the wind's drift included). Box 25–75 %, whiskers 5–95 %.{of_sample}"),
         ));
     }
     // Against time, from trajectories.parquet.
@@ -973,7 +1011,7 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
                 &v,
             ),
             &format!(
-                "The mean and the 5 and 95 % quantiles of <code>{}</code> over the first n landed flights: where the lines have flattened, more variants would not move them.",
+                "The mean and the 5 and 95 % quantiles of <code>{}</code> over the first n landed flights: where the lines have flattened, more variants would not move them.{of_sample}",
                 esc(&c.name)
             ),
         ));
@@ -983,86 +1021,69 @@ fn point_section(s: &mut String, run: &Run, ctx: &Context, pt: usize) {
 
 fn flights_to_look_at(s: &mut String, run: &Run, ctx: &Context) {
     s.push_str("<h2 id=\"flights\">Flights to look at</h2>\n");
-    let mut rows: Vec<usize> = (0..run.id.len())
-        .filter(|&r| run.status[r] != Status::Landed || run.warnings.contains_key(&r))
-        .collect();
-    rows.sort_unstable();
-    const SHOWN: usize = 40;
-    if rows.is_empty() {
+    let total = run.looks_total as usize;
+    const SHOWN: usize = super::data::LOOKS_KEPT;
+    if total == 0 {
         s.push_str("<p>Every flight landed, and none raised a warning.</p>\n");
     } else {
         let _ = write!(
             s,
             "<p>{} flight{} did not land or raised a warning{}.</p><table><tr><th>variant</th><th>point</th><th>status</th><th>why</th><th>fly it again</th></tr>\n",
-            rows.len(),
-            if rows.len() == 1 { "" } else { "s" },
-            if rows.len() > SHOWN {
+            total,
+            if total == 1 { "" } else { "s" },
+            if total > SHOWN {
                 format!(" (the first {SHOWN} below; filter variants.parquet on status and the warning_ columns for all)")
             } else {
                 String::new()
             }
         );
-        for &r in rows.iter().take(SHOWN) {
+        for f in run.looks.iter().take(SHOWN) {
             // A refused variant has nothing to fly: the why says which input is out of range.
-            let again = if run.status[r] == Status::Refused {
+            let again = if f.status == Status::Refused {
                 "–".to_string()
             } else {
-                format!("<code>{}</code>", esc(&ctx.fly_command(run.id[r])))
+                format!("<code>{}</code>", esc(&ctx.fly_command(f.id)))
             };
-            let why = run
-                .errors
-                .get(&r)
-                .or(run.warnings.get(&r))
-                .cloned()
-                .unwrap_or_default();
             let _ = write!(
                 s,
                 "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td><td>{}</td><td>{again}</td></tr>\n",
-                run.id[r],
-                run.point[r],
-                run.status[r].name(),
-                esc(&why)
+                f.id,
+                f.point,
+                f.status.name(),
+                esc(&f.why)
             );
         }
         s.push_str("</table>\n");
     }
-    let reqs: Vec<&super::data::Requirement> =
-        run.requirements.iter().filter(|r| r.point == 0).collect();
+    let reqs: Vec<(usize, &super::data::Requirement)> = run
+        .requirements
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.point == 0)
+        .collect();
     if reqs.is_empty() {
         return;
     }
     s.push_str("<h3>The worst flight of each point by each requirement</h3><table><tr><th>requirement</th><th>point</th><th>variant</th><th>value</th><th>fly it again</th></tr>\n");
-    for r0 in reqs {
-        let Some(m) = run.metric(&r0.metric) else {
+    for (q, r0) in reqs {
+        if run.metric(&r0.metric).is_none() {
             continue;
-        };
+        }
         for pt in 0..run.points() {
-            // Below a minimum, the least; above a maximum, the greatest; within both, the
-            // farthest out in half-widths of the interval.
-            let score = |v: f64| match (r0.min, r0.max) {
-                (Some(a), Some(b)) => ((v - 0.5 * (a + b)) / (0.5 * (b - a))).abs(),
-                (Some(_), None) => -v,
-                (None, Some(_)) => v,
-                (None, None) => 0.0,
-            };
-            let worst = (0..run.id.len())
-                .filter(|&r| run.point[r] == pt && run.metric_values[m][r].is_finite())
-                .max_by(|&a, &b| {
-                    score(run.metric_values[m][a]).total_cmp(&score(run.metric_values[m][b]))
-                });
-            if let Some(r) = worst {
-                let v = run.metric_values[m][r];
+            // Over every row of the point, gathered as the rows passed (data.rs).
+            if let Some(w) = run.worst.get(&(q, pt)) {
+                let v = w.value;
                 let met = r0.min.is_none_or(|a| v >= a) && r0.max.is_none_or(|b| v <= b);
                 let _ = write!(
                     s,
                     "<tr><td><code>{}</code> {}</td><td class=\"n\">{pt}</td><td class=\"n\">{}</td><td class=\"n {}\">{}{}</td><td><code>{}</code></td></tr>\n",
                     esc(&r0.metric),
                     esc(&bounds(r0.min, r0.max, &r0.unit)),
-                    run.id[r],
+                    w.id,
                     if met { "ok" } else { "bad" },
                     short(v),
                     esc(&unit_suffix(&r0.unit)),
-                    esc(&ctx.fly_command(run.id[r]))
+                    esc(&ctx.fly_command(w.id))
                 );
             }
         }
