@@ -10,24 +10,19 @@
 
 mod raw;
 mod rules;
+mod sections;
 #[cfg(test)]
 mod tests;
 
 use super::params::{trigger_unit, Param};
-use super::sample::{fingerprint, Dispersion};
+use super::sample::Dispersion;
 use hpr_design::design::dimension::Dimension;
-use hpr_design::motor::{Grains, MotorOptions};
-use hpr_design::MAX_SAMPLING_RATE_HZ;
-use hpr_sim::atmosphere::{AirModel, AirProfile, AirRow, AtmosphereError};
-use hpr_sim::gravity::{is_latitude, Gravity, LATITUDE_RULE};
-use hpr_sim::turbulence::{MAX_TURBULENCE_INTENSITY, MAX_TURBULENT_FLIGHT_S};
-use hpr_sim::wind::{Wind, WindError, WindRow};
-use hpr_sim::{CanopyShape, Integrator, PartChute, PartTrigger, SensorNoise, Trigger};
-use raw::RawScenario;
-use rules::{
-    canopy_shape, check_name, check_param, design_parachute, finite, inputs, integrator, noise,
-    one_line, requirements, sounding, weather, weather_inputs, ParachuteFromDesign,
-};
+use hpr_design::motor::MotorOptions;
+use hpr_sim::atmosphere::AirModel;
+use hpr_sim::gravity::Gravity;
+use hpr_sim::wind::Wind;
+use hpr_sim::{CanopyShape, Integrator, PartChute, SensorNoise, Trigger};
+use rules::{integrator, requirements};
 use std::path::{Path, PathBuf};
 
 /// Most sweep points a scenario may have: 100,000. Each point's nominal flight is set up and
@@ -439,7 +434,9 @@ impl Scenario {
         Scenario::parse(&text, path)
     }
 
-    /// Validate `text`, read from `path` (relative paths in it start at `path`'s directory).
+    /// Validate `text`, read from `path` (relative paths in it start at `path`'s directory):
+    /// the file's parts in turn, each refused at its first broken rule, then the rules across
+    /// them and the run's size.
     pub fn parse(text: &str, path: &Path) -> Result<Scenario, ScenarioError> {
         let file = path.display().to_string();
         let bad = |key: &str, rule: String| ScenarioError::Invalid {
@@ -447,534 +444,39 @@ impl Scenario {
             key: key.to_string(),
             rule,
         };
-        let de = toml::Deserializer::parse(text).map_err(|e| {
-            let hint = if text.trim_start().starts_with('{') {
-                " (this looks like a JSON design: a scenario is a TOML file that names its design \
-                 under [design] file = \"...\"; see docs/scenarios.md)"
-            } else {
-                ""
-            };
-            bad("(syntax)", format!("{}{hint}", one_line(&e.to_string())))
-        })?;
-        let mut raw: RawScenario = serde_path_to_error::deserialize(de).map_err(|e| {
-            let key = e.path().to_string();
-            let key = if key == "." {
-                "(top level)".to_string()
-            } else {
-                key
-            };
-            bad(
-                &key,
-                hpr_design::design::json_errors::plain_types(&one_line(
-                    &e.into_inner().to_string(),
-                )),
-            )
-        })?;
+        let mut raw = sections::deserialize(&bad, text)?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-
-        let name = match raw.name.take() {
-            Some(n) => n,
-            // The file's stem, with what a directory name should not hold made '_'.
-            None => path
-                .file_stem()
-                .and_then(|s| s.to_str())
-                .unwrap_or("scenario")
-                .chars()
-                .map(|c| {
-                    if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
-                        c
-                    } else {
-                        '_'
-                    }
-                })
-                .collect(),
-        };
-        if name.is_empty()
-            || !name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-        {
-            return Err(bad("name", format!("must be letters, digits, '_' or '-' (it names the output directory; got \"{name}\")")));
-        }
-        if raw.variants_per_point == 0 {
-            return Err(bad("variants_per_point", "must be at least 1".into()));
-        }
-
-        let design_file = dir.join(&raw.design.file);
-        if design_file.is_dir() {
-            return Err(bad(
-                "design.file",
-                format!(
-                    "{} is a directory, not a design file",
-                    design_file.display()
-                ),
-            ));
-        }
-        if !design_file.exists() {
-            return Err(bad(
-                "design.file",
-                format!("no such file: {}", design_file.display()),
-            ));
-        }
-        if let Some(b) = &raw.design.ballast {
-            if b.is_empty() {
-                return Err(bad(
-                    "design.ballast",
-                    "must be the id of a component of the design".into(),
-                ));
-            }
-        }
-        let motor = if raw.motor.name.trim().is_empty() {
-            return Err(bad(
-                "motor.name",
-                "must name a motor: a bundled motor (Cesaroni_I175, I175...) or an .eng/.rse file"
-                    .into(),
-            ));
-        } else {
-            resolve_motor(&dir, &raw.motor.name)
-        };
-        let inertia = raw.motor.dry_inertia_kg_m2.unwrap_or_default();
-        for (key, v) in [
-            ("motor.propellant_mass_kg", raw.motor.propellant_mass_kg),
-            ("motor.dry_mass_kg", raw.motor.dry_mass_kg),
-            (
-                "motor.dry_center_from_nozzle_m",
-                raw.motor.dry_center_from_nozzle_m,
-            ),
-            (
-                "motor.propellant_center_from_nozzle_m",
-                raw.motor.propellant_center_from_nozzle_m,
-            ),
-            ("motor.dry_inertia_kg_m2", Some(inertia[0])),
-            ("motor.dry_inertia_kg_m2", Some(inertia[1])),
-            ("motor.burn_time_s", raw.motor.burn_time_s),
-            ("motor.diameter_m", raw.motor.diameter_m),
-        ] {
-            if let Some(v) = v {
-                if !(v.is_finite() && v >= 0.0) {
-                    return Err(bad(
-                        key,
-                        format!("must be finite and not negative (got {v})"),
-                    ));
-                }
-            }
-        }
-
-        let mut env = raw.environment.take().unwrap_or_default();
-        // A sounding gives the air and the wind: read here, it becomes the air profile and
-        // the wind profile below, as if the scenario had written their rows.
-        let sounding = sounding(&bad, &dir, &mut env)?;
-        let weather = weather(&bad, &dir, &mut env)?;
-        let wind_profile = match &env.wind_profile {
-            None => None,
-            Some(_) if env.wind_speed_m_s.is_some() || env.wind_from_deg.is_some() => {
-                return Err(bad(
-                    "environment.wind_profile",
-                    "give either a wind profile or a constant wind_speed_m_s and wind_from_deg, not both".into(),
-                ))
-            }
-            Some(rows) => {
-                let rows: Vec<WindRow> = rows
-                    .iter()
-                    .map(|r| WindRow {
-                        height_agl_m: r.height_m,
-                        speed_m_s: r.speed_m_s,
-                        from_deg: r.from_deg,
-                    })
-                    .collect();
-                let table = Wind::table(&rows).map_err(|e| {
-                    let key = match &e {
-                        WindError::EmptyTable => "environment.wind_profile".to_string(),
-                        WindError::Speed { row, .. } => {
-                            format!("environment.wind_profile[{}].speed_m_s", row.unwrap_or(0))
-                        }
-                        WindError::Direction { row, .. } => {
-                            format!("environment.wind_profile[{}].from_deg", row.unwrap_or(0))
-                        }
-                        WindError::Height { row, .. } => {
-                            format!("environment.wind_profile[{row}].height_m")
-                        }
-                        WindError::Scale { .. } => "environment.wind_profile".to_string(),
-                        WindError::Turbulence { .. } => {
-                            "environment.wind_turbulence_intensity".to_string()
-                        }
-                    };
-                    // The message in the scenario's words: height_m for the table's height.
-                    bad(&key, e.to_string().replace("height_agl_m", "height_m"))
-                })?;
-                Some(table)
-            }
-        };
-        let mut environment = EnvironmentSpec {
-            elevation_m: finite(
-                &bad,
-                "environment.elevation_m",
-                env.elevation_m.unwrap_or(0.0),
-            )?,
-            wind_speed_m_s: check_param(
-                &bad,
-                "environment.wind_speed_m_s",
-                Param::WindSpeedMS,
-                env.wind_speed_m_s.unwrap_or(0.0),
-            )?,
-            wind_from_deg: finite(
-                &bad,
-                "environment.wind_from_deg",
-                env.wind_from_deg.unwrap_or(0.0),
-            )?,
-            wind_profile,
-            wind_turbulence_intensity: match env.wind_turbulence_intensity {
-                None => 0.0,
-                Some(i) if (0.0..=MAX_TURBULENCE_INTENSITY).contains(&i) => i,
-                Some(i) => {
-                    return Err(bad(
-                        "environment.wind_turbulence_intensity",
-                        format!(
-                            "must be between 0 and {MAX_TURBULENCE_INTENSITY}, the wind speed's standard deviation over its mean (OpenRocket's 10 % is 0.1; got {i})"
-                        ),
-                    ))
-                }
-            },
-            gravity: match &env.gravity {
-                None => GravityModel::Standard,
-                Some(raw::RawGravity::Name(name)) => {
-                    GravityModel::parse(name).map_err(|r| bad("environment.gravity", r))?
-                }
-                Some(raw::RawGravity::Value(g)) => {
-                    GravityModel::value(*g).map_err(|r| bad("environment.gravity", r))?
-                }
-            },
-            latitude_deg: match env.latitude_deg {
-                Some(l) if !is_latitude(l) => {
-                    return Err(bad(
-                        "environment.latitude_deg",
-                        format!("{LATITUDE_RULE} degrees north (got {l})"),
-                    ))
-                }
-                l => l,
-            },
-            longitude_deg: match env.longitude_deg {
-                Some(l) if !(l.is_finite() && l.abs() <= 180.0) => {
-                    return Err(bad(
-                        "environment.longitude_deg",
-                        format!("must be finite and within [-180, 180] degrees east (got {l})"),
-                    ))
-                }
-                Some(_) if env.latitude_deg.is_none() => {
-                    return Err(bad(
-                        "environment.longitude_deg",
-                        "places the site on the Earth with environment.latitude_deg: give both"
-                            .into(),
-                    ))
-                }
-                l => l,
-            },
-            air: AirModel::Standard,
-            sounding,
-            weather,
-        };
-        let air_error = |e: AtmosphereError| {
-            let key = match &e {
-                AtmosphereError::SiteTemperature { .. } => "environment.temperature_k".into(),
-                AtmosphereError::SitePressure { .. } => "environment.pressure_pa".into(),
-                AtmosphereError::ProfileRows { .. } => "environment.air_profile".into(),
-                AtmosphereError::ProfileHeight { row, .. } => {
-                    format!("environment.air_profile[{row}].height_m")
-                }
-                AtmosphereError::ProfileTemperature { row, .. } => {
-                    format!("environment.air_profile[{row}].temperature_k")
-                }
-                _ => "environment.elevation_m".into(),
-            };
-            bad(&key, e.to_string().replace("atmosphere: ", ""))
-        };
-        environment.air = match &env.air_profile {
-            None => AirModel::site(environment.elevation_m, env.temperature_k, env.pressure_pa)
-                .map_err(air_error)?,
-            Some(_) if env.temperature_k.is_some() => {
-                return Err(bad(
-                    "environment.temperature_k",
-                    "the site's temperature is environment.air_profile's first row: give one or the other".into(),
-                ))
-            }
-            Some(rows) => {
-                // The site's pressure: as given, or the standard's at the site.
-                let (_, _, standard_pa) = AirModel::Standard.site_values(environment.elevation_m);
-                let profile = AirProfile {
-                    elevation_m: environment.elevation_m,
-                    pressure_pa: env.pressure_pa.unwrap_or(standard_pa),
-                    rows: rows
-                        .iter()
-                        .map(|r| AirRow {
-                            height_m: r.height_m,
-                            temperature_k: r.temperature_k,
-                            pressure_pa: r.pressure_pa,
-                        })
-                        .collect(),
-                };
-                let air = AirModel::Profile(std::sync::Arc::new(profile));
-                air.check().map_err(air_error)?;
-                air
-            }
-        };
-        // The site's gravity can be had (Somigliana's needs the latitude).
-        environment
-            .gravity
-            .at_site(
-                environment.latitude_deg,
-                environment.elevation_m,
-                "environment.latitude_deg",
-            )
-            .map_err(|rule| bad("environment.gravity", rule))?;
-        let r = raw.rail.take().unwrap_or_default();
-        let rail = RailSpec {
-            length_m: check_param(
-                &bad,
-                "rail.length_m",
-                Param::RailLengthM,
-                r.length_m.unwrap_or(2.0),
-            )?,
-            inclination_deg: check_param(
-                &bad,
-                "rail.inclination_deg",
-                Param::RailInclinationDeg,
-                r.inclination_deg.unwrap_or(90.0),
-            )?,
-            heading_deg: finite(&bad, "rail.heading_deg", r.heading_deg.unwrap_or(0.0))?,
-        };
-
-        let mut parachutes = Vec::new();
-        // The design, read only when a parachute takes its canopy from a component of it.
-        let mut design: Option<hpr_design::Design> = None;
-        for (i, p) in raw.parachutes.iter().enumerate() {
-            let key = |f: &str| format!("parachutes[{i}].{f}");
-            let from = match &p.component {
-                Some(id) => {
-                    let d = match design.take() {
-                        Some(d) => d,
-                        None => hpr_design::Design::load(&design_file)
-                            .map_err(|e| bad("design.file", format!("{e}")))?,
-                    };
-                    let from = design_parachute(&bad, &key("component"), &d, id)?;
-                    design = Some(d);
-                    Some(from)
-                }
-                None => None,
-            };
-            let name = match (&p.name, &p.component) {
-                (Some(n), _) => n.clone(),
-                (None, Some(id)) => id.clone(),
-                (None, None) => {
-                    return Err(bad(&key("name"), "is missing (or give a component)".into()))
-                }
-            };
-            check_name(&bad, &key("name"), &name)?;
-            if parachutes.iter().any(|q: &ParachuteSpec| q.name == name) {
-                return Err(bad(
-                    &key("name"),
-                    format!("two parachutes are named \"{name}\"; give each its own name"),
-                ));
-            }
-            let cds_m2 = match (p.cds_m2, &from) {
-                (Some(c), _) => c,
-                (None, Some(d)) => d.cds_m2,
-                (None, None) => {
-                    return Err(bad(
-                        &key("cds_m2"),
-                        "is missing (or give a component)".into(),
-                    ))
-                }
-            };
-            let (trigger, lag_s) = match (&p.trigger, &from) {
-                (Some(t), _) => (t.0, p.lag_s.unwrap_or(0.0)),
-                (
-                    None,
-                    Some(ParachuteFromDesign {
-                        deploy: Some((t, lag)),
-                        ..
-                    }),
-                ) => (*t, p.lag_s.unwrap_or(*lag)),
-                (None, Some(_)) => {
-                    return Err(bad(
-                        &key("trigger"),
-                        "is missing, and the component says no \"deploy\"".into(),
-                    ))
-                }
-                (None, None) => return Err(bad(&key("trigger"), "is missing".into())),
-            };
-            parachutes.push(ParachuteSpec {
-                name,
-                cds_m2: check_param(&bad, &key("cds_m2"), Param::ParachuteCdsM2(i), cds_m2)?,
-                lag_s: check_param(&bad, &key("lag_s"), Param::ParachuteLagS(i), lag_s)?,
-                trigger,
-                canopy: canopy_shape(&bad, &key, p)?,
-                sampling_rate_hz: match p.sampling_rate_hz {
-                    Some(r) if !(r.is_finite() && r > 0.0 && r <= MAX_SAMPLING_RATE_HZ) => {
-                        return Err(bad(
-                            &key("sampling_rate_hz"),
-                            format!(
-                                "must be positive, at most {MAX_SAMPLING_RATE_HZ} Hz (got {r})"
-                            ),
-                        ))
-                    }
-                    r => r,
-                },
-                noise: noise(&bad, &key, p)?,
-            });
-        }
-        let mut shifts = Vec::new();
-        for (i, s) in raw.shifts.iter().enumerate() {
-            let key = |f: &str| format!("shifts[{i}].{f}");
-            let name = s.name.clone().unwrap_or_else(|| s.component.clone());
-            check_name(&bad, &key("name"), &name)?;
-            if shifts.iter().any(|q: &ShiftSpec| q.name == name) {
-                return Err(bad(&key("name"), format!("two shifts are named \"{name}\" (a shift is named after its component unless it has a name); give each its own name")));
-            }
-            shifts.push(ShiftSpec {
-                name,
-                component: s.component.clone(),
-                travel_m: check_param(&bad, &key("travel_m"), Param::ShiftTravelM(i), s.travel_m)?,
-                duration_s: check_param(
-                    &bad,
-                    &key("duration_s"),
-                    Param::ShiftDurationS(i),
-                    s.duration_s,
-                )?,
-                trigger: s.trigger.0,
-            });
-        }
-        let mut releases = Vec::new();
-        for (i, r) in raw.releases.iter().enumerate() {
-            let key = |f: &str| format!("releases[{i}].{f}");
-            let name = r.name.clone().unwrap_or_else(|| r.component.clone());
-            check_name(&bad, &key("name"), &name)?;
-            if releases.iter().any(|q: &ReleaseSpec| q.name == name) {
-                return Err(bad(&key("name"), format!("two releases are named \"{name}\" (a release is named after its component unless it has a name); give each its own name")));
-            }
-            let cda_m2 = match r.cda_m2 {
-                Some(v) => Some(check_param(
-                    &bad,
-                    &key("cda_m2"),
-                    Param::ReleaseCdaM2(i),
-                    v,
-                )?),
-                None => None,
-            };
-            let parachute = match &r.parachute {
-                None => None,
-                Some(c) => {
-                    let k = |f: &str| key(&format!("parachute.{f}"));
-                    let trigger = c.trigger.as_ref().map_or(PartTrigger::Release, |t| t.0);
-                    if let PartTrigger::HeightDescending { height_m } = trigger {
-                        if !(height_m.is_finite() && height_m > 0.0) {
-                            return Err(bad(&k("trigger.height_m"), format!("must be above the ground and finite, or the canopy never opens (got {height_m})")));
-                        }
-                    }
-                    let shape = CanopyShape {
-                        radius_m: c.radius_m,
-                        height_m: c.height_m,
-                        porosity: c.porosity.unwrap_or(CanopyShape::default().porosity),
-                    };
-                    shape
-                        .check()
-                        .map_err(|(field, rule)| bad(&k(field), rule.to_string()))?;
-                    Some(PartChute {
-                        cds_m2: check_param(
-                            &bad,
-                            &k("cds_m2"),
-                            Param::ReleaseChuteCdsM2(i),
-                            c.cds_m2,
-                        )?,
-                        trigger,
-                        lag_s: check_param(
-                            &bad,
-                            &k("lag_s"),
-                            Param::ReleaseChuteLagS(i),
-                            c.lag_s.unwrap_or(0.0),
-                        )?,
-                        canopy: shape,
-                    })
-                }
-            };
-            releases.push(ReleaseSpec {
-                name,
-                component: r.component.clone(),
-                trigger: r.trigger.0,
-                cda_m2,
-                parachute,
-            });
-        }
-
+        let name = sections::name(&bad, raw.name.take(), path)?;
+        let variants_per_point = sections::variants_per_point(&bad, raw.variants_per_point)?;
+        let design_file = sections::design_file(&bad, &dir, &raw.design)?;
+        let motor = sections::motor(&bad, &dir, &raw.motor)?;
+        let environment =
+            sections::environment(&bad, &dir, raw.environment.take().unwrap_or_default())?;
+        let rail = sections::rail(&bad, raw.rail.take().unwrap_or_default())?;
+        let parachutes = sections::parachutes(&bad, &design_file, &raw.parachutes)?;
+        let shifts = sections::shifts(&bad, &raw.shifts)?;
+        let releases = sections::releases(&bad, &raw.releases)?;
         let (integrator, max_time_s) = integrator(&bad, raw.integrator.take().unwrap_or_default())?;
-        let run = raw.run.take().unwrap_or_default();
-        let chunk_size = run.chunk_size.unwrap_or(32);
-        if !(1..=1_000_000).contains(&chunk_size) {
-            return Err(bad(
-                "run.chunk_size",
-                format!("must be from 1 to 1000000 variants (got {chunk_size})"),
-            ));
-        }
-        let row_group_rows = run.row_group_rows.unwrap_or(8192);
-        if !(1..=10_000_000).contains(&row_group_rows) {
-            return Err(bad(
-                "run.row_group_rows",
-                format!("must be from 1 to 10000000 rows (got {row_group_rows})"),
-            ));
-        }
-
+        let (chunk_size, row_group_rows) =
+            sections::run_options(&bad, raw.run.take().unwrap_or_default())?;
         let requirements = requirements(&bad, raw.requirements.take().unwrap_or_default())?;
-        let trajectories = match raw.outputs.take().and_then(|o| o.trajectories) {
-            None => DEFAULT_TRAJECTORIES,
-            Some(n) if n <= MAX_TRAJECTORIES => n,
-            Some(n) => {
-                return Err(bad(
-                    "outputs.trajectories",
-                    format!(
-                        "must be from 0 to {MAX_TRAJECTORIES} variants per sweep point (got {n})"
-                    ),
-                ))
-            }
-        };
-
+        let trajectories = sections::trajectories(&bad, raw.outputs.take())?;
         let mut scenario = Scenario {
             file: path.to_path_buf(),
             dir,
             text: text.to_string(),
-            // A sounding or a weather file is part of the scenario: a run resumed with
-            // another is refused.
-            hash: match (&environment.sounding, &environment.weather) {
-                (Some((_, sounding)), _) => fingerprint(format!("{text}\n{sounding}").as_bytes()),
-                (None, Some(w)) => fingerprint(format!("{text}\n{}", w.fingerprint).as_bytes()),
-                (None, None) => fingerprint(text.as_bytes()),
-            },
+            hash: sections::hash(text, &environment),
             name,
             description: raw.description.take(),
             seed: raw.seed,
-            variants_per_point: raw.variants_per_point,
+            variants_per_point,
             common_random_numbers: raw.common_random_numbers.unwrap_or(true),
             design_file,
             ballast: raw.design.ballast.take(),
-            motor,
-            motor_options: MotorOptions {
-                propellant_mass_kg: raw.motor.propellant_mass_kg,
-                dry_mass_kg: raw.motor.dry_mass_kg,
-                dry_center_from_nozzle_m: raw.motor.dry_center_from_nozzle_m,
-                propellant_center_from_nozzle_m: raw.motor.propellant_center_from_nozzle_m,
-                dry_inertia_kg_m2: raw.motor.dry_inertia_kg_m2,
-                grains: raw.motor.grains.map(|g| Grains {
-                    count: g.count,
-                    outer_radius_m: g.outer_radius_m,
-                    inner_radius_m: g.inner_radius_m,
-                    height_m: g.height_m,
-                    separation_m: g.separation_m,
-                    density_kg_m3: g.density_kg_m3,
-                }),
-                chamber_m: raw.motor.chamber.map(|c| [c.radius_m, c.height_m]),
-                nozzle_radius_m: raw.motor.nozzle_radius_m,
-                ..MotorOptions::default()
-            },
-            motor_burn_time_s: raw.motor.burn_time_s,
-            motor_diameter_m: raw.motor.diameter_m,
+            motor: motor.motor,
+            motor_options: motor.options,
+            motor_burn_time_s: motor.burn_time_s,
+            motor_diameter_m: motor.diameter_m,
             environment,
             rail,
             parachutes,
@@ -985,70 +487,18 @@ impl Scenario {
             inputs: vec![],
             motors: vec![],
             dimensions: vec![],
-            chunk_size: chunk_size as usize,
-            row_group_rows: row_group_rows as usize,
+            chunk_size,
+            row_group_rows,
             requirements,
             trajectories,
         };
-        let (mut sweep, dispersions) = (raw.sweep.take(), raw.dispersions.take());
-        if dispersions.as_ref().is_some_and(|d| d.motor.is_some()) {
-            return Err(bad(
-                "dispersions.motor",
-                "a motor is not a number to disperse: sweep it over a list of motors ([sweep] motor = [\"Cesaroni_I175\", ...])".into(),
-            ));
-        }
-        if let Some(motors) = sweep.as_mut().and_then(|s| s.motor.take()) {
-            if motors.is_empty() {
-                return Err(bad(
-                    "sweep.motor",
-                    "empty sweep: give at least one motor".into(),
-                ));
-            }
-            for (j, m) in motors.iter().enumerate() {
-                if motors[..j].contains(m) {
-                    return Err(bad(
-                        &format!("sweep.motor[{j}]"),
-                        format!("the motor \"{m}\" appears twice in the sweep"),
-                    ));
-                }
-            }
-            // A motor file is found beside the scenario, as motor.name's.
-            scenario.motors = motors
-                .iter()
-                .map(|m| resolve_motor(&scenario.dir, m))
-                .collect();
-        }
-        // The design's dimensions, numbered before the inputs are collected.
-        let mut dimensions: Vec<Dimension> = Vec::new();
-        if let Some(s) = &sweep {
-            dimensions.extend(rules::dimensions(&s.design));
-        }
-        if let Some(d) = &dispersions {
-            dimensions.extend(rules::dimensions(&d.design));
-        }
-        dimensions.sort();
-        dimensions.dedup();
-        scenario.dimensions = dimensions;
-        scenario.inputs = inputs(&scenario, &bad, sweep, dispersions)?;
-        if scenario.turbulent() && scenario.max_time_s > MAX_TURBULENT_FLIGHT_S {
-            return Err(bad(
-                "integrator.max_time_s",
-                format!("must be at most {MAX_TURBULENT_FLIGHT_S} s in a turbulent wind (environment.wind_turbulence_intensity), whose gusts each flight draws to its time limit (got {})", scenario.max_time_s),
-            ));
-        }
-        weather_inputs(&scenario, &bad)?;
-        if scenario.environment.wind_profile.is_some() {
-            if let Some(i) = scenario
-                .inputs
-                .iter()
-                .find(|i| matches!(i.param, Param::WindSpeedMS | Param::WindFromDeg))
-            {
-                return Err(bad(
-                    &i.key_path(),
-                    "the wind is environment.wind_profile, whose rows give its speeds and directions: vary it with wind_scale (a factor on every speed) and wind_rotation_deg (a clockwise turn of every direction)".into(),
-                ));
-            }
-        }
+        sections::sweep_and_dispersions(
+            &mut scenario,
+            &bad,
+            raw.sweep.take(),
+            raw.dispersions.take(),
+        )?;
+        sections::across_sections(&scenario, &bad)?;
         scenario.check_size("variants_per_point")?;
         Ok(scenario)
     }

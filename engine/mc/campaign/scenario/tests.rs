@@ -3,6 +3,7 @@
 use super::*;
 use crate::campaign::fly::Prepared;
 use crate::campaign::sample::Shape;
+use hpr_sim::wind::WindRow;
 use std::path::{Path, PathBuf};
 
 mod chutes;

@@ -346,6 +346,32 @@ pub struct BatchWeather {
     pub elevation_m: f64,
 }
 
+/// Why a batch's columns can't be flown: their shapes do not fit each other or the batch
+/// ([`Batch::check`]). Nothing is flown.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ColumnsError {
+    /// The seeds are given, but not one per variant.
+    #[error("column sensor_seed has {seeds} values for {variants} variants")]
+    SeedCount { seeds: usize, variants: usize },
+    /// An input's column is not one value per variant.
+    #[error("column {} has {values} values for {variants} variants", .input.name())]
+    Length {
+        input: Input,
+        values: usize,
+        variants: usize,
+    },
+    /// An input has two columns.
+    #[error("column {} is given twice", .input.name())]
+    Twice { input: Input },
+    /// An input of a parachute, shift or release the base flight does not have (it has
+    /// `count` of that kind).
+    #[error("column {} is of a part the flight does not have (it has {count})", .input.name())]
+    NoSuchPart { input: Input, count: usize },
+    /// A ballast's mass for a batch that names no part ([`Batch::new`]).
+    #[error("column {} needs the part it gives the mass of", .input.name())]
+    NeedsPart { input: Input },
+}
+
 /// Run `f`, turning a panic into its message.
 fn guarded<R>(f: impl FnOnce() -> R) -> Result<R, String> {
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|p| panic_message(&*p))
@@ -426,24 +452,23 @@ impl Batch {
     /// Check the shapes of `columns`: every column `columns.len` long (the seeds empty or
     /// that long), no input twice, every parachute's, shift's or release's input of one the
     /// base has, and a ballast's mass only for a batch that names its part.
-    pub fn check(&self, columns: &Columns) -> Result<(), String> {
+    pub fn check(&self, columns: &Columns) -> Result<(), ColumnsError> {
         let n = columns.len;
         let seeds = columns.sensor_seed.len();
         if seeds != 0 && seeds != n {
-            return Err(format!(
-                "column sensor_seed has {seeds} values for {n} variants"
-            ));
+            return Err(ColumnsError::SeedCount { seeds, variants: n });
         }
         for (k, (input, c)) in columns.inputs.iter().enumerate() {
+            let input = *input;
             if c.len() != n {
-                return Err(format!(
-                    "column {} has {} values for {n} variants",
-                    input.name(),
-                    c.len()
-                ));
+                return Err(ColumnsError::Length {
+                    input,
+                    values: c.len(),
+                    variants: n,
+                });
             }
-            if columns.inputs[..k].iter().any(|(i, _)| i == input) {
-                return Err(format!("column {} is given twice", input.name()));
+            if columns.inputs[..k].iter().any(|(i, _)| *i == input) {
+                return Err(ColumnsError::Twice { input });
             }
             if let Some((part, index)) = input.part() {
                 let count = match part {
@@ -452,17 +477,11 @@ impl Batch {
                     Part::Release => self.base.releases().len(),
                 };
                 if index >= count {
-                    return Err(format!(
-                        "column {} is of a part the flight does not have (it has {count})",
-                        input.name()
-                    ));
+                    return Err(ColumnsError::NoSuchPart { input, count });
                 }
             }
-            if *input == Input::BallastKg && self.part.is_none() {
-                return Err(format!(
-                    "column {} needs the part it gives the mass of",
-                    input.name()
-                ));
+            if input == Input::BallastKg && self.part.is_none() {
+                return Err(ColumnsError::NeedsPart { input });
             }
         }
         Ok(())
@@ -602,7 +621,8 @@ impl Batch {
     }
 
     /// Fly every row of `columns` on this thread, row `r` as variant `first + r`, and return
-    /// their results in row order. Errs (flying nothing) if the columns' shapes are wrong.
+    /// their results in row order. Errs (flying nothing) if the columns' shapes are wrong
+    /// ([`ColumnsError`]).
     ///
     /// Up to [`LANES_IN_FLIGHT`] rows fly at once; each lane's pad, rail, events and step
     /// ends run as in a single flight, and the free-flight steps of four lanes are taken
@@ -610,7 +630,11 @@ impl Batch {
     /// four lanes ([`derivative_6dof_lanes`](crate::flight::model::derivative_6dof_lanes) on
     /// [`F64x4`](crate::lanes::F64x4)); each lane under canopy takes its own RODAS4 step. A
     /// lane that lands is replaced by the next row.
-    pub fn fly_chunk(&self, columns: &Columns, first: usize) -> Result<Vec<LaneResult>, String> {
+    pub fn fly_chunk(
+        &self,
+        columns: &Columns,
+        first: usize,
+    ) -> Result<Vec<LaneResult>, ColumnsError> {
         self.check(columns)?;
         let n = columns.len;
         // Each row's simulation, built when its lane starts; lanes borrow their model from it.

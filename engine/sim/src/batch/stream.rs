@@ -148,7 +148,7 @@ impl Batch {
         window: usize,
         sink: impl FnMut(LaneResult) + Send,
     ) -> Result<(), String> {
-        self.check(columns)?;
+        self.check(columns).map_err(|e| e.to_string())?;
         self.run(columns.len, chunk, window, |r| columns.slice(r), sink)
     }
 }

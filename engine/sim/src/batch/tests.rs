@@ -512,7 +512,18 @@ fn columns_of_the_wrong_length_or_shape_are_an_error_naming_the_variants() {
     let e = batch.run_columns(&short, 4, 1, |_| {}).unwrap_err();
     assert_eq!(e, "column wind_speed_m_s has 5 values for 6 variants");
     let e = batch.fly_chunk(&short.slice(4..6), 4).unwrap_err();
-    assert_eq!(e, "column wind_speed_m_s has 1 values for 2 variants");
+    assert_eq!(
+        e,
+        ColumnsError::Length {
+            input: Input::WindSpeedMS,
+            values: 1,
+            variants: 2
+        }
+    );
+    assert_eq!(
+        e.to_string(),
+        "column wind_speed_m_s has 1 values for 2 variants"
+    );
 }
 
 #[test]
