@@ -23,7 +23,7 @@ use super::variants::{Plan, PlanInput, Variant};
 use hpr_design::design::dimension::DesignSource;
 use hpr_design::design::model::Design;
 use hpr_design::mass;
-use hpr_design::motor::{self, Motor, MotorError, MotorTables};
+use hpr_design::motor::{self, Motor, MotorError, MotorField, MotorTables};
 use hpr_sim::batch::{
     Batch, BatchDesigns, BatchWeather, LaneResult, ParachuteOutcome, ReleaseOutcome, ShiftOutcome,
 };
@@ -167,6 +167,39 @@ pub struct Prepared {
     batch: Batch,
 }
 
+/// The scenario's key of a motor option's field; `None` for the motor's own numbers (its
+/// file's masses and sizes, and its curve under the scales, which the scenario leaves at 1),
+/// which are the key naming the motor's.
+fn option_key(field: MotorField) -> Option<&'static str> {
+    use MotorField as F;
+    Some(match field {
+        F::ImpulseScale
+        | F::TimeScale
+        | F::Scales
+        | F::MotorFilePropellantMass
+        | F::MotorFileDryMass
+        | F::MotorFileLength
+        | F::MotorFileDiameter => return None,
+        F::PropellantMass => "motor.propellant_mass_kg",
+        F::DryMass => "motor.dry_mass_kg",
+        F::Chamber => "motor.chamber",
+        F::ChamberRadius => "motor.chamber.radius_m",
+        F::ChamberHeight => "motor.chamber.height_m",
+        F::GrainsCount => "motor.grains.count",
+        F::GrainsOuterRadius => "motor.grains.outer_radius_m",
+        F::GrainsInnerRadius => "motor.grains.inner_radius_m",
+        F::GrainsHeight => "motor.grains.height_m",
+        F::GrainsSeparation => "motor.grains.separation_m",
+        F::GrainsDensity => "motor.grains.density_kg_m3",
+        F::NozzleRadius => "motor.nozzle_radius_m",
+        F::DryCenterFromNozzle => "motor.dry_center_from_nozzle_m",
+        F::PropellantCenterFromNozzle => "motor.propellant_center_from_nozzle_m",
+        F::DryInertiaAxial | F::DryInertiaTransverse => "motor.dry_inertia_kg_m2",
+        F::BurnTime => "motor.burn_time_s",
+        F::Diameter => "motor.diameter_m",
+    })
+}
+
 impl Prepared {
     /// Load the design and the motor, resolve the nominals and check the scenario's rules that
     /// need them. Errors name the scenario's key.
@@ -195,14 +228,9 @@ impl Prepared {
             // The motor's own numbers against the motor (a center within its length).
             if let Err(e) = MotorTables::new(&motor, &scenario.motor_options) {
                 let key = match &e {
-                    // The scenario's key of a motor option's field: `chamber_m (radius)` is
-                    // `chamber.radius_m`, `dry_inertia_kg_m2 (axial)` the pair's key.
-                    MotorError::InvalidOption { field, .. } => match *field {
-                        "chamber_m" => "motor.chamber".to_owned(),
-                        "chamber_m (radius)" => "motor.chamber.radius_m".to_owned(),
-                        "chamber_m (height)" => "motor.chamber.height_m".to_owned(),
-                        f => format!("motor.{}", f.split(' ').next().unwrap_or(f)),
-                    },
+                    MotorError::InvalidOption { field, .. } => {
+                        option_key(*field).map_or_else(|| name_key.to_owned(), str::to_owned)
+                    }
                     _ => name_key.to_owned(),
                 };
                 return Err(bad(&key, e.to_string()));

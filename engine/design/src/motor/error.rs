@@ -76,10 +76,87 @@ pub enum MotorError {
     #[error("motor {motor}, option {field} = {value}: {rule}")]
     InvalidOption {
         motor: String,
-        field: &'static str,
+        field: MotorField,
         value: f64,
         rule: &'static str,
     },
+}
+
+/// The value a [`MotorError::InvalidOption`] names: an option of
+/// [`MotorOptions`](super::MotorOptions), of [`Motor::cut_at`](super::Motor::cut_at) or
+/// [`Motor::with_diameter`](super::Motor::with_diameter), or one of the motor's own numbers
+/// (`MotorFile*`: its file's, not an option's). Displayed as the message's field text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MotorField {
+    ImpulseScale,
+    TimeScale,
+    /// The two scales together: the scaled curve collapsed.
+    Scales,
+    PropellantMass,
+    DryMass,
+    MotorFilePropellantMass,
+    /// The file's total mass less its propellant.
+    MotorFileDryMass,
+    MotorFileLength,
+    MotorFileDiameter,
+    /// The chamber as a whole (given with grains).
+    Chamber,
+    ChamberRadius,
+    ChamberHeight,
+    GrainsCount,
+    GrainsOuterRadius,
+    GrainsInnerRadius,
+    GrainsHeight,
+    GrainsSeparation,
+    GrainsDensity,
+    NozzleRadius,
+    DryCenterFromNozzle,
+    PropellantCenterFromNozzle,
+    DryInertiaAxial,
+    DryInertiaTransverse,
+    /// [`Motor::cut_at`](super::Motor::cut_at)'s time.
+    BurnTime,
+    /// [`Motor::with_diameter`](super::Motor::with_diameter)'s diameter.
+    Diameter,
+}
+
+impl MotorField {
+    /// The field as error messages name it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            MotorField::ImpulseScale => "impulse_scale",
+            MotorField::TimeScale => "time_scale",
+            MotorField::Scales => "impulse_scale / time_scale",
+            MotorField::PropellantMass => "propellant_mass_kg",
+            MotorField::DryMass => "dry_mass_kg",
+            MotorField::MotorFilePropellantMass => "motor propellant_mass_kg",
+            MotorField::MotorFileDryMass => "motor dry mass (total - propellant)",
+            MotorField::MotorFileLength => "motor length_m",
+            MotorField::MotorFileDiameter => "motor diameter_m",
+            MotorField::Chamber => "chamber_m",
+            MotorField::ChamberRadius => "chamber_m (radius)",
+            MotorField::ChamberHeight => "chamber_m (height)",
+            MotorField::GrainsCount => "grains.count",
+            MotorField::GrainsOuterRadius => "grains.outer_radius_m",
+            MotorField::GrainsInnerRadius => "grains.inner_radius_m",
+            MotorField::GrainsHeight => "grains.height_m",
+            MotorField::GrainsSeparation => "grains.separation_m",
+            MotorField::GrainsDensity => "grains.density_kg_m3",
+            MotorField::NozzleRadius => "nozzle_radius_m",
+            MotorField::DryCenterFromNozzle => "dry_center_from_nozzle_m",
+            MotorField::PropellantCenterFromNozzle => "propellant_center_from_nozzle_m",
+            MotorField::DryInertiaAxial => "dry_inertia_kg_m2 (axial)",
+            MotorField::DryInertiaTransverse => "dry_inertia_kg_m2 (transverse)",
+            MotorField::BurnTime => "burn_time_s",
+            MotorField::Diameter => "diameter_m",
+        }
+    }
+}
+
+impl fmt::Display for MotorField {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
 }
 
 /// The rule a value in a motor file breaks.

@@ -20,6 +20,8 @@
 //! from `dr/dm = 1/(n ρ π g′(r))`, `g(r) = (R² − r²)(H − 2r)`. The bore for a mass is found by
 //! Newton's method kept inside its bracket: a pure function, so every lane finds the same.
 
+use super::MotorField;
+
 /// The grains of one motor (RocketPy's `grain_number`, `grain_outer_radius`,
 /// `grain_initial_inner_radius`, `grain_initial_height`, `grain_separation`, `grain_density`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -56,14 +58,14 @@ impl Grains {
     }
 
     /// The first rule the grains break, as (field, its value, rule), if any.
-    pub fn check(&self) -> Option<(&'static str, f64, &'static str)> {
+    pub fn check(&self) -> Option<(MotorField, f64, &'static str)> {
         let positive = |v: f64| v.is_finite() && v > 0.0;
         if self.count == 0 {
-            return Some(("grains.count", 0.0, "must be at least 1"));
+            return Some((MotorField::GrainsCount, 0.0, "must be at least 1"));
         }
         if !positive(self.outer_radius_m) {
             return Some((
-                "grains.outer_radius_m",
+                MotorField::GrainsOuterRadius,
                 self.outer_radius_m,
                 "must be positive and finite",
             ));
@@ -73,28 +75,28 @@ impl Grains {
             && self.inner_radius_m < self.outer_radius_m)
         {
             return Some((
-                "grains.inner_radius_m",
+                MotorField::GrainsInnerRadius,
                 self.inner_radius_m,
                 "must be at least 0 and less than outer_radius_m",
             ));
         }
         if !positive(self.height_m) {
             return Some((
-                "grains.height_m",
+                MotorField::GrainsHeight,
                 self.height_m,
                 "must be positive and finite",
             ));
         }
         if !(self.separation_m.is_finite() && self.separation_m >= 0.0) {
             return Some((
-                "grains.separation_m",
+                MotorField::GrainsSeparation,
                 self.separation_m,
                 "must be finite and not negative",
             ));
         }
         if !positive(self.density_kg_m3) {
             return Some((
-                "grains.density_kg_m3",
+                MotorField::GrainsDensity,
                 self.density_kg_m3,
                 "must be positive and finite",
             ));

@@ -46,7 +46,7 @@ use std::path::Path;
 
 pub use curve::impulse_class;
 pub use eng::parse_eng;
-pub use error::{MotorError, Rule};
+pub use error::{MotorError, MotorField, Rule};
 pub use grains::{GrainInertia, Grains};
 pub use library::{bundled, find, BundledFile, BUNDLED_FILES, BUNDLED_README};
 pub use rse::parse_rse;
@@ -220,7 +220,7 @@ impl Motor {
         if !(burn_time_s.is_finite() && burn_time_s > 0.0 && burn_time_s <= end) {
             return Err(MotorError::InvalidOption {
                 motor: self.designation.clone(),
-                field: "burn_time_s",
+                field: MotorField::BurnTime,
                 value: burn_time_s,
                 rule:
                     "must be after 0 and no later than the thrust curve's burnout (its last sample)",
@@ -249,7 +249,7 @@ impl Motor {
         if total_impulse_ns <= 0.0 {
             return Err(MotorError::InvalidOption {
                 motor: self.designation.clone(),
-                field: "burn_time_s",
+                field: MotorField::BurnTime,
                 value: burn_time_s,
                 rule: "cuts the curve before it delivers any impulse",
             });
@@ -282,7 +282,7 @@ impl Motor {
         if !(diameter_m.is_finite() && diameter_m > 0.0 && diameter_m <= 2.0) {
             return Err(MotorError::InvalidOption {
                 motor: self.designation.clone(),
-                field: "diameter_m",
+                field: MotorField::Diameter,
                 value: diameter_m,
                 rule: "must be positive and at most 2 m",
             });

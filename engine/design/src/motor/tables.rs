@@ -32,7 +32,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::{GrainInertia, Grains, Motor, MotorError};
+use super::{GrainInertia, Grains, Motor, MotorError, MotorField};
 use crate::mass::{offsets_inertia, MassProps};
 
 /// Overrides and dispersion applied when the tables are built. The default changes nothing.
@@ -187,7 +187,7 @@ impl MotorTables {
     /// public mass or size fields is out of range (masses finite and ≥ 0, scales and sizes
     /// finite and > 0).
     pub fn new(motor: &Motor, options: &MotorOptions) -> Result<Self, MotorError> {
-        let check = |field: &'static str, value: f64, positive: bool| {
+        let check = |field: MotorField, value: f64, positive: bool| {
             let ok = value.is_finite() && if positive { value > 0.0 } else { value >= 0.0 };
             if ok {
                 Ok(value)
@@ -204,10 +204,10 @@ impl MotorTables {
                 })
             }
         };
-        let k_i = check("impulse_scale", options.impulse_scale, true)?;
-        let k_t = check("time_scale", options.time_scale, true)?;
+        let k_i = check(MotorField::ImpulseScale, options.impulse_scale, true)?;
+        let k_t = check(MotorField::TimeScale, options.time_scale, true)?;
         let invalid =
-            |field: &'static str, value: f64, rule: &'static str| MotorError::InvalidOption {
+            |field: MotorField, value: f64, rule: &'static str| MotorError::InvalidOption {
                 motor: motor.source.clone(),
                 field,
                 value,
@@ -219,7 +219,7 @@ impl MotorTables {
             }
             if let Some(m) = options.propellant_mass_kg {
                 return Err(invalid(
-                    "propellant_mass_kg",
+                    MotorField::PropellantMass,
                     m,
                     "is the grains' (their count, size and density give it): give one or the other",
                 ));
@@ -227,20 +227,20 @@ impl MotorTables {
         }
         let propellant_mass_kg = match (options.propellant_mass_kg, &options.grains) {
             (_, Some(g)) => g.mass_kg(),
-            (Some(m), None) => check("propellant_mass_kg", m, false)?,
-            (None, None) => check("motor propellant_mass_kg", motor.propellant_mass_kg, false)?,
-        };
-        let dry_mass_kg = match options.dry_mass_kg {
-            Some(m) => check("dry_mass_kg", m, false)?,
-            None => check(
-                "motor dry mass (total - propellant)",
-                motor.dry_mass_kg(),
+            (Some(m), None) => check(MotorField::PropellantMass, m, false)?,
+            (None, None) => check(
+                MotorField::MotorFilePropellantMass,
+                motor.propellant_mass_kg,
                 false,
             )?,
         };
-        let length_m = check("motor length_m", motor.length_m, true)?;
-        let diameter_m = check("motor diameter_m", motor.diameter_m, true)?;
-        let within = |field: &'static str, value: Option<f64>| match value {
+        let dry_mass_kg = match options.dry_mass_kg {
+            Some(m) => check(MotorField::DryMass, m, false)?,
+            None => check(MotorField::MotorFileDryMass, motor.dry_mass_kg(), false)?,
+        };
+        let length_m = check(MotorField::MotorFileLength, motor.length_m, true)?;
+        let diameter_m = check(MotorField::MotorFileDiameter, motor.diameter_m, true)?;
+        let within = |field: MotorField, value: Option<f64>| match value {
             None => Ok(0.5 * length_m),
             Some(x) if (0.0..=length_m).contains(&x) => Ok(x),
             Some(x) => Err(invalid(
@@ -252,21 +252,21 @@ impl MotorTables {
         if let Some([radius, height]) = options.chamber_m {
             if options.grains.is_some() {
                 return Err(invalid(
-                    "chamber_m",
+                    MotorField::Chamber,
                     radius,
                     "is the grains' when grains are given: give one or the other",
                 ));
             }
             if !(radius.is_finite() && radius > 0.0 && radius <= 0.5 * diameter_m) {
                 return Err(invalid(
-                    "chamber_m (radius)",
+                    MotorField::ChamberRadius,
                     radius,
                     "must be positive and at most the motor's radius",
                 ));
             }
             if !(height.is_finite() && height > 0.0 && height <= length_m) {
                 return Err(invalid(
-                    "chamber_m (height)",
+                    MotorField::ChamberHeight,
                     height,
                     "must be positive and at most the motor's length",
                 ));
@@ -275,14 +275,14 @@ impl MotorTables {
         if let Some(g) = &options.grains {
             if 2.0 * g.outer_radius_m > diameter_m {
                 return Err(invalid(
-                    "grains.outer_radius_m",
+                    MotorField::GrainsOuterRadius,
                     g.outer_radius_m,
                     "must fit in the motor: at most half its diameter",
                 ));
             }
             if g.stack_length_m() > length_m {
                 return Err(invalid(
-                    "grains.height_m",
+                    MotorField::GrainsHeight,
                     g.height_m,
                     "the stack (count × height + the separations between) must fit in the motor's length",
                 ));
@@ -293,27 +293,29 @@ impl MotorTables {
             Some(r) if r.is_finite() && r > 0.0 && r <= 0.5 * diameter_m => r,
             Some(r) => {
                 return Err(invalid(
-                    "nozzle_radius_m",
+                    MotorField::NozzleRadius,
                     r,
                     "must be positive and at most the motor's radius",
                 ))
             }
         };
-        let casing_center_from_aft_m =
-            within("dry_center_from_nozzle_m", options.dry_center_from_nozzle_m)?;
+        let casing_center_from_aft_m = within(
+            MotorField::DryCenterFromNozzle,
+            options.dry_center_from_nozzle_m,
+        )?;
         let propellant_center_from_aft_m = within(
-            "propellant_center_from_nozzle_m",
+            MotorField::PropellantCenterFromNozzle,
             options.propellant_center_from_nozzle_m,
         )?;
         let dry_inertia = match options.dry_inertia_kg_m2 {
             None => None,
             Some([axial, transverse]) => {
-                check("dry_inertia_kg_m2 (axial)", axial, false)?;
-                check("dry_inertia_kg_m2 (transverse)", transverse, false)?;
+                check(MotorField::DryInertiaAxial, axial, false)?;
+                check(MotorField::DryInertiaTransverse, transverse, false)?;
                 // A body round its axis has I_axial = ∫(y² + z²) dm ≤ 2 I_transverse.
                 if axial > 2.0 * transverse {
                     return Err(invalid(
-                        "dry_inertia_kg_m2 (axial)",
+                        MotorField::DryInertiaAxial,
                         axial,
                         "must be at most twice the transverse inertia (no body round its axis has more)",
                     ));
@@ -344,7 +346,7 @@ impl MotorTables {
         if collapsed {
             return Err(MotorError::InvalidOption {
                 motor: motor.source.clone(),
-                field: "impulse_scale / time_scale",
+                field: MotorField::Scales,
                 value: k_i / k_t,
                 rule: "the scaled curve must keep strictly increasing times, finite thrust and a finite positive impulse",
             });

@@ -113,7 +113,7 @@ fn grains_that_break_a_rule_or_do_not_fit_the_motor_are_refused_naming_the_field
             ..extra
         },
     ) {
-        Err(MotorError::InvalidOption { field, rule, .. }) => (field, rule),
+        Err(MotorError::InvalidOption { field, rule, .. }) => (field.as_str(), rule),
         other => panic!("accepted: {other:?}"),
     };
     let ok = m1670_grains();

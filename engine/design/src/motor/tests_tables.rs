@@ -338,7 +338,7 @@ fn a_casing_and_propellant_placed_as_rocketpy_s_solid_motor_places_them_sum_by_p
 #[test]
 fn a_center_outside_the_motor_or_an_impossible_casing_inertia_is_refused_naming_it() {
     let refused = |o: MotorOptions| match MotorTables::new(&triangle(), &o) {
-        Err(MotorError::InvalidOption { field, rule, .. }) => (field, rule),
+        Err(MotorError::InvalidOption { field, rule, .. }) => (field.as_str(), rule),
         other => panic!("accepted: {other:?}"),
     };
     let (field, rule) = refused(MotorOptions {
@@ -453,7 +453,7 @@ fn a_chamber_makes_the_propellant_a_solid_cylinder_of_its_size_as_rocketpy_s_gen
             ..MotorOptions::default()
         },
     ) {
-        Err(MotorError::InvalidOption { field, .. }) => field,
+        Err(MotorError::InvalidOption { field, .. }) => field.as_str(),
         other => panic!("accepted: {other:?}"),
     };
     assert_eq!(refused([0.03, 0.3]), "chamber_m (radius)");

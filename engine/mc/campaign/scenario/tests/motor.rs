@@ -166,3 +166,43 @@ fn a_motor_s_propellant_chamber_is_read_and_refused_by_key_against_the_motor() {
         assert_eq!(e.key(), key, "{lines}");
     }
 }
+
+#[test]
+fn a_motor_file_s_own_size_out_of_range_is_the_motor_s_key_not_an_option_s() {
+    // The I175's file with its length 1e-323 mm: positive as read, 0 m once in metres
+    // (the quotient underflows), so only the tables refuse it. It is the file's fault: the
+    // key naming the motor, `motor.name` or its place in a sweep of motors.
+    let i175 =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("engine/design/motors/Cesaroni_I175.eng");
+    let text = std::fs::read_to_string(i175).unwrap();
+    assert!(
+        text.contains(" 38 245 "),
+        "the I175's header: 38 mm by 245 mm"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let flat = dir.path().join("Flat_I175.eng");
+    std::fs::write(&flat, text.replace(" 38 245 ", " 38 1e-323 ")).unwrap();
+    let flat = flat.display().to_string();
+    let rule = "option motor length_m = 0: must be finite and greater than zero";
+    let e = Prepared::new(Scenario::parse(&BASE.replace("Cesaroni_I175", &flat), &path()).unwrap())
+        .unwrap_err();
+    assert_eq!(e.key(), "motor.name");
+    assert!(e.to_string().contains(rule), "{e}");
+    let swept = format!("{BASE}[sweep]\nmotor = [\"Cesaroni_I175\", {flat:?}]\n");
+    let e = Prepared::new(Scenario::parse(&swept, &path()).unwrap()).unwrap_err();
+    assert_eq!(e.key(), "sweep.motor[1]");
+    assert!(e.to_string().contains(rule), "{e}");
+    // An option's field keeps its own key beside it: grains wider than the motor.
+    let wide = BASE.replace(
+        "[motor]\n",
+        "[motor]\ngrains = { count = 1, outer_radius_m = 0.02, inner_radius_m = 0.006, \
+         height_m = 0.1, separation_m = 0.0, density_kg_m3 = 1700.0 }\n",
+    );
+    let e = Prepared::new(Scenario::parse(&wide, &path()).unwrap()).unwrap_err();
+    assert_eq!(e.key(), "motor.grains.outer_radius_m");
+    assert!(
+        e.to_string()
+            .contains("option grains.outer_radius_m = 0.02: must fit in the motor"),
+        "{e}"
+    );
+}
