@@ -254,3 +254,54 @@ fn a_sweep_of_motors_flies_each_point_on_its_own_motor_named_in_a_column() {
     }
     assert_ne!(apogee.value(0), apogee.value(2), "two motors, two apogees");
 }
+
+#[test]
+fn a_sweep_of_motors_is_labelled_by_designation_in_the_printed_table_and_the_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("scenario.toml");
+    std::fs::write(
+        &file,
+        scenario(
+            "Cesaroni_I175",
+            "[sweep]\nmotor = [\"Cesaroni_I175\", \"AeroTech_I161W\"]\n",
+        ),
+    )
+    .unwrap();
+    let config = RunConfig {
+        out: Some(dir.path().join("out")),
+        quiet: true,
+        threads: Some(2),
+        ..RunConfig::default()
+    };
+    let report = run_campaign(&file, &config).unwrap();
+    let rows = read(&report.outputs.variants);
+    let names = strings(&rows, "motor");
+    // The designations as the variants file holds them, one per point (two rows each).
+    let d: Vec<String> = (0..2).map(|p| names.value(2 * p).to_string()).collect();
+    assert_ne!(d[0], d[1]);
+    let table = hpr_mc::campaign::cli::sweep_table(&report);
+    let lines: Vec<&str> = table.lines().collect();
+    let head = lines
+        .iter()
+        .position(|l| l.trim_start().starts_with("point"))
+        .unwrap();
+    let cells: Vec<&str> = lines[head].split_whitespace().collect();
+    assert_eq!(&cells[..2], &["point", "motor"], "{table}");
+    for (p, name) in d.iter().enumerate() {
+        let cells: Vec<&str> = lines[head + 1 + p].split_whitespace().collect();
+        assert_eq!(cells[0], p.to_string(), "{table}");
+        assert_eq!(cells[1], name, "{table}");
+    }
+    let html = std::fs::read_to_string(&report.outputs.report).unwrap();
+    assert!(!html.contains("motor_index = "), "no numbered motor");
+    for (p, name) in d.iter().enumerate() {
+        // The point's heading, its row of the answer's table and the charts' x axis.
+        assert!(html.contains(&format!("(motor = {name})")), "point {p}");
+        assert!(
+            html.contains(&format!("<tr><td class=\"n\">{p}</td><td>{name}</td>")),
+            "point {p}'s row"
+        );
+        assert!(html.contains(&format!(">{name}</text>")), "tick {name}");
+    }
+    assert!(html.contains("<th>motor</th>"));
+}

@@ -8,6 +8,7 @@
 //! `--resume` to fly only what is missing.
 
 use super::fly::Prepared;
+use super::params::Param;
 use super::run::{run_campaign, RunConfig, RunReport};
 use super::stats::Summary;
 use super::variants::Shard;
@@ -358,6 +359,8 @@ pub fn sweep_table(r: &RunReport) -> String {
     let swept: Vec<_> = p.scenario.swept().collect();
     let mut head: Vec<String> = vec!["point".into()];
     head.extend(swept.iter().map(|i| match i.unit {
+        // A swept motor is named by its designation, not its number in the list.
+        _ if i.param == Param::Motor => "motor".into(),
         "1" => i.column.clone(),
         u => format!("{} ({u})", i.column),
     }));
@@ -366,7 +369,15 @@ pub fn sweep_table(r: &RunReport) -> String {
     let mut rows: Vec<Vec<String>> = vec![];
     for st in &r.stats {
         let mut row = vec![st.point.to_string()];
-        row.extend(p.plan.sweep_values(st.point).iter().map(|v| short(*v)));
+        row.extend(
+            swept
+                .iter()
+                .zip(p.plan.sweep_values(st.point))
+                .map(|(i, v)| match motor_at(p, i.param, st.point) {
+                    Some(d) => d.to_string(),
+                    None => short(v),
+                }),
+        );
         row.extend(
             st.requirements
                 .iter()
@@ -402,6 +413,14 @@ pub fn sweep_table(r: &RunReport) -> String {
     s
 }
 
+/// The designation of the motor sweep point `point` flies, where `param` is the swept motor.
+fn motor_at(p: &Prepared, param: Param, point: usize) -> Option<&str> {
+    if param != Param::Motor {
+        return None;
+    }
+    p.motor_of(&p.plan.centers(point))
+}
+
 /// A number with about four significant digits (the table's).
 fn short(x: f64) -> String {
     crate::campaign::report::figures::short(x).replace('−', "-")
@@ -426,10 +445,11 @@ fn point_details(r: &RunReport) -> String {
         let at: Vec<String> = swept
             .iter()
             .zip(p.plan.sweep_values(st.point))
-            .map(|(i, v)| match i.unit {
+            .map(|(i, v)| match (motor_at(p, i.param, st.point), i.unit) {
+                (Some(d), _) => format!("{} = {d}", i.key),
                 // A pure number (a scale) has no unit to print.
-                "1" => format!("{} = {v}", i.key),
-                unit => format!("{} = {v} {unit}", i.key),
+                (None, "1") => format!("{} = {v}", i.key),
+                (None, unit) => format!("{} = {v} {unit}", i.key),
             })
             .collect();
         let at = if at.is_empty() {

@@ -223,6 +223,9 @@ pub struct Run {
     /// Swept inputs (`sweep_<input>` without the prefix) and each point's values.
     pub sweep: Vec<Col>,
     pub sweep_values: Vec<Vec<f64>>,
+    /// Per point, the designation of the motor it flies where the motor is swept (the `motor`
+    /// column beside `sweep_motor_index`); empty without a sweep of motors.
+    pub sweep_motors: Vec<Option<String>>,
     pub inputs: Vec<Col>,
     pub metrics: Vec<Col>,
     /// The rows held (the sample): their ids, points and statuses.
@@ -380,12 +383,15 @@ impl Run {
             .position(|n| *n == "status")
             .with_context(|| format!("{}: no status column", path.display()))?;
         let mut sweep = vec![];
+        let mut has_motor = false;
         let mut inputs = vec![];
         let mut metrics = vec![];
         for (k, f) in schema.fields().iter().enumerate() {
             let n = f.name();
             if k < status_at {
-                if let Some(rest) = n.strip_prefix("sweep_") {
+                if n == "motor" && f.data_type() == &arrow::datatypes::DataType::Utf8 {
+                    has_motor = true;
+                } else if let Some(rest) = n.strip_prefix("sweep_") {
                     sweep.push(Col {
                         name: rest.to_string(),
                         unit: unit(f),
@@ -423,6 +429,11 @@ impl Run {
             meta,
             written_unix_s,
             sweep_values: vec![vec![]; points],
+            sweep_motors: if has_motor {
+                vec![None; points]
+            } else {
+                vec![]
+            },
             input_values: vec![vec![]; inputs.len()],
             metric_values: vec![vec![]; metrics.len()],
             input_moments: vec![Moments::default(); inputs.len()],
@@ -452,6 +463,9 @@ impl Run {
             .collect();
         let mut names: Vec<String> = vec!["variant_id".into(), "point".into()];
         names.extend(run.sweep.iter().map(|c| format!("sweep_{}", c.name)));
+        if has_motor {
+            names.push("motor".into());
+        }
         names.extend(["status".into(), "error".into(), "warnings".into()]);
         names.extend(run.inputs.iter().map(|c| c.name.clone()));
         names.extend(run.metrics.iter().map(|c| c.name.clone()));
@@ -485,6 +499,10 @@ impl Run {
                                 .unwrap_or(f64::NAN)
                         })
                         .collect();
+                    if has_motor {
+                        let m: &StringArray = col(&b, "motor", path)?;
+                        run.sweep_motors[pt] = Some(m.value(r).to_string());
+                    }
                 }
                 let landed = status[r] == Status::Landed;
                 run.variants += 1;
@@ -790,6 +808,14 @@ impl Run {
     /// Number of sweep points.
     pub fn points(&self) -> usize {
         self.sweep_values.len()
+    }
+
+    /// The designation of the motor point `pt` flies, where swept input `k` is the motor.
+    pub fn sweep_motor(&self, pt: usize, k: usize) -> Option<&str> {
+        if self.sweep.get(k)?.name != "motor_index" {
+            return None;
+        }
+        self.sweep_motors.get(pt)?.as_deref()
     }
 
     /// A metric's index by name.

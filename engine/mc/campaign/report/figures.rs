@@ -264,7 +264,8 @@ pub fn series_bands(
 /// Series of a metric against one swept input: `(label, x values, lo, mid, hi)`.
 pub type SweepSeries = (String, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
 
-/// Lines (medians, or shares) with their bands against the swept input `x_label`.
+/// Lines (medians, or shares) with their bands against the swept input `x_label`; `x_names`
+/// names the x values in place of numeric ticks (a swept motor's designations).
 pub fn sweep_chart(
     id: &str,
     title: &str,
@@ -273,6 +274,7 @@ pub fn sweep_chart(
     series: &[SweepSeries],
     y_range: Option<(f64, f64)>,
     hline: Option<(f64, String)>,
+    x_names: Option<Vec<(f64, String)>>,
 ) -> Option<String> {
     let xs: Vec<f64> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
     let (x0, x1) = extent(&xs, 0.05)?;
@@ -290,6 +292,9 @@ pub fn sweep_chart(
     let mut ch = Chart::new(id, W, H, (x0, x1), y)
         .title(title)
         .labels(x_label, y_label);
+    if let Some(names) = x_names {
+        ch = ch.x_names(names);
+    }
     for (k, (label, x, lo, mid, hi)) in series.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         ch.band(x, lo, hi, color, 0.18);

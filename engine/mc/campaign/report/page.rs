@@ -141,11 +141,8 @@ impl Context {
         }
         let point_labels = (0..run.points())
             .map(|pt| {
-                let parts: Vec<String> = run
-                    .sweep
-                    .iter()
-                    .zip(&run.sweep_values[pt])
-                    .map(|(s, v)| format!("{} = {}{}", s.name, short(*v), unit_suffix(&s.unit)))
+                let parts: Vec<String> = (0..run.sweep.len())
+                    .map(|k| format!("{} = {}", sweep_name(run, k), sweep_value(run, pt, k)))
                     .collect();
                 if parts.is_empty() {
                     String::new()
@@ -201,6 +198,26 @@ fn shell_word(s: &str) -> String {
         s.to_string()
     } else {
         format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+/// The name of swept input `k`: `motor` for a swept motor (its values are designations).
+fn sweep_name(run: &Run, k: usize) -> &str {
+    match run.sweep_motor(0, k) {
+        Some(_) => "motor",
+        None => &run.sweep[k].name,
+    }
+}
+
+/// Swept input `k`'s value at point `pt` with its unit, or the designation of a swept motor.
+fn sweep_value(run: &Run, pt: usize, k: usize) -> String {
+    match run.sweep_motor(pt, k) {
+        Some(d) => d.to_string(),
+        None => format!(
+            "{}{}",
+            short(run.sweep_values[pt][k]),
+            unit_suffix(&run.sweep[k].unit)
+        ),
     }
 }
 
@@ -395,14 +412,7 @@ fn sweep_layout(run: &Run) -> Option<(usize, Vec<(String, Vec<usize>)>)> {
             .iter()
             .enumerate()
             .filter(|(k, _)| *k != axis)
-            .map(|(k, c)| {
-                format!(
-                    "{} = {}{}",
-                    c.name,
-                    short(run.sweep_values[pt][k]),
-                    unit_suffix(&c.unit)
-                )
-            })
+            .map(|(k, _)| format!("{} = {}", sweep_name(run, k), sweep_value(run, pt, k)))
             .collect();
         let label = label.join(", ");
         match series.iter_mut().find(|(l, _)| *l == label) {
@@ -426,8 +436,13 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
     let reqs: Vec<&super::data::Requirement> =
         run.requirements.iter().filter(|r| r.point == 0).collect();
     s.push_str("<div class=\"wide\"><table><tr><th>point</th>");
-    for c in &run.sweep {
-        let _ = write!(s, "<th>{}{}</th>", esc(&c.name), esc(&unit_text(&c.unit)));
+    for (k, c) in run.sweep.iter().enumerate() {
+        match run.sweep_motor(0, k) {
+            Some(_) => s.push_str("<th>motor</th>"),
+            None => {
+                let _ = write!(s, "<th>{}{}</th>", esc(&c.name), esc(&unit_text(&c.unit)));
+            }
+        }
     }
     for r in &reqs {
         let _ = write!(
@@ -449,8 +464,15 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
     s.push_str("</tr>\n");
     for pt in 0..run.points() {
         let _ = write!(s, "<tr><td class=\"n\">{pt}</td>");
-        for v in &run.sweep_values[pt] {
-            let _ = write!(s, "<td class=\"n\">{}</td>", short(*v));
+        for (k, v) in run.sweep_values[pt].iter().enumerate() {
+            match run.sweep_motor(pt, k) {
+                Some(d) => {
+                    let _ = write!(s, "<td>{}</td>", esc(d));
+                }
+                None => {
+                    let _ = write!(s, "<td class=\"n\">{}</td>", short(*v));
+                }
+            }
         }
         for r0 in &reqs {
             if let Some(r) = run.requirement(pt, &r0.metric) {
@@ -492,7 +514,16 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
         return;
     };
     let x_col = &run.sweep[axis];
-    let x_label = format!("{}{}", x_col.name, unit_text(&x_col.unit));
+    let x_label = format!("{}{}", sweep_name(run, axis), unit_text(&x_col.unit));
+    // A swept motor's axis is named by designation at each motor's number.
+    let x_names: Option<Vec<(f64, String)>> = run.sweep_motor(0, axis).map(|_| {
+        let mut names: Vec<(f64, String)> = (0..run.points())
+            .filter_map(|p| Some((run.sweep_values[p][axis], run.sweep_motor(p, axis)?.into())))
+            .collect();
+        names.sort_by(|a, b| a.0.total_cmp(&b.0));
+        names.dedup_by(|a, b| a.0 == b.0);
+        names
+    });
     s.push_str("<div class=\"grid\">\n");
     for (k, r0) in reqs.iter().enumerate() {
         let lines: Vec<figures::SweepSeries> = series
@@ -522,6 +553,7 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
             &lines,
             Some((0.0, 104.0)),
             None,
+            x_names.clone(),
         );
         s.push_str(&figure(
             svg,
@@ -562,6 +594,7 @@ fn answer(s: &mut String, run: &Run, ctx: &Context) {
             &lines,
             None,
             bound,
+            x_names.clone(),
         );
         s.push_str(&figure(
             svg,
