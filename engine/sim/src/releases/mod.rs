@@ -18,7 +18,7 @@
 //! the two bodies' linear and angular momenta is the whole's, exactly.
 
 use crate::eom::CanopyShape;
-use crate::shifts::ShiftPlan;
+use crate::shifts::{inner_part, subtree_contains, PartProblem, ShiftPlan};
 use crate::trigger::Trigger;
 use hpr_design::design::model::{ComponentIdx, ComponentKind, Design};
 use hpr_design::mass;
@@ -245,16 +245,6 @@ pub struct ReleasePlan {
     pub cda_m2: Vec<f64>,
 }
 
-fn ancestors(design: &Design, idx: ComponentIdx) -> impl Iterator<Item = ComponentIdx> + '_ {
-    std::iter::successors(design.components[idx].parent, move |&p| {
-        design.components[p].parent
-    })
-}
-
-fn subtree_contains(design: &Design, root: ComponentIdx, target: ComponentIdx) -> bool {
-    target == root || ancestors(design, target).any(|a| a == root)
-}
-
 /// The tumbling estimate of a component's drag area, m²: [`TUMBLE_CD`] × its length × its
 /// outer diameter (for a part that holds others, its own envelope); NaN for a body component
 /// or an external part, which no release may drop.
@@ -335,61 +325,38 @@ pub fn plan(
             }
         }
         check_trigger(index, r, motor_delay_s)?;
-        let idx = design
-            .components
-            .iter()
-            .position(|c| c.id == r.component)
-            .ok_or_else(|| ReleaseRefusal::UnknownComponent {
-                index,
-                component: component.clone(),
-            })?;
-        let c = &design.components[idx];
-        if c.is_body() {
-            return Err(ReleaseRefusal::BodyComponent { index, component });
-        }
-        if c.is_external() {
-            return Err(ReleaseRefusal::ExternalPart {
-                index,
-                component,
-                kind: c.kind.type_name(),
-            });
-        }
-        if let Some(mount) = &design.motor_mount {
-            if subtree_contains(design, idx, mount.component) {
-                return Err(ReleaseRefusal::HoldsMotor {
+        let idx = inner_part(design, &r.component).map_err(|p| {
+            let component = component.clone();
+            match p {
+                PartProblem::Unknown => ReleaseRefusal::UnknownComponent { index, component },
+                PartProblem::Body => ReleaseRefusal::BodyComponent { index, component },
+                PartProblem::External(kind) => ReleaseRefusal::ExternalPart {
                     index,
                     component,
-                    mount: design.components[mount.component].id.clone(),
-                });
-            }
-        }
-        if let ComponentKind::InnerTube(t) = &c.kind {
-            if t.cluster_offsets_m.len() > 1 {
-                return Err(ReleaseRefusal::ClusterTube {
+                    kind,
+                },
+                PartProblem::HoldsMotor(mount) => ReleaseRefusal::HoldsMotor {
                     index,
                     component,
-                    tubes: t.cluster_offsets_m.len(),
-                });
+                    mount,
+                },
+                PartProblem::Cluster(tubes) => ReleaseRefusal::ClusterTube {
+                    index,
+                    component,
+                    tubes,
+                },
+                PartProblem::StageOverride(stage) => ReleaseRefusal::StageOverride {
+                    index,
+                    component,
+                    stage,
+                },
+                PartProblem::ComponentOverride(holder) => ReleaseRefusal::ComponentOverride {
+                    index,
+                    component,
+                    holder,
+                },
             }
-        }
-        let stage = &design.stages[c.stage];
-        if stage.overrides.any() {
-            return Err(ReleaseRefusal::StageOverride {
-                index,
-                component,
-                stage: stage.id.clone(),
-            });
-        }
-        if let Some(h) = ancestors(design, idx).find(|&a| {
-            let o = &design.components[a].overrides;
-            o.any() && o.covers_children
-        }) {
-            return Err(ReleaseRefusal::ComponentOverride {
-                index,
-                component,
-                holder: design.components[h].id.clone(),
-            });
-        }
+        })?;
         // Parts that shifts move: the part itself may be one (released once its move has
         // ended, checked in flight); one around it or inside it may not.
         for &moving in &shift_plan.parts {

@@ -155,14 +155,78 @@ pub struct ShiftPlan {
     pub part_of_shift: Vec<usize>,
 }
 
-fn ancestors(design: &Design, idx: ComponentIdx) -> impl Iterator<Item = ComponentIdx> + '_ {
+pub(crate) fn ancestors(
+    design: &Design,
+    idx: ComponentIdx,
+) -> impl Iterator<Item = ComponentIdx> + '_ {
     std::iter::successors(design.components[idx].parent, move |&p| {
         design.components[p].parent
     })
 }
 
-fn subtree_contains(design: &Design, root: ComponentIdx, target: ComponentIdx) -> bool {
+pub(crate) fn subtree_contains(design: &Design, root: ComponentIdx, target: ComponentIdx) -> bool {
     target == root || ancestors(design, target).any(|a| a == root)
+}
+
+/// Why a component can be neither moved by a shift nor dropped by a release: the rules on
+/// the part itself that the two share (each names them in its own refusal).
+pub(crate) enum PartProblem {
+    /// No component has this id.
+    Unknown,
+    /// A body component (nose, tube, transition) is the airframe.
+    Body,
+    /// An external part (fins, lugs...), of this kind, is outside the airframe.
+    External(&'static str),
+    /// The part holds the motor mount, whose id this is.
+    HoldsMotor(String),
+    /// A clustered inner tube of this many tubes.
+    Cluster(usize),
+    /// The part's stage, whose id this is, overrides its mass or center.
+    StageOverride(String),
+    /// A component around the part, whose id this is, overrides its children's mass or center.
+    ComponentOverride(String),
+}
+
+/// The index of the component `id` if it is an inner part that may move or leave the
+/// rocket, else the rule it breaks.
+pub(crate) fn inner_part(design: &Design, id: &str) -> Result<ComponentIdx, PartProblem> {
+    let idx = design
+        .components
+        .iter()
+        .position(|c| c.id == id)
+        .ok_or(PartProblem::Unknown)?;
+    let c = &design.components[idx];
+    if c.is_body() {
+        return Err(PartProblem::Body);
+    }
+    if c.is_external() {
+        return Err(PartProblem::External(c.kind.type_name()));
+    }
+    if let Some(mount) = &design.motor_mount {
+        if subtree_contains(design, idx, mount.component) {
+            return Err(PartProblem::HoldsMotor(
+                design.components[mount.component].id.clone(),
+            ));
+        }
+    }
+    if let ComponentKind::InnerTube(t) = &c.kind {
+        if t.cluster_offsets_m.len() > 1 {
+            return Err(PartProblem::Cluster(t.cluster_offsets_m.len()));
+        }
+    }
+    let stage = &design.stages[c.stage];
+    if stage.overrides.any() {
+        return Err(PartProblem::StageOverride(stage.id.clone()));
+    }
+    if let Some(h) = ancestors(design, idx).find(|&a| {
+        let o = &design.components[a].overrides;
+        o.any() && o.covers_children
+    }) {
+        return Err(PartProblem::ComponentOverride(
+            design.components[h].id.clone(),
+        ));
+    }
+    Ok(idx)
 }
 
 /// Check every rule that can be checked before the flight and group the shifts by part.
@@ -192,61 +256,38 @@ pub fn plan(
             });
         }
         check_trigger(index, s, motor_delay_s)?;
-        let idx = design
-            .components
-            .iter()
-            .position(|c| c.id == s.component)
-            .ok_or_else(|| ShiftRefusal::UnknownComponent {
-                index,
-                component: component.clone(),
-            })?;
-        let c = &design.components[idx];
-        if c.is_body() {
-            return Err(ShiftRefusal::BodyComponent { index, component });
-        }
-        if c.is_external() {
-            return Err(ShiftRefusal::ExternalPart {
-                index,
-                component,
-                kind: c.kind.type_name(),
-            });
-        }
-        if let Some(mount) = &design.motor_mount {
-            if subtree_contains(design, idx, mount.component) {
-                return Err(ShiftRefusal::HoldsMotor {
+        let idx = inner_part(design, &s.component).map_err(|p| {
+            let component = component.clone();
+            match p {
+                PartProblem::Unknown => ShiftRefusal::UnknownComponent { index, component },
+                PartProblem::Body => ShiftRefusal::BodyComponent { index, component },
+                PartProblem::External(kind) => ShiftRefusal::ExternalPart {
                     index,
                     component,
-                    mount: design.components[mount.component].id.clone(),
-                });
-            }
-        }
-        if let ComponentKind::InnerTube(t) = &c.kind {
-            if t.cluster_offsets_m.len() > 1 {
-                return Err(ShiftRefusal::ClusterTube {
+                    kind,
+                },
+                PartProblem::HoldsMotor(mount) => ShiftRefusal::HoldsMotor {
                     index,
                     component,
-                    tubes: t.cluster_offsets_m.len(),
-                });
+                    mount,
+                },
+                PartProblem::Cluster(tubes) => ShiftRefusal::ClusterTube {
+                    index,
+                    component,
+                    tubes,
+                },
+                PartProblem::StageOverride(stage) => ShiftRefusal::StageOverride {
+                    index,
+                    component,
+                    stage,
+                },
+                PartProblem::ComponentOverride(holder) => ShiftRefusal::ComponentOverride {
+                    index,
+                    component,
+                    holder,
+                },
             }
-        }
-        let stage = &design.stages[c.stage];
-        if stage.overrides.any() {
-            return Err(ShiftRefusal::StageOverride {
-                index,
-                component,
-                stage: stage.id.clone(),
-            });
-        }
-        if let Some(h) = ancestors(design, idx).find(|&a| {
-            let o = &design.components[a].overrides;
-            o.any() && o.covers_children
-        }) {
-            return Err(ShiftRefusal::ComponentOverride {
-                index,
-                component,
-                holder: design.components[h].id.clone(),
-            });
-        }
+        })?;
         let k = match parts.iter().position(|&p| p == idx) {
             Some(k) => k,
             None => {
