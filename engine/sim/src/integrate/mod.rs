@@ -251,3 +251,57 @@ pub(crate) fn clip_to_stop(t: f64, h: f64, t_stop: f64) -> (f64, bool) {
         (h, false)
     }
 }
+
+/// Hairer's starting step (HNW I, §II.4) from `(t, y)` with derivative `dy`: a step such that
+/// an explicit Euler step would make an error of about 1 % of the tolerance, refined by a
+/// second-derivative estimate from one more evaluation of `f` (the caller counts it), never
+/// past `t_stop` nor `h_max`. `exponent` is 1/(q+1), q the order of the method's error
+/// estimate (1/5 for Dormand–Prince 5(4), 1/4 for RODAS4's order-3 estimate).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn starting_step<const N: usize, F>(
+    f: &mut F,
+    t: f64,
+    y: &[f64; N],
+    dy: &[f64; N],
+    tol: &Tolerances<N>,
+    exponent: f64,
+    h_max: f64,
+    t_stop: f64,
+) -> f64
+where
+    F: FnMut(f64, &[f64; N], &mut [f64; N]),
+{
+    let rms = |v: &[f64; N]| {
+        let mut sum = 0.0;
+        for i in 0..N {
+            let q = v[i] / (tol.atol[i] + tol.rtol * y[i].abs());
+            sum += q * q;
+        }
+        (sum / N as f64).sqrt()
+    };
+    let (d0, d1) = (rms(y), rms(dy));
+    let mut h0 = if d0 < 1e-5 || d1 < 1e-5 {
+        1e-6
+    } else {
+        0.01 * d0 / d1
+    };
+    h0 = h0.min(h_max).min(t_stop - t);
+    let mut y1 = [0.0; N];
+    for (i, v) in y1.iter_mut().enumerate() {
+        *v = y[i] + h0 * dy[i];
+    }
+    let mut f1 = [0.0; N];
+    f(t + h0, &y1, &mut f1);
+    let mut diff = [0.0; N];
+    for i in 0..N {
+        diff[i] = f1[i] - dy[i];
+    }
+    let d2 = rms(&diff) / h0;
+    let d12 = d1.max(d2);
+    let h1 = if d12.is_nan() || d12 <= 1e-15 {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / d12).powf(exponent)
+    };
+    (100.0 * h0).min(h1).min(h_max)
+}

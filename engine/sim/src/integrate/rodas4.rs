@@ -253,9 +253,7 @@ impl<const N: usize> Rodas4<N> {
         self.tol.atol()[i] + self.tol.rtol() * y0.abs().max(y1.abs())
     }
 
-    /// Hairer's starting step (HNW I, §II.4) for a method of order 4: an explicit Euler step's
-    /// error about 1 % of the tolerance, refined by a second-derivative estimate from one
-    /// more evaluation, never past `t_stop`.
+    /// Hairer's starting step ([`super::starting_step`]), unless the controller gives one.
     fn initial_step<F>(&mut self, f: &mut F, t_stop: f64) -> f64
     where
         F: FnMut(f64, &[f64; N], &mut [f64; N]),
@@ -263,40 +261,17 @@ impl<const N: usize> Rodas4<N> {
         if self.control.h_initial > 0.0 {
             return self.control.h_initial;
         }
-        let rms = |v: &[f64; N], this: &Self| {
-            let mut sum = 0.0;
-            for i in 0..N {
-                let q = v[i] / this.scale(i, this.y[i], this.y[i]);
-                sum += q * q;
-            }
-            (sum / N as f64).sqrt()
-        };
-        let (d0, d1) = (rms(&self.y, self), rms(&self.dy, self));
-        let mut h0 = if d0 < 1e-5 || d1 < 1e-5 {
-            1e-6
-        } else {
-            0.01 * d0 / d1
-        };
-        h0 = h0.min(self.control.h_max).min(t_stop - self.t);
-        let mut y1 = [0.0; N];
-        for (i, v) in y1.iter_mut().enumerate() {
-            *v = self.y[i] + h0 * self.dy[i];
-        }
-        let mut f1 = [0.0; N];
-        f(self.t + h0, &y1, &mut f1);
         self.n_eval += 1;
-        let mut diff = [0.0; N];
-        for i in 0..N {
-            diff[i] = f1[i] - self.dy[i];
-        }
-        let d2 = rms(&diff, self) / h0;
-        let d12 = d1.max(d2);
-        let h1 = if d12.is_nan() || d12 <= 1e-15 {
-            (h0 * 1e-3).max(1e-6)
-        } else {
-            (0.01 / d12).powf(0.25)
-        };
-        (100.0 * h0).min(h1).min(self.control.h_max)
+        super::starting_step(
+            f,
+            self.t,
+            &self.y,
+            &self.dy,
+            &self.tol,
+            0.25,
+            self.control.h_max,
+            t_stop,
+        )
     }
 }
 
