@@ -119,25 +119,14 @@ pub fn bands(values: &mut Vec<f64>) -> (f64, f64, f64) {
     )
 }
 
-/// A UTC date and time, `YYYY-MM-DD HH:MM UTC`, of seconds since 1970 (the civil calendar
-/// from the day count, Howard Hinnant's algorithm).
+/// A UTC date and time, `YYYY-MM-DD HH:MM UTC`, of seconds since 1970: the output
+/// directory's stamp ([`crate::campaign::outdir::utc_text`]) without its seconds.
 pub fn utc(unix_s: u64) -> String {
-    let days = (unix_s / 86_400) as i64;
-    let secs = unix_s % 86_400;
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    format!(
-        "{y:04}-{m:02}-{d:02} {:02}:{:02} UTC",
-        secs / 3600,
-        (secs % 3600) / 60
-    )
+    let text = crate::campaign::outdir::utc_text(unix_s);
+    match text.rsplit_once(':') {
+        Some((minutes, _)) => format!("{minutes} UTC"),
+        None => text,
+    }
 }
 
 #[cfg(test)]
