@@ -8,6 +8,15 @@
 
 use std::fmt;
 
+/// A trigger's own number (its height, time or delay) not finite or negative.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("trigger {trigger}: field \"{field}\" must be finite and not negative (got {got})")]
+pub struct TriggerError {
+    pub trigger: Trigger,
+    pub field: &'static str,
+    pub got: f64,
+}
+
 /// When something starts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Trigger {
@@ -27,14 +36,16 @@ impl Trigger {
     /// Check the trigger's own numbers: finite, non-negative. The message names the trigger and
     /// the field; the caller puts its owner in front of it (a parachute's name, a shift's index
     /// and part).
-    pub fn validate(&self) -> Result<(), String> {
-        let bad = |field: &str, v: f64| -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), TriggerError> {
+        let bad = |field: &'static str, v: f64| -> Result<(), TriggerError> {
             if v.is_finite() && v >= 0.0 {
                 Ok(())
             } else {
-                Err(format!(
-                    "trigger {self}: field \"{field}\" must be finite and not negative (got {v})"
-                ))
+                Err(TriggerError {
+                    trigger: *self,
+                    field,
+                    got: v,
+                })
             }
         };
         match *self {

@@ -7,6 +7,7 @@ use super::super::scenario::{with_trigger_value, Scenario};
 use hpr_design::design::model::Design;
 use hpr_design::motor::{Motor, MotorOptions};
 use hpr_sim::batch::Columns;
+use hpr_sim::flight::{SetupError, SiteFault};
 use hpr_sim::inputs::{Part, Slot, GLOBAL_COUNT};
 use hpr_sim::wind::Wind;
 use hpr_sim::{
@@ -84,18 +85,15 @@ impl Fixed<'_> {
 
     /// The simulation of a setup, built from scratch (the base of the lanes).
     pub(super) fn simulation(&self, s: &Setup) -> Result<Simulation, SimError> {
-        let err = |e: &dyn std::fmt::Display| SimError::Setup(e.to_string());
+        let err = |e: SiteFault| SimError::Setup(SetupError::Site(e));
         let site = &self.scenario.environment;
-        let gravity = site
-            .gravity
-            .at_site(
-                site.latitude_deg,
-                s.get(Param::ElevationM),
-                "environment.latitude_deg",
-            )
-            .map_err(|e| err(&e))?;
+        let gravity = site.gravity.at_site(
+            site.latitude_deg,
+            s.get(Param::ElevationM),
+            "environment.latitude_deg",
+        )?;
         // A launch time or member of its own: the weather file's air and wind then.
-        let drawn = self.drawn_weather(s).map_err(|e| err(&e))?;
+        let drawn = self.drawn_weather(s).map_err(|e| err(e.into()))?;
         let base_air = match &drawn {
             Some(w) => w.air_model(),
             None => site.air.clone(),
@@ -114,7 +112,7 @@ impl Fixed<'_> {
                     Some(s.get(Param::TemperatureK)),
                     Some(s.get(Param::PressurePa)),
                 )
-                .map_err(|e| err(&e))?
+                .map_err(|e| err(e.into()))?
         };
         let wind = match &drawn {
             Some(w) => w
@@ -123,7 +121,7 @@ impl Fixed<'_> {
                 .and_then(|w| w.with_turbulence(s.get(Param::WindTurbulenceIntensity))),
             None => self.wind(s),
         }
-        .map_err(|e| err(&e))?;
+        .map_err(|e| err(e.into()))?;
         let env = Environment {
             elevation_m: s.get(Param::ElevationM),
             wind,

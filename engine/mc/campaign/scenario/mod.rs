@@ -19,7 +19,8 @@ use super::sample::Dispersion;
 use hpr_design::design::dimension::Dimension;
 use hpr_design::motor::MotorOptions;
 use hpr_sim::atmosphere::AirModel;
-use hpr_sim::gravity::Gravity;
+use hpr_sim::flight::SetupError;
+use hpr_sim::gravity::{Gravity, GravityError};
 use hpr_sim::wind::Wind;
 use hpr_sim::{CanopyShape, Integrator, PartChute, SensorNoise, Trigger};
 use rules::{integrator, requirements};
@@ -170,19 +171,18 @@ impl GravityModel {
         latitude_deg: Option<f64>,
         elevation_m: f64,
         latitude_key: &str,
-    ) -> Result<Gravity, String> {
+    ) -> Result<Gravity, SetupError> {
+        let site = |e: GravityError| SetupError::Site(e.into());
         match (self, latitude_deg) {
             (GravityModel::Standard, _) => Ok(Gravity::default()),
-            (GravityModel::Constant(g), _) => Gravity::constant(g).map_err(|e| e.to_string()),
-            (GravityModel::InverseSquare, _) => {
-                Gravity::inverse_square(elevation_m).map_err(|e| e.to_string())
-            }
+            (GravityModel::Constant(g), _) => Gravity::constant(g).map_err(site),
+            (GravityModel::InverseSquare, _) => Gravity::inverse_square(elevation_m).map_err(site),
             (GravityModel::Somigliana, Some(lat)) => {
-                Gravity::somigliana(lat, elevation_m).map_err(|e| e.to_string())
+                Gravity::somigliana(lat, elevation_m).map_err(site)
             }
-            (GravityModel::Somigliana, None) => Err(format!(
-                "\"somigliana\" is the gravity at the site's latitude: give {latitude_key}"
-            )),
+            (GravityModel::Somigliana, None) => Err(SetupError::NoLatitude {
+                key: latitude_key.to_string(),
+            }),
         }
     }
 }

@@ -285,7 +285,7 @@ pub(super) fn environment(
             environment.elevation_m,
             "environment.latitude_deg",
         )
-        .map_err(|rule| bad("environment.gravity", rule))?;
+        .map_err(|rule| bad("environment.gravity", rule.to_string()))?;
     Ok(environment)
 }
 

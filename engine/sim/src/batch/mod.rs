@@ -58,7 +58,7 @@ use crate::events::EventKind;
 use crate::flight::changes::InputContext;
 use crate::flight::driver::{fly_to_free, AfterFree, Progress};
 use crate::flight::DesignTables;
-use crate::flight::{Flight, Metrics, SimError, Simulation, Warning};
+use crate::flight::{Flight, Metrics, SetupError, SimError, Simulation, Warning};
 use crate::inputs::{Input, Part};
 use crate::weather::SiteWeather;
 use group::{step_group, Flying, Lane, LaneEnd, Scratch};
@@ -303,31 +303,29 @@ impl BatchDesigns {
 
     /// The design with the dimensions `values` (by number) changed, and its tables: built
     /// before, or built now. The error names the rule the design breaks.
-    pub fn design(&self, values: &[(usize, f64)]) -> Result<(Design, Arc<DesignTables>), String> {
+    pub fn design(&self, values: &[(usize, f64)]) -> Result<(Design, Arc<DesignTables>), SimError> {
         if let Some((d, t)) = self.built.get(&Self::key(values)) {
             return Ok((d.clone(), t.clone()));
         }
         let mut changes = Vec::with_capacity(values.len());
         for &(k, v) in values {
-            let dim = self.dimensions.get(k).ok_or_else(|| {
-                format!(
-                    "design dimension {k}: the batch has {}",
-                    self.dimensions.len()
-                )
+            let dim = self.dimensions.get(k).ok_or(SetupError::NoSuchDimension {
+                index: k,
+                count: self.dimensions.len(),
             })?;
             changes.push((dim, v));
         }
         let design = self
             .source
             .design_with(&changes)
-            .map_err(|e| e.to_string())?;
-        let tables = DesignTables::new(&design).map_err(|e| e.to_string())?;
+            .map_err(SetupError::Design)?;
+        let tables = DesignTables::new(&design)?;
         Ok((design, Arc::new(tables)))
     }
 
     /// Build the design of `values` now and keep it for the lanes that fly it (a sweep
     /// point's). The error names the rule the design breaks (nothing is kept).
-    pub fn keep(&mut self, values: &[(usize, f64)]) -> Result<(), String> {
+    pub fn keep(&mut self, values: &[(usize, f64)]) -> Result<(), SimError> {
         let built = self.design(values)?;
         self.built.insert(Self::key(values), built);
         Ok(())
@@ -506,7 +504,7 @@ impl Batch {
         let find = |air: &AirModel| tables.find(air);
         let design = |values: &[(usize, f64)]| match &self.designs {
             Some(d) => d.design(values),
-            None => Err("the design's dimensions need the batch's designs".to_string()),
+            None => Err(SimError::Setup(SetupError::NoDesigns)),
         };
         let context = InputContext {
             part: self.part.as_deref(),

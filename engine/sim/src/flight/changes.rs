@@ -9,6 +9,7 @@
 //! which no change touches), so the order of the changes never changes a verdict; the
 //! releases' rules, which read the shifts, are checked by the rebuild, after every change.
 
+use super::setup_error::{Bound, ParachuteRule, PartMassRule, SetupError, SiteFault, TriggerOwner};
 use super::{MassAdjustment, Parachute, Rail, SimError, SimOptions, Simulation};
 use crate::atmosphere::{AirModel, AirTable};
 use crate::batch::BatchWeather;
@@ -50,7 +51,8 @@ pub struct InputContext<'a> {
 }
 
 /// The design of a row of dimension values, with its tables (see [`InputContext::design`]).
-pub type DesignOf<'a> = dyn Fn(&[(usize, f64)]) -> Result<(Design, Arc<DesignTables>), String> + 'a;
+pub type DesignOf<'a> =
+    dyn Fn(&[(usize, f64)]) -> Result<(Design, Arc<DesignTables>), SimError> + 'a;
 
 impl Simulation {
     /// Apply the changes `f` makes, then rebuild the flight's model once. The first refused
@@ -81,48 +83,51 @@ impl Changes<'_> {
     pub fn parachutes(&mut self, parachutes: Vec<Parachute>) -> Result<(), SimError> {
         let delay = self.sim.motor.delays_s.first().copied();
         for (i, p) in parachutes.iter().enumerate() {
-            let what = format!("parachute {i} (\"{}\")", p.name);
+            let bad = |rule: ParachuteRule| {
+                SimError::Setup(SetupError::Parachute {
+                    index: i,
+                    name: p.name.clone(),
+                    rule,
+                })
+            };
+            let field = |field: &'static str, bound: Bound, got: f64| {
+                bad(ParachuteRule::Field { field, bound, got })
+            };
             if !(p.cds_m2.is_finite() && p.cds_m2 > 0.0) {
-                return Err(SimError::Setup(format!(
-                    "{what}: field \"cds_m2\" must be positive and finite (got {})",
-                    p.cds_m2
-                )));
+                return Err(field("cds_m2", Bound::PositiveFinite, p.cds_m2));
             }
             if !(p.lag_s.is_finite() && p.lag_s >= 0.0) {
-                return Err(SimError::Setup(format!(
-                    "{what}: field \"lag_s\" must be finite and not negative (got {})",
-                    p.lag_s
-                )));
+                return Err(field("lag_s", Bound::FiniteNotNegative, p.lag_s));
             }
             if let Some(rate) = p.sampling_rate_hz {
                 if !(rate.is_finite() && rate > 0.0 && rate <= MAX_SAMPLING_RATE_HZ) {
-                    return Err(SimError::Setup(format!(
-                        "{what}: field \"sampling_rate_hz\" must be positive, at most {MAX_SAMPLING_RATE_HZ} Hz (got {rate})"
-                    )));
+                    let bound = Bound::PositiveAtMost {
+                        max: MAX_SAMPLING_RATE_HZ,
+                        unit: "Hz",
+                    };
+                    return Err(field("sampling_rate_hz", bound, rate));
                 }
             }
             if let Some(noise) = &p.noise {
-                noise.check().map_err(|(field, rule, got)| {
-                    SimError::Setup(format!(
-                        "{what}: noise field \"{field}\" {rule} (got {got})"
-                    ))
-                })?;
+                noise
+                    .check()
+                    .map_err(|(field, rule, got)| bad(ParachuteRule::Noise { field, rule, got }))?;
                 if p.sampling_rate_hz.is_none() {
-                    return Err(SimError::Setup(format!("{what}: a noisy pressure is read at samples: field \"sampling_rate_hz\" is needed with \"noise\" (RocketPy's default is 100 Hz)")));
+                    return Err(bad(ParachuteRule::NoiseWithoutSampling));
                 }
             }
-            p.canopy.check().map_err(|(field, rule)| {
-                SimError::Setup(format!("{what}: canopy field \"{field}\" {rule}"))
-            })?;
+            p.canopy
+                .check()
+                .map_err(|(field, rule)| bad(ParachuteRule::Canopy { field, rule }))?;
             p.trigger
                 .validate()
-                .map_err(|e| SimError::Setup(format!("{what}: {e}")))?;
+                .map_err(|e| bad(ParachuteRule::Trigger(e)))?;
             match p.trigger {
                 Trigger::HeightDescending { height_m } if height_m <= 0.0 => {
-                    return Err(SimError::Setup(format!("{what}: trigger {}: the height must be above the ground, or the canopy never opens", p.trigger)));
+                    return Err(bad(ParachuteRule::NeverOpens { trigger: p.trigger }));
                 }
                 Trigger::BurnoutPlusDelay { delay_s: None } if delay.is_none() => {
-                    return Err(SimError::Setup(format!("{what}: trigger {}: the motor is plugged (no ejection delay), so this trigger never fires", p.trigger)));
+                    return Err(bad(ParachuteRule::PluggedMotor { trigger: p.trigger }));
                 }
                 _ => {}
             }
@@ -134,11 +139,10 @@ impl Changes<'_> {
     /// See [`Simulation::with_shifts`].
     pub fn shifts(&mut self, shifts: Vec<MassShift>) -> Result<(), SimError> {
         if shifts.len() > model::MAX_SHIFTS {
-            return Err(SimError::Setup(format!(
-                "at most {} shifts in one flight (got {})",
-                model::MAX_SHIFTS,
-                shifts.len()
-            )));
+            return Err(SimError::Setup(SetupError::TooManyShifts {
+                max: model::MAX_SHIFTS,
+                got: shifts.len(),
+            }));
         }
         let plan = shifts::plan(
             &self.sim.design,
@@ -146,11 +150,10 @@ impl Changes<'_> {
             self.sim.motor.delays_s.first().copied(),
         )?;
         if plan.parts.len() > model::MAX_MOVING_PARTS {
-            return Err(SimError::Setup(format!(
-                "at most {} parts may move in one flight (got {})",
-                model::MAX_MOVING_PARTS,
-                plan.parts.len()
-            )));
+            return Err(SimError::Setup(SetupError::TooManyMovingParts {
+                max: model::MAX_MOVING_PARTS,
+                got: plan.parts.len(),
+            }));
         }
         self.sim.shifts = shifts;
         self.sim.plan = plan;
@@ -162,11 +165,10 @@ impl Changes<'_> {
     /// changes still never changes a verdict).
     pub fn releases(&mut self, releases: Vec<Release>) -> Result<(), SimError> {
         if releases.len() > model::MAX_RELEASES {
-            return Err(SimError::Setup(format!(
-                "at most {} releases in one flight (got {})",
-                model::MAX_RELEASES,
-                releases.len()
-            )));
+            return Err(SimError::Setup(SetupError::TooManyReleases {
+                max: model::MAX_RELEASES,
+                got: releases.len(),
+            }));
         }
         self.sim.releases = releases;
         Ok(())
@@ -179,28 +181,29 @@ impl Changes<'_> {
 
     /// See [`Simulation::with_options`].
     pub fn options(&mut self, options: SimOptions) -> Result<(), SimError> {
-        options.validate().map_err(SimError::Setup)?;
+        options.validate()?;
         self.sim.options = options;
         Ok(())
     }
 
     /// See [`Simulation::with_part_mass`].
     pub fn part_mass(&mut self, component: &str, mass_kg: f64) -> Result<(), SimError> {
-        let bad = |rule: String| SimError::Setup(format!("part mass of \"{component}\": {rule}"));
+        let bad = |rule: PartMassRule| {
+            SimError::Setup(SetupError::PartMass {
+                component: component.to_string(),
+                rule,
+            })
+        };
         let design = &self.sim.design;
         let idx = design
             .component_index(component)
-            .ok_or_else(|| bad("the design has no such component".into()))?;
+            .ok_or_else(|| bad(PartMassRule::NoSuchComponent))?;
         if !(mass_kg.is_finite() && mass_kg > 0.0) {
-            return Err(bad(format!(
-                "mass_kg must be positive and finite (got {mass_kg})"
-            )));
+            return Err(bad(PartMassRule::Mass { got_kg: mass_kg }));
         }
         let c = &design.components[idx];
         if c.is_body() || c.is_external() {
-            return Err(bad(
-                "only an internal part's mass can change this way".into()
-            ));
+            return Err(bad(PartMassRule::NotInternal));
         }
         let hidden = c.overrides.mass_kg.is_some()
             || design.stages[c.stage].overrides.mass_kg.is_some()
@@ -209,17 +212,13 @@ impl Changes<'_> {
                 o.mass_kg.is_some() && o.covers_children
             });
         if hidden {
-            return Err(bad(
-                "a mass override (its own, its stage's or a holder's) hides its mass".into(),
-            ));
+            return Err(bad(PartMassRule::HiddenByOverride));
         }
         // The new mass scales the part's own (with what it holds): a part that weighs nothing
         // has no mass distribution to scale (0/0 would poison the flight with NaN).
         let own = mass::subtree(design, idx).mass_kg;
         if !(own.is_finite() && own > 0.0) {
-            return Err(bad(format!(
-                "it weighs {own} kg in the design, so it has no mass to scale; give it a mass in the design"
-            )));
+            return Err(bad(PartMassRule::NothingToScale { own_kg: own }));
         }
         self.sim.part_masses.retain(|(i, _)| *i != idx);
         self.sim.part_masses.push((idx, mass_kg));
@@ -229,9 +228,7 @@ impl Changes<'_> {
     /// See [`Simulation::with_drag_scale`].
     pub fn drag_scale(&mut self, scale: f64) -> Result<(), SimError> {
         if !(scale.is_finite() && scale > 0.0) {
-            return Err(SimError::Setup(format!(
-                "drag scale must be positive and finite (got {scale})"
-            )));
+            return Err(SimError::Setup(SetupError::DragScale { got: scale }));
         }
         self.sim.drag_scale = scale;
         Ok(())
@@ -240,15 +237,14 @@ impl Changes<'_> {
     /// See [`Simulation::with_air_brakes_target`].
     pub fn air_brakes_target(&mut self, target_apogee_m: f64) -> Result<(), SimError> {
         if self.sim.design.air_brakes.is_none() {
-            return Err(SimError::Setup(format!(
-                "design \"{}\" has no air brakes to aim",
-                self.sim.design.name
-            )));
+            return Err(SimError::Setup(SetupError::NoAirBrakes {
+                design: self.sim.design.name.clone(),
+            }));
         }
         if !(target_apogee_m.is_finite() && target_apogee_m > 0.0) {
-            return Err(SimError::Setup(format!(
-                "air brakes: the target apogee must be positive and finite (got {target_apogee_m})"
-            )));
+            return Err(SimError::Setup(SetupError::AirBrakesTarget {
+                got_m: target_apogee_m,
+            }));
         }
         self.sim.brake_target_m = Some(target_apogee_m);
         Ok(())
@@ -259,7 +255,11 @@ impl Changes<'_> {
         // The shared tables hold `mass::dry` of this very design (no change touches it).
         let dry = self.sim.tables.dry.mass_kg;
         if !(delta_mass_kg.is_finite() && delta_cg_m.is_finite()) || dry + delta_mass_kg <= 0.0 {
-            return Err(SimError::Setup(format!("mass adjustment: delta_mass_kg {delta_mass_kg} and delta_cg_m {delta_cg_m} must be finite and leave a positive mass (structure {dry} kg)")));
+            return Err(SimError::Setup(SetupError::MassAdjustment {
+                delta_mass_kg,
+                delta_cg_m,
+                structure_kg: dry,
+            }));
         }
         self.sim.mass_adjustment = MassAdjustment {
             delta_mass_kg,
@@ -290,14 +290,19 @@ impl Changes<'_> {
     }
 }
 
-/// A trigger with its number (its time, height or delay) set to `v`.
-fn with_number(t: Trigger, v: f64) -> Result<Trigger, String> {
+/// A trigger with its number (its time, height or delay) set to `v` (the error is `owner
+/// index`'s: its trigger has no number).
+fn with_number(t: Trigger, v: f64, owner: TriggerOwner, index: usize) -> Result<Trigger, SimError> {
     Ok(match t {
         Trigger::Time { .. } => Trigger::Time { time_s: v },
         Trigger::HeightDescending { .. } => Trigger::HeightDescending { height_m: v },
         Trigger::BurnoutPlusDelay { .. } => Trigger::BurnoutPlusDelay { delay_s: Some(v) },
         Trigger::Apogee | Trigger::Burnout => {
-            return Err(format!("trigger {t} has no number to vary"))
+            return Err(SimError::Setup(SetupError::TriggerHasNoNumber {
+                owner,
+                index,
+                trigger: t,
+            }))
         }
     })
 }
@@ -323,6 +328,9 @@ impl Changes<'_> {
         let inputs = std::mem::take(&mut self.inputs);
         let get = |input: Input| inputs.iter().find(|(i, _)| *i == input).map(|p| p.1);
         let setup = SimError::Setup;
+        let site = |e: SiteFault| setup(SetupError::Site(e));
+        let environment = |e: SiteFault| setup(SetupError::Environment(e));
+        let weather = |e: SiteFault| setup(SetupError::Weather(e));
         // The design and the motor first: the checks of the parts below read them.
         let dimensions: Vec<(usize, f64)> = inputs
             .iter()
@@ -333,10 +341,8 @@ impl Changes<'_> {
             .collect();
         let rebuilt = !dimensions.is_empty();
         if rebuilt {
-            let of = ctx
-                .design
-                .ok_or_else(|| setup("the design's dimensions need the batch's designs".into()))?;
-            let (design, tables) = of(&dimensions).map_err(setup)?;
+            let of = ctx.design.ok_or_else(|| setup(SetupError::NoDesigns))?;
+            let (design, tables) = of(&dimensions)?;
             self.sim.design = design;
             self.sim.tables = tables;
         }
@@ -347,10 +353,10 @@ impl Changes<'_> {
                 .get(k as usize)
                 .filter(|_| k.fract() == 0.0)
                 .ok_or_else(|| {
-                    setup(format!(
-                        "motor {k}: the batch has {} motors",
-                        ctx.motors.len()
-                    ))
+                    setup(SetupError::NoSuchMotor {
+                        index: k,
+                        count: ctx.motors.len(),
+                    })
                 })?;
             self.sim.motor = m.clone();
         }
@@ -364,7 +370,7 @@ impl Changes<'_> {
             (None, _) => None,
         };
         let drawn = time.is_some() || member.is_some();
-        let site = [
+        let site_inputs = [
             ElevationM,
             WindSpeedMS,
             WindFromDeg,
@@ -378,7 +384,7 @@ impl Changes<'_> {
         if temperature.is_some()
             || pressure.is_some()
             || drawn
-            || site.iter().any(|&i| get(i).is_some())
+            || site_inputs.iter().any(|&i| get(i).is_some())
         {
             let mut env = self.sim.env.clone();
             // The base wind's transformation and turbulence, before a drawn weather
@@ -386,28 +392,23 @@ impl Changes<'_> {
             let (scale, rotation) = env.wind.transformation();
             let base_turbulence = env.wind.turbulence_intensity();
             if drawn {
-                let w = ctx.weather.ok_or_else(|| {
-                    setup(
-                        "the launch time and weather member columns need the batch's weather file"
-                            .into(),
-                    )
-                })?;
+                let w = ctx.weather.ok_or_else(|| setup(SetupError::NoWeather))?;
                 let index = w
                     .site
                     .member_index(member.unwrap_or(w.member))
-                    .map_err(|e| setup(format!("weather: {e}")))?;
-                let site = w
+                    .map_err(|e| weather(e.into()))?;
+                let at_site = w
                     .site
                     .over_site(time.unwrap_or(w.time_s), index, w.elevation_m)
-                    .map_err(|e| setup(format!("weather: {e}")))?;
-                env.air = site.air_model();
-                env.wind = site.wind().map_err(|e| setup(format!("weather: {e}")))?;
+                    .map_err(|e| weather(e.into()))?;
+                env.air = at_site.air_model();
+                env.wind = at_site.wind().map_err(|e| weather(e.into()))?;
             }
             if temperature.is_some() || pressure.is_some() {
                 env.air = env
                     .air
                     .with_site_values(env.elevation_m, temperature, pressure)
-                    .map_err(|e| setup(format!("environment: {e}")))?;
+                    .map_err(|e| environment(e.into()))?;
             }
             if drawn || temperature.is_some() || pressure.is_some() {
                 if let Some(table) = ctx.air_table.and_then(|find| find(&env.air)) {
@@ -419,18 +420,19 @@ impl Changes<'_> {
                 env.gravity = env
                     .gravity
                     .at_launch_elevation(v)
-                    .map_err(|e| setup(format!("environment: {e}")))?;
+                    .map_err(|e| environment(e.into()))?;
             }
             let turbulence = get(WindTurbulenceIntensity).unwrap_or(base_turbulence);
             if get(WindSpeedMS).is_some() || get(WindFromDeg).is_some() {
-                let (speed, from) = env.wind.constant_parts().ok_or_else(|| {
-                    setup("the base wind is a table, whose speed and direction the wind columns can't set (scale and turn it with wind_scale and wind_rotation_deg)".into())
-                })?;
+                let (speed, from) = env
+                    .wind
+                    .constant_parts()
+                    .ok_or_else(|| setup(SetupError::WindIsATable))?;
                 env.wind = Wind::constant(
                     get(WindSpeedMS).unwrap_or(speed),
                     get(WindFromDeg).unwrap_or(from),
                 )
-                .map_err(|e| setup(format!("wind: {e}")))?;
+                .map_err(|e| setup(SetupError::Wind(e)))?;
             }
             env.wind = env
                 .wind
@@ -439,7 +441,7 @@ impl Changes<'_> {
                     get(WindRotationDeg).unwrap_or(rotation),
                 )
                 .and_then(|w| w.with_turbulence(turbulence))
-                .map_err(|e| setup(format!("{e}")))?;
+                .map_err(|e| site(e.into()))?;
             let mut rail = self.sim.rail;
             rail.length_m = get(RailLengthM).unwrap_or(rail.length_m);
             rail.inclination_deg = get(RailInclinationDeg).unwrap_or(rail.inclination_deg);
@@ -491,8 +493,7 @@ impl Changes<'_> {
                 changed = true;
             }
             if let Some(v) = get(ParachuteTrigger(k)) {
-                p.trigger =
-                    with_number(p.trigger, v).map_err(|r| setup(format!("parachute {k}: {r}")))?;
+                p.trigger = with_number(p.trigger, v, TriggerOwner::Parachute, k)?;
                 changed = true;
             }
         }
@@ -511,8 +512,7 @@ impl Changes<'_> {
                 changed = true;
             }
             if let Some(v) = get(ShiftTrigger(k)) {
-                s.trigger =
-                    with_number(s.trigger, v).map_err(|r| setup(format!("shift {k}: {r}")))?;
+                s.trigger = with_number(s.trigger, v, TriggerOwner::Shift, k)?;
                 changed = true;
             }
         }
@@ -523,8 +523,7 @@ impl Changes<'_> {
         let mut changed = false;
         for (k, r) in releases.iter_mut().enumerate() {
             if let Some(v) = get(ReleaseTrigger(k)) {
-                r.trigger =
-                    with_number(r.trigger, v).map_err(|e| setup(format!("release {k}: {e}")))?;
+                r.trigger = with_number(r.trigger, v, TriggerOwner::Release, k)?;
                 changed = true;
             }
             if let Some(v) = get(ReleaseCdaM2(k)) {
@@ -534,9 +533,10 @@ impl Changes<'_> {
             let cds = get(ReleaseChuteCdsM2(k));
             let lag = get(ReleaseChuteLagS(k));
             if cds.is_some() || lag.is_some() {
-                let chute = r.parachute.as_mut().ok_or_else(|| {
-                    setup(format!("release {k}: its part has no parachute to vary"))
-                })?;
+                let chute = r
+                    .parachute
+                    .as_mut()
+                    .ok_or_else(|| setup(SetupError::ReleaseWithoutChute { index: k }))?;
                 chute.cds_m2 = cds.unwrap_or(chute.cds_m2);
                 chute.lag_s = lag.unwrap_or(chute.lag_s);
                 changed = true;

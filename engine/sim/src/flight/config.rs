@@ -2,6 +2,7 @@
 //! the parachutes and the integrator options. Each has a `validate` that says which field
 //! broke which rule.
 
+use super::setup_error::{OptionsRule, SetupError};
 pub use crate::atmosphere::AirModel;
 pub use crate::eom::CanopyShape;
 use crate::gravity::Gravity;
@@ -51,13 +52,13 @@ impl Environment {
     }
 
     /// Checks the latitude.
-    pub fn validate(&self) -> Result<(), String> {
-        use crate::gravity::{is_latitude, LATITUDE_RULE};
-        self.air.check().map_err(|e| format!("environment: {e}"))?;
+    pub fn validate(&self) -> Result<(), SetupError> {
+        use crate::gravity::is_latitude;
+        self.air
+            .check()
+            .map_err(|e| SetupError::Environment(e.into()))?;
         match self.latitude_deg {
-            Some(l) if !is_latitude(l) => Err(format!(
-                "environment: field \"latitude_deg\" {LATITUDE_RULE} (got {l})"
-            )),
+            Some(l) if !is_latitude(l) => Err(SetupError::Latitude { got: l }),
             _ => Ok(()),
         }
     }
@@ -230,14 +231,15 @@ pub fn rk4_steps_rule(step_s: f64, max_time_s: f64) -> Option<String> {
 impl SimOptions {
     /// Check every number: the time limit, RK4's step, the adaptive tolerances (the same
     /// ranges as the integrators enforce, named by the fields a user sets).
-    pub fn validate(&self) -> Result<(), String> {
-        let positive = |field: &str, v: f64| {
+    pub fn validate(&self) -> Result<(), SetupError> {
+        let positive = |field: &'static str, v: f64| {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(format!(
-                    "options: field \"{field}\" must be positive and finite (got {v})"
-                ))
+                Err(SetupError::Options {
+                    field,
+                    rule: OptionsRule::NotPositive { got: v },
+                })
             }
         };
         positive("max_time_s", self.max_time_s)?;
@@ -245,7 +247,10 @@ impl SimOptions {
             Integrator::Rk4 { step_s } => {
                 positive("step_s", step_s)?;
                 match rk4_steps_rule(step_s, self.max_time_s) {
-                    Some(rule) => Err(format!("options: field \"step_s\": {rule}")),
+                    Some(rule) => Err(SetupError::Options {
+                        field: "step_s",
+                        rule: OptionsRule::TooManySteps { rule },
+                    }),
                     None => Ok(()),
                 }
             }
@@ -258,9 +263,14 @@ impl SimOptions {
             } => {
                 use crate::integrate::{RTOL_MAX, RTOL_MIN};
                 if !(RTOL_MIN..=RTOL_MAX).contains(&rtol) {
-                    return Err(format!(
-                        "options: field \"rtol\" must be finite and within [{RTOL_MIN:e}, {RTOL_MAX}] (got {rtol})"
-                    ));
+                    return Err(SetupError::Options {
+                        field: "rtol",
+                        rule: OptionsRule::Rtol {
+                            got: rtol,
+                            min: RTOL_MIN,
+                            max: RTOL_MAX,
+                        },
+                    });
                 }
                 positive("atol_position_m", atol_position_m)?;
                 positive("atol_velocity_m_s", atol_velocity_m_s)?;

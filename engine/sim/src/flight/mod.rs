@@ -13,6 +13,7 @@ pub mod config;
 pub mod driver;
 pub mod model;
 pub mod output;
+pub mod setup_error;
 
 pub use changes::Changes;
 pub use config::{
@@ -24,11 +25,14 @@ pub use output::{
     Flight, Metrics, Observer, PartFlight, PartSample, Phase, ReleaseRecord, Sample, Warning,
     LARGE_ALPHA_DEG,
 };
+pub use setup_error::{
+    Bound, OptionsRule, ParachuteRule, PartMassRule, SetupError, SiteFault, TriggerOwner,
+};
 
 use crate::aero_loads::{AeroTables, SurfaceTable};
 use crate::atmosphere::{AirTable, Atmosphere};
 use crate::eom::{self, Nozzle};
-use crate::integrate::IntegratorError;
+use crate::integrate::{IntegratorError, RootError};
 use crate::massprops::MassModel;
 use crate::releases::{Release, ReleasePlan, ReleaseRefusal};
 use crate::shifts::{MassShift, ShiftPlan, ShiftRefusal};
@@ -41,8 +45,9 @@ use std::sync::Arc;
 /// Why a flight could not be set up or flown.
 #[derive(Debug, thiserror::Error)]
 pub enum SimError {
-    #[error("{0}")]
-    Setup(String),
+    /// An input of the flight breaks a rule (which input, the value, the bound).
+    #[error(transparent)]
+    Setup(#[from] SetupError),
     #[error(transparent)]
     Shift(#[from] ShiftRefusal),
     #[error(transparent)]
@@ -77,6 +82,20 @@ pub enum SimError {
     },
     #[error("the flight went non-finite at t = {time_s} s; state {state}")]
     NonFinite { time_s: f64, state: String },
+    /// An event (apogee, a height, the rail's end, a part's landing) could not be located
+    /// within a step.
+    #[error("event location failed: {0}")]
+    EventLocation(#[source] RootError),
+    /// The moment the thrust first beats the weight along the rail could not be located.
+    #[error("liftoff: {0}")]
+    Liftoff(#[source] RootError),
+    /// A released part's descent was asked for before the part left.
+    #[error("release {index} never left")]
+    ReleaseNeverLeft { index: usize },
+    /// A flight on a fixed step (RK4) was stepped by the batch's lanes, which step the
+    /// adaptive integrators only.
+    #[error("a fixed-step flight was stepped on lanes")]
+    FixedStepOnLanes,
     #[error("integration failed in the {phase} phase at t = {time_s} s: {source}")]
     Integration {
         time_s: f64,
@@ -156,7 +175,11 @@ impl MassAdjustment {
     /// acceleration has a pole there). Without held parts, or without a change, it is
     /// [`MassAdjustment::apply`] bit for bit. The error says why the rest cannot make the
     /// change (it would be left without mass).
-    pub fn apply_holding(&self, dry: &MassProps, held: &[MassProps]) -> Result<MassProps, String> {
+    pub fn apply_holding(
+        &self,
+        dry: &MassProps,
+        held: &[MassProps],
+    ) -> Result<MassProps, SetupError> {
         if held.is_empty() || *self == MassAdjustment::default() {
             return Ok(self.apply(dry));
         }
@@ -167,10 +190,11 @@ impl MassAdjustment {
         let whole = self.apply(dry);
         let m = rest.mass_kg + self.delta_mass_kg;
         if !(rest.mass_kg > 0.0 && m > 0.0) {
-            return Err(format!(
-                "mass adjustment: the structure without the parts its shifts move weighs {} kg, and {} kg after the change of {} kg: nothing is left to make the change",
-                rest.mass_kg, m, self.delta_mass_kg
-            ));
+            return Err(SetupError::MassAdjustmentHeld {
+                rest_kg: rest.mass_kg,
+                after_kg: m,
+                delta_mass_kg: self.delta_mass_kg,
+            });
         }
         // The whole's first moment, less the held parts', placed on the rest.
         let moved = MassProps {
@@ -257,12 +281,11 @@ impl Simulation {
         // The releases' rules read the shifts' parts: checked here, after every change, so
         // that the order of the changes never changes a verdict.
         if self.releases.len() + self.shifts.len() > model::MAX_SHIFTS {
-            return Err(SimError::Setup(format!(
-                "at most {} shifts and releases together in one flight (got {} shifts and {} releases)",
-                model::MAX_SHIFTS,
-                self.shifts.len(),
-                self.releases.len()
-            )));
+            return Err(SimError::Setup(SetupError::TooManyShiftsAndReleases {
+                max: model::MAX_SHIFTS,
+                shifts: self.shifts.len(),
+                releases: self.releases.len(),
+            }));
         }
         self.release_plan = if self.releases.is_empty() {
             ReleasePlan::default()
@@ -495,7 +518,9 @@ fn air_table(
 ) -> Result<Arc<AirTable>, SimError> {
     match previous {
         Some(air) if *air.model() == env.air => Ok(air.clone()),
-        _ => AirTable::new(&env.air).map_err(|e| SimError::Setup(format!("environment: {e}"))),
+        _ => {
+            AirTable::new(&env.air).map_err(|e| SimError::Setup(SetupError::Environment(e.into())))
+        }
     }
 }
 
@@ -522,10 +547,10 @@ pub fn build_model(
     use crate::turbulence::MAX_TURBULENT_FLIGHT_S;
     use config::MAX_INPUT_STEPS;
     if env.wind.turbulence_intensity() > 0.0 && options.max_time_s > MAX_TURBULENT_FLIGHT_S {
-        return Err(SimError::Setup(format!(
-            "a flight in a turbulent wind needs a time limit (max_time_s) of at most {MAX_TURBULENT_FLIGHT_S} s, its gusts drawn to it before it starts (got {} s)",
-            options.max_time_s
-        )));
+        return Err(SimError::Setup(SetupError::TurbulentTimeLimit {
+            max_s: MAX_TURBULENT_FLIGHT_S,
+            got_s: options.max_time_s,
+        }));
     }
     // Each sample of a sampler (the air brakes' controller, a sampled parachute trigger)
     // ends a step: the fastest one's samples to the time limit are bounded.
@@ -535,20 +560,16 @@ pub fn build_model(
         .chain(design.air_brakes.map(|b| b.sampling_rate_hz))
         .fold(0.0, f64::max);
     if fastest_hz * options.max_time_s > MAX_INPUT_STEPS {
-        return Err(SimError::Setup(format!(
-            "a sampler read {fastest_hz} times a second to the time limit (max_time_s = {} s) \
-             takes {:.4e} samples, each ending a step, more than the {MAX_INPUT_STEPS:.0} a \
-             flight may take: give a time limit of at most {} s, or a lower sampling rate",
-            options.max_time_s,
-            fastest_hz * options.max_time_s,
-            MAX_INPUT_STEPS / fastest_hz
-        )));
+        return Err(SimError::Setup(SetupError::TooManySamples {
+            rate_hz: fastest_hz,
+            max_time_s: options.max_time_s,
+            max_steps: MAX_INPUT_STEPS,
+        }));
     }
     let mount = design.motor_mount.ok_or_else(|| {
-        SimError::Setup(format!(
-            "design \"{}\": it has no motor mount (an inner tube with \"motor_mount\")",
-            design.name
-        ))
+        SimError::Setup(SetupError::NoMotorMount {
+            design: design.name.clone(),
+        })
     })?;
     design
         .motor_fits(motor.diameter_m, motor.length_m)
@@ -593,9 +614,7 @@ pub fn build_model(
                 .map(|(p, _)| *p),
         )
         .collect();
-    let dry = adjustment
-        .apply_holding(&dry, &held)
-        .map_err(SimError::Setup)?;
+    let dry = adjustment.apply_holding(&dry, &held)?;
     let mut mass_model = MassModel::new(&dry, &casing, &propellant, &parts, &released);
     mass_model.grains = motor_tables.grains().map(|g| (*g, motor_tables.motors()));
     let fixed_cg_m = dry.combine(&casing).cg_m.x;
@@ -608,8 +627,8 @@ pub fn build_model(
 
     // Checks the site elevation (the flight reads the shared table) and latitude.
     Atmosphere::standard(env.elevation_m)
-        .map_err(|e| SimError::Setup(format!("environment: {e}")))?;
-    env.validate().map_err(SimError::Setup)?;
+        .map_err(|e| SimError::Setup(SetupError::Environment(e.into())))?;
+    env.validate()?;
     let aft_m = design.length_m.max(mount.motor_aft_m);
     let rail_geo = model::rail_geometry(rail, aft_m, design.rail_guides_m.map(|(upper, _)| upper))?;
     let knots: Vec<f64> = motor_tables

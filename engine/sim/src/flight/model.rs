@@ -3,6 +3,7 @@
 //! batch engine's lanes both call; the kernels written over lanes are in `model/kernels.rs`.
 
 use super::config::{Environment, Parachute, Rail, SimOptions};
+use super::setup_error::{Bound, SetupError};
 use super::SimError;
 use crate::aero_loads::{self, aero_loads, AeroTables, AirAt};
 use crate::atmosphere::{Air, AirTable};
@@ -761,15 +762,11 @@ pub fn rail_geometry(
     aft_m: f64,
     upper_guide_m: Option<f64>,
 ) -> Result<RailGeometry, SimError> {
-    let bad = |field: &str, rule: &str, v: f64| {
-        SimError::Setup(format!("rail: field \"{field}\" {rule} (got {v})"))
+    let bad = |field: &'static str, bound: Bound, got: f64| {
+        SimError::Setup(SetupError::Rail { field, bound, got })
     };
     if !(rail.length_m.is_finite() && rail.length_m > 0.0) {
-        return Err(bad(
-            "length_m",
-            "must be positive and finite",
-            rail.length_m,
-        ));
+        return Err(bad("length_m", Bound::PositiveFinite, rail.length_m));
     }
     if !(rail.inclination_deg.is_finite()
         && rail.inclination_deg > 0.0
@@ -777,20 +774,20 @@ pub fn rail_geometry(
     {
         return Err(bad(
             "inclination_deg",
-            "must be above 0 and at most 90 degrees",
+            Bound::AboveZeroAtMost90Deg,
             rail.inclination_deg,
         ));
     }
     if !rail.heading_deg.is_finite() {
-        return Err(bad("heading_deg", "must be finite", rail.heading_deg));
+        return Err(bad("heading_deg", Bound::Finite, rail.heading_deg));
     }
     let guide_height = upper_guide_m.map_or(0.0, |g| aft_m - g);
     let travel = rail.length_m - guide_height;
     if travel <= 0.0 {
-        return Err(SimError::Setup(format!(
-            "rail: field \"length_m\" must be longer than the distance from the rocket's aft end to its upper rail guide ({guide_height:.3} m), or the rocket never rides it (got {} m)",
-            rail.length_m
-        )));
+        return Err(SimError::Setup(SetupError::RailTooShort {
+            guide_height_m: guide_height,
+            length_m: rail.length_m,
+        }));
     }
     let attitude = frames::rail_attitude(rail.inclination_deg, rail.heading_deg);
     let direction_n = frames::body_to_inertial(&attitude) * Vector3::z();

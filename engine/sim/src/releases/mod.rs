@@ -425,7 +425,7 @@ fn check_trigger(
         rule: rule.to_string(),
     };
     if let Err(e) = r.trigger.validate() {
-        return Err(refuse(&e));
+        return Err(refuse(&e.to_string()));
     }
     match r.trigger {
         Trigger::Time { time_s } if time_s <= 0.0 => Err(refuse(

@@ -371,7 +371,7 @@ fn check_trigger(
         rule: rule.to_string(),
     };
     if let Err(e) = s.trigger.validate() {
-        return Err(refuse(&e));
+        return Err(refuse(&e.to_string()));
     }
     match s.trigger {
         Trigger::Time { time_s } if time_s <= 0.0 => {

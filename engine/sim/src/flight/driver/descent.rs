@@ -140,7 +140,7 @@ impl Descent {
         let record = &run.releases[j];
         let (t0, part) = match (record.time_s, &record.part) {
             (Some(t), Some(p)) => (t, p),
-            _ => return Err(SimError::Setup(format!("release {j} never left"))),
+            _ => return Err(SimError::ReleaseNeverLeft { index: j }),
         };
         let (p, v) = (part.start_position_m, part.start_velocity_m_s);
         let y0 = [p[0], p[1], p[2], v[0], v[1], v[2]];
@@ -350,7 +350,7 @@ impl Descent {
                 }
             }
         };
-        let root_err = |e| SimError::Setup(format!("event location failed: {e}"));
+        let root_err = SimError::EventLocation;
         each!(stepper, s => {
             if !run.apogee_done {
                 consider(locate_event(&**s, |_t, y: &[f64; N3]| y[5], Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, EventKind::Apogee);
@@ -530,7 +530,7 @@ impl Descent {
                 }
             }
         };
-        let root_err = |e| SimError::Setup(format!("event location failed: {e}"));
+        let root_err = SimError::EventLocation;
         each!(stepper, s => {
             consider(locate_event(&**s, |_t, y: &[f64; N3]| y[2], Crossing::Falling, EVENT_TOL_S).map_err(root_err)?, PartEvent::Landing);
             if climbing {

@@ -932,8 +932,7 @@ fn pad<O: Observer>(run: &mut Run<'_, O>) -> Result<(f64, [f64; N6]), SimError> 
             t_lift = Some(if excess(w[0]) > 0.0 {
                 w[0]
             } else {
-                brent_root(excess, w[0], end, EVENT_TOL_S)
-                    .map_err(|e| SimError::Setup(format!("liftoff: {e}")))?
+                brent_root(excess, w[0], end, EVENT_TOL_S).map_err(SimError::Liftoff)?
             });
             break;
         }

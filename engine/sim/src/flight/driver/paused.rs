@@ -146,7 +146,7 @@ pub(crate) struct Verdict {
 }
 
 fn not_on_lanes() -> SimError {
-    SimError::Setup("a fixed-step flight was stepped on lanes".into())
+    SimError::FixedStepOnLanes
 }
 
 /// A flight paused in a phase that the batch engine steps four lanes at a time ([`Paused`]

@@ -233,7 +233,7 @@ impl SixDof {
             };
             if t1 > t_now && crossing.matches(g0, g1) {
                 let te = each!(stepper, s => brent_root_bracketed(|t| g.at(model, &starts, t, &s.dense(t)), t_now, g0, t1, g1, EVENT_TOL_S))
-                    .map_err(|e| SimError::Setup(format!("event location failed: {e}")))?;
+                    .map_err(SimError::EventLocation)?;
                 if found.is_none_or(|(tf, _)| te < tf) {
                     found = Some((te, kind));
                 }
