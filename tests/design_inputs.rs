@@ -304,4 +304,87 @@ fn a_sweep_of_motors_is_labelled_by_designation_in_the_printed_table_and_the_rep
         assert!(html.contains(&format!(">{name}</text>")), "tick {name}");
     }
     assert!(html.contains("<th>motor</th>"));
+    // The inputs' table names the motor by its designations, once each in the points'
+    // order, with no statistics of its number in the sweep's list.
+    let inputs = &html[html.find("<h3>Inputs</h3>").unwrap()..];
+    let inputs = &inputs[..inputs.find("</table>").unwrap()];
+    assert!(!inputs.contains("motor_index"), "{inputs}");
+    let row = format!(
+        "<tr><td><code>motor</code></td><td></td><td>{}, {}</td><td>–</td>{}</tr>",
+        d[0],
+        d[1],
+        "<td class=\"n\">–</td>".repeat(4)
+    );
+    assert!(inputs.contains(&row), "{row} in {inputs}");
+}
+
+#[test]
+fn a_sweep_of_motors_names_each_point_s_motor_in_the_summary_beside_its_statistics() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("scenario.toml");
+    std::fs::write(
+        &file,
+        scenario(
+            "Cesaroni_I175",
+            "[sweep]\nmotor = [\"Cesaroni_I175\", \"AeroTech_I161W\"]\n\n[dispersions]\nwind_speed_m_s = { dist = \"normal\", sigma = 1.0 }\n",
+        ),
+    )
+    .unwrap();
+    let config = RunConfig {
+        out: Some(dir.path().join("out")),
+        quiet: true,
+        no_report: true,
+        threads: Some(2),
+        ..RunConfig::default()
+    };
+    let report = run_campaign(&file, &config).unwrap();
+    let rows = read(&report.outputs.variants);
+    let (names, apogee) = (strings(&rows, "motor"), floats(&rows, "apogee_m"));
+    let points = rows
+        .column_by_name("point")
+        .unwrap()
+        .as_any()
+        .downcast_ref::<arrow::array::UInt32Array>()
+        .unwrap();
+    let summary = read(&report.outputs.summary);
+    let field = summary.schema().field_with_name("motor").unwrap().clone();
+    assert_eq!(field.data_type(), &arrow::datatypes::DataType::Utf8);
+    let (motor, metric, mean) = (
+        strings(&summary, "motor"),
+        strings(&summary, "metric"),
+        floats(&summary, "mean"),
+    );
+    let summary_points = summary
+        .column_by_name("point")
+        .unwrap()
+        .as_any()
+        .downcast_ref::<arrow::array::UInt32Array>()
+        .unwrap();
+    let mut seen = 0;
+    for r in 0..summary.num_rows() {
+        let pt = summary_points.value(r);
+        // The point's rows in variants.parquet: their designation, and their mean apogee
+        // (two landed variants a point).
+        let own: Vec<usize> = (0..rows.num_rows())
+            .filter(|&v| points.value(v) == pt)
+            .collect();
+        assert_eq!(own.len(), 2);
+        assert_eq!(motor.value(r), names.value(own[0]), "summary row {r}");
+        if metric.value(r) == "apogee_m" {
+            let m = own.iter().map(|&v| apogee.value(v)).sum::<f64>() / 2.0;
+            assert!(
+                (mean.value(r) - m).abs() <= 1e-12 * m,
+                "point {pt}: {} m in the summary, {m} m from the rows",
+                mean.value(r)
+            );
+            seen += 1;
+        }
+    }
+    assert_eq!(seen, 2, "one apogee row a point");
+    assert_ne!(names.value(0), names.value(2), "two motors, two names");
+    // The other statistics files name the motor too.
+    let ellipses = read(&report.outputs.ellipses);
+    let e = strings(&ellipses, "motor");
+    assert!((0..ellipses.num_rows())
+        .all(|r| e.value(r) == names.value(0) || e.value(r) == names.value(2)));
 }

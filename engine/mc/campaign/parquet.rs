@@ -144,6 +144,17 @@ fn sweep_fields(p: &Prepared) -> Vec<Field> {
         .collect()
 }
 
+/// The fields that name a statistics file's sweep point: the swept inputs' values, then, where
+/// the motor is swept, its designation as text (`motor`, as variants.parquet names it), so
+/// that a reader groups or filters by the motor's name rather than its place in the list.
+fn point_fields(p: &Prepared) -> Vec<Field> {
+    let mut fields = sweep_fields(p);
+    if !p.swept_motors().is_empty() {
+        fields.push(field("motor", DataType::Utf8, false, None));
+    }
+    fields
+}
+
 /// Whether the scenario's flights draw noise (a noisy barometer, the wind's turbulence), so
 /// that each variant's sensor seed is a column (the seed `Simulation::with_sensor_seed` needs
 /// to fly that variant alone).
@@ -594,19 +605,38 @@ fn sweep_columns(p: &Prepared, rows: &[usize]) -> Vec<ArrayRef> {
         .collect()
 }
 
+/// The columns of [`point_fields`], one value per row (`rows` holds each row's point).
+fn point_columns(p: &Prepared, rows: &[usize]) -> Vec<ArrayRef> {
+    let mut cols = sweep_columns(p, rows);
+    if !p.swept_motors().is_empty() {
+        let names: Vec<String> = (0..p.plan.points())
+            .map(|pt| {
+                p.motor_of(&p.plan.centers(pt))
+                    .unwrap_or_default()
+                    .to_string()
+            })
+            .collect();
+        cols.push(Arc::new(StringArray::from_iter_values(
+            rows.iter().map(|&pt| names[pt].as_str()),
+        )));
+    }
+    cols
+}
+
 fn opt(values: impl IntoIterator<Item = Option<f64>>) -> ArrayRef {
     Arc::new(Float64Array::from(values.into_iter().collect::<Vec<_>>()))
 }
 
-/// summary.parquet: per sweep point and metric, the count of values, the failures and the
-/// distribution (null where there is no value).
+/// summary.parquet: per sweep point (its swept values, and its motor's designation where the
+/// motor is swept) and metric, the count of values, the failures and the distribution (null
+/// where there is no value).
 pub fn summary_batch(
     p: &Prepared,
     meta: &RunMeta,
     stats: &[PointStats],
 ) -> anyhow::Result<RecordBatch> {
     let mut fields = vec![field("point", DataType::UInt32, false, None)];
-    fields.extend(sweep_fields(p));
+    fields.extend(point_fields(p));
     fields.push(field("metric", DataType::Utf8, false, None));
     fields.push(field("unit", DataType::Utf8, false, None));
     for f in ["variants", "failures", "count"] {
@@ -628,7 +658,7 @@ pub fn summary_batch(
     let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(
         pts.iter().map(|&x| x as u32),
     ))];
-    cols.extend(sweep_columns(p, &pts));
+    cols.extend(point_columns(p, &pts));
     cols.push(Arc::new(StringArray::from_iter_values(
         rows.iter().map(|r| p.metrics[r.1].name.as_str()),
     )));
@@ -670,7 +700,7 @@ pub fn ellipses_batch(
     stats: &[PointStats],
 ) -> anyhow::Result<RecordBatch> {
     let mut fields = vec![field("point", DataType::UInt32, false, None)];
-    fields.extend(sweep_fields(p));
+    fields.extend(point_fields(p));
     fields.push(field("body", DataType::Utf8, false, None));
     fields.push(field("sigma", DataType::UInt8, false, None));
     fields.push(field("count", DataType::UInt64, false, None));
@@ -704,7 +734,7 @@ pub fn ellipses_batch(
     let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(
         pts.iter().map(|&x| x as u32),
     ))];
-    cols.extend(sweep_columns(p, &pts));
+    cols.extend(point_columns(p, &pts));
     cols.push(Arc::new(StringArray::from_iter_values(
         rows.iter().map(|r| r.1),
     )));
@@ -738,7 +768,7 @@ pub fn sensitivity_batch(
     stats: &[PointStats],
 ) -> anyhow::Result<RecordBatch> {
     let mut fields = vec![field("point", DataType::UInt32, false, None)];
-    fields.extend(sweep_fields(p));
+    fields.extend(point_fields(p));
     for f in ["metric", "input", "coefficient_unit"] {
         fields.push(field(f, DataType::Utf8, false, None));
     }
@@ -789,7 +819,7 @@ pub fn sensitivity_batch(
     let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(
         pts.iter().map(|&x| x as u32),
     ))];
-    cols.extend(sweep_columns(p, &pts));
+    cols.extend(point_columns(p, &pts));
     cols.push(Arc::new(StringArray::from_iter_values(
         rows.iter().map(|r| p.metrics[r.1].name.clone()),
     )));
@@ -821,7 +851,7 @@ pub fn requirements_batch(
     stats: &[PointStats],
 ) -> anyhow::Result<RecordBatch> {
     let mut fields = vec![field("point", DataType::UInt32, false, None)];
-    fields.extend(sweep_fields(p));
+    fields.extend(point_fields(p));
     fields.push(field("metric", DataType::Utf8, false, None));
     fields.push(field("unit", DataType::Utf8, false, None));
     fields.push(field("min", DataType::Float64, true, None));
@@ -845,7 +875,7 @@ pub fn requirements_batch(
     let mut cols: Vec<ArrayRef> = vec![Arc::new(UInt32Array::from_iter_values(
         pts.iter().map(|&x| x as u32),
     ))];
-    cols.extend(sweep_columns(p, &pts));
+    cols.extend(point_columns(p, &pts));
     cols.push(Arc::new(StringArray::from_iter_values(
         rows.iter().map(|r| spec(r).metric.clone()),
     )));

@@ -818,6 +818,19 @@ impl Run {
         self.sweep_motors.get(pt)?.as_deref()
     }
 
+    /// The designations of a swept motor, each once, in the order of the points that fly
+    /// them; `None` without a sweep of motors.
+    pub fn swept_motor_names(&self) -> Option<Vec<&str>> {
+        let k = self.sweep.iter().position(|c| c.name == "motor_index")?;
+        let mut names: Vec<&str> = vec![];
+        for pt in 0..self.points() {
+            if let Some(d) = self.sweep_motor(pt, k).filter(|d| !names.contains(d)) {
+                names.push(d);
+            }
+        }
+        (!names.is_empty()).then_some(names)
+    }
+
     /// A metric's index by name.
     pub fn metric(&self, name: &str) -> Option<usize> {
         self.metrics.iter().position(|m| m.name == name)

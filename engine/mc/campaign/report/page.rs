@@ -363,6 +363,17 @@ fn header(s: &mut String, run: &Run, ctx: &Context) {
         "<h3>Inputs</h3><table><tr><th>input</th><th>unit</th><th>swept over</th><th>dispersion (as the scenario writes it)</th><th>mean</th><th>standard deviation</th><th>least</th><th>greatest</th></tr>\n"
     );
     for (j, c) in run.inputs.iter().enumerate() {
+        if let Some(names) = run.swept_motor_names().filter(|_| c.name == "motor_index") {
+            // A swept motor is named by its designations (its number is only a position in
+            // the sweep's list: its mean and extremes mean nothing to a reader).
+            let dash = "<td class=\"n\">–</td>".repeat(4);
+            let _ = write!(
+                s,
+                "<tr><td><code>motor</code></td><td></td><td>{}</td><td>–</td>{dash}</tr>\n",
+                esc(&names.join(", "))
+            );
+            continue;
+        }
         // Over every row: the sum in row order and the extremes as the rows passed; the
         // spread from the rows when all are held (two passes), else Welford's as they passed.
         let mo = &run.input_moments[j];
