@@ -6,22 +6,17 @@ use crate::eom::{pack_mass, MassLanes, N6};
 use crate::flight::model::{derivative_6dof_lanes, FlightModel, FourModels};
 use crate::flight::{AirModel, Environment, Parachute, Rail, SimOptions, Simulation};
 use crate::lanes::{F64x4, Real};
+use crate::reference;
 use crate::trigger::Trigger;
 use crate::wind::Wind;
 use crate::MassShift;
-use hpr_design::motor::{self, MotorOptions};
-use hpr_design::Design;
+use hpr_design::motor::MotorOptions;
 
 mod air;
 mod kernels;
 mod noise;
 mod releases;
 mod turbulence;
-
-const REFERENCE: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../validation/designs/synthetic-54mm-three-fin.json"
-);
 
 /// A small deterministic generator (SplitMix64) so the test needs no dependency.
 struct Rng(u64);
@@ -67,10 +62,10 @@ fn site(elevation_m: f64) -> Environment {
 }
 
 fn base() -> Simulation {
-    let d = Design::load(REFERENCE).unwrap();
+    let d = reference::design();
     Simulation::new(
         d,
-        motor::find("Cesaroni_I175").unwrap(),
+        reference::motor(),
         site(0.0),
         Rail {
             length_m: 2.0,
@@ -81,12 +76,7 @@ fn base() -> Simulation {
     .unwrap()
     .with_parachutes(chutes())
     .unwrap()
-    .with_shifts(vec![MassShift::new(
-        Trigger::Time { time_s: 5.0 },
-        "ballast",
-        0.3,
-        1.0,
-    )])
+    .with_shifts(vec![reference::ballast_shift(5.0)])
     .unwrap()
 }
 
@@ -103,8 +93,8 @@ impl Rng {
 /// The motor's total impulse and burn time and the design's structure, which the random
 /// scales and changes of the variants are of.
 fn nominals() -> (f64, f64, hpr_design::mass::MassProps) {
-    let m = motor::find("Cesaroni_I175").unwrap();
-    let dry = hpr_design::mass::dry(&Design::load(REFERENCE).unwrap());
+    let m = reference::motor();
+    let dry = hpr_design::mass::dry(&reference::design());
     (m.total_impulse_ns(), m.burn_time_s(), dry)
 }
 
@@ -196,39 +186,33 @@ fn single(c: &Columns, i: usize) -> Result<Simulation, String> {
     ch[0].cds_m2 = at(ParachuteCdsM2(0));
     ch[0].lag_s = at(ParachuteLagS(0));
     ch[1].cds_m2 = at(ParachuteCdsM2(1));
-    Simulation::with_motor_options(
-        hpr_design::Design::load(REFERENCE).unwrap(),
-        motor::find("Cesaroni_I175").unwrap(),
-        options,
-        env,
-        rail,
-    )
-    .and_then(|s| s.with_drag_scale(at(DragScale)))
-    .and_then(|s| s.with_part_mass("ballast", at(BallastKg)))
-    .and_then(|s| {
-        s.with_mass_adjustment(
-            at(StructureMassKg) - dry.mass_kg,
-            at(StructureCgM) - dry.cg_m.x,
-        )
-    })
-    .and_then(|s| s.with_parachutes(ch))
-    .and_then(|s| {
-        s.with_shifts(vec![MassShift::new(
-            Trigger::Time {
-                time_s: at(ShiftTrigger(0)),
-            },
-            "ballast",
-            at(ShiftTravelM(0)),
-            at(ShiftDurationS(0)),
-        )])
-    })
-    .and_then(|s| {
-        s.with_options(SimOptions {
-            keep_samples: false,
-            ..SimOptions::default()
+    Simulation::with_motor_options(reference::design(), reference::motor(), options, env, rail)
+        .and_then(|s| s.with_drag_scale(at(DragScale)))
+        .and_then(|s| s.with_part_mass(reference::BALLAST, at(BallastKg)))
+        .and_then(|s| {
+            s.with_mass_adjustment(
+                at(StructureMassKg) - dry.mass_kg,
+                at(StructureCgM) - dry.cg_m.x,
+            )
         })
-    })
-    .map_err(e)
+        .and_then(|s| s.with_parachutes(ch))
+        .and_then(|s| {
+            s.with_shifts(vec![MassShift::new(
+                Trigger::Time {
+                    time_s: at(ShiftTrigger(0)),
+                },
+                reference::BALLAST,
+                at(ShiftTravelM(0)),
+                at(ShiftDurationS(0)),
+            )])
+        })
+        .and_then(|s| {
+            s.with_options(SimOptions {
+                keep_samples: false,
+                ..SimOptions::default()
+            })
+        })
+        .map_err(e)
 }
 
 fn metric_list(m: &Metrics) -> Vec<Option<f64>> {
@@ -261,7 +245,7 @@ fn metric_list(m: &Metrics) -> Vec<Option<f64>> {
 fn every_lane_equals_the_single_flight_with_the_same_inputs() {
     let n = 1000;
     let c = columns(n, 42);
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let (mut worst, mut landed, mut refused) = (0.0f64, 0, 0);
     let mut results = Vec::with_capacity(n);
     batch
@@ -340,7 +324,7 @@ fn every_lane_equals_the_single_flight_with_the_same_inputs() {
 #[test]
 fn results_do_not_depend_on_threads_chunks_or_window() {
     let n = 96;
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let run_with = |threads: usize, chunk: usize, window: usize| {
         run_on(&batch, n, threads, chunk, window, |rows| {
             columns_of(rows, 7)
@@ -370,7 +354,7 @@ fn results_do_not_depend_on_threads_chunks_or_window() {
 #[test]
 fn each_chunk_s_columns_are_asked_for_once_in_chunk_sized_ranges_covering_every_variant() {
     let (n, chunk, window) = (23, 4, 2);
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let asked = std::sync::Mutex::new(Vec::new());
     let mut seen = 0;
     batch
@@ -409,7 +393,7 @@ fn no_chunk_starts_more_than_a_window_beyond_the_first_not_yet_handed_on() {
     // Memory stays bounded: with 2 threads, chunks of 3 and a window of 2, when a chunk's
     // columns are asked for, the chunks before the window's start have all been sunk.
     let (n, chunk, window) = (60, 3, 2);
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let sunk = std::sync::atomic::AtomicUsize::new(0);
     let worst_lead = std::sync::atomic::AtomicUsize::new(0);
     let pool = rayon::ThreadPoolBuilder::new()
@@ -444,7 +428,7 @@ fn no_chunk_starts_more_than_a_window_beyond_the_first_not_yet_handed_on() {
 #[test]
 fn a_panic_in_the_columns_closure_reaches_the_caller_instead_of_hanging_the_workers() {
     // Chunk 0 panics while another worker waits for it to be sunk (window 1).
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
@@ -471,7 +455,7 @@ fn a_panic_in_the_columns_closure_reaches_the_caller_instead_of_hanging_the_work
 
 #[test]
 fn columns_of_the_wrong_length_or_shape_are_an_error_naming_the_variants() {
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let short = batch
         .run(10, 4, 1, |rows| columns_of(0..rows.len() - 1, 1), |_| {})
         .unwrap_err();
@@ -508,7 +492,7 @@ fn columns_of_the_wrong_length_or_shape_are_an_error_naming_the_variants() {
     // past its end is refused by the chunk's check rather than panicking.
     let mut short = columns(6, 1);
     short.column_mut(Input::WindSpeedMS).truncate(5);
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let e = batch.run_columns(&short, 4, 1, |_| {}).unwrap_err();
     assert_eq!(e, "column wind_speed_m_s has 5 values for 6 variants");
     let e = batch.fly_chunk(&short.slice(4..6), 4).unwrap_err();
@@ -545,7 +529,7 @@ fn many_changes_with_one_rebuild_fly_exactly_as_the_same_changes_made_one_by_one
     ch[1].cds_m2 = 0.85;
     let shift = vec![MassShift::new(
         Trigger::Time { time_s: 6.0 },
-        "ballast",
+        reference::BALLAST,
         0.2,
         0.7,
     )];
@@ -553,7 +537,7 @@ fn many_changes_with_one_rebuild_fly_exactly_as_the_same_changes_made_one_by_one
         .with_site(env.clone(), rail)
         .and_then(|s| s.with_motor_scales(scales))
         .and_then(|s| s.with_drag_scale(1.07))
-        .and_then(|s| s.with_part_mass("ballast", 0.23))
+        .and_then(|s| s.with_part_mass(reference::BALLAST, 0.23))
         .and_then(|s| s.with_mass_adjustment(0.01, -0.004))
         .and_then(|s| s.with_parachutes(ch.clone()))
         .and_then(|s| s.with_shifts(shift.clone()))
@@ -563,7 +547,7 @@ fn many_changes_with_one_rebuild_fly_exactly_as_the_same_changes_made_one_by_one
             c.shifts(shift)?;
             c.parachutes(ch)?;
             c.mass_adjustment(0.01, -0.004)?;
-            c.part_mass("ballast", 0.23)?;
+            c.part_mass(reference::BALLAST, 0.23)?;
             c.drag_scale(1.07)?;
             c.motor_scales(scales)?;
             c.site(env, rail)
@@ -581,7 +565,7 @@ fn many_changes_with_one_rebuild_fly_exactly_as_the_same_changes_made_one_by_one
     let alone = base().with_drag_scale(0.0).unwrap_err().to_string();
     let among = base()
         .with_changes(|c| {
-            c.part_mass("ballast", 0.3)?;
+            c.part_mass(reference::BALLAST, 0.3)?;
             c.drag_scale(0.0)?;
             c.mass_adjustment(0.0, 0.0)
         })
@@ -625,17 +609,20 @@ fn an_elevation_column_moves_an_inverse_square_gravity_with_the_site() {
 
 #[test]
 fn a_part_that_weighs_nothing_in_the_design_has_no_mass_to_scale() {
-    let mut d = Design::load(REFERENCE).unwrap();
-    let idx = d.component_index("ballast").unwrap();
+    let mut d = reference::design();
+    let idx = d.component_index(reference::BALLAST).unwrap();
     d.components[idx].mass_spec = hpr_design::design::model::MassSpec::Mass(0.0);
     let sim = Simulation::new(
         d,
-        motor::find("Cesaroni_I175").unwrap(),
+        reference::motor(),
         Environment::default(),
         Rail::default(),
     )
     .unwrap();
-    let e = sim.with_part_mass("ballast", 0.2).unwrap_err().to_string();
+    let e = sim
+        .with_part_mass(reference::BALLAST, 0.2)
+        .unwrap_err()
+        .to_string();
     assert_eq!(e, "part mass of \"ballast\": it weighs 0 kg in the design, so it has no mass to scale; give it a mass in the design");
 }
 
@@ -663,7 +650,7 @@ fn a_wind_table_is_scaled_and_turned_lane_by_lane_as_a_single_flight_with_that_t
         let rail = *sim.rail();
         sim.with_changes(|c| c.site(env, rail)).unwrap()
     };
-    let batch = Batch::new(with_wind(table.clone()), Some("ballast")).unwrap();
+    let batch = Batch::new(with_wind(table.clone()), Some(reference::BALLAST)).unwrap();
     let (scales, turns) = ([0.0, 0.5, 1.0, 1.7, 2.2], [0.0, -35.0, 0.0, 120.0, 15.0]);
     let c = Columns::new(5)
         .with(Input::WindScale, scales.to_vec())

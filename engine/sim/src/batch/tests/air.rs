@@ -4,7 +4,7 @@ use super::*;
 
 #[test]
 fn variants_of_the_same_swept_temperature_share_one_air_table_and_fly_as_with_their_own() {
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let cols = Columns::new(4).with(Input::TemperatureK, vec![300.0, 310.0, 300.0, 310.0]);
     let tables = AirTables::default();
     let sims: Vec<Simulation> = (0..4)

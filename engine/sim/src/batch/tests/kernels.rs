@@ -6,7 +6,7 @@ use super::*;
 /// motor, wind and site).
 fn four_variants(seed: u64) -> Vec<Simulation> {
     let c = columns(8, seed);
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let sims: Vec<Simulation> = (0..8)
         .filter_map(|r| batch.variant(&c, r).ok())
         .take(4)
@@ -97,7 +97,7 @@ fn fixed_step_lanes_equal_their_single_flights_too() {
         integrator: crate::flight::Integrator::Rk4 { step_s: 0.01 },
         ..SimOptions::default()
     };
-    let batch = Batch::new(base().with_options(rk4).unwrap(), Some("ballast")).unwrap();
+    let batch = Batch::new(base().with_options(rk4).unwrap(), Some(reference::BALLAST)).unwrap();
     let n = 10;
     let c = columns(n, 5);
     let mut results = Vec::new();
@@ -241,7 +241,7 @@ fn lanes_whose_ballast_moves_while_the_motor_burns_equal_their_single_flights_bi
         c
     };
     let c = early(0..n);
-    let batch = Batch::new(base(), Some("ballast")).unwrap();
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
     let mut results = Vec::new();
     batch.run(n, 24, 2, early, |r| results.push(r)).unwrap();
     let mut flown = 0;

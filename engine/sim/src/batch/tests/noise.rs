@@ -14,7 +14,11 @@ fn lanes_with_noisy_barometers_equal_their_single_flights_whatever_the_chunks() 
     };
     let mut chutes = chutes();
     chutes[1] = chutes[1].clone().with_noise(noise);
-    let batch = Batch::new(base().with_parachutes(chutes).unwrap(), Some("ballast")).unwrap();
+    let batch = Batch::new(
+        base().with_parachutes(chutes).unwrap(),
+        Some(reference::BALLAST),
+    )
+    .unwrap();
     let n = 120;
     let cols = |rows: std::ops::Range<usize>| Columns {
         sensor_seed: rows.clone().map(|i| 1000 + i as u64).collect(),

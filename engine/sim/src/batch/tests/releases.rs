@@ -9,8 +9,7 @@ use crate::releases::{PartChute, PartTrigger, Release};
 /// slides aft and then leaves, its avionics leave at apogee under their own canopy, the
 /// payload at a height under the rocket's canopy.
 fn released_base() -> Simulation {
-    let mut v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(REFERENCE).unwrap()).unwrap();
+    let mut v = reference::testing::reference_json();
     v["stages"][0]["components"][1]["children"]
         .as_array_mut()
         .unwrap()
@@ -18,10 +17,10 @@ fn released_base() -> Simulation {
             "id": "payload", "type": "mass_component", "mass_kg": 0.03, "length_m": 0.03, "radius_m": 0.015,
             "position": { "from": "nose_tip", "offset_m": 0.45 }
         }));
-    let d = Design::from_json_str(&v.to_string(), None).unwrap();
+    let d = reference::testing::design(&v);
     Simulation::new(
         d,
-        motor::find("Cesaroni_I175").unwrap(),
+        reference::motor(),
         site(0.0),
         Rail {
             length_m: 2.0,
@@ -34,13 +33,13 @@ fn released_base() -> Simulation {
     .unwrap()
     .with_shifts(vec![MassShift::new(
         Trigger::Time { time_s: 3.0 },
-        "ballast",
+        reference::BALLAST,
         0.2,
         1.0,
     )])
     .unwrap()
     .with_releases(vec![
-        Release::new(Trigger::Time { time_s: 6.0 }, "ballast"),
+        Release::new(Trigger::Time { time_s: 6.0 }, reference::BALLAST),
         Release::new(Trigger::Apogee, "avionics").with_parachute(PartChute::new(
             0.03,
             PartTrigger::Release,

@@ -18,7 +18,7 @@ fn turbulent_base() -> Simulation {
 
 #[test]
 fn lanes_in_a_turbulent_wind_equal_their_single_flights_whatever_the_chunks() {
-    let batch = Batch::new(turbulent_base(), Some("ballast")).unwrap();
+    let batch = Batch::new(turbulent_base(), Some(reference::BALLAST)).unwrap();
     let n = 48;
     let cols = |rows: std::ops::Range<usize>| Columns {
         sensor_seed: rows.clone().map(|i| 7000 + i as u64).collect(),
