@@ -9,7 +9,7 @@
 
 use super::curve::{parse_delays, CurveBuilder};
 use super::error::{
-    parse_error, parse_non_negative, parse_number, parse_positive, MotorError, Rule,
+    parse_error, parse_mm_as_m, parse_non_negative, parse_number, MotorError, Rule,
 };
 use super::{Motor, MotorFormat};
 
@@ -106,8 +106,8 @@ struct Block<'f> {
 
 impl<'f> Block<'f> {
     fn start(fields: &[&str], file: &'f str, line: usize) -> Result<Self, MotorError> {
-        let diameter_mm = parse_positive(fields[1], file, line, "diameter (header field 2, mm)")?;
-        let length_mm = parse_positive(fields[2], file, line, "length (header field 3, mm)")?;
+        let diameter_m = parse_mm_as_m(fields[1], file, line, "diameter (header field 2, mm)")?;
+        let length_m = parse_mm_as_m(fields[2], file, line, "length (header field 3, mm)")?;
         let delays_s = parse_delays(fields[3], '-', file, line, "delays (header field 4, s)")?;
         let propellant_mass_kg = parse_non_negative(
             fields[4],
@@ -131,8 +131,8 @@ impl<'f> Block<'f> {
         Ok(Block {
             header_line: line,
             designation: fields[0].to_string(),
-            diameter_m: diameter_mm / 1000.0,
-            length_m: length_mm / 1000.0,
+            diameter_m,
+            length_m,
             delays_s,
             propellant_mass_kg,
             total_mass_kg,
@@ -242,6 +242,37 @@ mod tests {
         assert!((before.propellant_kg - 0.05 * 1e-8 / 15.0).abs() < 1e-12);
         let after = tables.eval(2.0);
         assert_eq!((after.thrust_n, after.propellant_kg), (0.0, 0.0));
+    }
+
+    #[test]
+    fn a_size_that_is_no_size_in_metres_is_refused_with_its_file_line_and_field() {
+        // 1e-323 mm is positive as written, but 1e-326 m underflows to 0 (the least
+        // subnormal is about 4.9e-324): the header's own fault, not the motor's tables'.
+        let e = parse_eng("X 29 1e-323 0 0.05 0.1 A\n1 10\n2 0", "test.eng").unwrap_err();
+        match &e {
+            MotorError::Parse {
+                file,
+                line: 1,
+                field,
+                rule: Rule::NotPositiveInMetres { value_mm, value_m },
+            } => {
+                assert_eq!(file, "test.eng");
+                assert_eq!(field, "length (header field 3, mm)");
+                assert_eq!((*value_mm, *value_m), (1e-323, 0.0));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            e.to_string(),
+            "test.eng, line 1, length (header field 3, mm): 1e-323 mm is 0 m: a size must be a positive, finite number of metres"
+        );
+        assert_eq!(
+            err("X 5e-322 100 0 0.05 0.1 A\n1 10\n2 0"),
+            "test.eng, line 1, diameter (header field 2, mm): 5e-322 mm is 0 m: a size must be a positive, finite number of metres"
+        );
+        // The least size that survives: 1e-320 mm is 1e-323 m, a subnormal but positive.
+        let m = parse_eng("X 29 1e-320 0 0.05 0.1 A\n1 10\n2 0", "test.eng").unwrap();
+        assert!(m[0].length_m > 0.0);
     }
 
     #[test]

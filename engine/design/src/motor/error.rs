@@ -176,6 +176,9 @@ pub enum Rule {
     Negative { value: f64 },
     /// Times must strictly increase.
     NonIncreasingTime { previous_s: f64, time_s: f64 },
+    /// A size given in millimetres that is no longer a positive, finite number of metres
+    /// (`1e-323` mm underflows to 0 m).
+    NotPositiveInMetres { value_mm: f64, value_m: f64 },
     /// The propellant mass exceeds the loaded motor mass.
     PropellantExceedsTotal { propellant_kg: f64, total_kg: f64 },
     /// The file has no header line (only comments or nothing).
@@ -205,6 +208,10 @@ impl fmt::Display for Rule {
             Rule::NotFinite { text } => write!(f, "`{text}` is not a finite number"),
             Rule::NotPositive { value } => write!(f, "{value} must be greater than zero"),
             Rule::Negative { value } => write!(f, "{value} must not be negative"),
+            Rule::NotPositiveInMetres { value_mm, value_m } => write!(
+                f,
+                "{value_mm:e} mm is {value_m} m: a size must be a positive, finite number of metres"
+            ),
             Rule::NonIncreasingTime { previous_s, time_s } => write!(
                 f,
                 "time {time_s} s does not exceed the previous time {previous_s} s (times must strictly increase)"
@@ -287,6 +294,28 @@ pub(crate) fn parse_positive(
         return Err(parse_error(file, line, field, Rule::NotPositive { value }));
     }
     Ok(value)
+}
+
+/// A size given in millimetres, in metres: greater than zero as written and once converted
+/// (a size so small that it underflows to 0 m is the file's fault, named with its line and
+/// field, not a motor whose tables then refuse a zero length).
+pub(crate) fn parse_mm_as_m(
+    text: &str,
+    file: &str,
+    line: usize,
+    field: &str,
+) -> Result<f64, MotorError> {
+    let value_mm = parse_positive(text, file, line, field)?;
+    let value_m = value_mm / 1000.0;
+    if !(value_m.is_finite() && value_m > 0.0) {
+        return Err(parse_error(
+            file,
+            line,
+            field,
+            Rule::NotPositiveInMetres { value_mm, value_m },
+        ));
+    }
+    Ok(value_m)
 }
 
 /// A finite number that is not negative.

@@ -12,7 +12,7 @@ use roxmltree::{Document, Node};
 
 use super::curve::{parse_delays, CurveBuilder};
 use super::error::{
-    parse_error, parse_non_negative, parse_number, parse_positive, MotorError, Rule,
+    parse_error, parse_mm_as_m, parse_non_negative, parse_number, MotorError, Rule,
 };
 use super::{Motor, MotorFormat};
 
@@ -106,9 +106,9 @@ fn read_engine(doc: &Source, engine: Node, file: &str) -> Result<Motor, MotorErr
     }
     let (mfg, _) = attribute(doc, engine, "mfg", file)?;
     let (dia, line) = attribute(doc, engine, "dia", file)?;
-    let diameter_m = parse_positive(dia.trim(), file, line, "dia (mm)")? / 1000.0;
+    let diameter_m = parse_mm_as_m(dia.trim(), file, line, "dia (mm)")?;
     let (len, line) = attribute(doc, engine, "len", file)?;
-    let length_m = parse_positive(len.trim(), file, line, "len (mm)")? / 1000.0;
+    let length_m = parse_mm_as_m(len.trim(), file, line, "len (mm)")?;
     let (prop, line) = attribute(doc, engine, "propWt", file)?;
     let propellant_mass_kg = parse_non_negative(prop.trim(), file, line, "propWt (g)")? / 1000.0;
     let (init, line) = attribute(doc, engine, "initWt", file)?;

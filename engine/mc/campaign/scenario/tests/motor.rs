@@ -170,8 +170,9 @@ fn a_motor_s_propellant_chamber_is_read_and_refused_by_key_against_the_motor() {
 #[test]
 fn a_motor_file_s_own_size_out_of_range_is_the_motor_s_key_not_an_option_s() {
     // The I175's file with its length 1e-323 mm: positive as read, 0 m once in metres
-    // (the quotient underflows), so only the tables refuse it. It is the file's fault: the
-    // key naming the motor, `motor.name` or its place in a sweep of motors.
+    // (the quotient underflows). The file's reader refuses it with the file, the line and
+    // the header's field, and it is the file's fault: the key naming the motor,
+    // `motor.name` or its place in a sweep of motors.
     let i175 =
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("engine/design/motors/Cesaroni_I175.eng");
     let text = std::fs::read_to_string(i175).unwrap();
@@ -183,15 +184,18 @@ fn a_motor_file_s_own_size_out_of_range_is_the_motor_s_key_not_an_option_s() {
     let flat = dir.path().join("Flat_I175.eng");
     std::fs::write(&flat, text.replace(" 38 245 ", " 38 1e-323 ")).unwrap();
     let flat = flat.display().to_string();
-    let rule = "option motor length_m = 0: must be finite and greater than zero";
+    let rule = format!(
+        "{flat}, line 2, length (header field 3, mm): 1e-323 mm is 0 m: a size must be a \
+         positive, finite number of metres"
+    );
     let e = Prepared::new(Scenario::parse(&BASE.replace("Cesaroni_I175", &flat), &path()).unwrap())
         .unwrap_err();
     assert_eq!(e.key(), "motor.name");
-    assert!(e.to_string().contains(rule), "{e}");
+    assert!(e.to_string().contains(&rule), "{e}");
     let swept = format!("{BASE}[sweep]\nmotor = [\"Cesaroni_I175\", {flat:?}]\n");
     let e = Prepared::new(Scenario::parse(&swept, &path()).unwrap()).unwrap_err();
     assert_eq!(e.key(), "sweep.motor[1]");
-    assert!(e.to_string().contains(rule), "{e}");
+    assert!(e.to_string().contains(&rule), "{e}");
     // An option's field keeps its own key beside it: grains wider than the motor.
     let wide = BASE.replace(
         "[motor]\n",
