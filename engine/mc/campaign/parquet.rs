@@ -341,6 +341,11 @@ pub fn write_atomic_with(
 
 /// An Arrow writer on a new file at `tmp` (zstd level 3, row groups of `row_group_rows`)
 /// carrying `pairs`; the caller syncs and renames it when complete, as [`write_atomic`].
+/// Its double columns (the inputs and metrics, nearly every value distinct) are written
+/// without a dictionary, their bytes split into streams (BYTE_STREAM_SPLIT), which zstd
+/// packs tighter; the other columns (ids, statuses, texts) as Parquet's defaults do.
+/// Measured on the 20,000 flights of `ballast_sweep.toml` (2026-12-05): variants.parquet
+/// 3.21 MB instead of 4.31 MB, the parts written in about three quarters of the time.
 pub fn open_writer(
     tmp: &Path,
     schema: &SchemaRef,
@@ -348,10 +353,18 @@ pub fn open_writer(
     row_group_rows: usize,
 ) -> anyhow::Result<ArrowWriter<File>> {
     let file = File::create(tmp).with_context(|| format!("can't create {}", tmp.display()))?;
-    let props = WriterProperties::builder()
+    let mut props = WriterProperties::builder()
         .set_compression(Compression::ZSTD(ZstdLevel::try_new(3)?))
-        .set_max_row_group_row_count(Some(row_group_rows.max(1)))
-        .build();
+        .set_max_row_group_row_count(Some(row_group_rows.max(1)));
+    for f in schema.fields() {
+        if f.data_type() == &DataType::Float64 {
+            let col = parquet::schema::types::ColumnPath::from(f.name().as_str());
+            props = props
+                .set_column_dictionary_enabled(col.clone(), false)
+                .set_column_encoding(col, parquet::basic::Encoding::BYTE_STREAM_SPLIT);
+        }
+    }
+    let props = props.build();
     let mut w = ArrowWriter::try_new(file, schema.clone(), Some(props))?;
     for (k, v) in pairs {
         w.append_key_value_metadata(KeyValue::new(k.clone(), v.clone()));
