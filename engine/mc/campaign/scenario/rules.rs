@@ -9,7 +9,7 @@ use super::{trigger_field, InputSpec, RequirementSpec, Scenario, ScenarioError};
 use crate::campaign::params::Param;
 use crate::campaign::sample::{Dispersion, Shape};
 use hpr_design::design::dimension::Dimension;
-use hpr_sim::sounding::Sounding;
+use hpr_sim::sounding::{SiteAir, Sounding};
 use hpr_sim::{CanopyShape, Integrator, SensorNoise, Trigger};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -195,28 +195,7 @@ pub(super) fn weather(
             ),
         )
     })?;
-    env.pressure_pa = Some(air.air.pressure_pa);
-    env.air_profile = Some(
-        air.air
-            .rows
-            .iter()
-            .map(|r| RawAirRow {
-                height_m: r.height_m,
-                temperature_k: r.temperature_k,
-                pressure_pa: r.pressure_pa,
-            })
-            .collect(),
-    );
-    env.wind_profile = Some(
-        air.wind
-            .iter()
-            .map(|r| RawWindRow {
-                height_m: r.height_agl_m,
-                speed_m_s: r.speed_m_s,
-                from_deg: r.from_deg,
-            })
-            .collect(),
-    );
+    write_site_air(env, &air);
     Ok(Some(super::WeatherSpec {
         file: path,
         site: std::sync::Arc::new(site),
@@ -332,6 +311,33 @@ pub(super) fn weather_inputs(scenario: &Scenario, bad: &Bad) -> Result<(), Scena
     Ok(())
 }
 
+/// A site's air and wind (from a weather file or a sounding) written into `env` as if the
+/// scenario had given them: the ground pressure, the air rows and the wind rows.
+fn write_site_air(env: &mut RawEnvironment, site: &SiteAir) {
+    env.pressure_pa = Some(site.air.pressure_pa);
+    env.air_profile = Some(
+        site.air
+            .rows
+            .iter()
+            .map(|r| RawAirRow {
+                height_m: r.height_m,
+                temperature_k: r.temperature_k,
+                pressure_pa: r.pressure_pa,
+            })
+            .collect(),
+    );
+    env.wind_profile = Some(
+        site.wind
+            .iter()
+            .map(|r| RawWindRow {
+                height_m: r.height_agl_m,
+                speed_m_s: r.speed_m_s,
+                from_deg: r.from_deg,
+            })
+            .collect(),
+    );
+}
+
 /// `environment.sounding`, read: the site's elevation (the sounding's ground unless given),
 /// its pressure and the air and wind rows written into `env` as if the scenario had given
 /// them; the file and its text, to fingerprint. Refused beside the keys it replaces.
@@ -372,28 +378,7 @@ pub(super) fn sounding(
             )
         })?;
     env.elevation_m = Some(site.elevation_m);
-    env.pressure_pa = Some(site.air.pressure_pa);
-    env.air_profile = Some(
-        site.air
-            .rows
-            .iter()
-            .map(|r| RawAirRow {
-                height_m: r.height_m,
-                temperature_k: r.temperature_k,
-                pressure_pa: r.pressure_pa,
-            })
-            .collect(),
-    );
-    env.wind_profile = Some(
-        site.wind
-            .iter()
-            .map(|r| RawWindRow {
-                height_m: r.height_agl_m,
-                speed_m_s: r.speed_m_s,
-                from_deg: r.from_deg,
-            })
-            .collect(),
-    );
+    write_site_air(env, &site);
     Ok(Some((path, text)))
 }
 
