@@ -104,33 +104,15 @@ pub struct Series {
     pub flight_margin_cal: Vec<f64>,
 }
 
-/// A variant's status, as its row says.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Status {
-    Landed,
-    TimeLimit,
-    Refused,
-    Failed,
-}
+/// A variant's status: the batch's, read back from its row's text.
+pub use hpr_sim::batch::Status;
 
-impl Status {
-    fn parse(s: &str) -> Status {
-        match s {
-            "landed" => Status::Landed,
-            "time_limit" => Status::TimeLimit,
-            "refused" => Status::Refused,
-            _ => Status::Failed,
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Status::Landed => "landed",
-            Status::TimeLimit => "time_limit",
-            Status::Refused => "refused",
-            Status::Failed => "failed",
-        }
-    }
+/// A row's status from its text (as [`Status::name`] wrote it); any other text is a failure.
+fn parse_status(s: &str) -> Status {
+    [Status::Landed, Status::TimeLimit, Status::Refused]
+        .into_iter()
+        .find(|st| st.name() == s)
+        .unwrap_or(Status::Failed)
 }
 
 /// The most bytes of row values the report holds (8 bytes a value, a row's inputs and metrics
@@ -483,7 +465,7 @@ impl Run {
             let pts = u32s(&b, "point", path)?;
             let status: &StringArray = col(&b, "status", path)?;
             let status: Vec<Status> = (0..status.len())
-                .map(|r| Status::parse(status.value(r)))
+                .map(|r| parse_status(status.value(r)))
                 .collect();
             let errors: &StringArray = col(&b, "error", path)?;
             let warnings: &StringArray = col(&b, "warnings", path)?;
