@@ -264,7 +264,7 @@ impl Gather {
                 point,
                 variants: s.variants,
                 failures: s.variants - s.landed,
-                summaries: s.moments.iter_mut().map(Moments::summary).collect(),
+                summaries: s.moments.iter_mut().map(MetricStream::summary).collect(),
                 ellipse: s.ellipses.first().and_then(Bivariate::ellipse),
                 release_ellipses: s.ellipses.iter().skip(1).map(Bivariate::ellipse).collect(),
                 sensitivity: (0..self.metrics)
@@ -292,7 +292,7 @@ struct PointStream {
     variants: u64,
     landed: u64,
     met: Vec<u64>,
-    moments: Vec<Moments>,
+    moments: Vec<MetricStream>,
     ellipses: Vec<Bivariate>,
     fit: Option<Fit>,
 }
@@ -303,31 +303,40 @@ impl PointStream {
             variants: 0,
             landed: 0,
             met: vec![0; requirements.len()],
-            moments: (0..metrics).map(|_| Moments::default()).collect(),
+            moments: (0..metrics).map(|_| MetricStream::default()).collect(),
             ellipses: vec![Bivariate::default(); landings],
             fit: None,
         }
     }
 }
 
-/// A metric's count, sum, least, greatest, Welford's mean and squared deviations, and its
-/// digest.
-#[derive(Debug, Default)]
-struct Moments {
-    n: u64,
-    sum: f64,
-    mean: f64,
-    m2: f64,
-    min: f64,
-    max: f64,
-    digest: Digest,
+/// A column's count, sum (in row order), Welford's mean and sum of squared deviations, least
+/// and greatest, as the rows pass: the metrics' here, the inputs' in the report.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Moments {
+    pub n: u64,
+    pub sum: f64,
+    pub mean: f64,
+    pub m2: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Default for Moments {
+    fn default() -> Self {
+        Moments {
+            n: 0,
+            sum: 0.0,
+            mean: 0.0,
+            m2: 0.0,
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+        }
+    }
 }
 
 impl Moments {
-    fn add(&mut self, x: f64) {
-        if self.n == 0 {
-            (self.min, self.max) = (x, x);
-        }
+    pub fn add(&mut self, x: f64) {
         self.n += 1;
         self.sum += x;
         let d = x - self.mean;
@@ -335,26 +344,40 @@ impl Moments {
         self.m2 += d * (x - self.mean);
         self.min = self.min.min(x);
         self.max = self.max.max(x);
+    }
+}
+
+/// A metric's moments and its digest (its finite values only).
+#[derive(Debug, Default)]
+struct MetricStream {
+    moments: Moments,
+    digest: Digest,
+}
+
+impl MetricStream {
+    fn add(&mut self, x: f64) {
+        self.moments.add(x);
         self.digest.add(x);
     }
 
     fn summary(&mut self) -> Option<Summary> {
-        if self.n == 0 {
+        let m = self.moments;
+        if m.n == 0 {
             return None;
         }
-        let n = self.n as f64;
-        let mut q = |p: f64| self.digest.quantile(p).clamp(self.min, self.max);
+        let n = m.n as f64;
+        let mut q = |p: f64| self.digest.quantile(p).clamp(m.min, m.max);
         Some(Summary {
-            count: self.n,
-            mean: self.sum / n,
-            std: (self.n > 1).then(|| (self.m2 / (n - 1.0)).sqrt()),
-            min: self.min,
+            count: m.n,
+            mean: m.sum / n,
+            std: (m.n > 1).then(|| (m.m2 / (n - 1.0)).sqrt()),
+            min: m.min,
             p1: q(0.01),
             p5: q(0.05),
             p50: q(0.5),
             p95: q(0.95),
             p99: q(0.99),
-            max: self.max,
+            max: m.max,
         })
     }
 }

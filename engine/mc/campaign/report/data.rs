@@ -140,42 +140,8 @@ pub struct Look {
     pub why: String,
 }
 
-/// An input's moments over every row: count, sum (in row order), Welford's mean and sum of
-/// squared deviations, least and greatest.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Moments {
-    pub n: u64,
-    pub sum: f64,
-    pub mean: f64,
-    pub m2: f64,
-    pub min: f64,
-    pub max: f64,
-}
-
-impl Default for Moments {
-    fn default() -> Self {
-        Moments {
-            n: 0,
-            sum: 0.0,
-            mean: 0.0,
-            m2: 0.0,
-            min: f64::INFINITY,
-            max: f64::NEG_INFINITY,
-        }
-    }
-}
-
-impl Moments {
-    fn add(&mut self, x: f64) {
-        self.n += 1;
-        self.sum += x;
-        let d = x - self.mean;
-        self.mean += d / self.n as f64;
-        self.m2 += d * (x - self.mean);
-        self.min = self.min.min(x);
-        self.max = self.max.max(x);
-    }
-}
+/// An input's moments over every row.
+pub use crate::campaign::gather::Moments;
 
 /// A requirement's counts over every row of its point: the landed flights with a finite
 /// value, those above its maximum and those below its minimum.
