@@ -597,6 +597,7 @@ impl MotorTables {
         self.total_impulse_ns
     }
     /// Burnout time after scaling, s.
+    #[inline]
     pub fn burn_time_s(&self) -> f64 {
         self.burn_time_s
     }

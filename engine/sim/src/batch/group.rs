@@ -23,9 +23,6 @@ use crate::massprops::{mass_state_lanes, MassInputs, MassModelLanes};
 
 /// Most lanes of one chunk in flight at once (four groups of four).
 pub const LANES_IN_FLIGHT: usize = 16;
-// The chunk sorts its lanes each round; the standard library's stable sort works in place,
-// allocating nothing, on at most 20 elements.
-const _: () = assert!(LANES_IN_FLIGHT <= 20);
 
 /// One lane: a row of the chunk in its free flight or under canopy.
 pub(super) struct Lane<'a> {

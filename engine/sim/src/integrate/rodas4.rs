@@ -137,7 +137,12 @@ impl<const N: usize> Factored<N> {
                 return None;
             }
             if piv != k {
-                lu.swap(piv, k);
+                // Element by element: swapping the rows whole calls memcpy.
+                for j in 0..N {
+                    let v = lu[piv][j];
+                    lu[piv][j] = lu[k][j];
+                    lu[k][j] = v;
+                }
                 perm.swap(piv, k);
             }
             for i in k + 1..N {
