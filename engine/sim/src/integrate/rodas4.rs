@@ -184,6 +184,7 @@ impl<const N: usize> Factored<N> {
     }
 
     /// `W⁻¹ b`.
+    #[inline(always)]
     fn solve(&self, b: &[f64; N]) -> [f64; N] {
         let mut x = [0.0; N];
         for i in 0..N {

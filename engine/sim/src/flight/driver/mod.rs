@@ -627,6 +627,12 @@ impl<'a, O: Observer> Run<'a, O> {
         self.noise.get(i).is_some_and(Option::is_some)
     }
 
+    /// Whether a noisy barometer's sample can fire now (after apogee, with noise).
+    #[inline(always)]
+    fn hears_noise(&self) -> bool {
+        self.apogee_done && !self.noise.is_empty()
+    }
+
     /// The sample in `(t0, t_end]` at which a noisy barometer fires a parachute
     /// ([`Run::noisy_trigger`]) if it comes before `found`, the step's other event: its time
     /// and the parachute. In line, so that a flight without a noisy barometer, or before
@@ -640,7 +646,7 @@ impl<'a, O: Observer> Run<'a, O> {
         z_end: f64,
         height_at: impl FnMut(f64) -> f64,
     ) -> Option<(f64, usize)> {
-        if !self.apogee_done || self.noise.is_empty() {
+        if !self.hears_noise() {
             return None;
         }
         self.noisy_trigger(t0, t_end, z_end, height_at)

@@ -567,10 +567,10 @@ impl<'a, O: Observer> PausedPhase<'a, N6> for Paused<'a, O> {
         }
         let t_stop = self.free.next_stop(&mut self.run, &self.s6.stepper);
         let model = self.run.model;
-        let starts = self.run.starts;
+        let starts = &self.run.starts;
         self.s6
             .begin(t_stop, &mut self.run.evaluations, |t, y, dy| {
-                model.derivative_6dof(&starts, t, y, dy);
+                model.derivative_6dof(starts, t, y, dy);
             })?;
         Ok(true)
     }
