@@ -437,14 +437,12 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
                             }
                             m.thrust.0[l] = 0.0;
                         } else {
-                            let (starts, changes) = p.mass_key();
-                            let key = Held::Computed(t.to_bits(), changes);
+                            let key = Held::Computed(t.to_bits(), p.mass_key().1);
                             // The step's last two stages share a time: the second keeps the
                             // first's state (and thrust).
                             if m.held[l] != key {
                                 let x = m.inputs.get_or_insert_with(MassInputs::zero);
-                                m.thrust.0[l] =
-                                    p.model().mass_inputs_into(starts, t, x, l).thrust_n;
+                                m.thrust.0[l] = p.mass_inputs_into(t, x, l).thrust_n;
                                 compute[l] = true;
                                 m.held[l] = key;
                             }

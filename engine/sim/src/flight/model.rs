@@ -351,7 +351,20 @@ impl FlightModel {
         x: &mut MassInputs<S>,
         l: usize,
     ) -> MotorState {
-        let motor = self.motor.eval(t);
+        self.mass_inputs_with(self.motor.eval(t), starts, t, x, l)
+    }
+
+    /// [`FlightModel::mass_inputs_into`] for the motor's state `motor` at `t`, evaluated by
+    /// the caller.
+    #[inline(always)]
+    pub fn mass_inputs_with<S: Real>(
+        &self,
+        motor: MotorState,
+        starts: &ShiftStarts,
+        t: f64,
+        x: &mut MassInputs<S>,
+        l: usize,
+    ) -> MotorState {
         let prop = PropellantState {
             mass_kg: motor.propellant_kg,
             rate_kg_s: motor.propellant_rate_kg_s,

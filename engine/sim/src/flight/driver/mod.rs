@@ -739,6 +739,8 @@ impl<'a, O: Observer> Run<'a, O> {
         sum
     }
 
+    /// Take in a sample: the metrics' extremes and margins, the observer, the kept samples.
+    /// Returns the speed `|vel|`, m/s (computed here once for the caller too).
     #[allow(clippy::too_many_arguments)]
     fn record(
         &mut self,
@@ -749,7 +751,7 @@ impl<'a, O: Observer> Run<'a, O> {
         q: [f64; 4],
         w: [f64; 3],
         aux: &FlightAux,
-    ) {
+    ) -> f64 {
         let m = self.model;
         let mach = aux.air_speed_m_s / aux.speed_of_sound_m_s;
         let speed = vel.norm();
@@ -770,7 +772,7 @@ impl<'a, O: Observer> Run<'a, O> {
         let margins = phase != Phase::Descent && !self.apogee_done;
         let sampled = O::WANTS_SAMPLES || m.options.keep_samples;
         if !sampled && !margins {
-            return;
+            return speed;
         }
         let static_margin_cal = m.static_margin_of(aux.r_cm_z_m);
         let flight_margin_cal = if sampled || phase == Phase::Free {
@@ -802,7 +804,7 @@ impl<'a, O: Observer> Run<'a, O> {
             }
         }
         if !sampled {
-            return;
+            return speed;
         }
         let s = Sample {
             t_s: t,
@@ -827,6 +829,7 @@ impl<'a, O: Observer> Run<'a, O> {
         if m.options.keep_samples {
             self.samples.push(s);
         }
+        speed
     }
 }
 

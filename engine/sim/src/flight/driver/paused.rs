@@ -5,6 +5,8 @@
 
 use super::*;
 use crate::lanes::F64x4;
+use crate::massprops::MassInputs;
+use hpr_design::motor::MotorState;
 
 /// A flight paused in its free flight, between two steps. The single flight steps it with
 /// [`Paused::step`]; the batch engine steps four lanes' free flights together: it begins
@@ -27,6 +29,9 @@ pub(crate) struct Paused<'a, O: Observer> {
     moving: MassLanes<f64>,
     moving_thrust_n: f64,
     moving_key: Option<(u64, u64)>,
+    /// The motor curve's segment at the last stage computed on lanes (where the next look-up
+    /// starts).
+    motor_segment: usize,
 }
 
 /// A phase's stepper as the batch engine steps it, four lanes' stages computed together
@@ -299,6 +304,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         moving: MassLanes::ZERO,
         moving_thrust_n: 0.0,
         moving_key: None,
+        motor_segment: 0,
     })))
 }
 
@@ -515,6 +521,20 @@ impl<'a, O: Observer> Paused<'a, O> {
             self.settled = Some((changes, ms, self.serial));
         }
         true
+    }
+
+    /// [`FlightModel::mass_inputs_into`] at `t` into lane `l` of `x`, for the batch engine:
+    /// the motor curve's segment looked for first where the last stage found it.
+    #[inline(always)]
+    pub(crate) fn mass_inputs_into(
+        &mut self,
+        t: f64,
+        x: &mut MassInputs<F64x4>,
+        l: usize,
+    ) -> MotorState {
+        let model = self.run.model;
+        let motor = model.motor.eval_hinted(t, &mut self.motor_segment);
+        model.mass_inputs_with(motor, &self.run.starts, t, x, l)
     }
 
     /// The shifts' start times and the count of their changes (the mass state at a time is

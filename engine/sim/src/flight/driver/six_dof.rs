@@ -266,7 +266,7 @@ impl SixDof {
             }
             found = Some((tk, EventKind::ParachuteTrigger(i)));
         }
-        run.record(
+        let speed = run.record(
             phase,
             t_end,
             ep.pos,
@@ -276,7 +276,7 @@ impl SixDof {
             &ep.aux,
         );
         let (pos, vel) = (ep.pos, ep.vel);
-        let (alt, speed) = (pos.z, vel.norm());
+        let alt = pos.z;
         self.prev_y = y_end;
         self.prev = Ends { pos, vel };
         if let Some((te, kind)) = found {
