@@ -182,15 +182,17 @@ fn lane_of<const N: usize>(v: &[F64x4; N], l: usize) -> [f64; N] {
     out
 }
 
-/// Which lanes of `dy` are all finite (a lane with an infinity or a NaN gives NaN times 0).
+/// Lanes of `dy` that are surely all finite: a lane with an infinity or a NaN has a sum that
+/// is not finite (its sum times 0 is NaN). A lane flagged only because its finite values'
+/// sum overflowed is looked at again, value by value, by [`PausedPhase::observe`].
 #[inline(always)]
 fn finite_lanes<const N: usize>(dy: &[F64x4; N]) -> [bool; 4] {
     let zero = F64x4::splat(0.0);
     let mut s = zero;
     for v in dy {
-        s = s + *v * zero;
+        s = s + *v;
     }
-    s.eq(zero)
+    (s * zero).eq(zero)
 }
 
 /// Where a group's four slots stand in a stage: which lane each slot holds (a slot without a

@@ -89,8 +89,9 @@ impl<const N: usize> LaneStepper<N> {
         }
     }
 
-    /// A stage's derivative `dy` at `(t, y)` that is not finite: the first one is where a
-    /// flight that goes non-finite is reported to have done so.
+    /// A stage's derivative `dy` at `(t, y)` that may not be finite (looked at here value by
+    /// value): the first one that is not is where a flight that goes non-finite is reported
+    /// to have done so.
     #[cold]
     pub(crate) fn observe(&mut self, t: f64, y: &[f64; N], dy: &[f64; N]) {
         self.watch.observe(t, y, dy);
