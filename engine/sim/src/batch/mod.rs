@@ -378,6 +378,10 @@ fn guarded<R>(f: impl FnOnce() -> R) -> Result<R, String> {
 /// Sort `lanes` stably (in place, allocating nothing): free flights whose mass changes, the
 /// other free flights, then descents.
 fn sort_stably_by_phase(lanes: &mut [Lane<'_>]) {
+    debug_assert!(
+        lanes.len() <= LANES_IN_FLIGHT,
+        "a chunk flies at most {LANES_IN_FLIGHT} lanes"
+    );
     let mut keys = [0u8; LANES_IN_FLIGHT];
     for (k, l) in keys.iter_mut().zip(lanes.iter()) {
         *k = match &l.flying {
