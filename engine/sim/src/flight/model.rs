@@ -469,6 +469,15 @@ impl FlightModel {
             })
     }
 
+    /// Whether the mass, settled at `t` ([`FlightModel::mass_settled`]), stays settled at
+    /// every later time for these starts: every shift that has started did so before `t`
+    /// (its `(t − start) / duration ≥ 1` then holds later too, the subtraction and the
+    /// division being monotone), the others never start (an infinite start).
+    #[inline(always)]
+    pub fn settled_from_now_on(&self, starts: &ShiftStarts, t: f64) -> bool {
+        (0..self.shifts.len()).all(|k| starts[k] == f64::INFINITY || t > starts[k])
+    }
+
     /// Static margin (center of pressure at Mach 0 minus center of mass, in calibres).
     #[inline]
     pub fn static_margin(&self, ms: &MassState) -> f64 {

@@ -29,6 +29,9 @@ pub(crate) struct Paused<'a, O: Observer> {
     moving: MassLanes<f64>,
     moving_thrust_n: f64,
     moving_key: Option<(u64, u64)>,
+    /// A time from which on the mass stays settled, and the count of shift-start changes it
+    /// holds for ([`FlightModel::settled_from_now_on`]).
+    settled_from: Option<(f64, u64)>,
     /// The motor curve's segment at the last stage computed on lanes (where the next look-up
     /// starts).
     motor_segment: usize,
@@ -305,6 +308,7 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         moving: MassLanes::ZERO,
         moving_thrust_n: 0.0,
         moving_key: None,
+        settled_from: None,
         motor_segment: 0,
     })))
 }
@@ -512,10 +516,17 @@ impl<'a, O: Observer> Paused<'a, O> {
     fn settle(&mut self, t: f64) -> bool {
         let model = self.run.model;
         let starts = &self.run.starts;
-        if !model.mass_settled(starts, t) {
-            return false;
-        }
         let changes = self.run.starts_changed;
+        // At or after a time from which on it is known settled (stages and steps move on),
+        // no need to ask again.
+        if !matches!(self.settled_from, Some((from, c)) if c == changes && t >= from) {
+            if !model.mass_settled(starts, t) {
+                return false;
+            }
+            if model.settled_from_now_on(starts, t) {
+                self.settled_from = Some((t, changes));
+            }
+        }
         if !matches!(&self.settled, Some((c, _, _)) if *c == changes) {
             let ms = MassLanes::of(&model.instant(starts, t).mass);
             self.serial += 1;
