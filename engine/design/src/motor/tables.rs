@@ -7,6 +7,8 @@
 //! piecewise-linear curve. [`MotorTables::eval`] finds the segment by binary search
 //! (O(log n), no allocation, no state, so it can be shared between threads and called at any
 //! time in any order, as adaptive and multi-stage integrators do).
+//! [`MotorTables::eval_hinted`] is the same look-up started from the caller's last segment
+//! (the caller keeps it): a flight whose stages stay in one segment skips the search.
 //!
 //! The mass model (simulators differ here; this is the one we use, see also the
 //! [module docs](super)): propellant `m_p(t) = m_p0 (1 − I(t)/I_total)`, so
