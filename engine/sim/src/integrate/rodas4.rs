@@ -162,11 +162,10 @@ impl<const N: usize> Factored<N> {
                 return false;
             }
             if piv != k {
-                // Element by element: swapping the rows whole calls memcpy.
-                for j in 0..N {
-                    let v = lu[piv][j];
-                    lu[piv][j] = lu[k][j];
-                    lu[k][j] = v;
+                // Element by element: swapping the rows whole calls memcpy (k < piv).
+                let (upper, lower) = lu.split_at_mut(piv);
+                for (a, b) in upper[k].iter_mut().zip(lower[0].iter_mut()) {
+                    std::mem::swap(a, b);
                 }
                 perm.swap(piv, k);
             }
