@@ -660,3 +660,40 @@ impl<const N: usize> Rodas4<N> {
         }
     }
 }
+
+#[cfg(test)]
+mod factored_tests {
+    use super::Factored;
+
+    /// `W = I/(γh) − J` for `J = −w` and `1/(γh) = 0`: `w` itself.
+    fn factored(w: [[f64; 3]; 3]) -> Factored<3> {
+        let mut f = Factored::zero();
+        assert!(f.factor(&w.map(|row| row.map(|v| -v)), 0.0));
+        f
+    }
+
+    #[test]
+    fn a_zero_first_pivot_is_swapped_and_the_solution_is_exact() {
+        // Rows 0 and 1 swapped: x₁ = 1, x₀ = 2, 2 x₂ = 3.
+        let f = factored([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 2.0]]);
+        assert_eq!(f.perm, [1, 0, 2]);
+        assert_eq!(f.solve(&[1.0, 2.0, 3.0]), [2.0, 1.0, 1.5]);
+    }
+
+    #[test]
+    fn the_largest_pivot_is_taken_and_the_rows_move_whole() {
+        // Pivot 4 (row 1); multiplier 1/4, then U = [[4, 1, 0], [0, 1.75, 0], [0, 0, 1]], all
+        // exact in binary: W [1, −1, 2] = [−1, 3, 2] is solved exactly.
+        let f = factored([[1.0, 2.0, 0.0], [4.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        assert_eq!(f.perm, [1, 0, 2]);
+        assert_eq!(f.lu[0], [4.0, 1.0, 0.0]);
+        assert_eq!(f.lu[1], [0.25, 1.75, 0.0]);
+        assert_eq!(f.solve(&[-1.0, 3.0, 2.0]), [1.0, -1.0, 2.0]);
+    }
+
+    #[test]
+    fn a_singular_matrix_is_refused() {
+        let mut f = Factored::<2>::zero();
+        assert!(!f.factor(&[[-1.0, -2.0], [-2.0, -4.0]], 0.0));
+    }
+}
