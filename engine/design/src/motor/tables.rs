@@ -7,6 +7,8 @@
 //! piecewise-linear curve. [`MotorTables::eval`] finds the segment by binary search
 //! (O(log n), no allocation, no state, so it can be shared between threads and called at any
 //! time in any order, as adaptive and multi-stage integrators do).
+//! [`MotorTables::eval_hinted`] is the same look-up started from the caller's last segment
+//! (the caller keeps it): a flight whose stages stay in one segment skips the search.
 //!
 //! The mass model (simulators differ here; this is the one we use, see also the
 //! [module docs](super)): propellant `m_p(t) = m_p0 (1 − I(t)/I_total)`, so
@@ -452,10 +454,38 @@ impl MotorTables {
         self.impulse_ns[i] + dt * (self.thrust_n[i] + 0.5 * self.slope_n_per_s[i] * dt)
     }
 
+    /// The segment holding `t_s` as [`MotorTables::segment`] finds it, tried first at
+    /// `hint` (the times increase strictly, so a segment that holds `t_s` is the one).
+    #[inline]
+    fn segment_from(&self, t_s: f64, hint: usize) -> usize {
+        let ts = &self.times_s;
+        if hint + 1 < ts.len() && ts[hint] <= t_s && t_s < ts[hint + 1] {
+            return hint;
+        }
+        self.segment(t_s)
+    }
+
     /// Thrust and propellant at `t_s` (time since ignition). Before ignition the motor is
     /// full and silent; after burnout it is empty and silent. NaN in, NaN out.
     #[inline]
     pub fn eval(&self, t_s: f64) -> MotorState {
+        self.eval_in(t_s, |m, t| m.segment(t))
+    }
+
+    /// [`MotorTables::eval`] with the curve's segment looked for first where the last look-up
+    /// found it (`hint`, updated): the same state, without a search while the times stay in
+    /// one segment (a flight's successive stages).
+    #[inline]
+    pub fn eval_hinted(&self, t_s: f64, hint: &mut usize) -> MotorState {
+        self.eval_in(t_s, |m, t| {
+            *hint = m.segment_from(t, *hint);
+            *hint
+        })
+    }
+
+    /// The state at `t_s`, the curve's segment there found by `segment`.
+    #[inline(always)]
+    fn eval_in(&self, t_s: f64, segment: impl FnOnce(&Self, f64) -> usize) -> MotorState {
         if t_s.is_nan() {
             return MotorState {
                 thrust_n: f64::NAN,
@@ -474,7 +504,7 @@ impl MotorTables {
         if t_s >= self.burn_time_s {
             return MotorState::default();
         }
-        let i = self.segment(t_s);
+        let i = segment(self, t_s);
         let dt = t_s - self.times_s[i];
         let slope = self.slope_n_per_s[i];
         let thrust = self.thrust_n[i] + slope * dt;
@@ -597,6 +627,7 @@ impl MotorTables {
         self.total_impulse_ns
     }
     /// Burnout time after scaling, s.
+    #[inline]
     pub fn burn_time_s(&self) -> f64 {
         self.burn_time_s
     }

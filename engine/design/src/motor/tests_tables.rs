@@ -460,3 +460,46 @@ fn a_chamber_makes_the_propellant_a_solid_cylinder_of_its_size_as_rocketpy_s_gen
     assert_eq!(refused([0.02, 0.41]), "chamber_m (height)");
     assert_eq!(refused([f64::NAN, 0.3]), "chamber_m (radius)");
 }
+
+#[test]
+fn a_look_up_started_from_any_segment_gives_the_searched_state_bit_for_bit() {
+    let m = find("Cesaroni_M1670").unwrap();
+    let t = MotorTables::from_motor(&m).unwrap();
+    let n = t.times_s().len();
+    let bits = |s: MotorState| {
+        [
+            s.thrust_n,
+            s.thrust_rate_n_per_s,
+            s.propellant_kg,
+            s.propellant_rate_kg_s,
+            s.propellant_accel_kg_s2,
+        ]
+        .map(f64::to_bits)
+    };
+    // Every knot and points between, before ignition and past burnout, from every hint
+    // (right, wrong, out of range).
+    let mut times = vec![-1.0, 0.0, t.burn_time_s(), t.burn_time_s() + 1.0, f64::NAN];
+    for w in t.times_s().windows(2) {
+        times.extend([w[0], 0.25 * (3.0 * w[0] + w[1]), 0.5 * (w[0] + w[1]), w[1]]);
+    }
+    for &time in &times {
+        for start in 0..n + 2 {
+            let mut hint = start;
+            assert_eq!(
+                bits(t.eval_hinted(time, &mut hint)),
+                bits(t.eval(time)),
+                "{time} from {start}"
+            );
+        }
+    }
+    // Successive look-ups through the burn, the hint carried along.
+    let mut hint = 0;
+    for i in 0..=4000 {
+        let time = t.burn_time_s() * f64::from(i) / 4000.0;
+        assert_eq!(
+            bits(t.eval_hinted(time, &mut hint)),
+            bits(t.eval(time)),
+            "{time}"
+        );
+    }
+}

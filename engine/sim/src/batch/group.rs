@@ -23,9 +23,6 @@ use crate::massprops::{mass_state_lanes, MassInputs, MassModelLanes};
 
 /// Most lanes of one chunk in flight at once (four groups of four).
 pub const LANES_IN_FLIGHT: usize = 16;
-// The chunk sorts its lanes each round; the standard library's stable sort works in place,
-// allocating nothing, on at most 20 elements.
-const _: () = assert!(LANES_IN_FLIGHT <= 20);
 
 /// One lane: a row of the chunk in its free flight or under canopy.
 pub(super) struct Lane<'a> {
@@ -185,15 +182,17 @@ fn lane_of<const N: usize>(v: &[F64x4; N], l: usize) -> [f64; N] {
     out
 }
 
-/// Which lanes of `dy` are all finite (a lane with an infinity or a NaN gives NaN times 0).
+/// Lanes of `dy` that are surely all finite: a lane with an infinity or a NaN has a sum that
+/// is not finite (its sum times 0 is NaN). A lane flagged only because its finite values'
+/// sum overflowed is looked at again, value by value, by [`PausedPhase::observe`].
 #[inline(always)]
 fn finite_lanes<const N: usize>(dy: &[F64x4; N]) -> [bool; 4] {
     let zero = F64x4::splat(0.0);
     let mut s = zero;
     for v in dy {
-        s = s + *v * zero;
+        s = s + *v;
     }
-    s.eq(zero)
+    (s * zero).eq(zero)
 }
 
 /// Where a group's four slots stand in a stage: which lane each slot holds (a slot without a
@@ -440,14 +439,12 @@ fn step_free<'a>(group: &mut [Lane<'a>], st: &mut Steps<N6>, memo: &mut Option<F
                             }
                             m.thrust.0[l] = 0.0;
                         } else {
-                            let (starts, changes) = p.mass_key();
-                            let key = Held::Computed(t.to_bits(), changes);
+                            let key = Held::Computed(t.to_bits(), p.mass_key().1);
                             // The step's last two stages share a time: the second keeps the
                             // first's state (and thrust).
                             if m.held[l] != key {
                                 let x = m.inputs.get_or_insert_with(MassInputs::zero);
-                                m.thrust.0[l] =
-                                    p.model().mass_inputs_into(starts, t, x, l).thrust_n;
+                                m.thrust.0[l] = p.mass_inputs_into(t, x, l).thrust_n;
                                 compute[l] = true;
                                 m.held[l] = key;
                             }

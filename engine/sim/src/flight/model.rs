@@ -351,7 +351,20 @@ impl FlightModel {
         x: &mut MassInputs<S>,
         l: usize,
     ) -> MotorState {
-        let motor = self.motor.eval(t);
+        self.mass_inputs_with(self.motor.eval(t), starts, t, x, l)
+    }
+
+    /// [`FlightModel::mass_inputs_into`] for the motor's state `motor` at `t`, evaluated by
+    /// the caller.
+    #[inline(always)]
+    pub fn mass_inputs_with<S: Real>(
+        &self,
+        motor: MotorState,
+        starts: &ShiftStarts,
+        t: f64,
+        x: &mut MassInputs<S>,
+        l: usize,
+    ) -> MotorState {
         let prop = PropellantState {
             mass_kg: motor.propellant_kg,
             rate_kg_s: motor.propellant_rate_kg_s,
@@ -454,6 +467,15 @@ impl FlightModel {
                 let start = starts[k];
                 t <= start || (t - start) / s.duration_s >= 1.0
             })
+    }
+
+    /// Whether the mass, settled at `t` ([`FlightModel::mass_settled`]), stays settled at
+    /// every later time for these starts: every shift that has started did so before `t`
+    /// (its `(t − start) / duration ≥ 1` then holds later too, the subtraction and the
+    /// division being monotone), the others never start (an infinite start).
+    #[inline(always)]
+    pub fn settled_from_now_on(&self, starts: &ShiftStarts, t: f64) -> bool {
+        (0..self.shifts.len()).all(|k| starts[k] == f64::INFINITY || t > starts[k])
     }
 
     /// Static margin (center of pressure at Mach 0 minus center of mass, in calibres).

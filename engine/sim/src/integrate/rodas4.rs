@@ -105,6 +105,23 @@ pub struct Rodas4<const N: usize> {
     initialized: bool,
 }
 
+/// One attempt's order-4 solution, error estimate `k₆` and dense output `q₁`, `q₂`.
+struct Attempt<const N: usize> {
+    y1: [f64; N],
+    k6: [f64; N],
+    cont: [[f64; N]; 2],
+}
+
+impl<const N: usize> Attempt<N> {
+    fn zero() -> Attempt<N> {
+        Attempt {
+            y1: [0.0; N],
+            k6: [0.0; N],
+            cont: [[0.0; N]; 2],
+        }
+    }
+}
+
 /// `W = I/(γh) − J` factored as `P W = L U` (unit `L` below the diagonal, `U` on and above).
 struct Factored<const N: usize> {
     lu: [[f64; N]; N],
@@ -112,16 +129,24 @@ struct Factored<const N: usize> {
 }
 
 impl<const N: usize> Factored<N> {
-    /// Factor `I/(γh) − J`; `None` if it is singular or not finite.
-    fn new(jac: &[[f64; N]; N], inv_gamma_h: f64) -> Option<Factored<N>> {
-        let mut lu = [[0.0; N]; N];
+    fn zero() -> Factored<N> {
+        Factored {
+            lu: [[0.0; N]; N],
+            perm: [0; N],
+        }
+    }
+
+    /// Factor `I/(γh) − J` into `self` (every entry rewritten, in place: no copy of the
+    /// matrix); false if it is singular or not finite.
+    #[inline]
+    fn factor(&mut self, jac: &[[f64; N]; N], inv_gamma_h: f64) -> bool {
+        let Factored { lu, perm } = self;
         for i in 0..N {
             for j in 0..N {
                 lu[i][j] = -jac[i][j];
             }
             lu[i][i] += inv_gamma_h;
         }
-        let mut perm = [0usize; N];
         for (i, p) in perm.iter_mut().enumerate() {
             *p = i;
         }
@@ -134,10 +159,14 @@ impl<const N: usize> Factored<N> {
             }
             let p = lu[piv][k];
             if !(p.is_finite() && p != 0.0) {
-                return None;
+                return false;
             }
             if piv != k {
-                lu.swap(piv, k);
+                // Element by element: swapping the rows whole calls memcpy (k < piv).
+                let (upper, lower) = lu.split_at_mut(piv);
+                for (a, b) in upper[k].iter_mut().zip(lower[0].iter_mut()) {
+                    std::mem::swap(a, b);
+                }
                 perm.swap(piv, k);
             }
             for i in k + 1..N {
@@ -150,10 +179,11 @@ impl<const N: usize> Factored<N> {
                 }
             }
         }
-        Some(Factored { lu, perm })
+        true
     }
 
     /// `W⁻¹ b`.
+    #[inline(always)]
     fn solve(&self, b: &[f64; N]) -> [f64; N] {
         let mut x = [0.0; N];
         for i in 0..N {
@@ -476,6 +506,10 @@ impl<const N: usize> Rodas4<N> {
         self.n_eval += jacobian(f, self.t, &self.y, &self.dy, t_stop, &mut jac, &mut ft);
         let (t, y0, f0) = (self.t, self.y, self.dy);
         let mut rejected = false;
+        // Each attempt's factored matrix, solution, error estimate and dense output, written
+        // in place.
+        let mut w = Factored::zero();
+        let mut out = Attempt::zero();
         loop {
             let h_proposal = h.min(c.h_max);
             let (hs, last) = clip_to_stop(t, h_proposal, t_stop);
@@ -495,22 +529,21 @@ impl<const N: usize> Rodas4<N> {
                 });
             }
             let t_end = if last { t_stop } else { t + h };
-            let attempt = match Factored::new(&jac, 1.0 / (GAMMA * h)) {
-                Some(w) => Some(self.attempt(f, &w, t, t_end, h, &y0, &f0, &ft)),
-                None => None,
-            };
-            let err = match &attempt {
-                Some((y1, k6, _)) => {
-                    let mut sum = 0.0;
-                    for i in 0..N {
-                        let q = k6[i] / self.scale(i, y0[i], y1[i]);
-                        sum += q * q;
-                    }
-                    (sum / N as f64).sqrt()
+            let factored = w.factor(&jac, 1.0 / (GAMMA * h));
+            let err = if factored {
+                self.attempt(f, &w, t, t_end, h, &y0, &f0, &ft, &mut out);
+                let (y1, k6) = (&out.y1, &out.k6);
+                let mut sum = 0.0;
+                for i in 0..N {
+                    let q = k6[i] / self.scale(i, y0[i], y1[i]);
+                    sum += q * q;
                 }
-                None => f64::NAN,
+                (sum / N as f64).sqrt()
+            } else {
+                f64::NAN
             };
-            if let (true, Some((y1, _, cont))) = (err <= 1.0, attempt) {
+            if factored && err <= 1.0 {
+                let Attempt { y1, cont, .. } = out;
                 let mut fac = (c.safety * err.powf(-0.25)).clamp(c.min_factor, c.max_factor);
                 if rejected {
                     fac = fac.min(1.0);
@@ -553,7 +586,7 @@ impl<const N: usize> Rodas4<N> {
 impl<const N: usize> Rodas4<N> {
     /// One attempt of step `h` from `(t, y0)` (derivative `f0`, `∂f/∂t` `ft`) to `t_end`
     /// with the factored `w`: the order-4 solution, the error estimate `k₆` and the dense
-    /// output's `q₁`, `q₂`.
+    /// output's `q₁`, `q₂`, into `out`.
     #[allow(clippy::too_many_arguments)]
     fn attempt<F>(
         &mut self,
@@ -565,8 +598,8 @@ impl<const N: usize> Rodas4<N> {
         y0: &[f64; N],
         f0: &[f64; N],
         ft: &[f64; N],
-    ) -> ([f64; N], [f64; N], [[f64; N]; 2])
-    where
+        out: &mut Attempt<N>,
+    ) where
         F: FnMut(f64, &[f64; N], &mut [f64; N]),
     {
         let inv_h = 1.0 / h;
@@ -617,15 +650,50 @@ impl<const N: usize> Rodas4<N> {
             rhs[i] = du[i]
                 + inv_h * (C61 * k1[i] + C62 * k2[i] + C63 * k3[i] + C64 * k4[i] + C65 * k5[i]);
         }
-        let k6 = w.solve(&rhs);
+        out.k6 = w.solve(&rhs);
         self.n_eval += 5;
-        let mut y1 = [0.0; N];
-        let mut cont = [[0.0; N]; 2];
+        let Attempt { y1, k6, cont } = out;
         for i in 0..N {
             y1[i] = u[i] + k6[i];
             cont[0][i] = H21 * k1[i] + H22 * k2[i] + H23 * k3[i] + H24 * k4[i] + H25 * k5[i];
             cont[1][i] = H31 * k1[i] + H32 * k2[i] + H33 * k3[i] + H34 * k4[i] + H35 * k5[i];
         }
-        (y1, k6, cont)
+    }
+}
+
+#[cfg(test)]
+mod factored_tests {
+    use super::Factored;
+
+    /// `W = I/(γh) − J` for `J = −w` and `1/(γh) = 0`: `w` itself.
+    fn factored(w: [[f64; 3]; 3]) -> Factored<3> {
+        let mut f = Factored::zero();
+        assert!(f.factor(&w.map(|row| row.map(|v| -v)), 0.0));
+        f
+    }
+
+    #[test]
+    fn a_zero_first_pivot_is_swapped_and_the_solution_is_exact() {
+        // Rows 0 and 1 swapped: x₁ = 1, x₀ = 2, 2 x₂ = 3.
+        let f = factored([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 2.0]]);
+        assert_eq!(f.perm, [1, 0, 2]);
+        assert_eq!(f.solve(&[1.0, 2.0, 3.0]), [2.0, 1.0, 1.5]);
+    }
+
+    #[test]
+    fn the_largest_pivot_is_taken_and_the_rows_move_whole() {
+        // Pivot 4 (row 1); multiplier 1/4, then U = [[4, 1, 0], [0, 1.75, 0], [0, 0, 1]], all
+        // exact in binary: W [1, −1, 2] = [−1, 3, 2] is solved exactly.
+        let f = factored([[1.0, 2.0, 0.0], [4.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        assert_eq!(f.perm, [1, 0, 2]);
+        assert_eq!(f.lu[0], [4.0, 1.0, 0.0]);
+        assert_eq!(f.lu[1], [0.25, 1.75, 0.0]);
+        assert_eq!(f.solve(&[-1.0, 3.0, 2.0]), [1.0, -1.0, 2.0]);
+    }
+
+    #[test]
+    fn a_singular_matrix_is_refused() {
+        let mut f = Factored::<2>::zero();
+        assert!(!f.factor(&[[-1.0, -2.0], [-2.0, -4.0]], 0.0));
     }
 }

@@ -156,6 +156,32 @@ fn the_kept_mass_state_is_the_one_instant_gives_wherever_the_mass_is_settled() {
 }
 
 #[test]
+fn a_mass_settled_for_good_stays_settled_at_every_later_time_and_the_edge_cases_are_refused() {
+    let sim = base();
+    let model = sim.model();
+    let mut starts = [f64::INFINITY; crate::flight::model::MAX_SHIFTS];
+    let burn = model.motor.burn_time_s();
+    // The ballast's shift not started: settled for good from burnout on.
+    assert!(model.settled_from_now_on(&starts, burn));
+    // Started at 5 s, moving for 1 s: at its start the mass is settled (t <= start), but
+    // not for good (it moves right after); once the move is over it is.
+    starts[0] = 5.0;
+    assert!(model.mass_settled(&starts, 5.0));
+    assert!(!model.settled_from_now_on(&starts, 5.0));
+    assert!(!model.mass_settled(&starts, 5.0 + 1e-9));
+    assert!(model.mass_settled(&starts, 6.0) && model.settled_from_now_on(&starts, 6.0));
+    // Every later time, down to the next double after the end of the move.
+    let mut t = 6.0f64;
+    for _ in 0..1000 {
+        t = f64::from_bits(t.to_bits() + 1);
+        assert!(model.mass_settled(&starts, t), "t = {t}");
+    }
+    for t in [6.5, 7.0, 20.0, 1e6, f64::INFINITY] {
+        assert!(model.mass_settled(&starts, t), "t = {t}");
+    }
+}
+
+#[test]
 fn four_lanes_mass_states_are_bit_for_bit_four_single_instants() {
     // Four variants (their own masses and ballast), each at its own instant: burning with the
     // ballast at rest, burning with it moving, coasting with it moving, and burning just

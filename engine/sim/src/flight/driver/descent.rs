@@ -397,7 +397,7 @@ impl Descent {
         let aux = model.derivative_descent(&run.starts, &self.canopies, t_end, &y_end, &mut dy);
         let pos = Vector3::new(y_end[0], y_end[1], y_end[2]);
         let vel = Vector3::new(y_end[3], y_end[4], y_end[5]);
-        run.record(
+        let speed = run.record(
             Phase::Descent,
             t_end,
             pos,
@@ -406,7 +406,7 @@ impl Descent {
             [0.0; 3],
             &aux,
         );
-        let (alt, speed) = (pos.z, vel.norm());
+        let alt = pos.z;
         if let Some((te, kind)) = found {
             match kind {
                 EventKind::Apogee => {

@@ -86,8 +86,10 @@ impl<const N: usize> Watch<N> {
     }
 
     /// The state at the end of an accepted step must be finite.
+    #[inline]
     fn check_end(&self, t: f64, y: &[f64; N]) -> Result<(), SimError> {
-        if y.iter().all(|v| v.is_finite()) {
+        // Every element read (no early exit): a few vector comparisons.
+        if y.iter().fold(true, |ok, v| ok & v.is_finite()) {
             return Ok(());
         }
         let (tb, yb) = self.bad.unwrap_or((t, *y));
@@ -625,6 +627,12 @@ impl<'a, O: Observer> Run<'a, O> {
         self.noise.get(i).is_some_and(Option::is_some)
     }
 
+    /// Whether a noisy barometer's sample can fire now (after apogee, with noise).
+    #[inline(always)]
+    fn hears_noise(&self) -> bool {
+        self.apogee_done && !self.noise.is_empty()
+    }
+
     /// The sample in `(t0, t_end]` at which a noisy barometer fires a parachute
     /// ([`Run::noisy_trigger`]) if it comes before `found`, the step's other event: its time
     /// and the parachute. In line, so that a flight without a noisy barometer, or before
@@ -638,7 +646,7 @@ impl<'a, O: Observer> Run<'a, O> {
         z_end: f64,
         height_at: impl FnMut(f64) -> f64,
     ) -> Option<(f64, usize)> {
-        if !self.apogee_done || self.noise.is_empty() {
+        if !self.hears_noise() {
             return None;
         }
         self.noisy_trigger(t0, t_end, z_end, height_at)
@@ -731,6 +739,8 @@ impl<'a, O: Observer> Run<'a, O> {
         sum
     }
 
+    /// Take in a sample: the metrics' extremes and margins, the observer, the kept samples.
+    /// Returns the speed `|vel|`, m/s (computed here once for the caller too).
     #[allow(clippy::too_many_arguments)]
     fn record(
         &mut self,
@@ -741,7 +751,7 @@ impl<'a, O: Observer> Run<'a, O> {
         q: [f64; 4],
         w: [f64; 3],
         aux: &FlightAux,
-    ) {
+    ) -> f64 {
         let m = self.model;
         let mach = aux.air_speed_m_s / aux.speed_of_sound_m_s;
         let speed = vel.norm();
@@ -762,7 +772,7 @@ impl<'a, O: Observer> Run<'a, O> {
         let margins = phase != Phase::Descent && !self.apogee_done;
         let sampled = O::WANTS_SAMPLES || m.options.keep_samples;
         if !sampled && !margins {
-            return;
+            return speed;
         }
         let static_margin_cal = m.static_margin_of(aux.r_cm_z_m);
         let flight_margin_cal = if sampled || phase == Phase::Free {
@@ -794,7 +804,7 @@ impl<'a, O: Observer> Run<'a, O> {
             }
         }
         if !sampled {
-            return;
+            return speed;
         }
         let s = Sample {
             t_s: t,
@@ -819,6 +829,7 @@ impl<'a, O: Observer> Run<'a, O> {
         if m.options.keep_samples {
             self.samples.push(s);
         }
+        speed
     }
 }
 

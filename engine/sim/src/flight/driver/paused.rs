@@ -5,6 +5,8 @@
 
 use super::*;
 use crate::lanes::F64x4;
+use crate::massprops::MassInputs;
+use hpr_design::motor::MotorState;
 
 /// A flight paused in its free flight, between two steps. The single flight steps it with
 /// [`Paused::step`]; the batch engine steps four lanes' free flights together: it begins
@@ -27,6 +29,12 @@ pub(crate) struct Paused<'a, O: Observer> {
     moving: MassLanes<f64>,
     moving_thrust_n: f64,
     moving_key: Option<(u64, u64)>,
+    /// A time from which on the mass stays settled, and the count of shift-start changes it
+    /// holds for ([`FlightModel::settled_from_now_on`]).
+    settled_from: Option<(f64, u64)>,
+    /// The motor curve's segment at the last stage computed on lanes (where the next look-up
+    /// starts).
+    motor_segment: usize,
 }
 
 /// A phase's stepper as the batch engine steps it, four lanes' stages computed together
@@ -84,8 +92,9 @@ impl<const N: usize> LaneStepper<N> {
         }
     }
 
-    /// A stage's derivative `dy` at `(t, y)` that is not finite: the first one is where a
-    /// flight that goes non-finite is reported to have done so.
+    /// A stage's derivative `dy` at `(t, y)` that may not be finite (looked at here value by
+    /// value): the first one that is not is where a flight that goes non-finite is reported
+    /// to have done so.
     #[cold]
     pub(crate) fn observe(&mut self, t: f64, y: &[f64; N], dy: &[f64; N]) {
         self.watch.observe(t, y, dy);
@@ -299,6 +308,8 @@ pub(crate) fn fly_to_free<'a, O: Observer>(
         moving: MassLanes::ZERO,
         moving_thrust_n: 0.0,
         moving_key: None,
+        settled_from: None,
+        motor_segment: 0,
     })))
 }
 
@@ -505,16 +516,37 @@ impl<'a, O: Observer> Paused<'a, O> {
     fn settle(&mut self, t: f64) -> bool {
         let model = self.run.model;
         let starts = &self.run.starts;
-        if !model.mass_settled(starts, t) {
-            return false;
-        }
         let changes = self.run.starts_changed;
+        // At or after a time from which on it is known settled (stages and steps move on),
+        // no need to ask again.
+        if !matches!(self.settled_from, Some((from, c)) if c == changes && t >= from) {
+            if !model.mass_settled(starts, t) {
+                return false;
+            }
+            if model.settled_from_now_on(starts, t) {
+                self.settled_from = Some((t, changes));
+            }
+        }
         if !matches!(&self.settled, Some((c, _, _)) if *c == changes) {
             let ms = MassLanes::of(&model.instant(starts, t).mass);
             self.serial += 1;
             self.settled = Some((changes, ms, self.serial));
         }
         true
+    }
+
+    /// [`FlightModel::mass_inputs_into`] at `t` into lane `l` of `x`, for the batch engine:
+    /// the motor curve's segment looked for first where the last stage found it.
+    #[inline(always)]
+    pub(crate) fn mass_inputs_into(
+        &mut self,
+        t: f64,
+        x: &mut MassInputs<F64x4>,
+        l: usize,
+    ) -> MotorState {
+        let model = self.run.model;
+        let motor = model.motor.eval_hinted(t, &mut self.motor_segment);
+        model.mass_inputs_with(motor, &self.run.starts, t, x, l)
     }
 
     /// The shifts' start times and the count of their changes (the mass state at a time is
@@ -567,10 +599,10 @@ impl<'a, O: Observer> PausedPhase<'a, N6> for Paused<'a, O> {
         }
         let t_stop = self.free.next_stop(&mut self.run, &self.s6.stepper);
         let model = self.run.model;
-        let starts = self.run.starts;
+        let starts = &self.run.starts;
         self.s6
             .begin(t_stop, &mut self.run.evaluations, |t, y, dy| {
-                model.derivative_6dof(&starts, t, y, dy);
+                model.derivative_6dof(starts, t, y, dy);
             })?;
         Ok(true)
     }

@@ -165,13 +165,12 @@ impl SixDof {
         let rail = phase == Phase::Rail;
         let name = phase.name();
         let t_now = self.t_now;
-        let starts = run.starts;
         run.steps += 1;
         let (t1, y1) = (each!(stepper, s => s.t()), *each!(stepper, s => s.y()));
         let (pos1, vel1, aux1) = match ep1 {
             Some(ep) => ep,
             None => {
-                let ms1 = run.memo.get(model, &starts, run.starts_changed, t1).0;
+                let ms1 = run.memo.get(model, &run.starts, run.starts_changed, t1).0;
                 model.end_point(ms1, t1, &y1, each!(stepper, s => s.dy()), rail)
             }
         };
@@ -198,7 +197,7 @@ impl SixDof {
             }
             for (k, sh) in model.shifts.iter().enumerate() {
                 if let (Trigger::HeightDescending { height_m }, true) =
-                    (sh.trigger, starts[k].is_infinite())
+                    (sh.trigger, run.starts[k].is_infinite())
                 {
                     events.push((EventKind::Shift(k), G::Height(height_m)));
                 }
@@ -206,7 +205,7 @@ impl SixDof {
             let n = model.shifts.len();
             for (j, r) in model.releases.iter().enumerate() {
                 if let (Trigger::HeightDescending { height_m }, true) =
-                    (r.trigger, starts[n + j].is_infinite())
+                    (r.trigger, run.starts[n + j].is_infinite())
                 {
                     events.push((EventKind::Release(j), G::Height(height_m)));
                 }
@@ -214,6 +213,7 @@ impl SixDof {
         }
         // Earliest crossing in the step: rail travel rises through zero, the rest fall.
         let mut found: Option<(f64, EventKind)> = None;
+        let starts = &run.starts;
         for &(kind, g) in events.iter() {
             let (g0, g1) = (
                 g.at_end(model, &self.prev_y, &self.prev),
@@ -232,7 +232,7 @@ impl SixDof {
                 Crossing::Falling
             };
             if t1 > t_now && crossing.matches(g0, g1) {
-                let te = each!(stepper, s => brent_root_bracketed(|t| g.at(model, &starts, t, &s.dense(t)), t_now, g0, t1, g1, EVENT_TOL_S))
+                let te = each!(stepper, s => brent_root_bracketed(|t| g.at(model, starts, t, &s.dense(t)), t_now, g0, t1, g1, EVENT_TOL_S))
                     .map_err(SimError::EventLocation)?;
                 if found.is_none_or(|(tf, _)| te < tf) {
                     found = Some((te, kind));
@@ -247,13 +247,18 @@ impl SixDof {
             None => (t1, y1, ep1),
         };
         // A noisy barometer's sample that fires before the step's end or its event.
-        let noisy = run.noisy_before(
-            found,
-            t_now,
-            t_end,
-            ep.pos.z,
-            |t| each!(stepper, s => G::Height(0.0).at(model, &starts, t, &s.dense(t))),
-        );
+        let noisy = if run.hears_noise() {
+            let starts = run.starts;
+            run.noisy_before(
+                found,
+                t_now,
+                t_end,
+                ep.pos.z,
+                |t| each!(stepper, s => G::Height(0.0).at(model, &starts, t, &s.dense(t))),
+            )
+        } else {
+            None
+        };
         if let Some((tk, i)) = noisy {
             if tk < t_end {
                 (y_end, ep) = end_point_at(run, stepper, rail, tk);
@@ -261,7 +266,7 @@ impl SixDof {
             }
             found = Some((tk, EventKind::ParachuteTrigger(i)));
         }
-        run.record(
+        let speed = run.record(
             phase,
             t_end,
             ep.pos,
@@ -271,7 +276,7 @@ impl SixDof {
             &ep.aux,
         );
         let (pos, vel) = (ep.pos, ep.vel);
-        let (alt, speed) = (pos.z, vel.norm());
+        let alt = pos.z;
         self.prev_y = y_end;
         self.prev = Ends { pos, vel };
         if let Some((te, kind)) = found {
