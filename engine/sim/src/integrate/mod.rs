@@ -207,8 +207,15 @@ pub trait DenseStepper<const N: usize> {
     /// Derivative at `(t, y)` (first stage of the next step).
     fn dy(&self) -> &[f64; N];
     /// Dense output at `t_between` ∈ [`t_prev`, `t`] (outside it the polynomial is
-    /// extrapolated, with no accuracy guarantee). Exact at both ends.
-    fn dense(&self, t_between: f64) -> [f64; N];
+    /// extrapolated, with no accuracy guarantee). Exact at both ends. By default each
+    /// component's [`DenseStepper::dense_component`].
+    fn dense(&self, t_between: f64) -> [f64; N] {
+        let mut out = [0.0; N];
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.dense_component(t_between, i);
+        }
+        out
+    }
     /// One component of the dense output. Panics if `index >= N`.
     fn dense_component(&self, t_between: f64, index: usize) -> f64;
     /// Derivative evaluations so far (since construction).

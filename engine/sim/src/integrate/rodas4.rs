@@ -425,14 +425,6 @@ impl<const N: usize> DenseStepper<N> for Rodas4<N> {
         &self.dy
     }
 
-    fn dense(&self, t_between: f64) -> [f64; N] {
-        let mut out = [0.0; N];
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.dense_component(t_between, i);
-        }
-        out
-    }
-
     fn dense_component(&self, t_between: f64, i: usize) -> f64 {
         if t_between == self.t {
             return self.y[i];
