@@ -61,28 +61,16 @@ impl DesignSource {
     /// The design file `path` (JSON, or an OpenRocket `.ork` in its imported form), checked
     /// as [`Design::load`] checks it.
     pub fn load(path: &Path) -> Result<(DesignSource, Design), DesignError> {
-        let design = Design::load(path)?;
-        let bytes = crate::limits::read_limited(
-            path,
-            crate::limits::MAX_DESIGN_FILE_BYTES,
-            "a design file",
-        )
-        .map_err(|source| DesignError::Io {
+        let text = Design::read_json_text(path)?;
+        let design = Design::from_json_str(&text, Some(path))?;
+        // The text has just been read as a design, so it is JSON.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+        let json = serde_json::from_str(text).map_err(|e| DesignError::Json {
             file: path.display().to_string(),
-            source,
+            line: e.line(),
+            column: e.column(),
+            message: e.to_string(),
         })?;
-        let json = if crate::ork::is_ork_file(path, &bytes) {
-            crate::ork::import(&bytes, &path.display().to_string())?.json
-        } else {
-            let text = String::from_utf8_lossy(&bytes);
-            let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-            serde_json::from_str(text).map_err(|e| DesignError::Json {
-                file: path.display().to_string(),
-                line: e.line(),
-                column: e.column(),
-                message: e.to_string(),
-            })?
-        };
         Ok((
             DesignSource {
                 json,

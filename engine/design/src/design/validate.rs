@@ -85,6 +85,12 @@ impl Design {
     /// Reads and validates a design file. Drag CSVs are found relative to it.
     pub fn load(path: impl AsRef<Path>) -> Result<Design, DesignError> {
         let path = path.as_ref();
+        Design::from_json_str(&Design::read_json_text(path)?, Some(path))
+    }
+
+    /// A design file's JSON text: the file's own, or an OpenRocket `.ork` imported into the
+    /// design format.
+    pub fn read_json_text(path: &Path) -> Result<String, DesignError> {
         let bytes = crate::limits::read_limited(
             path,
             crate::limits::MAX_DESIGN_FILE_BYTES,
@@ -96,13 +102,12 @@ impl Design {
         })?;
         if crate::ork::is_ork_file(path, &bytes) {
             let import = crate::ork::import(&bytes, &path.display().to_string())?;
-            return Design::from_json_str(&import.json.to_string(), Some(path));
+            return Ok(import.json.to_string());
         }
-        let text = String::from_utf8(bytes).map_err(|e| DesignError::Io {
+        String::from_utf8(bytes).map_err(|e| DesignError::Io {
             file: path.display().to_string(),
             source: std::io::Error::new(std::io::ErrorKind::InvalidData, e),
-        })?;
-        Design::from_json_str(&text, Some(path))
+        })
     }
 
     /// Validates a design given as JSON text. `source` is the file it came from: errors name
