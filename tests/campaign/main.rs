@@ -11,6 +11,7 @@ mod motor;
 mod outputs;
 mod releases;
 mod report;
+mod share;
 mod site;
 mod weather;
 mod wind;

@@ -162,6 +162,13 @@ pub fn timings_text(r: &RunReport) -> String {
     worker("sampling", s(t.sampling));
     worker("flights", s(t.flights));
     worker("rows (Arrow)", s(t.rows));
+    if t.shared > 0 {
+        let _ = writeln!(
+            out,
+            "    {} flights began where the same replicate's flight at sweep point 0 left off",
+            t.shared
+        );
+    }
     let mut main = |name: &str, d: f64| {
         let _ = writeln!(
             out,

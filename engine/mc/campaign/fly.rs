@@ -25,9 +25,11 @@ use hpr_design::design::model::Design;
 use hpr_design::mass;
 use hpr_design::motor::{self, Motor, MotorError, MotorField, MotorTables};
 use hpr_sim::batch::{
-    Batch, BatchDesigns, BatchWeather, LaneResult, ParachuteOutcome, ReleaseOutcome, ShiftOutcome,
+    Batch, BatchDesigns, BatchWeather, LaneResult, ParachuteOutcome, Prefix, PrefixStore,
+    ReleaseOutcome, ShiftOutcome,
 };
 use hpr_sim::flight::Metrics;
+use hpr_sim::inputs::Part;
 use hpr_sim::{SimError, SimOptions, Simulation, Trigger};
 use setup::{Fixed, Setup};
 
@@ -165,6 +167,143 @@ pub struct Prepared {
     nominal: Setup,
     /// The flight at the first sweep point's centers; every lane is it with its row applied.
     batch: Batch,
+    /// How a sweep's points share the beginning of their flights (`None`: they do not).
+    sharing: Option<Sharing>,
+}
+
+/// Sweep points that differ only in the inputs of shifts started at fixed times after
+/// launch, flown with common random numbers: replicate `r` of each such point is the same
+/// flight until the earliest of those shifts' starts among the points, so the first point's
+/// flight flies that stretch once and leaves it for the others ([`hpr_sim::batch::Prefix`]).
+/// The points group by their other swept inputs (a sweep of fin spans and ballast travels
+/// shares within each span).
+#[derive(Debug, Clone)]
+struct Sharing {
+    /// Each swept shift's start: a fixed time, or the plan's input that gives it.
+    starts: Vec<ShiftStart>,
+    /// Every point's centers ([`Plan::centers`]).
+    centers: Vec<Vec<f64>>,
+    /// Every point's group: the points that differ from it only in the swept shifts'
+    /// inputs, in order (the first is the group's owner).
+    groups: Vec<std::sync::Arc<Vec<usize>>>,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum ShiftStart {
+    At(f64),
+    Input(usize),
+}
+
+/// Shared beginnings are kept for at most this many replicates at once (a few kilobytes
+/// each); replicates beyond them fly from the pad.
+const SHARED_BEGINNINGS: usize = 4096;
+
+impl Sharing {
+    /// The sharing of `plan`'s points flying `base` (the first point's flight), if some
+    /// share: common random numbers, and two points or more differing only in swept inputs
+    /// of shifts each started at a fixed time after launch.
+    fn of(
+        plan: &Plan,
+        inputs: &[super::scenario::InputSpec],
+        base: &Simulation,
+    ) -> Option<Sharing> {
+        if !plan.common_random_numbers {
+            return None;
+        }
+        let model = base.model();
+        let timed = |k: usize| {
+            model.shifts.get(k).and_then(|s| match s.trigger {
+                Trigger::Time { time_s } => Some(time_s),
+                _ => None,
+            })
+        };
+        // The swept inputs that act only from a timed shift's start, and their shifts.
+        let late: Vec<bool> = plan
+            .inputs
+            .iter()
+            .zip(inputs)
+            .map(|(p, i)| {
+                p.sweep.is_some()
+                    && matches!(i.param.part(), Some((Part::Shift, k)) if timed(k).is_some())
+            })
+            .collect();
+        let mut shifts: Vec<usize> = Vec::new();
+        for (_, input) in inputs.iter().enumerate().filter(|&(j, _)| late[j]) {
+            if let Some((_, k)) = input.param.part() {
+                if !shifts.contains(&k) {
+                    shifts.push(k);
+                }
+            }
+        }
+        let starts = shifts
+            .iter()
+            .map(|&k| {
+                match inputs
+                    .iter()
+                    .position(|i| i.param == Param::ShiftTrigger(k))
+                {
+                    Some(j) => ShiftStart::Input(j),
+                    None => ShiftStart::At(timed(k).unwrap_or(f64::INFINITY)),
+                }
+            })
+            .collect();
+        // Points group by the sweep indices of their other inputs.
+        let points = plan.points();
+        let keys: Vec<Vec<Option<usize>>> = (0..points)
+            .map(|q| {
+                let mut idx = plan.point_indices(q);
+                for (j, _) in late.iter().enumerate().filter(|(_, l)| **l) {
+                    idx[j] = None;
+                }
+                idx
+            })
+            .collect();
+        let mut groups: Vec<std::sync::Arc<Vec<usize>>> = Vec::with_capacity(points);
+        for q in 0..points {
+            match (0..q).find(|&o| keys[o] == keys[q]) {
+                Some(o) => groups.push(groups[o].clone()),
+                None => groups.push(std::sync::Arc::new(
+                    (q..points).filter(|&m| keys[m] == keys[q]).collect(),
+                )),
+            }
+        }
+        if groups.iter().all(|g| g.len() < 2) {
+            return None;
+        }
+        Some(Sharing {
+            starts,
+            centers: (0..points).map(|q| plan.centers(q)).collect(),
+            groups,
+        })
+    }
+
+    /// The place of variant `v` among the variants sharing its beginning (`None`: it
+    /// shares none): its group's replicate, until the earliest start of a swept shift at any
+    /// point of its group.
+    fn prefix(&self, plan: &Plan, v: &Variant) -> Option<Prefix> {
+        let group = &self.groups[v.point];
+        if group.len() < 2 {
+            return None;
+        }
+        let mut until_s = f64::INFINITY;
+        for start in &self.starts {
+            for &q in group.iter() {
+                let t = match *start {
+                    ShiftStart::At(t) => t,
+                    ShiftStart::Input(j) => plan.common_value(&self.centers[q], v.replicate, j),
+                };
+                until_s = until_s.min(t);
+            }
+        }
+        let owner = group[0];
+        Some(Prefix {
+            // The owner's variant id.
+            key: owner as u64 * plan.variants_per_point + v.replicate,
+            until_s,
+            owner: v.point == owner,
+            borrowers: (group.len() - 1) as u32,
+        })
+    }
 }
 
 /// The scenario's key of a motor option's field; `None` for the motor's own numbers (its
@@ -622,6 +761,7 @@ impl Prepared {
             }
         }
         let batch = batch.ok_or_else(|| bad("sweep", "the sweep has no points".into()))?;
+        let sharing = Sharing::of(&plan, &scenario.inputs, batch.base());
         Ok(Prepared {
             scenario,
             plan,
@@ -633,7 +773,16 @@ impl Prepared {
             motors,
             nominal,
             batch,
+            sharing,
         })
+    }
+
+    /// The store in which the chunks of a run leave and take the beginnings their flights
+    /// share (`None` when the sweep's points share none); see [`fly_chunk_sharing`].
+    pub fn prefix_store(&self) -> Option<PrefixStore<'_>> {
+        self.sharing
+            .as_ref()
+            .map(|_| PrefixStore::new(self.batch.base().model(), SHARED_BEGINNINGS))
     }
 
     fn fixed(&self) -> Fixed<'_> {
@@ -876,7 +1025,18 @@ fn check_ballast(design: &Design, idx: usize) -> Result<(), String> {
 /// values are in range become the rows of one set of columns, flown in order on this thread
 /// as lanes of the prepared base flight (the run loop spreads the chunks over the threads).
 pub fn fly_chunk(prepared: &Prepared, variants: &[Variant]) -> Vec<VariantResult> {
-    fly_lanes(prepared, &prepared.batch, variants)
+    fly_chunk_sharing(prepared, variants, None)
+}
+
+/// [`fly_chunk`], the variants' flights taking the beginnings they share from `store` or
+/// leaving them there ([`Prepared::prefix_store`]): the same results, bit for bit, in less
+/// time.
+pub fn fly_chunk_sharing(
+    prepared: &Prepared,
+    variants: &[Variant],
+    store: Option<&PrefixStore<'_>>,
+) -> Vec<VariantResult> {
+    fly_lanes(prepared, &prepared.batch, variants, store)
         .into_iter()
         .map(|r| r.0)
         .collect()
@@ -896,7 +1056,7 @@ pub fn fly_chunk_with_samples(
     variants: &[Variant],
 ) -> Vec<(VariantResult, Vec<hpr_sim::flight::Sample>)> {
     match batch {
-        Ok(batch) => fly_lanes(prepared, batch, variants),
+        Ok(batch) => fly_lanes(prepared, batch, variants, None),
         Err(e) => variants
             .iter()
             .map(|v| {
@@ -918,6 +1078,7 @@ fn fly_lanes(
     prepared: &Prepared,
     batch: &Batch,
     variants: &[Variant],
+    store: Option<&PrefixStore<'_>>,
 ) -> Vec<(VariantResult, Vec<hpr_sim::flight::Sample>)> {
     let fixed = prepared.fixed();
     let setups: Vec<Result<Setup, String>> = variants
@@ -930,7 +1091,19 @@ fn fly_lanes(
         })
         .collect();
     let rows: Vec<&Setup> = setups.iter().filter_map(|s| s.as_ref().ok()).collect();
-    let lanes = batch.fly_chunk(&fixed.columns(&rows), 0);
+    let columns = fixed.columns(&rows);
+    let lanes = match (store, &prepared.sharing) {
+        (Some(store), Some(sharing)) => {
+            let prefixes: Vec<Option<Prefix>> = variants
+                .iter()
+                .zip(&setups)
+                .filter(|(_, s)| s.is_ok())
+                .map(|(v, _)| sharing.prefix(&prepared.plan, v))
+                .collect();
+            batch.fly_chunk_sharing(&columns, 0, Some((&prefixes, store)))
+        }
+        _ => batch.fly_chunk(&columns, 0),
+    };
     let mut lanes = match lanes {
         Ok(l) => l.into_iter(),
         // The columns are built here from checked setups: a shape error is a bug of this

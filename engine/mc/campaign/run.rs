@@ -32,7 +32,7 @@
 //! row of the variants file back); more are refused before anything is written, with the rule
 //! and the way round it (`--shard`).
 
-use super::fly::{fly_chunk, Prepared};
+use super::fly::{fly_chunk_sharing, Prepared};
 use super::gather::{Gather, Percentiles};
 pub use super::outdir::Outputs;
 use super::outdir::{Holder, OutputDir};
@@ -134,6 +134,9 @@ pub struct Timings {
     pub report: Duration,
     /// The whole run.
     pub total: Duration,
+    /// Flights that took the beginning they share with another sweep point's flight
+    /// rather than flying it again ([`Prepared::prefix_store`]).
+    pub shared: u64,
 }
 
 /// What a run did.
@@ -475,6 +478,9 @@ fn fly_parts(
     let taken = (Mutex::new(0usize), Condvar::new());
     let window = WINDOW_PER_THREAD * f.threads;
     let (tx, rx) = std::sync::mpsc::channel::<Done>();
+    // The beginnings of flights the sweep's points share, left and taken by every worker.
+    let store = p.prefix_store();
+    let store = store.as_ref();
     std::thread::scope(|s| -> anyhow::Result<Vec<usize>> {
         for _ in 0..f.threads.min(work.len()) {
             let tx = tx.clone();
@@ -497,7 +503,7 @@ fn fly_parts(
                     .map(|q| p.plan.variant(f.shard.id(q)))
                     .collect();
                 let t1 = Instant::now();
-                let results = fly_chunk(p, &variants);
+                let results = fly_chunk_sharing(p, &variants, store);
                 let t2 = Instant::now();
                 let batch = pq::variants_batch(p, f.schema, &variants, &results);
                 let t3 = Instant::now();
@@ -576,6 +582,7 @@ fn fly_parts(
             taken.1.notify_all();
         }
         drop(rx);
+        timings.shared += store.map_or(0, |s| s.borrowed());
         result
     })
 }

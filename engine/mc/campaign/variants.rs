@@ -104,6 +104,28 @@ impl Plan {
             .collect()
     }
 
+    /// The value of `input`, centered on `center`, drawn from the random numbers `stream`.
+    fn draw(&self, input: &PlanInput, center: f64, stream: u64) -> f64 {
+        match &input.dispersion {
+            Some(d) => {
+                let v = d.sample(center, &mut input_rng(self.seed, stream, &input.key));
+                if input.keeps_side {
+                    on_side_of(d.scatter_center(center), v)
+                } else {
+                    v
+                }
+            }
+            None => center,
+        }
+    }
+
+    /// The value of input `j` (in the plan's order) of replicate `replicate` at sweep point
+    /// `point` with common random numbers: [`Plan::variant`]'s `values[j]` for that variant,
+    /// without drawing the others. `centers` is [`Plan::centers`] at `point`.
+    pub fn common_value(&self, centers: &[f64], replicate: u64, j: usize) -> f64 {
+        self.draw(&self.inputs[j], centers[j], replicate)
+    }
+
     /// Variant `id` (which must be below [`Plan::total`]).
     pub fn variant(&self, id: u64) -> Variant {
         let point = (id / self.variants_per_point) as usize;
@@ -117,17 +139,7 @@ impl Plan {
             .centers(point)
             .into_iter()
             .zip(&self.inputs)
-            .map(|(c, input)| match &input.dispersion {
-                Some(d) => {
-                    let v = d.sample(c, &mut input_rng(self.seed, stream, &input.key));
-                    if input.keeps_side {
-                        on_side_of(d.scatter_center(c), v)
-                    } else {
-                        v
-                    }
-                }
-                None => c,
-            })
+            .map(|(c, input)| self.draw(input, c, stream))
             .collect();
         Variant {
             id,

@@ -99,6 +99,24 @@ pub struct NoiseProcess {
     drift_pa: f64,
 }
 
+/// A copy that draws what this one would draw next (the generator is not `Clone`: rand
+/// keeps a generator from being copied by accident; here the copy is the point, the same
+/// key, stream and position).
+impl Clone for NoiseProcess {
+    fn clone(&self) -> NoiseProcess {
+        let mut rng = ChaCha8Rng::from_seed(self.rng.get_seed());
+        rng.set_stream(self.rng.get_stream());
+        rng.set_word_pos(self.rng.get_word_pos());
+        NoiseProcess {
+            noise: self.noise,
+            rng,
+            k: self.k,
+            n_pa: self.n_pa,
+            drift_pa: self.drift_pa,
+        }
+    }
+}
+
 /// The generator of a flight's noise: ChaCha8 keyed by the flight's seed, on `stream` (a
 /// parachute's place in its list; the wind's gusts take their own).
 pub(crate) fn noise_rng(seed: u64, stream: u64) -> ChaCha8Rng {

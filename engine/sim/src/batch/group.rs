@@ -34,6 +34,9 @@ pub(super) struct Lane<'a> {
     /// Whether the lane's last attempt was rejected: its next group step tries the same step
     /// again, smaller (its stepper holds the attempt), rather than beginning a new one.
     pub(super) retrying: bool,
+    /// Whether the lane owns a beginning other lanes share, not yet left for them
+    /// ([`super::prefix`]).
+    pub(super) owns_prefix: bool,
 }
 
 /// The phase a lane is in.

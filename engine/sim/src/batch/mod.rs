@@ -49,9 +49,11 @@
 
 mod group;
 mod memo;
+mod prefix;
 mod stream;
 
 pub use group::{eval_four, LANES_IN_FLIGHT};
+pub use prefix::{Prefix, PrefixStore};
 
 use crate::atmosphere::{AirModel, AirTable};
 use crate::events::EventKind;
@@ -657,7 +659,24 @@ impl Batch {
         columns: &Columns,
         first: usize,
     ) -> Result<Vec<LaneResult>, ColumnsError> {
+        self.fly_chunk_sharing(columns, first, None)
+    }
+
+    /// [`Batch::fly_chunk`], rows that share the beginning of their flights with rows of
+    /// other chunks flying it once (`share`: each row's [`Prefix`], or `None` for a row
+    /// that shares nothing, and the store the chunks leave and take beginnings in; see
+    /// [`prefix`](self::prefix)). The results are [`Batch::fly_chunk`]'s, bit for bit.
+    pub fn fly_chunk_sharing(
+        &self,
+        columns: &Columns,
+        first: usize,
+        share: Option<(&[Option<Prefix>], &PrefixStore<'_>)>,
+    ) -> Result<Vec<LaneResult>, ColumnsError> {
         self.check(columns)?;
+        // A lane keeping its samples needs its own beginning's.
+        let share = share.filter(|_| !self.base.options().keep_samples);
+        let prefix_of =
+            |row: usize| share.and_then(|(p, store)| Some((p.get(row).copied().flatten()?, store)));
         let n = columns.len;
         // Each row's simulation, built when its lane starts; lanes borrow their model from it.
         let sims: Vec<OnceCell<Result<Simulation, (Status, String)>>> =
@@ -686,6 +705,27 @@ impl Batch {
                         continue;
                     }
                 };
+                let prefix = prefix_of(row);
+                if let Some((prefix, store)) = prefix.filter(|(p, _)| !p.owner) {
+                    match guarded(|| store.take(&prefix, sim.model(), columns, row)) {
+                        Ok(Some(paused)) => {
+                            lanes.push(Lane {
+                                row,
+                                sim,
+                                flying: Flying::Free(paused),
+                                end: None,
+                                retrying: false,
+                                owns_prefix: false,
+                            });
+                            continue;
+                        }
+                        Ok(None) => {}
+                        Err(p) => {
+                            results[row] = Some(self.panicked(variant, &p));
+                            continue;
+                        }
+                    }
+                }
                 // Lanes observe nothing: a zero-sized observer, leaked without allocating.
                 let observer: &mut () = Box::leak(Box::new(()));
                 match guarded(|| fly_to_free(sim.model(), observer, None)) {
@@ -695,6 +735,7 @@ impl Batch {
                         flying: Flying::Free(paused),
                         end: None,
                         retrying: false,
+                        owns_prefix: prefix.is_some_and(|(p, _)| p.owner),
                     }),
                     Ok(Ok(Progress::Done(flight))) => {
                         results[row] = Some(self.lane_result(sim, Ok(flight), variant))
@@ -705,6 +746,24 @@ impl Batch {
             }
             if lanes.is_empty() {
                 break;
+            }
+            // Owners whose next step might tell their flight from their borrowers' leave
+            // it for them now, between steps.
+            if let Some((prefixes, store)) = share {
+                for lane in lanes.iter_mut().filter(|l| l.owns_prefix && !l.retrying) {
+                    let (Flying::Free(p), Some(Some(prefix))) =
+                        (&mut lane.flying, prefixes.get(lane.row))
+                    else {
+                        lane.owns_prefix = false;
+                        continue;
+                    };
+                    if !p.next_step_before(prefix.until_s) {
+                        lane.owns_prefix = false;
+                        // Leaving it is no part of this lane's flight: if it fails, the
+                        // borrowers fly from the pad.
+                        let _ = guarded(|| store.keep(prefix, p, columns, lane.row));
+                    }
+                }
             }
             // Free flights whose mass changes first (their groups compute mass states four at
             // a time), then the other free flights, then descents: each group holds lanes of

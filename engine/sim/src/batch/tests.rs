@@ -15,6 +15,7 @@ use hpr_design::motor::MotorOptions;
 mod air;
 mod kernels;
 mod noise;
+mod prefix;
 mod releases;
 mod turbulence;
 

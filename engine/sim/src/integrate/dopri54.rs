@@ -174,6 +174,11 @@ pub struct Dopri54<const N: usize> {
     n_rejected: u64,
     /// Accepted steps that ended on their stop time (not counted against `max_steps`).
     n_on_stop: u64,
+    /// The latest time any attempt so far was allowed to reach, s: its stop time where the
+    /// attempt was clipped to it, else `t + 1.01 h`, the sum [`super::clip_to_stop`] compares
+    /// with the stop time. Another trajectory of the same derivative up to this time whose
+    /// stop times differ only at or after it took exactly the same attempts ([`Dopri54::reach`]).
+    reach: f64,
     initialized: bool,
     /// The step in progress (see [`Dopri54::begin_step`]).
     cur: Attempt<N>,
@@ -220,6 +225,7 @@ impl<const N: usize> Dopri54<N> {
             n_accepted: 0,
             n_rejected: 0,
             n_on_stop: 0,
+            reach: f64::NEG_INFINITY,
             initialized: false,
             cur: Attempt {
                 t_stop: 0.0,
@@ -264,6 +270,15 @@ impl<const N: usize> Dopri54<N> {
     /// Rejected attempts so far.
     pub fn n_rejected(&self) -> u64 {
         self.n_rejected
+    }
+
+    /// The latest time any attempt so far was allowed to reach, s (`-inf` before the first):
+    /// the attempt's stop time where it was clipped to it, else `t + 1.01 h`. Two
+    /// trajectories with the same derivative before this time, the same state, the same
+    /// stepper and the same stop times before it took the same attempts, bit for bit, however
+    /// their stop times at or after it differ: no attempt of either reached a stop there.
+    pub fn reach(&self) -> f64 {
+        self.reach
     }
 
     fn set_state<F>(&mut self, f: &mut F, t: f64, y: &[f64; N]) -> Result<(), IntegratorError>
@@ -339,6 +354,9 @@ impl<const N: usize> Dopri54<N> {
         let h = if self.h_next > 0.0 {
             self.h_next
         } else {
+            // The starting step's estimate reads the stop time (it is clipped to it), so
+            // the stop counts as reached.
+            self.reach = self.reach.max(t_stop);
             self.initial_step(f, t_stop)
         };
         self.cur.t_stop = t_stop;
@@ -357,6 +375,11 @@ impl<const N: usize> Dopri54<N> {
         let (h, last) = clip_to_stop(t, a.h_proposal, a.t_stop);
         a.h = h;
         a.last = last;
+        self.reach = self.reach.max(if last {
+            a.t_stop
+        } else {
+            t + 1.01 * a.h_proposal
+        });
         if self.n_accepted + self.n_rejected - self.n_on_stop >= c.max_steps {
             return Err(IntegratorError::TooManySteps {
                 t,

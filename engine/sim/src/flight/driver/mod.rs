@@ -30,6 +30,7 @@ const EVENT_TOL_S: f64 = 1e-12;
 /// The integrator of a phase, by value (no trait object): Dormand–Prince for the rail and
 /// the free flight, RODAS4 for the descents ([`Stepper::descent`]), or fixed-step RK4 for
 /// every phase when the options ask for it.
+#[derive(Clone)]
 enum Stepper<const N: usize> {
     Adaptive(Box<Dopri54<N>>),
     Fixed(Box<Rk4<N>>),
@@ -61,6 +62,7 @@ use six_dof::{six_dof_phase, SixDof};
 /// that a flight that goes non-finite stops with [`SimError::NonFinite`] at that place (a NaN
 /// makes the adaptive stepper reject until its step underflows; RK4 would carry it into the
 /// state), and any other failure is the integration's error in its phase.
+#[derive(Clone)]
 struct Watch<const N: usize> {
     t_now: f64,
     bad: Option<(f64, [f64; N])>,
@@ -252,6 +254,7 @@ struct Run<'a, O: Observer> {
 
 /// A parachute's noisy barometer through one flight: its noise, the pressure at its trigger
 /// height and its sampling rate, fixed for the flight and so found once.
+#[derive(Clone)]
 struct Barometer {
     noise: NoiseProcess,
     trigger_pa: f64,
@@ -312,9 +315,17 @@ pub(crate) enum Here<'y> {
 }
 
 /// Pending stop times, latest first (the next one is at the end); NaN is never a stop.
+#[derive(Clone)]
 struct Stops(Vec<f64>);
 
 impl Stops {
+    /// Take one stop at `s` (its bits) away, if there is one.
+    fn remove(&mut self, s: f64) {
+        if let Some(i) = self.0.iter().position(|x| x.to_bits() == s.to_bits()) {
+            self.0.remove(i);
+        }
+    }
+
     fn push(&mut self, s: f64) {
         if s.is_nan() {
             return;
@@ -333,6 +344,41 @@ pub(crate) enum PhaseEnd {
 }
 
 impl<'a, O: Observer> Run<'a, O> {
+    /// This run's state as another flight's, of `model` with `observer`: everything the
+    /// flight has done and holds pending, the memo of its last instant left behind (it is
+    /// `model`'s to compute). The caller answers for `model` flying the same as this one's
+    /// up to where the run stands ([`Paused::clone_onto`]).
+    fn clone_onto<'b, P: Observer>(
+        &self,
+        model: &'b FlightModel,
+        observer: &'b mut P,
+    ) -> Run<'b, P> {
+        Run {
+            model,
+            observer,
+            starts: self.starts,
+            starts_changed: self.starts_changed,
+            memo: InstantMemo::default(),
+            stops: self.stops.clone(),
+            samples: self.samples.clone(),
+            events: self.events.clone(),
+            metrics: self.metrics,
+            evaluations: self.evaluations,
+            steps: self.steps,
+            apogee_done: self.apogee_done,
+            chutes: self.chutes.clone(),
+            noise: self.noise.clone(),
+            rail_exit_done: self.rail_exit_done,
+            burnout_done: self.burnout_done,
+            max_climb_m_s: self.max_climb_m_s,
+            steepest: self.steepest,
+            brake_cd: self.brake_cd,
+            releases: self.releases.clone(),
+            released_now: self.released_now,
+            brake_next_s: self.brake_next_s,
+        }
+    }
+
     /// The first stop time after `t` (or the time limit). Time only moves forward, so the
     /// stops at or before `t` are dropped. With turbulence every sample of the gusts is a
     /// stop too (a step then lies within one straight piece of them).

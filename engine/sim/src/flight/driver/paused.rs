@@ -39,6 +39,7 @@ pub(crate) struct Paused<'a, O: Observer> {
 
 /// A phase's stepper as the batch engine steps it, four lanes' stages computed together
 /// outside it: the stepper, the watch over its step in progress, and the phase it steps.
+#[derive(Clone)]
 pub(crate) struct LaneStepper<const N: usize> {
     stepper: Stepper<N>,
     watch: Watch<N>,
@@ -454,6 +455,81 @@ impl<'a, O: Observer> PausedPhase<'a, N3> for Descending<'a, O> {
 
 /// A free-flight step's end: time, state and why the phase ended.
 pub(crate) type StepEnd = (f64, [f64; N6], PhaseEnd);
+
+/// Sharing a free flight's beginning with other flights: where it stands, whether its next
+/// step could tell them apart, and a copy of it as another flight's.
+impl<'a, O: Observer> Paused<'a, O> {
+    /// Whether every attempt of the free flight's next step ends before `limit`, whatever
+    /// stop times at or after `limit` the flight has (then a flight whose stops differ from
+    /// this one's only there, with the same derivative before `limit`, takes the same step):
+    /// its stop is before `limit`, or its proposed step, stretched by the 1 % `clip_to_stop`
+    /// allows, ends before `limit`. False for a step whose size is yet to be estimated (the
+    /// estimate reads the stop) and for fixed-step RK4.
+    pub(crate) fn next_step_before(&mut self, limit: f64) -> bool {
+        let Stepper::Adaptive(d) = &self.s6.stepper else {
+            return false;
+        };
+        let t = d.t();
+        if self.run.next_stop(t) < limit {
+            return true;
+        }
+        let h = d.h_next().min(d.control().h_max);
+        d.h_next() > 0.0 && t + 1.01 * h < limit
+    }
+
+    /// The latest time an attempt of this flight so far was allowed to reach, s
+    /// ([`Dopri54::reach`]; infinite for fixed-step RK4, whose steps are not watched).
+    pub(crate) fn reach(&self) -> f64 {
+        match &self.s6.stepper {
+            Stepper::Adaptive(d) => d.reach(),
+            _ => f64::INFINITY,
+        }
+    }
+
+    /// This paused flight as a flight of `model` (with `observer`) that stands where this
+    /// one stands: its state, stepper, record and pending stops copied, its memos left
+    /// behind (each is recomputed from `model` when asked, to the same bits). The caller
+    /// answers for `model` flying exactly as this flight's model did up to here, and moves
+    /// the stop times where the two models' fixed triggers differ ([`Paused::move_stops`]).
+    pub(crate) fn clone_onto<'b, P: Observer>(
+        &self,
+        model: &'b FlightModel,
+        observer: &'b mut P,
+    ) -> Paused<'b, P> {
+        Paused {
+            run: self.run.clone_onto(model, observer),
+            s6: self.s6.clone(),
+            free: self.free.clone(),
+            rtol: self.rtol,
+            atol3: self.atol3,
+            settled: None,
+            serial: self.serial,
+            moving: MassLanes::ZERO,
+            moving_thrust_n: 0.0,
+            moving_key: None,
+            settled_from: None,
+            motor_segment: 0,
+        }
+    }
+
+    /// Replace the pending stops at the times `from` by stops at `to` (a fixed trigger of
+    /// this flight's model at a time of `from`, of another model's at `to`): one stop taken
+    /// away per time of `from` still ahead, one added per time of `to` ahead.
+    pub(crate) fn move_stops(&mut self, from: &[f64], to: &[f64]) {
+        let t = each!(&self.s6.stepper, s => s.t());
+        for &s in from.iter().filter(|&&s| s > t) {
+            self.run.stops.remove(s);
+        }
+        for &s in to.iter().filter(|&&s| s > t) {
+            self.run.stops.push(s);
+        }
+    }
+
+    /// Time of the free flight where it stands, s.
+    pub(crate) fn time_s(&self) -> f64 {
+        each!(&self.s6.stepper, s => s.t())
+    }
+}
 
 impl<'a, O: Observer> Paused<'a, O> {
     /// The flight from the end of its free flight (descent, record).

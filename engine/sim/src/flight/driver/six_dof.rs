@@ -87,6 +87,7 @@ pub(super) fn derivative(
 /// what the driver does after it ([`SixDof::after_step`]). The single flight steps it with
 /// its own derivative ([`six_dof_phase`]); the batch engine steps the free flight of four
 /// lanes at a time and hands each lane's step to the same `after_step`.
+#[derive(Clone)]
 pub(super) struct SixDof {
     pub(super) phase: Phase,
     prev_y: [f64; N6],

@@ -1,0 +1,97 @@
+//! Flights that share their beginning ([`super::super::prefix`]): a sweep's points flown with
+//! the same draws, one point's flight left for the others just before their moves could
+//! tell them apart, give the results of flights flown whole, bit for bit.
+
+use super::*;
+
+/// Four sweep points of the ballast's move: (travel, m; start after the replicate's own
+/// drawn start, s; duration, s).
+const POINTS: [(f64, f64, f64); 4] = [
+    (0.0, 0.0, 1.0),
+    (0.1, 0.0, 0.5),
+    (0.3, 1.0, 1.0),
+    (0.2, 0.5, 0.8),
+];
+
+/// The sweep's rows, point-major (row `p * replicates + r`): replicate `r` of every point has
+/// the draws of row `r` of [`columns_of`], its move's travel, start and duration the point's;
+/// in a few rows of point 2 the wind differs by a hair (those may not share).
+fn sweep(replicates: usize, seed: u64) -> (Columns, Vec<Option<Prefix>>) {
+    let draws = columns_of(0..replicates, seed);
+    let mut c = Columns::new(POINTS.len() * replicates);
+    let mut prefixes = Vec::new();
+    for (p, &(travel, later_s, duration_s)) in POINTS.iter().enumerate() {
+        for r in 0..replicates {
+            for (input, values) in &draws.inputs {
+                let v = values[r];
+                let v = match *input {
+                    Input::ShiftTravelM(0) => travel,
+                    Input::ShiftDurationS(0) => duration_s,
+                    Input::ShiftTrigger(0) => v + later_s,
+                    Input::WindSpeedMS if p == 2 && r % 5 == 1 => v * (1.0 + 1e-12),
+                    _ => v,
+                };
+                c.column_mut(*input).push(v);
+            }
+            let start = draws.get(Input::ShiftTrigger(0)).unwrap()[r];
+            prefixes.push(Some(Prefix {
+                key: r as u64,
+                // The earliest start among the points: POINTS' first has no delay.
+                until_s: start,
+                owner: p == 0,
+                borrowers: (POINTS.len() - 1) as u32,
+            }));
+        }
+    }
+    (c, prefixes)
+}
+
+#[test]
+fn flights_that_share_their_beginning_equal_flights_flown_whole_bit_for_bit() {
+    let replicates = 48;
+    let (c, prefixes) = sweep(replicates, 11);
+    let n = c.len;
+    let batch = Batch::new(base(), Some(reference::BALLAST)).unwrap();
+    let store = PrefixStore::new(batch.base().model(), 1000);
+    // Chunks of 16 rows in order, as a run takes them: every owner's chunk is done before
+    // its borrowers' start.
+    let (mut shared, mut whole) = (Vec::new(), Vec::new());
+    for first in (0..n).step_by(16) {
+        let rows = first..(first + 16).min(n);
+        let chunk = c.slice(rows.clone());
+        shared.extend(
+            batch
+                .fly_chunk_sharing(&chunk, first, Some((&prefixes[rows], &store)))
+                .unwrap(),
+        );
+        whole.extend(batch.fly_chunk(&chunk, first).unwrap());
+    }
+    assert_eq!(shared.len(), n);
+    for (a, b) in shared.iter().zip(&whole) {
+        // PartialEq on f64: every metric, outcome and count bit for bit.
+        assert_eq!(a, b, "variant {}", a.variant);
+    }
+    // Every borrower whose owner and itself flew took the owner's beginning, but for the
+    // rows whose wind differs.
+    let flown = |i: usize| whole[i].flown;
+    let expected = (0..replicates)
+        .filter(|&r| flown(r))
+        .map(|r| {
+            (1..POINTS.len())
+                .filter(|&p| flown(p * replicates + r) && !(p == 2 && r % 5 == 1))
+                .count() as u64
+        })
+        .sum::<u64>();
+    eprintln!(
+        "{n} flights, {} flown; {} began from their owner's flight",
+        whole.iter().filter(|l| l.flown).count(),
+        store.borrowed()
+    );
+    assert!(
+        expected >= 100,
+        "the sweep flies too few to show sharing ({expected})"
+    );
+    assert_eq!(store.borrowed(), expected);
+    // Each owner's beginning was dropped after its last borrower.
+    assert!(store.is_empty(), "{} beginnings left", store.len());
+}
