@@ -698,14 +698,19 @@ impl Batch {
                         Err(p) => Err((Status::Failed, format!("the simulator panicked: {p}"))),
                     }
                 });
+                let prefix = prefix_of(row);
                 let sim = match sim {
                     Ok(s) => s,
                     Err((status, e)) => {
                         results[row] = Some(self.empty(variant, *status, e.clone()));
+                        // A refused borrower takes nothing: its owner's flight is kept for
+                        // one flight fewer.
+                        if let Some((prefix, store)) = prefix.filter(|(p, _)| !p.owner) {
+                            store.pass(&prefix);
+                        }
                         continue;
                     }
                 };
-                let prefix = prefix_of(row);
                 if let Some((prefix, store)) = prefix.filter(|(p, _)| !p.owner) {
                     match guarded(|| store.take(&prefix, sim.model(), columns, row)) {
                         Ok(Some(paused)) => {

@@ -159,6 +159,21 @@ impl<'m> PrefixStore<'m> {
         taken
     }
 
+    /// A borrower of `prefix` that will not take its beginning (its inputs were refused):
+    /// the owner's flight is kept for one borrower fewer.
+    pub(super) fn pass(&self, prefix: &Prefix) {
+        let mut entries = self.lock();
+        let Some(entry) = entries.get_mut(&prefix.key) else {
+            return;
+        };
+        if entry.until_s.to_bits() == prefix.until_s.to_bits() {
+            entry.left = entry.left.saturating_sub(1);
+            if entry.left == 0 {
+                entries.remove(&prefix.key);
+            }
+        }
+    }
+
     /// Whether the flight of `model` (row `row` of `columns`) may take `entry`'s beginning:
     /// if so, the owner's stop times of the shifts that differ and the borrower's.
     fn fits(
