@@ -182,15 +182,29 @@ pub fn timings_text(r: &RunReport) -> String {
         let _ = writeln!(out, "  {name:<28} {d:>8.3} s {:>5.1} %", 100.0 * d / total);
     };
     line("variants file (parts copied)", s(t.merge));
-    line("statistics and their files", s(t.statistics));
-    line("trajectories", s(t.trajectories));
+    line(
+        "statistics and trajectories",
+        s(t.statistics_and_trajectories),
+    );
+    for (name, d, note) in [
+        ("statistics and their files", s(t.statistics), ""),
+        (
+            "trajectories",
+            s(t.trajectories),
+            " (beside the statistics)",
+        ),
+    ] {
+        let _ = writeln!(out, "    {name:<26} {d:>8.3} s{note}");
+    }
+    let mut line = |name: &str, d: f64| {
+        let _ = writeln!(out, "  {name:<28} {d:>8.3} s {:>5.1} %", 100.0 * d / total);
+    };
     line("report and maps", s(t.report));
     let rest = total
         - s(t.prepare)
         - s(t.flying_wall)
         - s(t.merge)
-        - s(t.statistics)
-        - s(t.trajectories)
+        - s(t.statistics_and_trajectories)
         - s(t.report);
     line("other", rest.max(0.0));
     let _ = writeln!(

@@ -26,12 +26,13 @@ use hpr_design::mass;
 use hpr_design::motor::{self, Motor, MotorError, MotorField, MotorTables};
 use hpr_sim::batch::{
     Batch, BatchDesigns, BatchWeather, LaneResult, ParachuteOutcome, Prefix, PrefixStore,
-    ReleaseOutcome, ShiftOutcome,
+    ReleaseOutcome, Share, ShiftOutcome,
 };
 use hpr_sim::flight::Metrics;
 use hpr_sim::inputs::Part;
 use hpr_sim::{SimError, SimOptions, Simulation, Trigger};
 use setup::{Fixed, Setup};
+use std::sync::Arc;
 
 /// How many kinds of warning a flight can raise ([`hpr_sim::Warning::KEYS`]).
 pub const WARNINGS: usize = hpr_sim::Warning::KEYS.len();
@@ -176,7 +177,9 @@ pub struct Prepared {
 /// flight until the earliest of those shifts' starts among the points, so the first point's
 /// flight flies that stretch once and leaves it for the others ([`hpr_sim::batch::Prefix`]).
 /// The points group by their other swept inputs (a sweep of fin spans and ballast travels
-/// shares within each span).
+/// shares within each span); within a group, the points whose moves start later than the
+/// group's earliest (the same swept start times) share on to their own start: the first of
+/// them takes the group's beginning and leaves the longer one for the rest.
 #[derive(Debug, Clone)]
 struct Sharing {
     /// Each swept shift's start: a fixed time, or the plan's input that gives it.
@@ -185,7 +188,10 @@ struct Sharing {
     centers: Vec<Vec<f64>>,
     /// Every point's group: the points that differ from it only in the swept shifts'
     /// inputs, in order (the first is the group's owner).
-    groups: Vec<std::sync::Arc<Vec<usize>>>,
+    groups: Vec<Arc<Vec<usize>>>,
+    /// Every point's subgroup: the points of its group whose swept shifts start when its
+    /// own do (the same swept start times), in order.
+    subgroups: Vec<Arc<Vec<usize>>>,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -194,9 +200,24 @@ enum ShiftStart {
     Input(usize),
 }
 
-/// Shared beginnings are kept for at most this many replicates at once (a few kilobytes
-/// each); replicates beyond them fly from the pad.
-const SHARED_BEGINNINGS: usize = 4096;
+/// Shared beginnings are kept for at most this many at once (about 1.7 KB each, measured
+/// as the peak memory's growth: 14 MiB at most); flights whose owner found the store full
+/// fly from the pad.
+const SHARED_BEGINNINGS: usize = 8192;
+
+/// The points of `keys` with the same key as each point, in order, one list shared by them.
+fn classes<K: PartialEq>(keys: &[K]) -> Vec<Arc<Vec<usize>>> {
+    let mut classes: Vec<Arc<Vec<usize>>> = Vec::with_capacity(keys.len());
+    for q in 0..keys.len() {
+        match (0..q).find(|&o| keys[o] == keys[q]) {
+            Some(o) => classes.push(classes[o].clone()),
+            None => classes.push(Arc::new(
+                (q..keys.len()).filter(|&m| keys[m] == keys[q]).collect(),
+            )),
+        }
+    }
+    classes
+}
 
 impl Sharing {
     /// The sharing of `plan`'s points flying `base` (the first point's flight), if some
@@ -247,26 +268,37 @@ impl Sharing {
                 }
             })
             .collect();
-        // Points group by the sweep indices of their other inputs.
+        // Points group by the sweep indices of their other inputs, and within a group by
+        // those of their swept start times.
         let points = plan.points();
-        let keys: Vec<Vec<Option<usize>>> = (0..points)
-            .map(|q| {
-                let mut idx = plan.point_indices(q);
-                for (j, _) in late.iter().enumerate().filter(|(_, l)| **l) {
-                    idx[j] = None;
-                }
-                idx
+        let indices: Vec<Vec<Option<usize>>> = (0..points).map(|q| plan.point_indices(q)).collect();
+        let group_keys: Vec<Vec<Option<usize>>> = indices
+            .iter()
+            .map(|idx| {
+                idx.iter()
+                    .zip(&late)
+                    .map(|(i, l)| if *l { None } else { *i })
+                    .collect()
             })
             .collect();
-        let mut groups: Vec<std::sync::Arc<Vec<usize>>> = Vec::with_capacity(points);
-        for q in 0..points {
-            match (0..q).find(|&o| keys[o] == keys[q]) {
-                Some(o) => groups.push(groups[o].clone()),
-                None => groups.push(std::sync::Arc::new(
-                    (q..points).filter(|&m| keys[m] == keys[q]).collect(),
-                )),
-            }
-        }
+        let sub_keys: Vec<Vec<Option<usize>>> = indices
+            .iter()
+            .map(|idx| {
+                idx.iter()
+                    .zip(&late)
+                    .zip(inputs)
+                    .map(|((i, l), input)| {
+                        let start = matches!(input.param, Param::ShiftTrigger(_));
+                        if *l && !start {
+                            None
+                        } else {
+                            *i
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let groups = classes(&group_keys);
         if groups.iter().all(|g| g.len() < 2) {
             return None;
         }
@@ -274,34 +306,83 @@ impl Sharing {
             starts,
             centers: (0..points).map(|q| plan.centers(q)).collect(),
             groups,
+            subgroups: classes(&sub_keys),
         })
     }
 
-    /// The place of variant `v` among the variants sharing its beginning (`None`: it
-    /// shares none): its group's replicate, until the earliest start of a swept shift at any
-    /// point of its group.
+    /// What variant `v` shares (`None`: nothing): the beginning it takes from its group's
+    /// first point, to the earliest start of a swept shift in the group, or from its
+    /// subgroup's first point, to their own start when that is later; and the beginning it
+    /// leaves if it is the first of either.
     fn prefix(&self, plan: &Plan, v: &Variant) -> Option<Prefix> {
         let group = &self.groups[v.point];
         if group.len() < 2 {
             return None;
         }
-        let mut until_s = f64::INFINITY;
-        for start in &self.starts {
-            for &q in group.iter() {
-                let t = match *start {
+        let r = v.replicate;
+        // Each point's earliest start of a swept shift in this replicate.
+        let start = |q: usize| {
+            self.starts
+                .iter()
+                .map(|s| match *s {
                     ShiftStart::At(t) => t,
-                    ShiftStart::Input(j) => plan.common_value(&self.centers[q], v.replicate, j),
-                };
-                until_s = until_s.min(t);
-            }
-        }
+                    ShiftStart::Input(j) => plan.common_value(&self.centers[q], r, j),
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
         let owner = group[0];
-        Some(Prefix {
-            // The owner's variant id.
-            key: owner as u64 * plan.variants_per_point + v.replicate,
+        let until_s = group
+            .iter()
+            .map(|&q| start(q))
+            .fold(f64::INFINITY, f64::min);
+        // A subgroup that starts later than the group shares on to its start.
+        let later = |q: usize| {
+            let sub = &self.subgroups[q];
+            let first_start = start(sub[0]);
+            (sub.len() >= 2 && !sub.contains(&owner) && first_start > until_s)
+                .then(|| (sub.clone(), first_start))
+        };
+        let id = |q: usize| q as u64 * plan.variants_per_point + r;
+        let second: usize = group
+            .iter()
+            .filter(|&&q| self.subgroups[q][0] == q)
+            .filter_map(|&q| later(q).map(|(sub, _)| sub.len() - 1))
+            .sum();
+        let first = Share {
+            key: id(owner),
             until_s,
-            owner: v.point == owner,
-            borrowers: (group.len() - 1) as u32,
+            borrowers: (group.len() - 1 - second) as u32,
+        };
+        let q = v.point;
+        if q == owner {
+            return Some(Prefix {
+                take: None,
+                keep: Some(first),
+            });
+        }
+        Some(match later(q) {
+            Some((sub, sub_start)) => {
+                let share = Share {
+                    key: id(sub[0]),
+                    until_s: sub_start,
+                    borrowers: (sub.len() - 1) as u32,
+                };
+                if q == sub[0] {
+                    Prefix {
+                        take: Some(first),
+                        keep: Some(share),
+                    }
+                } else {
+                    Prefix {
+                        take: Some(share),
+                        keep: None,
+                    }
+                }
+            }
+            None => Prefix {
+                take: Some(first),
+                keep: None,
+            },
         })
     }
 }

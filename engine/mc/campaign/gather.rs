@@ -257,8 +257,11 @@ impl Gather {
             );
         }
         let p = self.dispersed.len();
+        // Each point's accumulators are its own: summed up side by side.
+        use rayon::prelude::*;
+        let metrics = self.metrics;
         self.streams
-            .iter_mut()
+            .par_iter_mut()
             .enumerate()
             .map(|(point, s)| PointStats {
                 point,
@@ -267,7 +270,7 @@ impl Gather {
                 summaries: s.moments.iter_mut().map(MetricStream::summary).collect(),
                 ellipse: s.ellipses.first().and_then(Bivariate::ellipse),
                 release_ellipses: s.ellipses.iter().skip(1).map(Bivariate::ellipse).collect(),
-                sensitivity: (0..self.metrics)
+                sensitivity: (0..metrics)
                     .map(|m| {
                         if p == 0 {
                             None

@@ -126,9 +126,12 @@ pub struct Timings {
     pub waiting: Duration,
     /// Copying the parts into the variants file.
     pub merge: Duration,
+    /// The statistics and the trajectories, side by side (wall).
+    pub statistics_and_trajectories: Duration,
     /// Computing the statistics and writing their four files.
     pub statistics: Duration,
-    /// Flying the few variants of trajectories.parquet again and writing it.
+    /// Flying the few variants of trajectories.parquet again and writing it (beside the
+    /// statistics).
     pub trajectories: Duration,
     /// The report and the landing maps.
     pub report: Duration,
@@ -359,7 +362,14 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
             )?;
         }
         timings.merge = merging.elapsed();
-        finish(&mut report, &meta, &mut gather, &held, &mut timings)?;
+        finish_beside_trajectories(
+            &mut report,
+            &meta,
+            &mut gather,
+            &held,
+            &mut timings,
+            threads,
+        )?;
         std::fs::remove_dir_all(&report.outputs.parts)
             .with_context(|| format!("can't remove {}", report.outputs.parts.display()))?;
         let _ = std::fs::remove_dir(report.outputs.dir.join("parts"));
@@ -372,23 +382,15 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         timings.gather = reading.elapsed();
         let _ = std::fs::remove_dir_all(&out.parts);
         let _ = std::fs::remove_dir(out.dir.join("parts"));
-        finish(&mut report, &meta, &mut gather, &held, &mut timings)?;
+        finish_beside_trajectories(
+            &mut report,
+            &meta,
+            &mut gather,
+            &held,
+            &mut timings,
+            threads,
+        )?;
     }
-    let flying = Instant::now();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .context("can't start the worker threads")?;
-    report.trajectories = pool.install(|| {
-        super::trajectories::write(
-            &report.prepared,
-            shard,
-            &report.outputs.trajectories,
-            &held.temporary(&report.outputs.trajectories),
-            &meta.pairs(),
-        )
-    })?;
-    timings.trajectories = flying.elapsed();
     report.complete = true;
     if !cfg.no_report {
         let drawing = Instant::now();
@@ -751,6 +753,47 @@ fn check_ids(
         }
         *q += 1;
     }
+    Ok(())
+}
+
+/// [`finish`], the few variants of `trajectories.parquet` flown again alone and written on
+/// another thread meanwhile (each on `threads` threads: the statistics are computed point by
+/// point side by side, the trajectories flown side by side).
+fn finish_beside_trajectories(
+    report: &mut RunReport,
+    meta: &RunMeta,
+    gather: &mut Gather,
+    held: &OutputDir,
+    timings: &mut Timings,
+    threads: usize,
+) -> anyhow::Result<()> {
+    let prepared = report.prepared.clone();
+    let (shard, path) = (report.shard, report.outputs.trajectories.clone());
+    let (tmp, pairs) = (held.temporary(&path), meta.pairs());
+    let pool = |what: &str| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .with_context(|| format!("can't start the threads of the {what}"))
+    };
+    let (stats_pool, trajectories_pool) = (pool("statistics")?, pool("trajectories")?);
+    let both = Instant::now();
+    let (finished, trajectories) = std::thread::scope(|s| {
+        let trajectories = s.spawn(|| {
+            let t = Instant::now();
+            let written = trajectories_pool
+                .install(|| super::trajectories::write(&prepared, shard, &path, &tmp, &pairs));
+            (written, t.elapsed())
+        });
+        let finished = stats_pool.install(|| finish(report, meta, gather, held, timings));
+        (finished, trajectories.join())
+    });
+    timings.statistics_and_trajectories = both.elapsed();
+    finished?;
+    let (written, spent) = trajectories
+        .map_err(|_| anyhow::anyhow!("the thread writing trajectories.parquet panicked"))?;
+    report.trajectories = written?;
+    timings.trajectories = spent;
     Ok(())
 }
 

@@ -332,8 +332,11 @@ pub fn compute(
         rows_of[p as usize].push(r);
     }
     let inputs: Vec<usize> = (0..table.inputs.len()).filter(|&j| dispersed[j]).collect();
+    // Each point's statistics are its own: computed side by side on the threads of the pool
+    // this runs in, collected in point order.
+    use rayon::prelude::*;
     rows_of
-        .iter()
+        .par_iter()
         .enumerate()
         .map(|(point, rows)| {
             let landed: Vec<usize> = rows.iter().copied().filter(|&r| table.landed[r]).collect();

@@ -53,7 +53,7 @@ mod prefix;
 mod stream;
 
 pub use group::{eval_four, LANES_IN_FLIGHT};
-pub use prefix::{Prefix, PrefixStore};
+pub use prefix::{Prefix, PrefixStore, Share};
 
 use crate::atmosphere::{AirModel, AirTable};
 use crate::events::EventKind;
@@ -705,14 +705,27 @@ impl Batch {
                         results[row] = Some(self.empty(variant, *status, e.clone()));
                         // A refused borrower takes nothing: its owner's flight is kept for
                         // one flight fewer.
-                        if let Some((prefix, store)) = prefix.filter(|(p, _)| !p.owner) {
-                            store.pass(&prefix);
+                        if let Some((
+                            Prefix {
+                                take: Some(take), ..
+                            },
+                            store,
+                        )) = prefix
+                        {
+                            store.pass(&take);
                         }
                         continue;
                     }
                 };
-                if let Some((prefix, store)) = prefix.filter(|(p, _)| !p.owner) {
-                    match guarded(|| store.take(&prefix, sim.model(), columns, row)) {
+                let keeps = prefix.is_some_and(|(p, _)| p.keep.is_some());
+                if let Some((
+                    Prefix {
+                        take: Some(take), ..
+                    },
+                    store,
+                )) = prefix
+                {
+                    match guarded(|| store.take(&take, sim.model(), columns, row)) {
                         Ok(Some(paused)) => {
                             lanes.push(Lane {
                                 row,
@@ -720,7 +733,7 @@ impl Batch {
                                 flying: Flying::Free(paused),
                                 end: None,
                                 retrying: false,
-                                owns_prefix: false,
+                                owns_prefix: keeps,
                             });
                             continue;
                         }
@@ -740,7 +753,7 @@ impl Batch {
                         flying: Flying::Free(paused),
                         end: None,
                         retrying: false,
-                        owns_prefix: prefix.is_some_and(|(p, _)| p.owner),
+                        owns_prefix: keeps,
                     }),
                     Ok(Ok(Progress::Done(flight))) => {
                         results[row] = Some(self.lane_result(sim, Ok(flight), variant))
@@ -756,17 +769,21 @@ impl Batch {
             // it for them now, between steps.
             if let Some((prefixes, store)) = share {
                 for lane in lanes.iter_mut().filter(|l| l.owns_prefix && !l.retrying) {
-                    let (Flying::Free(p), Some(Some(prefix))) =
-                        (&mut lane.flying, prefixes.get(lane.row))
+                    let (
+                        Flying::Free(p),
+                        Some(Some(Prefix {
+                            keep: Some(keep), ..
+                        })),
+                    ) = (&mut lane.flying, prefixes.get(lane.row))
                     else {
                         lane.owns_prefix = false;
                         continue;
                     };
-                    if !p.next_step_before(prefix.until_s) {
+                    if !p.next_step_before(keep.until_s) {
                         lane.owns_prefix = false;
                         // Leaving it is no part of this lane's flight: if it fails, the
                         // borrowers fly from the pad.
-                        let _ = guarded(|| store.keep(prefix, p, columns, lane.row));
+                        let _ = guarded(|| store.keep(keep, p, columns, lane.row));
                     }
                 }
             }

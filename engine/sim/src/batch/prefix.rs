@@ -28,17 +28,24 @@ use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
-/// A row's place among rows that fly the same flight up to a time.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What a row shares with rows of other chunks: the beginning it takes from another row's
+/// flight, and the one it leaves for others (a row may do both: it takes a beginning shared
+/// by many and flies on to leave a longer one for fewer).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Prefix {
-    /// The rows sharing a beginning share this key (a replicate's number).
+    pub take: Option<Share>,
+    pub keep: Option<Share>,
+}
+
+/// A beginning that rows share.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Share {
+    /// The rows sharing a beginning share this key (its owner's variant number).
     pub key: u64,
     /// The first time at which their flights may differ, s: the earliest start of a shift
     /// whose inputs differ among them (the same for every row of the key).
     pub until_s: f64,
-    /// Whether this row flies the shared beginning and leaves it for the others.
-    pub owner: bool,
-    /// How many rows will borrow the owner's beginning (its copy is dropped after them).
+    /// How many rows will take the owner's beginning (its copy is dropped after them).
     pub borrowers: u32,
 }
 
@@ -97,50 +104,50 @@ impl<'m> PrefixStore<'m> {
     }
 
     /// Keep the owner's flight `paused` (row `row` of `columns`) for the borrowers of
-    /// `prefix`, unless the store is full or holds that key already.
+    /// `share`, unless the store is full or holds that key already.
     pub(super) fn keep(
         &self,
-        prefix: &Prefix,
+        share: &Share,
         paused: &Paused<'_, ()>,
         columns: &Columns,
         row: usize,
     ) {
         // No attempt so far may have reached the first time the flights may differ.
-        if prefix.borrowers == 0 || !(paused.reach() < prefix.until_s) {
+        if share.borrowers == 0 || !(paused.reach() < share.until_s) {
             return;
         }
         let model = paused.model();
         let mut entries = self.lock();
-        if entries.len() >= self.capacity || entries.contains_key(&prefix.key) {
+        if entries.len() >= self.capacity || entries.contains_key(&share.key) {
             return;
         }
         let observer: &'m mut () = Box::leak(Box::new(()));
         entries.insert(
-            prefix.key,
+            share.key,
             Entry {
-                until_s: prefix.until_s,
+                until_s: share.until_s,
                 inputs: row_bits(columns, row),
                 seed: columns.sensor_seed.get(row).copied(),
                 starts_s: fixed_starts(model),
                 paused: Box::new(paused.clone_onto(self.placeholder, observer)),
-                left: prefix.borrowers,
+                left: share.borrowers,
             },
         );
     }
 
-    /// The shared beginning of `prefix` as the flight of `model` (row `row` of `columns`),
+    /// The shared beginning `share` as the flight of `model` (row `row` of `columns`),
     /// if the store holds it and this flight may take it (see the module's text); `None`
     /// otherwise (the flight then flies from the pad).
     pub(super) fn take<'a>(
         &self,
-        prefix: &Prefix,
+        share: &Share,
         model: &'a FlightModel,
         columns: &Columns,
         row: usize,
     ) -> Option<Box<Paused<'a, ()>>> {
         let mut entries = self.lock();
-        let entry = entries.get_mut(&prefix.key)?;
-        if entry.until_s.to_bits() != prefix.until_s.to_bits() {
+        let entry = entries.get_mut(&share.key)?;
+        if entry.until_s.to_bits() != share.until_s.to_bits() {
             return None;
         }
         entry.left = entry.left.saturating_sub(1);
@@ -151,7 +158,7 @@ impl<'m> PrefixStore<'m> {
             Box::new(paused)
         });
         if entry.left == 0 {
-            entries.remove(&prefix.key);
+            entries.remove(&share.key);
         }
         if taken.is_some() {
             self.borrowed.fetch_add(1, Ordering::Relaxed);
@@ -159,17 +166,17 @@ impl<'m> PrefixStore<'m> {
         taken
     }
 
-    /// A borrower of `prefix` that will not take its beginning (its inputs were refused):
+    /// A borrower of `share` that will not take its beginning (its inputs were refused):
     /// the owner's flight is kept for one borrower fewer.
-    pub(super) fn pass(&self, prefix: &Prefix) {
+    pub(super) fn pass(&self, share: &Share) {
         let mut entries = self.lock();
-        let Some(entry) = entries.get_mut(&prefix.key) else {
+        let Some(entry) = entries.get_mut(&share.key) else {
             return;
         };
-        if entry.until_s.to_bits() == prefix.until_s.to_bits() {
+        if entry.until_s.to_bits() == share.until_s.to_bits() {
             entry.left = entry.left.saturating_sub(1);
             if entry.left == 0 {
-                entries.remove(&prefix.key);
+                entries.remove(&share.key);
             }
         }
     }

@@ -4,14 +4,50 @@
 
 use super::*;
 
-/// Four sweep points of the ballast's move: (travel, m; start after the replicate's own
-/// drawn start, s; duration, s).
-const POINTS: [(f64, f64, f64); 4] = [
+/// Five sweep points of the ballast's move: (travel, m; start after the replicate's own
+/// drawn start, s; duration, s). Points 2 and 4 start a second later than the first: point 2
+/// takes the beginning all share and leaves a longer one for point 4.
+const POINTS: [(f64, f64, f64); 5] = [
     (0.0, 0.0, 1.0),
     (0.1, 0.0, 0.5),
     (0.3, 1.0, 1.0),
     (0.2, 0.5, 0.8),
+    (0.25, 1.0, 0.7),
 ];
+
+/// Row `r` of point `p`'s place among the rows sharing their beginnings: point 0 leaves the
+/// beginning to the replicate's start for points 1, 2 and 3, and point 2 the one to a second
+/// later for point 4.
+fn place(p: usize, r: usize, replicates: usize, start: f64) -> Prefix {
+    let first = Share {
+        key: r as u64,
+        until_s: start,
+        borrowers: 3,
+    };
+    let later = Share {
+        key: (2 * replicates + r) as u64,
+        until_s: start + 1.0,
+        borrowers: 1,
+    };
+    match p {
+        0 => Prefix {
+            take: None,
+            keep: Some(first),
+        },
+        2 => Prefix {
+            take: Some(first),
+            keep: Some(later),
+        },
+        4 => Prefix {
+            take: Some(later),
+            keep: None,
+        },
+        _ => Prefix {
+            take: Some(first),
+            keep: None,
+        },
+    }
+}
 
 /// The sweep's rows, point-major (row `p * replicates + r`): replicate `r` of every point has
 /// the draws of row `r` of [`columns_of`], its move's travel, start and duration the point's;
@@ -36,13 +72,7 @@ fn sweep(replicates: usize, seed: u64) -> (Columns, Vec<Option<Prefix>>) {
                 c.column_mut(*input).push(v);
             }
             let start = draws.get(Input::ShiftTrigger(0)).unwrap()[r];
-            prefixes.push(Some(Prefix {
-                key: r as u64,
-                // The earliest start among the points: POINTS' first has no delay.
-                until_s: start,
-                owner: p == 0,
-                borrowers: (POINTS.len() - 1) as u32,
-            }));
+            prefixes.push(Some(place(p, r, replicates, start)));
         }
     }
     (c, prefixes)
@@ -73,15 +103,17 @@ fn flights_that_share_their_beginning_equal_flights_flown_whole_bit_for_bit() {
         // PartialEq on f64: every metric, outcome and count bit for bit.
         assert_eq!(a, b, "variant {}", a.variant);
     }
-    // Every borrower whose owner and itself flew took the owner's beginning, but for the
-    // rows whose wind differs.
-    let flown = |i: usize| whole[i].flown;
+    // Every borrower whose owner and itself flew took the owner's beginning, but where
+    // point 2's wind differs (from point 0's, and from point 4's).
+    let flown = |p: usize, r: usize| whole[p * replicates + r].flown;
     let expected = (0..replicates)
-        .filter(|&r| flown(r))
         .map(|r| {
-            (1..POINTS.len())
-                .filter(|&p| flown(p * replicates + r) && !(p == 2 && r % 5 == 1))
-                .count() as u64
+            let wind = r % 5 == 1;
+            let first = (1..4)
+                .filter(|&p| flown(0, r) && flown(p, r) && !(p == 2 && wind))
+                .count();
+            let later = usize::from(flown(2, r) && flown(4, r) && !wind);
+            (first + later) as u64
         })
         .sum::<u64>();
     eprintln!(
