@@ -200,9 +200,9 @@ enum ShiftStart {
     Input(usize),
 }
 
-/// Shared beginnings are kept for at most this many at once (about 1.7 KB each, measured
-/// as the peak memory's growth: 14 MiB at most); flights whose owner found the store full
-/// fly from the pad.
+/// Shared beginnings are kept for at most this many at once (about 4.7 KB each: a full
+/// store adds about 38 MiB to a run's peak memory, measured); flights whose owner found
+/// the store full fly from the pad.
 const SHARED_BEGINNINGS: usize = 8192;
 
 /// The points of `keys` with the same key as each point, in order, one list shared by them.
