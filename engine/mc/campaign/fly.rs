@@ -125,7 +125,7 @@ const AIR_BRAKES: [Metric<Metrics>; 2] = [
 
 /// The metrics of each release (`release_<name>_...`): when it fired, the static margin just
 /// before and after, and the released part's landing; a part with a parachute has
-/// [`RELEASE_CHUTE`] besides.
+/// `RELEASE_CHUTE` besides.
 pub const PER_RELEASE: [Metric<ReleaseOutcome>; 8] = [
     ("fire_time_s", "s", |r| r.time_s),
     ("margin_before_cal", "cal", |r| r.margin_before_cal),

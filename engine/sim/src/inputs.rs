@@ -63,7 +63,7 @@ pub enum Input {
     LaunchTimeH,
     /// The weather file's ensemble member, by the file's number.
     WeatherMember,
-    /// The motor, by its number in the batch's list of motors ([`InputContext::motors`]).
+    /// The motor, by its number in the batch's list of motors ([`InputContext::motors`](crate::flight::changes::InputContext::motors)).
     Motor,
     /// The motor's casing (dry) mass, kg (each motor's, for a cluster).
     MotorDryMassKg,

@@ -2,7 +2,7 @@
 //! atmosphere, wind, aerodynamic loads, the one rigid-body derivative), the integrators and
 //! event location, triggers, parachutes, mass shifts, released masses, and the two drivers built on the same
 //! kernels: the single-flight [`Simulation`] and the structure-of-arrays batch engine; and the
-//! reference rocket the worked examples, benchmarks and tests fly ([`reference`]).
+//! reference rocket the worked examples, benchmarks and tests fly ([`reference`](mod@reference)).
 
 pub mod aero_loads;
 pub mod atmosphere;

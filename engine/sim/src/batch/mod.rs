@@ -664,8 +664,8 @@ impl Batch {
 
     /// [`Batch::fly_chunk`], rows that share the beginning of their flights with rows of
     /// other chunks flying it once (`share`: each row's [`Prefix`], or `None` for a row
-    /// that shares nothing, and the store the chunks leave and take beginnings in; see
-    /// [`prefix`](self::prefix)). The results are [`Batch::fly_chunk`]'s, bit for bit.
+    /// that shares nothing, and the [`PrefixStore`] the chunks leave and take beginnings
+    /// in). The results are [`Batch::fly_chunk`]'s, bit for bit.
     pub fn fly_chunk_sharing(
         &self,
         columns: &Columns,
@@ -673,7 +673,7 @@ impl Batch {
         share: Option<(&[Option<Prefix>], &PrefixStore<'_>)>,
     ) -> Result<Vec<LaneResult>, ColumnsError> {
         self.check(columns)?;
-        // A lane keeping its samples needs its own beginning's.
+        // Lanes keeping their samples share nothing: a store's beginnings may have kept none.
         let share = share.filter(|_| !self.base.options().keep_samples);
         let prefix_of =
             |row: usize| share.and_then(|(p, store)| Some((p.get(row).copied().flatten()?, store)));

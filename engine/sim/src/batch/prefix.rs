@@ -248,4 +248,3 @@ fn fixed_starts(model: &FlightModel) -> Vec<Option<f64>> {
         .map(|s| s.trigger.fixed_time(model.burnout_s, model.motor_delay_s))
         .collect()
 }
-

@@ -36,7 +36,7 @@
 //! **What the flight gets** ([`SiteWeather::over_site`]): the levels become a sounding
 //! (`crate::sounding`) and are read as one: the site's temperature interpolated linearly in
 //! height between the levels around it and its pressure with ln p linear in height; the air
-//! above the site is an [`AirProfile`](crate::atmosphere::AirProfile) through the levels'
+//! above the site is an [`AirProfile`] through the levels'
 //! temperatures, its pressure carried up hydrostatically from the site's (dry air; the
 //! files hold no humidity); the wind is a table of the levels' east and north components,
 //! interpolated linearly in height. Built once per scenario (or per launch time or member a
