@@ -343,7 +343,7 @@ impl Changes<'_> {
         if rebuilt {
             let of = ctx.design.ok_or_else(|| setup(SetupError::NoDesigns))?;
             let (design, tables) = of(&dimensions)?;
-            self.sim.design = design;
+            self.sim.design = std::sync::Arc::new(design);
             self.sim.tables = tables;
         }
         let new_motor = get(Input::Motor).is_some();
@@ -358,7 +358,7 @@ impl Changes<'_> {
                         count: ctx.motors.len(),
                     })
                 })?;
-            self.sim.motor = m.clone();
+            self.sim.motor = std::sync::Arc::new(m.clone());
         }
         // A new design or motor: the parachutes, shifts and releases are judged again.
         let judge_again = rebuilt || new_motor;

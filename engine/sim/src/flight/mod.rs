@@ -108,8 +108,10 @@ pub enum SimError {
 /// A flight, set up and checked, ready to run.
 #[derive(Debug, Clone)]
 pub struct Simulation {
-    design: Design,
-    motor: Motor,
+    /// The design and the motor, shared by the flights made from this one (a batch's lanes
+    /// clone the base for each variant; a new design or motor replaces the whole).
+    design: Arc<Design>,
+    motor: Arc<Motor>,
     motor_options: MotorOptions,
     env: Environment,
     rail: Rail,
@@ -256,8 +258,8 @@ impl Simulation {
         )?;
         model.set_noise_seed(0);
         Ok(Simulation {
-            design,
-            motor,
+            design: Arc::new(design),
+            motor: Arc::new(motor),
             motor_options,
             env,
             rail,
