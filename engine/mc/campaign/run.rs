@@ -362,14 +362,7 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
             )?;
         }
         timings.merge = merging.elapsed();
-        finish_beside_trajectories(
-            &mut report,
-            &meta,
-            &mut gather,
-            &held,
-            &mut timings,
-            threads,
-        )?;
+        // The variants file is whole: a run killed from here on is resumed from it.
         std::fs::remove_dir_all(&report.outputs.parts)
             .with_context(|| format!("can't remove {}", report.outputs.parts.display()))?;
         let _ = std::fs::remove_dir(report.outputs.dir.join("parts"));
@@ -382,15 +375,15 @@ pub fn run_campaign(scenario: &Path, cfg: &RunConfig) -> anyhow::Result<RunRepor
         timings.gather = reading.elapsed();
         let _ = std::fs::remove_dir_all(&out.parts);
         let _ = std::fs::remove_dir(out.dir.join("parts"));
-        finish_beside_trajectories(
-            &mut report,
-            &meta,
-            &mut gather,
-            &held,
-            &mut timings,
-            threads,
-        )?;
     }
+    finish_beside_trajectories(
+        &mut report,
+        &meta,
+        &mut gather,
+        &held,
+        &mut timings,
+        threads,
+    )?;
     report.complete = true;
     if !cfg.no_report {
         let drawing = Instant::now();

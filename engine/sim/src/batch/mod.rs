@@ -718,6 +718,14 @@ impl Batch {
                     }
                 };
                 let keeps = prefix.is_some_and(|(p, _)| p.keep.is_some());
+                let lane = |flying| Lane {
+                    row,
+                    sim,
+                    flying,
+                    end: None,
+                    retrying: false,
+                    owns_prefix: keeps,
+                };
                 if let Some((
                     Prefix {
                         take: Some(take), ..
@@ -727,14 +735,7 @@ impl Batch {
                 {
                     match guarded(|| store.take(&take, sim.model(), columns, row)) {
                         Ok(Some(paused)) => {
-                            lanes.push(Lane {
-                                row,
-                                sim,
-                                flying: Flying::Free(paused),
-                                end: None,
-                                retrying: false,
-                                owns_prefix: keeps,
-                            });
+                            lanes.push(lane(Flying::Free(paused)));
                             continue;
                         }
                         Ok(None) => {}
@@ -747,14 +748,7 @@ impl Batch {
                 // Lanes observe nothing: a zero-sized observer, leaked without allocating.
                 let observer: &mut () = Box::leak(Box::new(()));
                 match guarded(|| fly_to_free(sim.model(), observer, None)) {
-                    Ok(Ok(Progress::Free(paused))) => lanes.push(Lane {
-                        row,
-                        sim,
-                        flying: Flying::Free(paused),
-                        end: None,
-                        retrying: false,
-                        owns_prefix: keeps,
-                    }),
+                    Ok(Ok(Progress::Free(paused))) => lanes.push(lane(Flying::Free(paused))),
                     Ok(Ok(Progress::Done(flight))) => {
                         results[row] = Some(self.lane_result(sim, Ok(flight), variant))
                     }
