@@ -281,6 +281,14 @@ impl<const N: usize> Dopri54<N> {
         self.reach
     }
 
+    /// How far the first attempt of the next step toward `t_stop` may reach (what it would
+    /// add to [`Dopri54::reach`]), or `None` where its size is yet to be estimated (the
+    /// estimate reads the stop).
+    pub fn next_reach(&self, t_stop: f64) -> Option<f64> {
+        (self.h_next > 0.0)
+            .then(|| super::attempt_reach(self.t, self.h_next.min(self.control.h_max), t_stop))
+    }
+
     fn set_state<F>(&mut self, f: &mut F, t: f64, y: &[f64; N]) -> Result<(), IntegratorError>
     where
         F: FnMut(f64, &[f64; N], &mut [f64; N]),
@@ -375,11 +383,9 @@ impl<const N: usize> Dopri54<N> {
         let (h, last) = clip_to_stop(t, a.h_proposal, a.t_stop);
         a.h = h;
         a.last = last;
-        self.reach = self.reach.max(if last {
-            a.t_stop
-        } else {
-            t + 1.01 * a.h_proposal
-        });
+        self.reach = self
+            .reach
+            .max(super::attempt_reach(t, a.h_proposal, a.t_stop));
         if self.n_accepted + self.n_rejected - self.n_on_stop >= c.max_steps {
             return Err(IntegratorError::TooManySteps {
                 t,

@@ -259,6 +259,18 @@ pub(crate) fn clip_to_stop(t: f64, h: f64, t_stop: f64) -> (f64, bool) {
     }
 }
 
+/// How far an attempt from `t` with proposal `h` toward `t_stop` may reach: `t_stop` where
+/// [`clip_to_stop`] clips it there, else `t + 1.01 h`, the sum that test compares with the
+/// stop (a trajectory whose stop is later than this takes the same attempt).
+#[inline]
+pub(crate) fn attempt_reach(t: f64, h: f64, t_stop: f64) -> f64 {
+    if clip_to_stop(t, h, t_stop).1 {
+        t_stop
+    } else {
+        t + 1.01 * h
+    }
+}
+
 /// Hairer's starting step (HNW I, §II.4) from `(t, y)` with derivative `dy`: a step such that
 /// an explicit Euler step would make an error of about 1 % of the tolerance, refined by a
 /// second-derivative estimate from one more evaluation of `f` (the caller counts it), never

@@ -462,19 +462,15 @@ impl<'a, O: Observer> Paused<'a, O> {
     /// Whether every attempt of the free flight's next step ends before `limit`, whatever
     /// stop times at or after `limit` the flight has (then a flight whose stops differ from
     /// this one's only there, with the same derivative before `limit`, takes the same step):
-    /// its stop is before `limit`, or its proposed step, stretched by the 1 % `clip_to_stop`
-    /// allows, ends before `limit`. False for a step whose size is yet to be estimated (the
-    /// estimate reads the stop) and for fixed-step RK4.
+    /// its stop is before `limit`, or its first attempt's reach ([`Dopri54::next_reach`]) is.
+    /// False for a step whose size is yet to be estimated toward a stop at or after `limit`
+    /// and for fixed-step RK4.
     pub(crate) fn next_step_before(&mut self, limit: f64) -> bool {
         let Stepper::Adaptive(d) = &self.s6.stepper else {
             return false;
         };
-        let t = d.t();
-        if self.run.next_stop(t) < limit {
-            return true;
-        }
-        let h = d.h_next().min(d.control().h_max);
-        d.h_next() > 0.0 && t + 1.01 * h < limit
+        let t_stop = self.run.next_stop(d.t());
+        t_stop < limit || d.next_reach(t_stop).is_some_and(|r| r < limit)
     }
 
     /// The latest time an attempt of this flight so far was allowed to reach, s
@@ -516,7 +512,7 @@ impl<'a, O: Observer> Paused<'a, O> {
     /// this flight's model at a time of `from`, of another model's at `to`): one stop taken
     /// away per time of `from` still ahead, one added per time of `to` ahead.
     pub(crate) fn move_stops(&mut self, from: &[f64], to: &[f64]) {
-        let t = each!(&self.s6.stepper, s => s.t());
+        let t = self.time_s();
         for &s in from.iter().filter(|&&s| s > t) {
             self.run.stops.remove(s);
         }
@@ -548,7 +544,7 @@ impl<'a, O: Observer> Paused<'a, O> {
     /// four at a time.
     #[inline]
     pub(crate) fn mass_changing(&self) -> bool {
-        let t = each!(&self.s6.stepper, s => s.t());
+        let t = self.time_s();
         !self.run.model.mass_settled(&self.run.starts, t)
     }
 
